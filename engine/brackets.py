@@ -1,0 +1,141 @@
+"""Vectorised bracket structure of an L-string: depth, matching brackets, parents, context neighbours.
+
+All functions are O(n log n) numpy, with no Python loop over modules, so the derivation and the
+turtle can use them on million-module strings.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+OPEN = ord("[")
+CLOSE = ord("]")
+
+
+class BracketError(ValueError):
+    """The string's brackets do not balance; ``index`` is the first offending module."""
+
+    def __init__(self, message: str, index: int) -> None:
+        super().__init__(message)
+        self.index = index
+
+
+def depths(sym: np.ndarray) -> np.ndarray:
+    """Nesting depth of every module; a bracket has the depth of the branch it opens or closes."""
+    step = (sym == OPEN).astype(np.int32) - (sym == CLOSE).astype(np.int32)
+    after = np.cumsum(step, dtype=np.int32)
+    return np.where(sym == CLOSE, after + 1, after)
+
+
+def check_balanced(sym: np.ndarray) -> None:
+    """Raise :class:`BracketError` if brackets do not balance."""
+    d = depths(sym)
+    is_close = sym == CLOSE
+    bad = np.flatnonzero(is_close & (d <= 0))
+    if len(bad):
+        raise BracketError("']' without a matching '['", int(bad[0]))
+    final = int(np.count_nonzero(sym == OPEN)) - int(np.count_nonzero(is_close))
+    if final:
+        opens = np.flatnonzero(sym == OPEN)
+        raise BracketError("'[' is never closed", int(opens[-1]) if len(opens) else 0)
+
+
+def match(sym: np.ndarray) -> np.ndarray:
+    """For every bracket, the index of its partner; -1 for other modules. Assumes balance."""
+    n = len(sym)
+    out = np.full(n, -1, dtype=np.int64)
+    opens = np.flatnonzero(sym == OPEN)
+    closes = np.flatnonzero(sym == CLOSE)
+    if len(opens) == 0:
+        return out
+    d = depths(sym).astype(np.int64)
+    okey = d[opens] * (n + 1) + opens
+    order = np.argsort(okey, kind="stable")
+    okey_sorted, opens_sorted = okey[order], opens[order]
+    ckey = d[closes] * (n + 1) + closes
+    partner = opens_sorted[np.searchsorted(okey_sorted, ckey) - 1]
+    out[closes] = partner
+    out[partner] = closes
+    return out
+
+
+def enclosing_open(sym: np.ndarray, d: np.ndarray | None = None) -> np.ndarray:
+    """For every module, the index of the '[' of the branch it lies in (-1 on the main axis).
+
+    A bracket itself counts as lying in the branch it opens/closes.
+    """
+    n = len(sym)
+    d = depths(sym) if d is None else d
+    opens = np.flatnonzero(sym == OPEN)
+    out = np.full(n, -1, dtype=np.int64)
+    if len(opens) == 0:
+        return out
+    d64 = d.astype(np.int64)
+    okey = d64[opens] * (n + 1) + opens
+    order = np.argsort(okey, kind="stable")
+    okey_sorted, opens_sorted = okey[order], opens[order]
+    inside = np.flatnonzero(d64 > 0)
+    pos = np.searchsorted(okey_sorted, d64[inside] * (n + 1) + inside, side="right") - 1
+    out[inside] = opens_sorted[pos]
+    return out
+
+
+def first_good(step: np.ndarray, good: np.ndarray) -> np.ndarray:
+    """Follow pointers ``step`` (-1 = none) from each index until an index where ``good`` holds.
+
+    Returns, for every i, the first good index among step[i], step[step[i]], ... (or -1).
+    Pointer jumping: each round doubles how far every pointer has looked, so O(n log n).
+    """
+    n = len(step)
+    good_ext = np.append(good, True)  # index n is the sentinel for "none"
+    p = np.append(np.where(step < 0, n, step), n)
+    while True:
+        bad = ~good_ext[p]
+        if not bad.any():
+            break
+        p = np.where(bad, p[p], p)
+    p = p[:n]
+    return np.where(p == n, -1, p)
+
+
+def _chase(start: np.ndarray, step: np.ndarray, good: np.ndarray) -> np.ndarray:
+    """First good index in each chain start[i], step[start[i]], ... (-1 when none)."""
+    chain = first_good(step, good)
+    out = np.full(len(start), -1, dtype=np.int64)
+    valid = start >= 0
+    s = start[valid]
+    out[valid] = np.where(good[s], s, chain[s])
+    return out
+
+
+def _context_good(sym: np.ndarray, skip: np.ndarray) -> np.ndarray:
+    return ~(skip[sym] | (sym == OPEN) | (sym == CLOSE))
+
+
+def left_neighbours(sym: np.ndarray, skip: np.ndarray, partner: np.ndarray) -> np.ndarray:
+    """ABOP left-context neighbour of each module: the previous module on its path to the root.
+
+    Skips complete branches ``[...]`` to the left, steps out of the enclosing branch at '[', and
+    passes over symbols in ``skip`` (the #ignore set, as a boolean table indexed by symbol).
+    """
+    n = len(sym)
+    step = np.arange(n, dtype=np.int64) - 1
+    closes = np.flatnonzero(sym == CLOSE)
+    step[closes] = partner[closes] - 1
+    return _chase(np.arange(n, dtype=np.int64) - 1, step, _context_good(sym, skip))
+
+
+def right_neighbours(sym: np.ndarray, skip: np.ndarray, partner: np.ndarray) -> np.ndarray:
+    """ABOP right-context neighbour: the next module on the same axis, skipping whole branches.
+
+    The axis ends at the ']' closing its branch, so the last module of a branch has none.
+    """
+    n = len(sym)
+    step = np.arange(n, dtype=np.int64) + 1
+    opens = np.flatnonzero(sym == OPEN)
+    step[opens] = partner[opens] + 1
+    step[sym == CLOSE] = -1
+    step[step >= n] = -1
+    start = np.arange(n, dtype=np.int64) + 1
+    start[start >= n] = -1
+    return _chase(start, step, _context_good(sym, skip))

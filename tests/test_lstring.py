@@ -1,0 +1,62 @@
+import math
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from engine.errors import LSysError
+from engine.lstring import LString, parse_lstring
+
+SYMBOLS = "FfAB+-&^/\\|$[]!'%XL"
+floats = st.floats(allow_nan=True, allow_infinity=True, width=64)
+
+
+@st.composite
+def lstrings(draw):
+    n = draw(st.integers(0, 40))
+    syms = draw(st.lists(st.sampled_from(SYMBOLS), min_size=n, max_size=n))
+    counts = draw(st.lists(st.integers(0, 3), min_size=n, max_size=n))
+    values = draw(st.lists(floats, min_size=sum(counts), max_size=sum(counts)))
+    return LString.from_arrays(
+        np.array([ord(s) for s in syms], np.uint8), np.array(counts, np.uint8), np.array(values, np.float64)
+    )
+
+
+@given(lstrings())
+@settings(max_examples=300, deadline=None)
+def test_text_round_trip_is_exact(ls):
+    back = parse_lstring(ls.to_text())
+    assert back.equals(ls)
+
+
+def test_text_format_is_readable():
+    ls = parse_lstring("F(5) [ +(25.7)F(0.1,2) ] A")
+    assert ls.to_text() == "F(5)[+(25.7)F(0.1,2)]A"
+    assert ls.module(3) == ("F", (0.1, 2.0))
+    assert parse_lstring("F(-0.0)").to_text() == "F(-0.0)"
+    assert parse_lstring(repr(math.pi).join(["F(", ")"])).params[0] == math.pi
+
+
+def test_memory_layout_is_flat():
+    ls = parse_lstring("F(1)" * 1000)
+    assert ls.nbytes <= 18 * 1000
+    assert ls.sym.dtype == np.uint8 and ls.params.dtype == np.float64
+
+
+@pytest.mark.parametrize(
+    "text, col", [("F(1,", 2), ("F(abc)", 3), ("F)", 2), ("F(1)(2)", 5), ("Fé", 2), ("F(1e999x)", 3)]
+)
+def test_bad_text_names_column(text, col):
+    with pytest.raises(LSysError) as info:
+        parse_lstring(text, file="save.tree", line=7)
+    assert (info.value.file, info.value.line, info.value.col) == ("save.tree", 7, col)
+
+
+@given(st.text(max_size=60))
+@settings(max_examples=300, deadline=None)
+def test_random_text_only_raises_our_error(text):
+    try:
+        parse_lstring(text)
+    except LSysError as err:
+        assert err.line >= 1 and err.col >= 1
