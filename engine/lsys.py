@@ -5,7 +5,8 @@ A source is read line by line::
     // comment line (also '# ' followed by text)
     #define a 18.95             constants, may use earlier ones
     #ignore: + - / &            symbols skipped in context matching (or #consider: the opposite)
-    n: 6                        header values: n, delta (or angle), step, width, seed, budget
+    n: 6                        header values: n, delta (or angle), step, width, width_scale, seed,
+                                budget, leaf_size, leaves_at_tips
     w: !(1)F(200)/(45)A         the axiom (also 'axiom:' or 'ω:')
     p1: A : * -> !(vr)F(50)[&(a)F(50)A]
     p2: B(x) < A(y) > C : x > y -> A(x + y)
@@ -37,6 +38,9 @@ HEADER_KEYS = {
     "angle": "angle",
     "step": "step",
     "width": "width",
+    "width_scale": "width_scale",
+    "leaf_size": "leaf_size",
+    "leaves_at_tips": "leaves_at_tips",
     "seed": "seed",
     "budget": "budget",
 }
@@ -94,7 +98,10 @@ class LSystem:
     iterations: int = 0
     angle: float = 90.0
     step: float = 1.0
-    width: float = 1.0
+    width: float | None = None
+    width_scale: float = 1.0
+    leaf_size: float | None = None
+    leaves_at_tips: int | None = None
     seed: int = 0
     budget: int | None = None
     file: str = "<string>"
@@ -193,7 +200,7 @@ def _header(system: LSystem, line: str, file: str, number: int) -> bool:
 
 
 def _set_header(system: LSystem, attr: str, value: float, cur: Cursor) -> None:
-    if attr in ("iterations", "seed", "budget"):
+    if attr in ("iterations", "seed", "budget", "leaves_at_tips"):
         if value != int(value) or value < 0 or value > 2**62:
             raise cur.error(f"'{attr}' must be a whole number >= 0")
         setattr(system, attr, int(value))

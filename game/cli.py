@@ -15,14 +15,60 @@ ASSETS = ROOT / "assets"
 
 
 def _cmd_derive(args: argparse.Namespace) -> int:
+    _, result = _grow(args)
+    print(result.to_text())
+    return 0
+
+
+def _size(text: str) -> tuple[int, int]:
+    try:
+        w, h = (int(v) for v in text.lower().split("x"))
+    except ValueError:
+        raise argparse.ArgumentTypeError("size must look like 1280x720") from None
+    if not (16 <= w <= 8192 and 16 <= h <= 8192):
+        raise argparse.ArgumentTypeError("size must be between 16 and 8192 pixels per side")
+    return w, h
+
+
+def _grow(args: argparse.Namespace):
     system = load_lsystem(args.source)
     deriver = Deriver(system, seed=args.seed, budget=args.budget)
     result, reports = deriver.derive(steps=args.steps)
     if any(r.budget_hit for r in reports):
         held = sum(r.deferred for r in reports)
         print(f"module budget {deriver.budget:,} reached: {held:,} rewrites held back", file=sys.stderr)
-    print(result.to_text())
+    return system, result
+
+
+def _cmd_render(args: argparse.Namespace) -> int:
+    from engine.tree import build_geometry
+    from game.render import render_image, save_png
+
+    system, ls = _grow(args)
+    geometry = build_geometry(ls, system, lod=args.lod)
+    pixels = render_image(geometry.mesh, args.size, yaw=args.yaw, pitch=args.pitch)
+    save_png(pixels, args.out)
+    print(f"{args.out}: {len(ls):,} modules, {len(geometry.turtle.segments):,} segments, "
+          f"{geometry.mesh.n_triangles:,} triangles")
     return 0
+
+
+def _cmd_export(args: argparse.Namespace) -> int:
+    from engine.export import export_tree
+    from engine.tree import build_geometry
+
+    system, ls = _grow(args)
+    geometry = build_geometry(ls, system, lod=args.lod)
+    files = export_tree(geometry.mesh, args.out, ASSETS / "textures", args.format)
+    print(f"{args.out}: {geometry.mesh.n_triangles:,} triangles (lod {args.lod}); wrote {len(files)} file(s)")
+    return 0
+
+
+def _add_growth_args(p: argparse.ArgumentParser) -> None:
+    p.add_argument("source", type=Path, help=".lsys file")
+    p.add_argument("--steps", type=int, default=None, help="derivation steps (default: the file's n:)")
+    p.add_argument("--seed", type=int, default=None)
+    p.add_argument("--budget", type=int, default=None, help="module budget")
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -30,11 +76,22 @@ def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(prog="arbor", description="Grow and model 3D trees.")
     sub = parser.add_subparsers(dest="command")
     derive = sub.add_parser("derive", help="print the L-string an .lsys source derives")
-    derive.add_argument("source", type=Path)
-    derive.add_argument("--steps", type=int, default=None)
-    derive.add_argument("--seed", type=int, default=None)
-    derive.add_argument("--budget", type=int, default=None)
+    _add_growth_args(derive)
     derive.set_defaults(run=_cmd_derive)
+    render = sub.add_parser("render", help="render a tree to PNG without a window")
+    _add_growth_args(render)
+    render.add_argument("--size", type=_size, default=(1280, 720))
+    render.add_argument("--yaw", type=float, default=30.0)
+    render.add_argument("--pitch", type=float, default=12.0)
+    render.add_argument("--lod", type=int, default=0)
+    render.add_argument("--out", type=Path, default=Path("tree.png"))
+    render.set_defaults(run=_cmd_render)
+    export = sub.add_parser("export", help="export a tree as GLB or OBJ+MTL")
+    _add_growth_args(export)
+    export.add_argument("--format", choices=("glb", "obj"), default=None, help="default: from --out's suffix")
+    export.add_argument("--lod", type=int, default=0)
+    export.add_argument("--out", type=Path, default=Path("tree.glb"))
+    export.set_defaults(run=_cmd_export)
     return parser
 
 

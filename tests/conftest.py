@@ -12,6 +12,6 @@ ROOT = Path(__file__).resolve().parent.parent
 LSYSTEMS = ROOT / "assets" / "lsystems"
 
 
-@pytest.fixture
+@pytest.fixture(scope="session")
 def lsys_dir() -> Path:
     return LSYSTEMS

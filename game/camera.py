@@ -1,0 +1,80 @@
+"""Orbit camera: yaw about the vertical axis, pitch (tilt), distance to a target point."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+
+def perspective(fov_y_deg: float, aspect: float, near: float, far: float) -> np.ndarray:
+    """OpenGL perspective projection matrix (row-major numpy; transpose when uploading)."""
+    f = 1.0 / math.tan(math.radians(fov_y_deg) / 2)
+    m = np.zeros((4, 4))
+    m[0, 0], m[1, 1] = f / aspect, f
+    m[2, 2], m[2, 3] = (far + near) / (near - far), 2 * far * near / (near - far)
+    m[3, 2] = -1.0
+    return m
+
+
+def orthographic(half: float, near: float, far: float) -> np.ndarray:
+    """Symmetric orthographic projection covering [-half, half] in x and y."""
+    m = np.eye(4)
+    m[0, 0] = m[1, 1] = 1.0 / half
+    m[2, 2], m[2, 3] = -2.0 / (far - near), -(far + near) / (far - near)
+    return m
+
+
+WORLD_UP = np.array([0.0, 1.0, 0.0])
+
+
+def look_at(eye: np.ndarray, target: np.ndarray, up: np.ndarray = WORLD_UP) -> np.ndarray:
+    """View matrix looking from ``eye`` at ``target``."""
+    f = target - eye
+    f = f / np.linalg.norm(f)
+    if abs(float(np.dot(f, up))) > 0.999:
+        up = np.array([0.0, 0.0, 1.0])
+    s = np.cross(f, up)
+    s /= np.linalg.norm(s)
+    u = np.cross(s, f)
+    m = np.eye(4)
+    m[0, :3], m[1, :3], m[2, :3] = s, u, -f
+    m[:3, 3] = -m[:3, :3] @ eye
+    return m
+
+
+@dataclass
+class OrbitCamera:
+    """Camera orbiting ``target``: yaw (deg, any), pitch (deg above the horizon), distance."""
+
+    yaw: float = 30.0
+    pitch: float = 12.0
+    distance: float = 10.0
+    target: np.ndarray = field(default_factory=lambda: np.zeros(3))
+    fov_y: float = 40.0
+
+    @property
+    def eye(self) -> np.ndarray:
+        """World position of the camera."""
+        yaw, pitch = math.radians(self.yaw), math.radians(self.pitch)
+        offset = np.array([math.sin(yaw) * math.cos(pitch), math.sin(pitch), math.cos(yaw) * math.cos(pitch)])
+        return self.target + self.distance * offset
+
+    def view(self) -> np.ndarray:
+        """The view matrix."""
+        return look_at(self.eye, self.target)
+
+    def projection(self, aspect: float) -> np.ndarray:
+        """The projection matrix; near/far follow the distance so depth precision stays good."""
+        return perspective(self.fov_y, aspect, self.distance * 0.01, self.distance * 20.0)
+
+    def frame_bounds(self, lo: np.ndarray, hi: np.ndarray, aspect: float = 16 / 9, fill: float = 0.85) -> None:
+        """Aim at the box [lo, hi] and set the distance so it fills ``fill`` of the view."""
+        self.target = (lo + hi) / 2
+        ext = np.maximum(hi - lo, 1e-3)
+        tan_y = math.tan(math.radians(self.fov_y) / 2)
+        half_h = ext[1] / 2
+        half_w = max(ext[0], ext[2]) / 2
+        need = max(half_h / tan_y, half_w / (tan_y * aspect)) / fill
+        self.distance = need + max(ext[0], ext[2]) / 2

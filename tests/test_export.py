@@ -1,0 +1,90 @@
+import json
+import struct
+from pathlib import Path
+
+import numpy as np
+import pytest
+import trimesh
+
+from engine.derive import derive
+from engine.export import export_tree
+from engine.lsys import load_lsystem
+from engine.tree import build_geometry
+from game.cli import main
+
+TEXTURES = Path(__file__).resolve().parent.parent / "assets" / "textures"
+
+
+@pytest.fixture(scope="module")
+def tree(lsys_dir):
+    system = load_lsystem(lsys_dir / "abop_2_8_tree.lsys")
+    return build_geometry(derive(system, 4), system, lod=1).mesh
+
+
+def _bounds(tree):
+    pts = np.concatenate([tree.wood.positions, tree.leaves.positions]).astype(float)
+    return pts.min(axis=0), pts.max(axis=0)
+
+
+def test_glb_round_trip_counts_and_bounds(tree, tmp_path):
+    path = tmp_path / "tree.glb"
+    export_tree(tree, path, TEXTURES)
+    scene = trimesh.load(path, process=False)
+    geoms = scene.geometry
+    assert {(len(g.vertices), len(g.faces)) for g in geoms.values()} == {
+        (len(tree.wood.positions), tree.wood.n_triangles),
+        (len(tree.leaves.positions), tree.leaves.n_triangles),
+    }
+    lo, hi = _bounds(tree)
+    np.testing.assert_allclose(scene.bounds, [lo, hi], rtol=1e-5, atol=1e-4)
+
+
+def test_glb_structure_follows_the_spec(tree, tmp_path):
+    path = tmp_path / "tree.glb"
+    export_tree(tree, path, TEXTURES)
+    data = path.read_bytes()
+    magic, version, length = struct.unpack_from("<4sII", data, 0)
+    assert (magic, version, length) == (b"glTF", 2, len(data))
+    json_len, json_type = struct.unpack_from("<II", data, 12)
+    assert json_type == 0x4E4F534A and json_len % 4 == 0
+    gltf = json.loads(data[20 : 20 + json_len])
+    bin_len, bin_type = struct.unpack_from("<II", data, 20 + json_len)
+    assert bin_type == 0x004E4942 and 28 + json_len + bin_len == len(data)
+    assert gltf["asset"]["version"] == "2.0"
+    for view in gltf["bufferViews"]:
+        assert view["byteOffset"] + view["byteLength"] <= gltf["buffers"][0]["byteLength"]
+    mats = {m["name"]: m for m in gltf["materials"]}
+    assert mats["leaf"]["alphaMode"] == "MASK" and mats["leaf"]["doubleSided"] is True
+    assert mats["bark"].get("alphaMode", "OPAQUE") == "OPAQUE"
+    for mesh in gltf["meshes"]:
+        attrs = mesh["primitives"][0]["attributes"]
+        assert {"POSITION", "NORMAL", "TEXCOORD_0"} <= set(attrs)
+        pos = gltf["accessors"][attrs["POSITION"]]
+        assert "min" in pos and "max" in pos
+    assert len(gltf["images"]) == 2 and len(gltf["textures"]) == 2
+
+
+def test_obj_with_mtl_round_trip(tree, tmp_path):
+    path = tmp_path / "tree.obj"
+    files = export_tree(tree, path, TEXTURES)
+    names = {f.name for f in files}
+    assert {"tree.obj", "tree.mtl"} <= names and any(n.endswith(".png") for n in names)
+    scene = trimesh.load(path, process=False)
+    faces = sum(len(g.faces) for g in scene.geometry.values())
+    assert faces == tree.wood.n_triangles + tree.leaves.n_triangles
+    lo, hi = _bounds(tree)
+    np.testing.assert_allclose(scene.bounds, [lo, hi], rtol=1e-4, atol=1e-3)
+
+
+def test_cli_export(tmp_path, lsys_dir, capsys):
+    out = tmp_path / "t.glb"
+    assert main(["export", str(lsys_dir / "seed003_tree.lsys"), "--steps", "3", "--out", str(out)]) == 0
+    assert out.stat().st_size > 1000 and not (tmp_path / "t.glb.tmp").exists()
+    assert "triangles" in capsys.readouterr().out
+
+
+def test_cli_reports_bad_source(tmp_path, capsys):
+    bad = tmp_path / "bad.lsys"
+    bad.write_text("w: F\np1: F -> F(\n")
+    assert main(["export", str(bad), "--out", str(tmp_path / "x.glb")]) == 2
+    assert f"{bad}:2:" in capsys.readouterr().err

@@ -1,0 +1,106 @@
+"""Headless rendering (EGL, Mesa llvmpipe): look at pixels the way a player would."""
+
+import os
+import shutil
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+from engine.derive import derive
+from engine.lsys import load_lsystem
+from engine.mesh import Mesh, TreeMesh
+from engine.tree import build_geometry
+from game.cli import main
+from game.render import headless_context, render_image
+
+SIZE = (480, 320)
+
+
+@pytest.fixture(scope="module")
+def ctx():
+    context = headless_context()
+    yield context
+    context.release()
+
+
+@pytest.fixture(scope="module")
+def pictures(ctx, lsys_dir):
+    system = load_lsystem(lsys_dir / "abop_2_8_tree.lsys")
+    tree = build_geometry(derive(system, 5), system).mesh
+    empty = TreeMesh(Mesh.empty(), Mesh.empty(), Mesh.empty())
+    with_tree = render_image(tree, SIZE, ctx=ctx)
+    # same camera and light, tree not drawn: isolates the tree's pixels
+    without = render_image(tree_without_drawing(tree), SIZE, ctx=ctx)
+    blank = render_image(empty, SIZE, ctx=ctx)
+    return with_tree, without, blank
+
+
+def tree_without_drawing(tree: TreeMesh) -> TreeMesh:
+    """The same bounds (so the same framing) but triangles of zero area."""
+    def collapse(m: Mesh) -> Mesh:
+        idx = np.zeros_like(m.indices)
+        return Mesh(m.positions, m.normals, m.uvs, idx, m.face_module)
+
+    return TreeMesh(collapse(tree.wood), collapse(tree.leaves), collapse(tree.blossoms))
+
+
+def tree_mask(with_tree, without):
+    return np.abs(with_tree.astype(int) - without.astype(int)).sum(axis=2) > 40
+
+
+def test_scene_is_not_blank(pictures):
+    with_tree, _, blank = pictures
+    assert with_tree.shape == (SIZE[1], SIZE[0], 3)
+    assert 60 < with_tree.mean() < 230 and with_tree.std() > 20
+    sky = blank[5, SIZE[0] // 2]
+    assert sky[2] > sky[0]  # blue sky on top
+    grass = blank[-5, SIZE[0] // 2]
+    assert grass[1] > grass[0] and grass[1] > grass[2]  # green ground below
+
+
+def test_tree_is_present_and_framed(pictures):
+    with_tree, without, _ = pictures
+    mask = tree_mask(with_tree, without)
+    assert mask.mean() > 0.03  # tree and its shadow cover a real part of the picture
+    ys, xs = np.nonzero(mask)
+    h, w = mask.shape
+    assert ys.min() > 2 and xs.min() > 2 and xs.max() < w - 3  # nothing cut off at the edges
+    assert (ys.max() - ys.min()) > 0.5 * h  # the tree fills the frame vertically
+
+
+def test_leaves_are_green_and_bark_is_brown(pictures):
+    with_tree, without, _ = pictures
+    mask = tree_mask(with_tree, without)
+    px = with_tree[mask].astype(int)
+    r, g, b = px[:, 0], px[:, 1], px[:, 2]
+    assert ((g > r + 15) & (g > b + 15)).mean() > 0.2  # leafy crown
+    assert ((r > g) & (g >= b) & (r > 60)).sum() > 30  # lit bark somewhere
+
+
+def test_cli_render_writes_png(tmp_path, lsys_dir, capsys):
+    out = tmp_path / "tree.png"
+    args = ["render", str(lsys_dir / "seed003_tree.lsys"), "--steps", "4", "--size", "320x200", "--out", str(out)]
+    assert main(args) == 0
+    import pygame
+
+    img = pygame.image.load(str(out))
+    assert img.get_size() == (320, 200)
+    assert "segments" in capsys.readouterr().out
+
+
+@pytest.mark.skipif(shutil.which("xvfb-run") is None, reason="needs xvfb-run (CI installs it)")
+def test_arbor_opens_a_window(tmp_path):
+    shot = tmp_path / "window.png"
+    env = dict(os.environ, SDL_VIDEODRIVER="x11", SDL_AUDIODRIVER="dummy", ARBOR_MAX_FRAMES="4",
+               ARBOR_SCREENSHOT=str(shot))
+    cmd = ["xvfb-run", "-a", "-s", "-screen 0 1280x720x24", sys.executable, "-m", "game.cli"]
+    proc = subprocess.run(cmd, env=env, capture_output=True, timeout=120)
+    assert proc.returncode == 0, proc.stderr.decode()[-2000:]
+    import pygame
+
+    pixels = pygame.surfarray.array3d(pygame.image.load(str(shot)))
+    assert pixels.std() > 20
+    green = (pixels[..., 1] > pixels[..., 0] + 15) & (pixels[..., 1] > pixels[..., 2] + 15)
+    assert green.mean() > 0.2
