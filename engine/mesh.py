@@ -211,31 +211,57 @@ def _bezier_rings(rings: _Rings, start_ring: np.ndarray, end_ring: np.ndarray, n
 def _tube_mesh(rings: _Rings, ring_seq: np.ndarray, module: np.ndarray, n_surf: int, tips, tip_dir) -> Mesh:
     """Vertices for every ring, quads between consecutive rings of each segment, cones at tips."""
     tan = _normalize(rings.tangent)
-    x = rings.x - np.einsum("ni,ni->n", rings.x, tan)[:, None] * tan
-    x = _normalize(x)
-    y = np.cross(tan, x)
+    x = _normalize(rings.x - np.einsum("ni,ni->n", rings.x, tan)[:, None] * tan).astype(np.float32)
+    y = np.cross(tan, x).astype(np.float32)
     ang = np.linspace(0.0, 2 * np.pi, n_surf + 1)
-    cos, sin = np.cos(ang)[None, :, None], np.sin(ang)[None, :, None]
-    normals = cos * x[:, None] + sin * y[:, None]  # (R, n_surf+1, 3)
-    pos = rings.center[:, None] + rings.radius[:, None, None] * normals
-    uv = np.stack(np.broadcast_arrays(ang[None, :] / (2 * np.pi), rings.v[:, None]), axis=-1)
+    cos, sin = np.cos(ang).astype(np.float32), np.sin(ang).astype(np.float32)
     per = n_surf + 1
-    a = ring_seq[:, :-1, None] * per + np.arange(n_surf)  # (m, n_div, n_surf)
-    b = ring_seq[:, 1:, None] * per + np.arange(n_surf)
-    quads = np.stack([a, a + 1, b + 1, a, b + 1, b], axis=-1).reshape(-1, 3)
-    face_module = np.repeat(module, 2 * n_surf * (ring_seq.shape[1] - 1))
-    n_ring_verts = len(rings.center) * per
-    tip_pos = rings.center[tips] + tip_dir[tips] * rings.radius[tips, None] * 2.0
-    tip_idx = n_ring_verts + np.arange(len(tips))
-    ring_base = tips[:, None] * per + np.arange(n_surf)
-    caps = np.stack([ring_base, ring_base + 1, np.broadcast_to(tip_idx[:, None], ring_base.shape)], axis=-1)
-    positions = np.concatenate([pos.reshape(-1, 3), tip_pos])
-    all_normals = np.concatenate([normals.reshape(-1, 3), tip_dir[tips]])
-    uvs = np.concatenate([uv.reshape(-1, 2), np.stack([np.full(len(tips), 0.5), rings.v[tips] + 0.5], 1)])
-    indices = np.concatenate([quads, caps.reshape(-1, 3)])
-    face_module = np.concatenate([face_module, np.repeat(module[tips], n_surf)])
-    return Mesh(positions.astype(np.float32), all_normals.astype(np.float32), uvs.astype(np.float32),
-                indices.astype(np.uint32), face_module)
+    n_rings = len(rings.center)
+    n_tips = len(tips)
+    positions = np.empty((n_rings * per + n_tips, 3), np.float32)
+    normals = np.empty_like(positions)
+    ring_normals = normals[: n_rings * per].reshape(n_rings, per, 3)
+    np.multiply(cos[None, :, None], x[:, None], out=ring_normals)
+    ring_normals += sin[None, :, None] * y[:, None]
+    ring_pos = positions[: n_rings * per].reshape(n_rings, per, 3)
+    np.multiply(ring_normals, rings.radius.astype(np.float32)[:, None, None], out=ring_pos)
+    ring_pos += rings.center.astype(np.float32)[:, None]
+    uvs = np.empty((len(positions), 2), np.float32)
+    ring_uv = uvs[: n_rings * per].reshape(n_rings, per, 2)
+    ring_uv[:, :, 0] = ang / (2 * np.pi)
+    ring_uv[:, :, 1] = rings.v[:, None]
+    positions[n_rings * per :] = rings.center[tips] + tip_dir[tips] * rings.radius[tips, None] * 2.0
+    normals[n_rings * per :] = tip_dir[tips]
+    uvs[n_rings * per :, 0] = 0.5
+    uvs[n_rings * per :, 1] = rings.v[tips] + 0.5
+    return Mesh(positions, normals, uvs, _tube_indices(ring_seq, n_surf, tips, n_rings * per), _face_modules(
+        module, ring_seq, n_surf, tips))
+
+
+def _tube_indices(ring_seq: np.ndarray, n_surf: int, tips: np.ndarray, tip_base: int) -> np.ndarray:
+    per = n_surf + 1
+    seq = ring_seq.astype(np.uint32) * np.uint32(per)
+    side = np.arange(n_surf, dtype=np.uint32)
+    a = seq[:, :-1, None] + side
+    b = seq[:, 1:, None] + side
+    quads = np.empty((*a.shape, 6), np.uint32)
+    quads[..., 0] = a
+    quads[..., 1] = a + 1
+    quads[..., 2] = b + 1
+    quads[..., 3] = a
+    quads[..., 4] = b + 1
+    quads[..., 5] = b
+    ring_base = tips.astype(np.uint32)[:, None] * np.uint32(per) + side
+    caps = np.empty((*ring_base.shape, 3), np.uint32)
+    caps[..., 0] = ring_base
+    caps[..., 1] = ring_base + 1
+    caps[..., 2] = (tip_base + np.arange(len(tips), dtype=np.uint32))[:, None]
+    return np.concatenate([quads.reshape(-1, 3), caps.reshape(-1, 3)])
+
+
+def _face_modules(module: np.ndarray, ring_seq: np.ndarray, n_surf: int, tips: np.ndarray) -> np.ndarray:
+    tube = np.repeat(module, 2 * n_surf * (ring_seq.shape[1] - 1))
+    return np.concatenate([tube, np.repeat(module[tips], n_surf)])
 
 
 def leaf_mesh(leaves: Leaves, aspect: float = 0.5, fraction: float = 1.0, seed: int = 0) -> Mesh:

@@ -377,13 +377,22 @@ def _auto_leaf_size(segs: Segments) -> float:
 
 
 def _tip_leaves(segs: Segments, k: int, size: float) -> Leaves:
-    """A small cluster of leaves at the end of every segment with no child (seed 003 added them at ']')."""
+    """A cluster of ``k`` leaves at the end of every segment with no child (seed 003 added them at ']').
+
+    Leaf i of a tip is rolled i/k of a turn about the twig (plus a per-tip offset) and pitched 40 deg
+    away from it; the frame is built from vectors, not matrix products, since tips are numerous.
+    """
     tips = _tip_segments(segs)
     tip = np.repeat(tips, k)
     j = np.tile(np.arange(k), len(tips))
-    roll = j * (360.0 / k) + (segs.module[tip] * 37 % 360)
-    pitch = np.full(len(tip), 40.0)
-    frames = segs.frame[tip] @ _axis_rotations(0, roll) @ _axis_rotations(1, -pitch)
+    roll = np.radians(j * (360.0 / k) + (segs.module[tip] * 37 % 360))[:, None]
+    h, lft, up = (segs.frame[tip][:, :, c] for c in range(3))
+    side = np.cos(roll) * lft + np.sin(roll) * up
+    cp, sp = np.cos(np.radians(40.0)), np.sin(np.radians(40.0))
+    new_h = cp * h + sp * side
+    new_u = -sp * h + cp * side
+    new_l = np.cross(new_u, new_h)
+    frames = np.stack([new_h, new_l, new_u], axis=2)
     return Leaves(segs.end[tip], frames, np.full(len(tip), size), segs.module[tip])
 
 

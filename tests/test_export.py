@@ -88,3 +88,26 @@ def test_cli_reports_bad_source(tmp_path, capsys):
     bad.write_text("w: F\np1: F -> F(\n")
     assert main(["export", str(bad), "--out", str(tmp_path / "x.glb")]) == 2
     assert f"{bad}:2:" in capsys.readouterr().err
+
+
+VALIDATOR = Path(__file__).resolve().parent.parent / ".ci" / "gltf" / "node_modules" / "gltf-validator"
+VALIDATE_JS = """
+const v = require(process.argv[1]); const fs = require('fs');
+v.validateBytes(new Uint8Array(fs.readFileSync(process.argv[2]))).then(r => {
+  console.log(JSON.stringify({errors: r.issues.numErrors, warnings: r.issues.numWarnings}));
+});
+"""
+
+
+@pytest.mark.skipif(not VALIDATOR.is_dir(), reason="Khronos glTF validator not installed (.ci/run installs it)")
+def test_glb_passes_khronos_validator(tree, tmp_path):
+    import shutil
+    import subprocess
+
+    path = tmp_path / "tree.glb"
+    export_tree(tree, path, TEXTURES)
+    node = shutil.which("node")
+    assert node, "node is needed to run the validator"
+    out = subprocess.run([node, "-e", VALIDATE_JS, str(VALIDATOR), str(path)], capture_output=True, timeout=120)
+    report = json.loads(out.stdout.decode().strip().splitlines()[-1])
+    assert report == {"errors": 0, "warnings": 0}, out.stdout.decode()

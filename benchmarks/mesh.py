@@ -1,0 +1,84 @@
+"""Geometry benchmark: a tree of >= 100k segments through the turtle and the mesher, then rendered.
+
+Run: python -m benchmarks.mesh
+Goal (issue 3): turtle + mesh <= 0.1 s together at n_surf = 8; also prints the headless frame time at
+1280x720 on whatever GL the machine has (llvmpipe in CI) and the triangle count of every LOD level.
+"""
+
+from __future__ import annotations
+
+import time
+from pathlib import Path
+
+import numpy as np
+
+from engine.derive import derive
+from engine.lsys import load_lsystem
+from engine.mesh import LOD_LEVELS, tree_mesh, wood_mesh
+from engine.turtle import TurtleConfig, interpret
+
+SOURCE = Path(__file__).resolve().parent.parent / "assets" / "lsystems" / "abop_2_8_tree.lsys"
+
+
+def best_of(fn, repeats: int = 3) -> tuple[float, object]:
+    """Fastest wall time of ``repeats`` calls, and the last result."""
+    best, result = float("inf"), None
+    for _ in range(repeats):
+        start = time.perf_counter()
+        result = fn()
+        best = min(best, time.perf_counter() - start)
+    return best, result
+
+
+def main() -> None:
+    """Print turtle/mesh timings, LOD triangle counts and render frame times."""
+    system = load_lsystem(SOURCE)
+    ls = derive(system, 10)
+    cfg = TurtleConfig.from_system(system)
+    t_turtle, result = best_of(lambda: interpret(ls, cfg))
+    segs = result.segments
+    t_mesh, wood = best_of(lambda: wood_mesh(segs, n_surf=8, n_div=1))
+    print(f"tree: {len(ls):,} modules, {len(segs):,} segments, {len(result.leaves):,} leaves")
+    print(f"turtle      {t_turtle * 1e3:8.1f} ms")
+    print(f"wood mesh   {t_mesh * 1e3:8.1f} ms  (n_surf=8, n_div=1: {wood.n_triangles:,} triangles)")
+    print(f"together    {(t_turtle + t_mesh) * 1e3:8.1f} ms  (goal <= 100 ms)")
+    print("\nLOD levels (same tree):")
+    header = ("level", "n_surf", "n_div", "min r", "leaves", "wood tris", "leaf tris", "ms")
+    print("{:>5} {:>6} {:>5} {:>6} {:>6} {:>11} {:>10} {:>8}".format(*header))
+    meshes = []
+    for i, level in enumerate(LOD_LEVELS):
+        t, tm = best_of(lambda level=level: tree_mesh(result, level), repeats=1)
+        meshes.append(tm)
+        print(f"{i:>5} {level.n_surf:>6} {level.n_div:>5} {level.min_radius_fraction:>6.2f} "
+              f"{level.leaf_fraction:>6.2f} {tm.wood.n_triangles:>11,} {tm.leaves.n_triangles:>10,} {t * 1e3:>8.1f}")
+    render_frames(meshes)
+
+
+def render_frames(meshes) -> None:
+    """Headless frame time at 1280x720 for each LOD level (median of 5 frames after a warm-up)."""
+    try:
+        from game.camera import OrbitCamera
+        from game.render import TreeRenderer, headless_context, sun_direction
+    except ImportError as exc:  # pragma: no cover - game extras missing
+        print(f"render skipped: {exc}")
+        return
+    ctx = headless_context()
+    size = (1280, 720)
+    fbo = ctx.framebuffer(color_attachments=[ctx.renderbuffer(size)], depth_attachment=ctx.depth_renderbuffer(size))
+    renderer = TreeRenderer(ctx)
+    print(f"\nheadless frame time at 1280x720 on {ctx.info['GL_RENDERER']}:")
+    for i, tm in enumerate(meshes):
+        renderer.set_tree(tm)
+        camera = OrbitCamera()
+        camera.frame_bounds(renderer.lo, renderer.hi, size[0] / size[1])
+        times = []
+        for _ in range(6):
+            start = time.perf_counter()
+            renderer.render(fbo, camera, sun_direction(85, 48), size)
+            ctx.finish()
+            times.append(time.perf_counter() - start)
+        print(f"  lod {i}: {np.median(times[1:]) * 1e3:8.1f} ms/frame  ({tm.n_triangles:,} triangles)")
+
+
+if __name__ == "__main__":
+    main()
