@@ -15,7 +15,7 @@ import numpy as np
 
 from engine import brackets
 from engine.expr import EvalContext, evaluate
-from engine.lstring import LString
+from engine.lstring import LString, ragged_arange
 from engine.lsys import Alternative, LSystem, Pattern, Production
 
 CUT = ord("%")
@@ -68,11 +68,13 @@ class Deriver:
             raise ValueError(f"priority must be one of {PRIORITIES}")
         seed = self.system.seed if self.seed is None else self.seed
         self.rng = np.random.Generator(np.random.PCG64(seed))
+        self._extern: dict[str, float] = {}
         if self.budget is None:
             self.budget = self.system.budget
 
-    def step(self, ls: LString) -> tuple[LString, StepReport]:
-        """Rewrite every module of ``ls`` once, in parallel."""
+    def step(self, ls: LString, extern: dict[str, float] | None = None) -> tuple[LString, StepReport]:
+        """Rewrite every module of ``ls`` once, in parallel; ``extern`` supplies the #extern values."""
+        self._extern = self._check_extern(extern or {})
         with np.errstate(all="ignore"):
             matches = self._match_all(ls)
             out_len = np.ones(len(ls), dtype=np.int64)
@@ -85,12 +87,20 @@ class Deriver:
         rewritten = sum(len(m.idx) for m in matches)
         return result, StepReport(len(ls), len(result), rewritten, deferred)
 
-    def derive(self, ls: LString | None = None, steps: int | None = None) -> tuple[LString, list[StepReport]]:
+    def _check_extern(self, extern: dict[str, float]) -> dict[str, float]:
+        missing = [name for name in self.system.externs if name not in extern]
+        if missing:
+            raise ValueError(f"{self.system.file}: values needed for #extern {', '.join(missing)}")
+        return {name: float(extern[name]) for name in self.system.externs}
+
+    def derive(
+        self, ls: LString | None = None, steps: int | None = None, extern: dict[str, float] | None = None
+    ) -> tuple[LString, list[StepReport]]:
         """Apply ``steps`` steps (default: the source's ``n:``) starting from ``ls`` (default: axiom)."""
         current = self.system.axiom if ls is None else ls
         reports = []
         for _ in range(self.system.iterations if steps is None else steps):
-            current, report = self.step(current)
+            current, report = self.step(current, extern)
             reports.append(report)
         return current, reports
 
@@ -108,9 +118,10 @@ class Deriver:
             cand = cand[~taken[cand] & (ls.nparams[cand] == len(prod.pred.formals))]
             if len(cand):
                 cand, env = _bind(ls, prod, cand, ctx)
+                env.update(self._extern)
                 if len(cand) and prod.condition is not None:
                     ok = evaluate(prod.condition, EvalContext(env, len(cand), self.rng)) != 0
-                    cand, env = cand[ok], {k: v[ok] for k, v in env.items()}
+                    cand, env = cand[ok], {k: v[ok] if np.ndim(v) else v for k, v in env.items()}
                 if len(cand):
                     taken[cand] = True
                     matches.extend(self._expand(prod, cand, env))
@@ -130,7 +141,7 @@ class Deriver:
             sub = idx if len(alts) == 1 else idx[pick]
             if len(sub) == 0:
                 continue
-            sub_env = env if len(alts) == 1 else {k: v[pick] for k, v in env.items()}
+            sub_env = env if len(alts) == 1 else {k: v[pick] if np.ndim(v) else v for k, v in env.items()}
             ectx = EvalContext(sub_env, len(sub), self.rng)
             values = [[evaluate(e, ectx) for e in exprs] for exprs in alt.exprs]
             out.append(_Match(sub, alt, values))
@@ -199,16 +210,6 @@ def _bind(
     return cand, env
 
 
-def _ragged(starts: np.ndarray, counts: np.ndarray) -> np.ndarray:
-    """Concatenation of arange(s, s + c) for each (s, c), without a Python loop."""
-    total = int(counts.sum())
-    if total == 0:
-        return np.zeros(0, dtype=np.int64)
-    ends = np.cumsum(counts)
-    shift = np.repeat(starts - (ends - counts), counts)
-    return shift + np.arange(total, dtype=np.int64)
-
-
 def _assemble(ls: LString, matches: list[_Match], out_len: np.ndarray) -> LString:
     """Build the rewritten string from the identity modules and each rule's successors."""
     starts = np.cumsum(out_len) - out_len
@@ -229,7 +230,7 @@ def _assemble(ls: LString, matches: list[_Match], out_len: np.ndarray) -> LStrin
     offsets = np.cumsum(nparams, dtype=np.int64) - nparams
     params = np.empty(int(nparams.sum(dtype=np.int64)), dtype=np.float64)
     counts = ls.nparams[keep].astype(np.int64)
-    params[_ragged(offsets[starts[keep]], counts)] = ls.params[_ragged(ls.offsets[keep], counts)]
+    params[ragged_arange(offsets[starts[keep]], counts)] = ls.params[ragged_arange(ls.offsets[keep], counts)]
     for m in matches:
         for j, vals in enumerate(m.values):
             if vals:

@@ -106,6 +106,38 @@ class LString:
         return self.to_text()
 
 
+def ragged_arange(starts: np.ndarray, counts: np.ndarray) -> np.ndarray:
+    """Concatenation of arange(s, s + c) for each (s, c), without a Python loop."""
+    counts = np.asarray(counts, dtype=np.int64)
+    total = int(counts.sum())
+    if total == 0:
+        return np.zeros(0, dtype=np.int64)
+    ends = np.cumsum(counts)
+    shift = np.repeat(np.asarray(starts, dtype=np.int64) - (ends - counts), counts)
+    return shift + np.arange(total, dtype=np.int64)
+
+
+def replace_modules(ls: LString, idx: np.ndarray, symbol: int, values: np.ndarray) -> LString:
+    """A copy of ``ls`` where modules ``idx`` become ``symbol`` with parameters ``values`` (k, m).
+
+    Other modules keep their symbols and parameters. Vectorised; used to build render views.
+    """
+    values = np.asarray(values, dtype=np.float64).reshape(len(idx), -1)
+    sym = ls.sym.copy()
+    sym[idx] = symbol
+    nparams = ls.nparams.copy()
+    nparams[idx] = values.shape[1]
+    out = LString.from_arrays(sym, nparams, np.empty(int(nparams.sum(dtype=np.int64))))
+    keep = np.ones(len(ls), dtype=bool)
+    keep[idx] = False
+    kept = np.flatnonzero(keep)
+    counts = ls.nparams[kept]
+    out.params[ragged_arange(out.offsets[kept], counts)] = ls.params[ragged_arange(ls.offsets[kept], counts)]
+    if values.shape[1]:
+        out.params[out.offsets[idx][:, None] + np.arange(values.shape[1])] = values
+    return out
+
+
 def _zero_signs(values: np.ndarray) -> np.ndarray:
     return np.signbit(values) & (values == 0)
 

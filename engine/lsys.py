@@ -5,6 +5,7 @@ A source is read line by line::
     // comment line (also '# ' followed by text)
     #define a 18.95             constants, may use earlier ones
     #ignore: + - / &            symbols skipped in context matching (or #consider: the opposite)
+    #extern T R                 names the host program supplies at each derivation step
     n: 6                        header values: n, delta (or angle), step, width, width_scale, seed,
                                 budget, leaf_size, leaves_at_tips
     w: !(1)F(200)/(45)A         the axiom (also 'axiom:' or 'ω:')
@@ -13,7 +14,7 @@ A source is read line by line::
     p3: A -> (0.3) B | (0.7) C  stochastic alternatives (or one line per alternative, weights merged)
 
 A line with ``->`` (or ``→``) is a production; '*' as condition means always; an empty successor
-or 'ε' erases the module.
+or 'ε' erases the module. Directives and number headers may end in a ``// comment``.
 """
 
 from __future__ import annotations
@@ -104,6 +105,7 @@ class LSystem:
     leaves_at_tips: int | None = None
     seed: int = 0
     budget: int | None = None
+    externs: tuple[str, ...] = ()
     file: str = "<string>"
     source: str = ""
 
@@ -138,7 +140,7 @@ def parse_lsystem(text: str, file: str = "<string>") -> LSystem:
         if not stripped or _is_comment(stripped):
             continue
         if stripped.startswith("#"):
-            _directive(system, line, file, number)
+            _directive(system, _strip_trailing_comment(line), file, number)
         elif _ARROW.search(line):
             _production(system, line, file, number)
         else:
@@ -146,6 +148,12 @@ def parse_lsystem(text: str, file: str = "<string>") -> LSystem:
     if not axiom_seen:
         raise LSysError("no axiom: add a line like 'w: F'", file, 1, 1)
     return system
+
+
+def _strip_trailing_comment(line: str) -> str:
+    """Directives and number headers may end with '// text' (never axioms or productions: '/' rolls)."""
+    at = line.find("//")
+    return line if at < 0 else line[:at]
 
 
 def _is_comment(stripped: str) -> bool:
@@ -167,6 +175,19 @@ def _directive(system: LSystem, line: str, file: str, number: int) -> None:
         if not cur.at_end():
             raise cur.error(f"unexpected {cur.describe_next()} after #define value")
         system.constants[name] = value.const
+    elif word == "extern":
+        cur.accept(":")
+        names = []
+        while not cur.at_end():
+            at = cur.pos
+            name = cur.name()
+            if name is None:
+                raise cur.error(f"expected a name in #extern, found {cur.describe_next()}")
+            if name in system.constants:
+                raise cur.error(f"{name!r} is already a #define constant", at)
+            names.append(name)
+            cur.accept(",")
+        system.externs = tuple(dict.fromkeys((*system.externs, *names)))
     elif word in ("ignore", "consider"):
         cur.accept(":")
         table = np.zeros(256, bool)
@@ -178,7 +199,7 @@ def _directive(system: LSystem, line: str, file: str, number: int) -> None:
             cur.pos += 1
         system.ignore = table if word == "ignore" else ~table
     else:
-        raise cur.error(f"unknown directive #{word or ''}: expected #define, #ignore or #consider", word_at)
+        raise cur.error(f"unknown directive #{word or ''}: expected #define, #extern, #ignore or #consider", word_at)
 
 
 def _header(system: LSystem, line: str, file: str, number: int) -> bool:
@@ -192,6 +213,7 @@ def _header(system: LSystem, line: str, file: str, number: int) -> bool:
         mods = _successor(cur, system.constants, set(), stop_at_bar=False)
         system.axiom = _constant_lstring(mods)
         return True
+    cur.text = _strip_trailing_comment(cur.text)
     value = parse_expression(cur, system.constants, set())
     if value.const is None or not cur.at_end():
         raise cur.error(f"'{key}:' needs one constant number")
@@ -219,10 +241,10 @@ def _production(system: LSystem, line: str, file: str, number: int) -> None:
     start = head.pos
     left, pred, right = _patterns(head)
     formals = [f for p in (*left, pred, *right) for f in p.formals]
-    dupes = {f for f in formals if formals.count(f) > 1}
+    dupes = {f for f in formals if formals.count(f) > 1 or f in system.externs}
     if dupes:
-        raise head.error(f"parameter name(s) {sorted(dupes)} used twice in one production", start)
-    variables = set(formals)
+        raise head.error(f"parameter name(s) {sorted(dupes)} used twice (or also #extern) in one production", start)
+    variables = set(formals) | set(system.externs)
     condition = None
     if head.accept(":"):
         if head.accept("*"):

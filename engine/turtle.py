@@ -294,16 +294,31 @@ def _move_positions(mpar: np.ndarray, frames: np.ndarray, length: np.ndarray) ->
 
 
 def _level_rolls(frames_in: np.ndarray) -> np.ndarray:
-    """Local roll about H that makes L horizontal (ABOP '$'): L' = (V x H)/|V x H|."""
-    h = frames_in[:, :, 0]
+    """Local roll about H that makes L horizontal (ABOP '$'): L' = (V x H)/|V x H|.
+
+    The result is re-orthonormalised: '$' often repeats along an axis (dozens of times on a long
+    branch), and any drift from a true rotation would compound.
+    """
+    h = _unit(frames_in[:, :, 0])
     lft = np.cross(WORLD_UP, h)
     norm = np.linalg.norm(lft, axis=1)
     ok = norm > 1e-9
     lft[ok] /= norm[ok, None]
-    lft[~ok] = frames_in[~ok, :, 1]
-    up = np.cross(h, lft)
-    target = np.stack([h, lft, up], axis=2)
-    return np.matmul(np.transpose(frames_in, (0, 2, 1)), target)
+    lft[~ok] = _unit(frames_in[~ok, :, 1])
+    target = np.stack([h, lft, np.cross(h, lft)], axis=2)
+    return _orthonormal(np.matmul(np.transpose(frames_in, (0, 2, 1)), target))
+
+
+def _unit(v: np.ndarray) -> np.ndarray:
+    return v / np.maximum(np.linalg.norm(v, axis=-1, keepdims=True), 1e-300)
+
+
+def _orthonormal(m: np.ndarray) -> np.ndarray:
+    """Gram-Schmidt on the columns: the nearest proper rotation for matrices that almost are."""
+    c0 = _unit(m[:, :, 0])
+    c1 = m[:, :, 1] - np.einsum("ni,ni->n", c0, m[:, :, 1])[:, None] * c0
+    c1 = _unit(c1)
+    return np.stack([c0, c1, np.cross(c0, c1)], axis=2)
 
 
 def _segments(ls, par, want, in_frame, in_pos, move_end, widths, colours, states: _States) -> Segments:
@@ -327,28 +342,38 @@ def _segments(ls, par, want, in_frame, in_pos, move_end, widths, colours, states
     return Segments(start, end, radius, radius_end, frame, depth, idx, parent, continues, colours[draw])
 
 
-def apply_pipe_model(ls: LString, segs: Segments, tip_radius: float, exponent: float = 2.0) -> None:
-    """Set radii by the pipe model: each segment carries the pipes of all tips above it.
+def subtree_sums(ls: LString, segs: Segments, values: np.ndarray) -> np.ndarray:
+    """For every segment, the sum of ``values`` (one per segment) over it and all segments above it.
 
     A bracketed string lists a segment's descendants right after it, up to the ']' closing its branch,
-    so tip counts per subtree are differences of one cumulative sum (no per-segment loop).
+    so subtree sums are differences of one cumulative sum (no per-segment loop).
     """
-    if len(segs) == 0:
-        return
     n = len(ls)
     partner = brackets.match(ls.sym)
     encl = brackets.enclosing_open(ls.sym)[segs.module]
     subtree_end = np.where(encl >= 0, partner[np.maximum(encl, 0)], n)
-    is_tip = np.zeros(n + 1, dtype=np.int64)
-    is_tip[segs.module[_tip_segments(segs)]] = 1
-    cum = np.cumsum(is_tip)
-    tips = cum[subtree_end - 1] - cum[segs.module] + is_tip[segs.module]
-    segs.radius = tip_radius * np.maximum(tips, 1) ** (1.0 / exponent)
+    per_module = np.zeros(n + 1)
+    per_module[segs.module] = values
+    cum = np.cumsum(per_module)
+    return cum[subtree_end - 1] - cum[segs.module] + per_module[segs.module]
+
+
+def set_radii(segs: Segments, radius: np.ndarray) -> None:
+    """Give segments their start radii; end radii follow the next segment of the same axis."""
+    segs.radius = radius
+    segs.radius_end = radius.copy()
     cont = np.flatnonzero(segs.continues)
-    segs.radius_end = segs.radius.copy()
-    segs.radius_end[segs.parent[cont]] = segs.radius[cont]
-    tip_idx = _tip_segments(segs)
-    segs.radius_end[tip_idx] = segs.radius[tip_idx]
+    segs.radius_end[segs.parent[cont]] = radius[cont]
+
+
+def apply_pipe_model(ls: LString, segs: Segments, tip_radius: float, exponent: float = 2.0) -> None:
+    """Set radii by the pipe model: each segment carries the pipes of all tips above it."""
+    if len(segs) == 0:
+        return
+    is_tip = np.zeros(len(segs))
+    is_tip[tip_segments(segs)] = 1.0
+    tips = subtree_sums(ls, segs, is_tip)
+    set_radii(segs, tip_radius * np.maximum(tips, 1.0) ** (1.0 / exponent))
 
 
 def _instances(ls: LString, symbol: int, want, in_frame, in_pos, default_size: float) -> Leaves:
@@ -357,13 +382,14 @@ def _instances(ls: LString, symbol: int, want, in_frame, in_pos, default_size: f
     return Leaves(in_pos[sel], in_frame[sel], _first_param(ls, idx, default_size), idx)
 
 
-def _tip_segments(segs: Segments) -> np.ndarray:
+def tip_segments(segs: Segments) -> np.ndarray:
+    """Indices of segments that carry no other segment."""
     children = np.bincount(segs.parent[segs.parent >= 0], minlength=len(segs))
     return np.flatnonzero(children == 0)
 
 
 def _mean_tip_length(segs: Segments) -> float:
-    tips = _tip_segments(segs)
+    tips = tip_segments(segs)
     if len(tips) == 0:
         return 1.0
     length = float(np.linalg.norm(segs.end[tips] - segs.start[tips], axis=1).mean())
@@ -382,7 +408,7 @@ def _tip_leaves(segs: Segments, k: int, size: float) -> Leaves:
     Leaf i of a tip is rolled i/k of a turn about the twig (plus a per-tip offset) and pitched 40 deg
     away from it; the frame is built from vectors, not matrix products, since tips are numerous.
     """
-    tips = _tip_segments(segs)
+    tips = tip_segments(segs)
     tip = np.repeat(tips, k)
     j = np.tile(np.arange(k), len(tips))
     roll = np.radians(j * (360.0 / k) + (segs.module[tip] * 37 % 360))[:, None]

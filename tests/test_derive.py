@@ -139,6 +139,8 @@ def test_rand_in_successor_is_seeded():
 def test_all_reference_systems_derive(lsys_dir):
     for path in sorted(lsys_dir.glob("*.lsys")):
         system = load_lsystem(path)
+        if system.externs:
+            continue  # driven by a host program (the game); tested in test_growth.py
         result = derive(system)
         assert len(result) > len(system.axiom), path.name
         brackets.check_balanced(result.sym)

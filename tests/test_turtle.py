@@ -120,3 +120,15 @@ def test_big_string_is_fine(lsys_dir):
     assert len(result.segments) == 13121
     lo, hi = result.bounds()
     assert lo[1] == pytest.approx(0.0) and hi[1] > 1000
+
+
+def test_long_chains_of_roll_to_horizontal_stay_rigid():
+    # '$' repeated on a long curving branch used to compound rounding into stretched segments
+    text = "F(1)[&(50)" + "".join(f"/({k * 137.5})$^(3)F(0.7)" for k in range(60)) + "]"
+    segs = interpret(parse_lstring(text), TurtleConfig(pipe_model=False)).segments
+    lengths = np.linalg.norm(segs.end - segs.start, axis=1)
+    np.testing.assert_allclose(lengths, [1.0] + [0.7] * 60, rtol=1e-9)
+    frames = segs.frame
+    np.testing.assert_allclose(np.einsum("nij,nik->njk", frames, frames), np.broadcast_to(np.eye(3), frames.shape),
+                               atol=1e-9)
+    assert np.abs(frames[1:, 1, 1]).max() < 1e-9  # L horizontal after every '$'
