@@ -86,14 +86,14 @@ def _leaf_keep(birth: np.ndarray, wilt: float) -> np.ndarray:
 
 def render_view(ls: LString, clocks: Clocks, const: dict[str, float]) -> LString:
     """Map I -> F(length) and L(birth) -> L(size) at the given clocks; droop pitch angles with wilt."""
-    T = clocks.length_time
+    now = clocks.length_time
     idx = np.flatnonzero((ls.sym == INTERNODE) & (ls.nparams == 3))
     birth, order = ls.params[ls.offsets[idx]], ls.params[ls.offsets[idx] + 2]
-    length = const["IL"] * const["IO"] ** order * _saturate(T - birth, const["TAU"])
+    length = const["IL"] * const["IO"] ** order * _saturate(now - birth, const["TAU"])
     view = replace_modules(ls, idx, ord("F"), length[:, None])
     leaves = np.flatnonzero((view.sym == LEAF) & (view.nparams == 1))
     lb = view.params[view.offsets[leaves]]
-    view.params[view.offsets[leaves]] = const["LS"] * _saturate(T - lb, const["TAU"]) * _leaf_keep(lb, clocks.wilt)
+    view.params[view.offsets[leaves]] = const["LS"] * _saturate(now - lb, const["TAU"]) * _leaf_keep(lb, clocks.wilt)
     if clocks.wilt > 0:
         pitch = np.flatnonzero((view.sym == PITCH) & (view.nparams == 1))
         view.params[view.offsets[pitch]] *= 1.0 + DROOP * clocks.wilt

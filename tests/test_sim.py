@@ -1,0 +1,118 @@
+import math
+
+import numpy as np
+import pytest
+
+from engine.errors import LSysError
+from engine.sim import GrowthCycle, GrowthRules, Rules, SimState, Simulation, load_rules
+
+
+def test_rules_file_loads_and_is_strict(tmp_path):
+    rules = load_rules("assets/rules.toml")
+    assert rules.growth.hold_time == 20.0 and rules.growth.deadline == 40.0  # seed 003's numbers
+    bad = tmp_path / "rules.toml"
+    bad.write_text("[growth]\nhold_tme = 3\n")
+    with pytest.raises(LSysError, match="hold_tme"):
+        load_rules(bad)
+    bad.write_text("[sun]\nspeed = 'fast'\n")
+    with pytest.raises(LSysError, match="number"):
+        load_rules(bad)
+
+
+def run_cycle(meter_fn, seconds, dt=0.1):
+    cycle, rules = GrowthCycle(), GrowthRules()
+    for i in range(round(seconds / dt)):
+        cycle.update(meter_fn(i * dt), dt, rules)
+    return cycle
+
+
+def test_growth_needs_20_seconds_above_half():
+    assert run_cycle(lambda t: 0.8, 19.8).rate == 0.0
+    done = run_cycle(lambda t: 0.8, 20.1)
+    assert done.rate == 1.0 and done.earned == 1
+    assert run_cycle(lambda t: 0.4, 500).rate == 0.0
+
+
+def test_late_cycles_reduce_growth_more_the_longer_they_take():
+    # above half one second in four: the 20th second above half ends at t = 77 s, 37 s past the deadline
+    quarter = run_cycle(lambda t: 0.8 if (t % 4) < 1 else 0.2, 81)
+    assert quarter.rate == pytest.approx(math.exp(-37 / 40), abs=0.01)
+    eighth = run_cycle(lambda t: 0.8 if (t % 8) < 1 else 0.2, 161)
+    assert eighth.rate < quarter.rate
+
+
+def sim_with(**state):
+    sim = Simulation(Rules())
+    sim.state.sun_angle = math.pi / 2  # noon
+    for k, v in state.items():
+        setattr(sim.state, k, v)
+    return sim
+
+
+def step_for(sim, seconds, dt=0.1, each=None):
+    for _ in range(round(seconds / dt)):
+        if each:
+            each(sim)
+        sim.step(dt)
+
+
+def test_sun_meter_fills_by_day_and_drains_by_night():
+    day = sim_with(orbit_height=1.0, sun_meter=0.2)
+    step_for(day, 10)
+    assert day.state.sun_meter > 0.4
+    night = sim_with(orbit_height=-1.0, sun_meter=0.5)
+    step_for(night, 10)
+    assert night.state.sun_meter == pytest.approx(0.5 - 10 * 0.006, abs=1e-6)
+
+
+def test_water_drains_faster_in_strong_sun_and_fills_while_watering():
+    day, night = sim_with(orbit_height=1.0), sim_with(orbit_height=-1.0)
+    step_for(day, 10)
+    step_for(night, 10)
+    assert 0.6 - day.state.water_meter > 2 * (0.6 - night.state.water_meter)
+    watered = sim_with(watering=True, water_meter=0.2)
+    step_for(watered, 5)
+    assert watered.state.water_meter > 0.6
+
+
+def test_tree_grows_only_after_earning_it():
+    sim = sim_with(orbit_height=1.0, sun_meter=0.9, water_meter=0.9)
+    step_for(sim, 19.5)
+    assert sim.state.length_time == 0.0
+    step_for(sim, 5.0)
+    assert sim.state.length_time > 0.0 and sim.status() == "growing"
+
+
+def test_neglect_wilts_then_kills():
+    sim = sim_with(orbit_height=1.0, water_meter=0.0, sun_meter=0.9)
+    step_for(sim, 30)
+    assert 0.5 < sim.state.wilt < 0.7 and sim.state.alive
+    step_for(sim, 20 + 121)
+    assert not sim.state.alive and sim.status() == "dead"
+    assert sim.growth_speeds() == (0.0, 0.0)
+
+
+def test_too_much_water_drowns():
+    sim = sim_with(orbit_height=1.0, water_meter=1.0, sun_meter=0.9)
+    step_for(sim, 60, each=lambda s: setattr(s.state, "watering", True))
+    assert sim.state.wilt > 0.4
+
+
+def test_replant_resets_meters_into_range():
+    sim = sim_with(wilt=0.8, alive=False)
+    rng = np.random.default_rng(1)
+    levels = []
+    for _ in range(50):
+        sim.replant(rng)
+        levels += [sim.state.sun_meter, sim.state.water_meter]
+    assert sim.state.alive and sim.state.wilt == 0.0
+    assert 0.25 <= min(levels) and max(levels) <= 1.0 and max(levels) - min(levels) > 0.5
+
+
+def test_state_round_trips_through_plain_data():
+    sim = sim_with(orbit_height=0.7)
+    step_for(sim, 30)
+    back = SimState.from_dict(sim.state.to_dict())
+    assert back == sim.state
+    with pytest.raises(ValueError):
+        SimState.from_dict({**sim.state.to_dict(), "wilt": float("nan")})
