@@ -54,10 +54,10 @@ def test_no_visible_jumps_at_1x_even_across_rewrites(system):
 def test_growth_saturates_and_trunk_tapers(system):
     world = grown_world(system, 1500)
     clocks = world.clocks()
-    _, birth, segs = internode_ends(world.tree, clocks)
+    _, _, segs = internode_ends(world.tree, clocks)
     lengths = np.linalg.norm(segs.end - segs.start, axis=1)
     assert lengths.max() <= 1.0 + 1e-9  # saturating: old internodes never exceed their full length
-    trunk = np.flatnonzero((segs.order == 0))
+    trunk = np.flatnonzero(segs.order == 0)
     radii = segs.radius[trunk][np.argsort(segs.start[trunk, 1])]
     assert np.all(np.diff(radii) <= 1e-12) and radii[0] > 4 * radii[-1]  # tapers, base thickest
 

@@ -106,7 +106,7 @@ def test_replant_resets_meters_into_range():
         sim.replant(rng)
         levels += [sim.state.sun_meter, sim.state.water_meter]
     assert sim.state.alive and sim.state.wilt == 0.0
-    assert 0.25 <= min(levels) and max(levels) <= 1.0 and max(levels) - min(levels) > 0.5
+    assert min(levels) >= 0.25 and max(levels) <= 1.0 and max(levels) - min(levels) > 0.5
 
 
 def test_state_round_trips_through_plain_data():
