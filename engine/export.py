@@ -12,6 +12,7 @@ import numpy as np
 import trimesh
 from PIL import Image
 
+from engine.files import atomic_write
 from engine.mesh import Mesh, TreeMesh
 
 PARTS = (("wood", "bark", False), ("leaves", "leaf", True), ("blossoms", "blossom", True))
@@ -64,7 +65,7 @@ def export_tree(tree: TreeMesh, path: str | Path, textures: Path, file_format: s
     scene = tree_scene(tree, textures)
     if fmt == "glb":
         data = trimesh.exchange.gltf.export_glb(scene, include_normals=True)
-        _atomic_write(path, data)
+        atomic_write(path, data)
         return [path]
     if fmt == "obj":
         text, extras = trimesh.exchange.obj.export_obj(
@@ -72,19 +73,8 @@ def export_tree(tree: TreeMesh, path: str | Path, textures: Path, file_format: s
         )
         written = []
         for name, blob in extras.items():
-            _atomic_write(path.parent / name, blob)
+            atomic_write(path.parent / name, blob)
             written.append(path.parent / name)
-        _atomic_write(path, text.encode("utf-8"))
+        atomic_write(path, text.encode("utf-8"))
         return [path, *written]
     raise ValueError(f"unknown export format {fmt!r}: use glb or obj")
-
-
-def _atomic_write(path: Path, data: bytes) -> None:
-    import os
-
-    tmp = path.with_name(path.name + ".tmp")
-    with open(tmp, "wb") as fh:
-        fh.write(data)
-        fh.flush()
-        os.fsync(fh.fileno())
-    os.replace(tmp, path)

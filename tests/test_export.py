@@ -79,7 +79,7 @@ def test_obj_with_mtl_round_trip(tree, tmp_path):
 def test_cli_export(tmp_path, lsys_dir, capsys):
     out = tmp_path / "t.glb"
     assert main(["export", str(lsys_dir / "seed003_tree.lsys"), "--steps", "3", "--out", str(out)]) == 0
-    assert out.stat().st_size > 1000 and not (tmp_path / "t.glb.tmp").exists()
+    assert out.stat().st_size > 1000 and [p.name for p in tmp_path.iterdir()] == ["t.glb"]
     assert "triangles" in capsys.readouterr().out
 
 

@@ -1,0 +1,121 @@
+import os
+import re
+import signal
+import subprocess
+import sys
+import time
+
+import pytest
+
+from engine.lsys import load_lsystem
+from engine.save import SaveError, load_world, save_text, save_world
+from engine.sim import load_rules
+from engine.world import World
+
+
+@pytest.fixture(scope="module")
+def world(lsys_dir):
+    w = World(load_lsystem(lsys_dir / "game_tree.lsys"), load_rules("assets/rules.toml"), seed=5)
+    w.sim.state.sun_meter = w.sim.state.water_meter = 0.9
+    for _ in range(2400):
+        w.apply("water", float(w.sim.state.water_meter < 0.6))
+        w.step(0.5)
+    return w
+
+
+def test_round_trip_is_exact_and_continues_identically(world, tmp_path):
+    path = tmp_path / "tree.arbor"
+    save_world(world, path)
+    back, saved_at = load_world(path, world.rules)
+    assert abs(saved_at - time.time()) < 60
+    assert back.tree.lstring.equals(world.tree.lstring)
+    assert back.sim.state == world.sim.state
+    save_world(back, tmp_path / "again.arbor")
+    for w in (world, back):
+        for _ in range(300):
+            w.step(0.5)
+    assert back.tree.lstring.to_text() == world.tree.lstring.to_text()
+
+
+def test_save_is_readable_text(world):
+    text = save_text(world, "game_tree.lsys")
+    assert text.startswith("# Arbor save file")
+    assert "\nlstring = \"\"\"\\\nI(0,0,0)" in text
+    tail = text[text.index("lstring = "):].splitlines()
+    assert max(len(line) for line in tail) <= 102  # the L-string is wrapped for text editors
+    assert "#extern T G DT R" in text  # the rules that grew it travel with it
+
+
+def write(path, text):
+    path.write_text(text)
+    return path.read_bytes()
+
+
+@pytest.mark.parametrize(
+    "mutate, words",
+    [
+        (lambda t: t[: len(t) // 2], "not a valid save"),  # truncated mid-file
+        (lambda t: t.replace("format = 1", "format = 9"), "newer Arbor"),
+        (lambda t: t.replace("format = 1", "format = 0"), "too old"),
+        (lambda t: t.replace('seed = ', 'seed = "x"  # ', 1), "wrong type"),
+        (lambda t: t.replace("#extern T G DT R", "#extern T G DT Q"), "does not match its hash"),
+        (lambda t: t.replace('lstring = """\\\nI(0,0,0)', 'lstring = """\\\nI(0,0,zz)'), "in the L-string"),
+        (lambda t: re.sub(r"\nwilt = [^\n]*", "\nwilt = nan", t), "bad [sim]"),
+        (lambda t: re.sub(r"PCG64", "MT19937", t), "random state"),
+        (lambda t: "\x00\xff garbage", "not"),
+    ],
+)
+def test_bad_saves_give_clear_errors_and_stay_untouched(world, tmp_path, mutate, words):
+    path = tmp_path / "bad.arbor"
+    before = write(path, mutate(save_text(world, "game_tree.lsys")))
+    with pytest.raises(SaveError) as info:
+        load_world(path, world.rules)
+    err = info.value
+    assert words in err.message and err.file.startswith(str(path)) and err.line >= 1 and err.col >= 1
+    assert path.read_bytes() == before
+
+
+def test_error_in_lstring_points_at_its_line(world, tmp_path):
+    text = save_text(world, "game_tree.lsys")
+    lines = text.splitlines()
+    start = next(i for i, line in enumerate(lines) if line.startswith("lstring = "))
+    col = lines[start + 3].index("[")
+    lines[start + 3] = lines[start + 3][:col] + "é" + lines[start + 3][col + 1 :]
+    path = tmp_path / "bad.arbor"
+    path.write_text("\n".join(lines))
+    with pytest.raises(SaveError) as info:
+        load_world(path, world.rules)
+    assert (info.value.line, info.value.col) == (start + 4, col + 1)  # 1-based line and column of the bad char
+
+
+CHILD = """
+import sys
+from engine.lsys import load_lsystem
+from engine.sim import load_rules
+from engine.world import World
+from engine.save import save_world
+w = World(load_lsystem("assets/lsystems/game_tree.lsys"), load_rules("assets/rules.toml"), seed=1)
+w.sim.state.sun_meter = w.sim.state.water_meter = 0.9
+print("ready", flush=True)
+while True:
+    for _ in range(40):
+        w.apply("water", float(w.sim.state.water_meter < 0.6))
+        w.step(0.5)
+    save_world(w, sys.argv[1])
+"""
+
+
+def test_killed_while_saving_leaves_a_loadable_save(tmp_path, world):
+    path = tmp_path / "tree.arbor"
+    save_world(world, path)
+    for delay in (0.05, 0.13, 0.31, 0.52, 0.77):
+        proc = subprocess.Popen([sys.executable, "-c", CHILD, str(path)], stdout=subprocess.PIPE,
+                                cwd=os.path.dirname(os.path.dirname(__file__)))
+        assert proc.stdout.readline().strip() == b"ready"
+        time.sleep(delay)
+        proc.send_signal(signal.SIGKILL)
+        proc.wait()
+        loaded, _ = load_world(path, world.rules)
+        assert len(loaded.tree.lstring) >= 2
+    leftovers = [p.name for p in tmp_path.iterdir() if p.name != "tree.arbor"]
+    assert all(name.endswith(".tmp") for name in leftovers)  # at most a stray temp file, never a torn save
