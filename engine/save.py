@@ -87,13 +87,13 @@ def _rng_text(rng: np.random.Generator) -> str:
     return json.dumps(rng.bit_generator.state, separators=(",", ":"))
 
 
-def save_text(world: World, lsystem_name: str) -> str:
-    """The text of a save file for ``world`` (see module docstring)."""
+def save_text(world: World, lsystem_name: str, saved_at: float | None = None) -> str:
+    """The text of a save file for ``world`` (see module docstring); ``saved_at`` defaults to now."""
     ls = world.tree.lstring
     lines = [
         "# Arbor save file: a tree, its rules and its state. The L-string is at the end.",
         f"format = {FORMAT}",
-        f"saved_at = {time.time()!r}",
+        f"saved_at = {time.time() if saved_at is None else saved_at!r}",
         f"seed = {world.seed}",
         f"steps = {world.steps}",
         f"lsystem = {_toml_string(lsystem_name)}",
@@ -113,9 +113,10 @@ def save_text(world: World, lsystem_name: str) -> str:
     return "\n".join(lines)
 
 
-def save_world(world: World, path: str | Path, lsystem_name: str = "game_tree.lsys") -> None:
+def save_world(world: World, path: str | Path, lsystem_name: str = "game_tree.lsys",
+               saved_at: float | None = None) -> None:
     """Write ``world`` to ``path`` atomically (temp file, fsync, rename)."""
-    atomic_write(path, save_text(world, lsystem_name).encode("utf-8"))
+    atomic_write(path, save_text(world, lsystem_name, saved_at).encode("utf-8"))
 
 
 def _toml_error_position(message: str) -> tuple[int, int]:

@@ -31,6 +31,7 @@ class GrowthRules:
     length_rate: float = 0.1
     girth_rate: float = 0.1
     rewrite_step: float = 1.0
+    sapling_age: float = 12.0
 
 
 @dataclass
@@ -138,7 +139,7 @@ class SimState:
     """Everything the simulation needs to continue exactly where it was (saved in save files)."""
 
     time: float = 0.0
-    sun_angle: float = -math.pi / 2 + 0.6
+    sun_angle: float = 0.25  # mid-morning
     orbit_height: float = 0.35
     sun_speed: float = 0.05
     sun_meter: float = 0.6

@@ -92,6 +92,10 @@ def build_parser() -> argparse.ArgumentParser:
     export.add_argument("--lod", type=int, default=0)
     export.add_argument("--out", type=Path, default=Path("tree.glb"))
     export.set_defaults(run=_cmd_export)
+    view = sub.add_parser("view", help="open a window showing an .lsys tree (drag, wheel, space)")
+    view.add_argument("source", type=Path)
+    view.set_defaults(run=lambda a: __import__("game.app", fromlist=["run_viewer"]).run_viewer(a.source))
+    parser.add_argument("--saves", type=Path, default=None, help="folder for save files (default: saves/)")
     return parser
 
 

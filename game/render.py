@@ -25,6 +25,15 @@ BARK_TINT = (1.45, 1.35, 1.25)
 LEAF_TINT = (1.0, 1.0, 1.0)
 
 
+def daylight(sun: np.ndarray) -> float:
+    """Brightness of sky and ambient light: 1 by day, dimming through dusk to 0.45 at night."""
+    return 0.45 + 0.55 * float(np.clip((sun[1] + 0.15) / 0.35, 0.0, 1.0))
+
+
+def _scale(color: tuple[float, float, float], k: float) -> tuple[float, float, float]:
+    return (color[0] * k, color[1] * k, color[2] * k)
+
+
 def headless_context() -> moderngl.Context:
     """A standalone OpenGL 3.3 context through EGL (no display needed)."""
     return moderngl.create_standalone_context(backend="egl", require=330)
@@ -84,6 +93,8 @@ class TreeRenderer:
         self.radius = 1.0
         self.height = 1.0
         self.ground_vao: moderngl.VertexArray | None = None
+        self.leaf_tint = LEAF_TINT
+        self.bark_tint = BARK_TINT
 
     def _program(self, name: str) -> moderngl.Program:
         shaders = ASSETS / "shaders"
@@ -159,13 +170,14 @@ class TreeRenderer:
         self._shadow_pass(light)
         fbo.use()
         ctx.viewport = (0, 0, *size)
+        day = daylight(sun)
         fbo.clear(*SKY_HORIZON, 1.0)
         vp = camera.projection(size[0] / size[1]) @ camera.view()
         ctx.disable(moderngl.DEPTH_TEST | moderngl.CULL_FACE)
         self.sky_prog["u_inv_vp"].write(_gl(np.linalg.inv(vp)))
         self.sky_prog["u_sun_dir"].value = tuple(sun)
-        self.sky_prog["u_zenith"].value = SKY_ZENITH
-        self.sky_prog["u_horizon"].value = SKY_HORIZON
+        self.sky_prog["u_zenith"].value = _scale(SKY_ZENITH, day)
+        self.sky_prog["u_horizon"].value = _scale(SKY_HORIZON, day)
         self.sky_vao.render()
         ctx.enable(moderngl.DEPTH_TEST)
         self.shadow_map.use(location=1)
@@ -193,8 +205,8 @@ class TreeRenderer:
         prog["u_shadow"].value = 1
         prog["u_shadow_texel"].value = 1.0 / SHADOW_SIZE
         prog["u_sun_dir"].value = tuple(sun)
-        prog["u_grass"].value = GRASS
-        prog["u_horizon"].value = SKY_HORIZON
+        prog["u_grass"].value = _scale(GRASS, daylight(sun))
+        prog["u_horizon"].value = _scale(SKY_HORIZON, daylight(sun))
         prog["u_fade_start"].value = self.radius * 3
         prog["u_fade_end"].value = self.radius * 11
         assert self.ground_vao is not None
@@ -209,17 +221,45 @@ class TreeRenderer:
         prog["u_shadow_texel"].value = 1.0 / SHADOW_SIZE
         prog["u_sun_dir"].value = tuple(sun)
         elevation = max(float(sun[1]), 0.0)
-        prog["u_sun_color"].value = (1.05 * (0.4 + 0.6 * elevation), 0.98 * (0.4 + 0.6 * elevation), 0.85)
-        prog["u_sky_color"].value = SKY_ZENITH
-        prog["u_ground_color"].value = (0.30, 0.28, 0.18)
+        day = daylight(sun)
+        sun_strength = min(elevation * 4.0, 1.0)
+        prog["u_sun_color"].value = _scale((1.05 * (0.4 + 0.6 * elevation), 0.98 * (0.4 + 0.6 * elevation), 0.85),
+                                           sun_strength)
+        prog["u_sky_color"].value = _scale(SKY_ZENITH, day)
+        prog["u_ground_color"].value = _scale((0.30, 0.28, 0.18), day)
         prog["u_crown_center"].value = tuple(self.center + np.array([0, self.radius * 0.25, 0]))
         prog["u_crown_radius"].value = self.radius
         for part in self.parts:
             part.texture.use(location=0)
             prog["u_kind"].value = part.kind
             prog["u_uv_scale"].value = part.uv_scale
-            prog["u_tint"].value = BARK_TINT if part.kind == 0 else LEAF_TINT
+            prog["u_tint"].value = self.bark_tint if part.kind == 0 else self.leaf_tint
             part.vao.render()
+
+
+class Overlay:
+    """A full-screen RGBA texture drawn over the scene with alpha blending (HUD, menu, rain cloud)."""
+
+    def __init__(self, ctx: moderngl.Context, size: tuple[int, int]) -> None:
+        self.ctx = ctx
+        self.size = size
+        shaders = ASSETS / "shaders"
+        self.prog = ctx.program(vertex_shader=(shaders / "overlay.vert").read_text(),
+                                fragment_shader=(shaders / "overlay.frag").read_text())
+        self.texture = ctx.texture(size, 4)
+        quad = ctx.buffer(np.array([-1, -1, 3, -1, -1, 3], dtype="f4").tobytes())
+        self.vao = ctx.vertex_array(self.prog, [(quad, "2f", "in_pos")])
+
+    def draw(self, rgba_bottom_up: bytes) -> None:
+        """Upload the overlay pixels (RGBA rows bottom to top) and blend them over the framebuffer."""
+        self.texture.write(rgba_bottom_up)
+        self.texture.use(location=0)
+        self.prog["u_tex"].value = 0
+        self.ctx.disable(moderngl.DEPTH_TEST)
+        self.ctx.enable(moderngl.BLEND)
+        self.ctx.blend_func = moderngl.SRC_ALPHA, moderngl.ONE_MINUS_SRC_ALPHA
+        self.vao.render()
+        self.ctx.disable(moderngl.BLEND)
 
 
 def sun_direction(azimuth_deg: float = 135.0, elevation_deg: float = 50.0) -> np.ndarray:

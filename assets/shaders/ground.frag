@@ -22,7 +22,7 @@ float sun_visibility() {
 void main() {
     float light = 0.45 + 0.55 * max(u_sun_dir.y, 0.0) * sun_visibility();
     float r = length(v_pos.xz);
-    float speckle = fract(sin(dot(floor(v_pos.xz * 4.0), vec2(12.9898, 78.233))) * 43758.5453);
-    vec3 color = u_grass * light * (0.92 + 0.08 * speckle);
+    float speckle = fract(sin(dot(floor(v_pos.xz * 40.0 / u_fade_start), vec2(12.9898, 78.233))) * 43758.5453);
+    vec3 color = u_grass * light * (0.95 + 0.05 * speckle);
     f_color = vec4(mix(color, u_horizon, smoothstep(u_fade_start, u_fade_end, r)), 1.0);
 }

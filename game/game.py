@@ -1,0 +1,350 @@
+"""The tamagotchi game: world + fixed-step loop + touch/mouse/keyboard + menu/HUD + renderer + saves.
+
+`Game` does not own a window: the app gives it pygame events and a framebuffer, so tests drive the real
+game headless (SDL dummy video for events, an EGL context for pixels).
+"""
+
+from __future__ import annotations
+
+import copy
+import math
+import time
+from dataclasses import dataclass
+from pathlib import Path
+
+import moderngl
+import numpy as np
+import pygame
+
+from engine.errors import LSysError
+from engine.growth import Clocks
+from engine.lsys import load_lsystem
+from engine.save import load_world, save_world
+from engine.sim import load_rules
+from engine.world import World
+from game.camera import OrbitCamera
+from game.gestures import CameraControl, Gestures
+from game.loop import SPEEDS, FixedStepLoop
+from game.render import ASSETS, Overlay, TreeRenderer
+from game.ui import HudInfo, Menu, draw_hud, draw_rain_cloud, range_to_slider, slider_to_range
+
+ROOT = Path(__file__).resolve().parent.parent
+MOUSE = -1
+KEY_YAW, KEY_TILT = 4.0, 3.0  # degrees per key press
+BASE_PITCH = 8.0
+HEALTHY_LEAF, WILTED_LEAF = np.array([1.0, 1.0, 1.0]), np.array([1.45, 1.05, 0.35])
+
+
+@dataclass
+class GameConfig:
+    """Where the game finds its data and keeps its saves."""
+
+    lsystem: Path = ASSETS / "lsystems" / "game_tree.lsys"
+    rules: Path = ASSETS / "rules.toml"
+    saves: Path = ROOT / "saves"
+    autosave_seconds: float = 60.0  # real seconds between autosaves
+    resume: bool = True
+    seed: int | None = None
+
+
+class Game:
+    """One running game; see module docstring."""
+
+    def __init__(self, ctx: moderngl.Context, size: tuple[int, int], config: GameConfig | None = None,
+                 clock=time.monotonic, wall_clock=time.time) -> None:
+        self.config = config or GameConfig()
+        self.size = size
+        self.clock, self.wall_clock = clock, wall_clock
+        self.rules = load_rules(self.config.rules)
+        self.system = load_lsystem(self.config.lsystem)
+        self.loop = FixedStepLoop(dt=0.1)
+        self.control = CameraControl(distance=1.0, min_distance=0.25, max_distance=6.0)
+        self.gestures = Gestures(self.control)
+        self.menu = Menu(size)
+        self.renderer = TreeRenderer(ctx)
+        self.overlay = Overlay(ctx, size)
+        pygame.font.init()
+        self.font = pygame.font.Font(None, 32)
+        self.surface = pygame.Surface(size, pygame.SRCALPHA)
+        self.message, self.message_until = "", 0.0
+        self.input_log: list[tuple[int, str, float]] = []
+        self.menu_pointers: set[int] = set()
+        self.keys_water = False
+        self.last_autosave = clock()
+        self._built: tuple | None = None
+        self.world = self._start_world()
+        self.previous = copy.deepcopy(self.world.sim.state)
+        self.alpha = 1.0
+        self._sync_sliders()
+
+    # ----- world, saves -------------------------------------------------------------------------
+    @property
+    def autosave_path(self) -> Path:
+        """Where autosaves go (and where the game resumes from)."""
+        return self.config.saves / "autosave.arbor"
+
+    def _new_world(self) -> World:
+        seed = self.config.seed if self.config.seed is not None else int(self.wall_clock() * 1000) % 2**31
+        world = World(self.system, self.rules, seed=seed)
+        world.apply("replant", 1.0)  # a sapling with meters at a random 25-100 %
+        self.input_log = [(0, "replant", 1.0)]
+        return world
+
+    def _start_world(self) -> World:
+        if self.config.resume and self.autosave_path.exists():
+            world = self._load(self.autosave_path)
+            if world is not None:
+                return world
+        return self._new_world()
+
+    def _load(self, path: Path) -> World | None:
+        try:
+            world, saved_at = load_world(path, self.rules)
+        except LSysError as err:
+            kept = path.with_name(path.name + ".broken")
+            path.replace(kept)
+            self.say(f"Could not load {path.name} ({err.message}); kept as {kept.name}. New tree planted.", 12)
+            return None
+        away = max(self.wall_clock() - saved_at, 0.0)
+        day = 2 * math.pi / max(world.sim.state.sun_speed, 1e-6)
+        grown = min(away, day)
+        world.catch_up(grown)
+        if grown > 1:
+            self.say(f"Welcome back: your tree lived {grown / 60:.0f} min while you were away.", 6)
+        return world
+
+    def save(self, path: Path | None = None) -> bool:
+        """Save the world (atomically); says so on the HUD."""
+        path = path or self.autosave_path
+        try:
+            path.parent.mkdir(parents=True, exist_ok=True)
+            save_world(self.world, path, self.config.lsystem.name, self.wall_clock())
+        except OSError as exc:
+            self.say(f"Could not save: {exc.strerror}", 6)
+            return False
+        self.last_autosave = self.clock()
+        return True
+
+    def say(self, text: str, seconds: float = 3.0) -> None:
+        """Show a message at the bottom of the screen for a while."""
+        self.message, self.message_until = text, self.clock() + seconds
+
+    # ----- actions -------------------------------------------------------------------------------
+    def act(self, action: str, value: float = 0.0) -> None:
+        """Apply a player action; world actions are logged against the sim step (replayable)."""
+        if action in ("water", "orbit_height", "sun_speed", "replant"):
+            if action == "replant" and value == 0.0:
+                return
+            sim_value = self._slider_value(action, value)
+            self.input_log.append((self.world.steps, action, sim_value))
+            self.world.apply(action, sim_value)
+            if action == "replant":
+                self.previous = copy.deepcopy(self.world.sim.state)
+                self.say("A new sapling is planted.")
+        elif action == "speed" and value:
+            i = SPEEDS.index(self.loop.speed) if self.loop.speed in SPEEDS else 1
+            self.set_speed(SPEEDS[(i + 1) % len(SPEEDS)])
+        elif action == "save" and value:
+            if self.save():
+                self.say("Saved.")
+        elif action == "load" and value:
+            world = self._load(self.autosave_path) if self.autosave_path.exists() else None
+            if world is not None:
+                self.world, self.previous = world, copy.deepcopy(world.sim.state)
+                self.say("Loaded.")
+
+    def _slider_value(self, action: str, value: float) -> float:
+        r = self.rules.sun
+        if action == "orbit_height":
+            return slider_to_range(value, r.orbit_height_min, r.orbit_height_max)
+        if action == "sun_speed":
+            return slider_to_range(value, r.speed_min, r.speed_max, log=True)
+        return value
+
+    def _sync_sliders(self) -> None:
+        r, s = self.rules.sun, self.world.sim.state
+        self.menu.widget("orbit_height").value = range_to_slider(s.orbit_height, r.orbit_height_min,
+                                                                 r.orbit_height_max)
+        self.menu.widget("sun_speed").value = range_to_slider(s.sun_speed, r.speed_min, r.speed_max, log=True)
+        self.menu.widget("speed").label = "Paused" if self.loop.speed == 0 else f"{self.loop.speed:g}x speed"
+
+    def set_speed(self, speed: float) -> None:
+        """Time speed: 0 (pause), 1, 10 or 100."""
+        self.loop.speed = speed
+        self._sync_sliders()
+
+    # ----- input ---------------------------------------------------------------------------------
+    def handle_event(self, e: pygame.event.Event) -> bool:
+        """Handle one pygame event; returns False when the game should quit."""
+        if e.type == pygame.QUIT:
+            return False
+        if e.type in (pygame.FINGERDOWN, pygame.FINGERMOTION, pygame.FINGERUP):
+            pid = hash((e.touch_id, e.finger_id)) & 0x7FFFFFFF
+            self._pointer(e.type, pid, e.x * self.size[0], e.y * self.size[1])
+        elif e.type in (pygame.MOUSEBUTTONDOWN, pygame.MOUSEBUTTONUP) and not getattr(e, "touch", False):
+            self._mouse_button(e)
+        elif e.type == pygame.MOUSEMOTION and not getattr(e, "touch", False):
+            self._mouse_motion(e)
+        elif e.type == pygame.MOUSEWHEEL and not self.menu.visible:
+            self.control.zoom(0.9**e.y)
+        elif e.type == pygame.KEYDOWN:
+            return self._key(e.key, True)
+        elif e.type == pygame.KEYUP:
+            self._key(e.key, False)
+        elif e.type == pygame.WINDOWFOCUSLOST:
+            self.gestures.cancel_all()
+        return True
+
+    def _mouse_button(self, e) -> None:
+        kind = pygame.FINGERDOWN if e.type == pygame.MOUSEBUTTONDOWN else pygame.FINGERUP
+        if e.button == 1:
+            self._pointer(kind, MOUSE, *e.pos)  # right-drag tilts (see _mouse_motion)
+
+    def _mouse_motion(self, e) -> None:
+        if e.buttons[0]:
+            self._pointer(pygame.FINGERMOTION, MOUSE, *e.pos)
+        elif e.buttons[2] and not self.menu.visible:
+            self.control.tilt_by(e.rel[1] * 0.25)  # right drag: the mouse's tilt gesture
+
+    def _pointer(self, kind: int, pid: int, x: float, y: float) -> None:
+        now = self.clock()
+        if kind == pygame.FINGERDOWN:
+            if self.menu.hit(x, y):
+                self.menu_pointers.add(pid)
+                for action in self.menu.press(x, y):
+                    self.act(*action)
+            else:
+                self.gestures.menu_open = self.menu.visible
+                self.gestures.down(pid, x, y, now)
+        elif kind == pygame.FINGERMOTION:
+            if pid in self.menu_pointers:
+                for action in self.menu.drag(x, y):
+                    self.act(*action)
+            else:
+                self.gestures.move(pid, x, y, now)
+        elif pid in self.menu_pointers:
+            self.menu_pointers.discard(pid)
+            for action in self.menu.release():
+                self.act(*action)
+        elif self.gestures.up(pid, x, y, now):
+            self._tap(x, y)
+
+    def _tap(self, x: float, y: float) -> None:
+        if self.menu.visible:
+            for action in self.menu.hide():
+                self.act(*action)
+        else:
+            self._sync_sliders()
+            self.menu.show_at(x, y)
+        self.gestures.menu_open = self.menu.visible
+
+    def _key(self, key: int, down: bool) -> bool:
+        if key == pygame.K_w:
+            if down != self.keys_water:
+                self.keys_water = down
+                self.act("water", float(down))
+            return True
+        if not down:
+            return True
+        camera_keys = {pygame.K_LEFT: (KEY_YAW, 0), pygame.K_RIGHT: (-KEY_YAW, 0),
+                       pygame.K_UP: (0, KEY_TILT), pygame.K_DOWN: (0, -KEY_TILT)}
+        if key == pygame.K_ESCAPE:
+            return False
+        if key in camera_keys and not self.menu.visible:
+            yaw, tilt = camera_keys[key]
+            self.control.turn(yaw)
+            self.control.tilt_by(tilt)
+        elif key in (pygame.K_PLUS, pygame.K_EQUALS, pygame.K_KP_PLUS) and not self.menu.visible:
+            self.control.zoom(0.9)
+        elif key in (pygame.K_MINUS, pygame.K_KP_MINUS) and not self.menu.visible:
+            self.control.zoom(1 / 0.9)
+        elif key == pygame.K_m:
+            self._tap(self.size[0] * 0.6, self.size[1] * 0.2)
+        elif key == pygame.K_r:
+            self.act("replant", 1.0)
+        elif key == pygame.K_p:
+            self.set_speed(0.0 if self.loop.speed else 1.0)
+        elif key in (pygame.K_1, pygame.K_2, pygame.K_3):
+            self.set_speed(SPEEDS[key - pygame.K_1 + 1])
+        elif key == pygame.K_F5:
+            self.act("save", 1.0)
+        elif key == pygame.K_F9:
+            self.act("load", 1.0)
+        return True
+
+    # ----- frame ---------------------------------------------------------------------------------
+    def update(self, real_seconds: float) -> None:
+        """Advance the simulation by one frame's worth of fixed steps; autosave when due."""
+        def step(dt: float) -> None:
+            self.previous = copy.copy(self.world.sim.state)
+            self.world.step(dt)
+
+        self.alpha = self.loop.advance(real_seconds, step)
+        if self.clock() - self.last_autosave >= self.config.autosave_seconds:
+            self.save()
+
+    def clocks(self) -> Clocks:
+        """Growth clocks to draw: interpolated between the last two sim states."""
+        return self.world.clocks(self.previous, self.alpha)
+
+    def camera(self) -> OrbitCamera:
+        """The orbit camera for this frame: gestures applied to an auto-framed view of the tree."""
+        r = self.renderer
+        cam = OrbitCamera(yaw=self.control.yaw, pitch=BASE_PITCH + self.control.tilt)
+        height = max(float(r.hi[1]), 2.0)
+        width = max(float(np.max(r.hi[[0, 2]] - r.lo[[0, 2]])), 1.0)
+        lo, hi = np.array([-width / 2, 0.0, -width / 2]), np.array([width / 2, height, width / 2])
+        cam.frame_bounds(lo, hi, self.size[0] / self.size[1], fill=0.8)
+        cam.distance *= self.control.distance
+        return cam
+
+    def _rebuild(self) -> None:
+        clocks = self.clocks()
+        key = (id(self.world.tree.lstring), round(clocks.length_time, 6), round(clocks.girth_time, 6),
+               round(clocks.wilt, 4))
+        if key == self._built:
+            return
+        geometry = self.world.tree.geometry(clocks)
+        self.renderer.set_tree(geometry.mesh)
+        wilt = 1.0 if not self.world.sim.state.alive else clocks.wilt
+        self.renderer.leaf_tint = tuple(HEALTHY_LEAF + (WILTED_LEAF - HEALTHY_LEAF) * wilt)
+        self.renderer.bark_tint = (1.45, 1.35, 1.25) if self.world.sim.state.alive else (1.0, 1.0, 1.0)
+        self._built = key
+
+    def draw(self, fbo: moderngl.Framebuffer) -> None:
+        """Render the scene and the HUD/menu overlay into ``fbo``."""
+        self._rebuild()
+        camera = self.camera()
+        self.renderer.render(fbo, camera, self.world.sim.sun_direction(), self.size)
+        self.overlay.draw(self._overlay_pixels(camera))
+
+    def hud_info(self) -> HudInfo:
+        """What the HUD shows now."""
+        s, tree = self.world.sim.state, self.world.tree
+        message = self.message if self.clock() < self.message_until else ""
+        if not message and tree.budget_hit:
+            message = "This tree has reached its size limit: it keeps thickening, new shoots are slowed."
+        return HudInfo(s.sun_meter, s.water_meter, self.world.sim.status(), s.time, self.loop.speed, message,
+                       s.watering)
+
+    def _overlay_pixels(self, camera: OrbitCamera) -> bytes:
+        self.surface.fill((0, 0, 0, 0))
+        info = self.hud_info()
+        if info.watering:
+            self._draw_cloud(camera)
+        draw_hud(self.surface, self.font, info)
+        self.menu.draw(self.surface, self.font)
+        return pygame.image.tobytes(self.surface, "RGBA", True)
+
+    def _draw_cloud(self, camera: OrbitCamera) -> None:
+        top = np.array([0.0, max(float(self.renderer.hi[1]), 1.0) * 1.25, 0.0, 1.0])
+        clip = camera.projection(self.size[0] / self.size[1]) @ camera.view() @ top
+        if clip[3] <= 0:
+            return
+        x = (clip[0] / clip[3] * 0.5 + 0.5) * self.size[0]
+        y = (0.5 - clip[1] / clip[3] * 0.5) * self.size[1]
+        draw_rain_cloud(self.surface, (x, max(y, 60.0)), self.size[1] * 0.12, self.world.sim.state.time)
+
+    def quit(self) -> None:
+        """Save on the way out."""
+        self.save()
