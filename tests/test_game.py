@@ -93,7 +93,7 @@ def test_two_fingers_one_still_tilts_up_to_acos_0_8(game):
         finger(pygame.FINGERMOTION, 1, 900, 200 + 20 * i)
         pump(game)
     assert game.control.tilt == pytest.approx(MAX_TILT)
-    assert MAX_TILT == pytest.approx(math.degrees(math.acos(0.8)))
+    assert pytest.approx(math.degrees(math.acos(0.8))) == MAX_TILT
     finger(pygame.FINGERUP, 1, 900, 580)
     finger(pygame.FINGERUP, 0, 300, 300)
     pump(game)
