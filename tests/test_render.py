@@ -94,13 +94,16 @@ def test_cli_render_writes_png(tmp_path, lsys_dir, capsys):
 def test_arbor_opens_a_window(tmp_path):
     shot = tmp_path / "window.png"
     env = dict(os.environ, SDL_VIDEODRIVER="x11", SDL_AUDIODRIVER="dummy", ARBOR_MAX_FRAMES="4",
-               ARBOR_SCREENSHOT=str(shot))
+               ARBOR_SCREENSHOT=str(shot), ARBOR_SAVES=str(tmp_path / "saves"))
     cmd = ["xvfb-run", "-a", "-s", "-screen 0 1280x720x24", sys.executable, "-m", "game.cli"]
     proc = subprocess.run(cmd, env=env, capture_output=True, timeout=120)
     assert proc.returncode == 0, proc.stderr.decode()[-2000:]
     import pygame
 
-    pixels = pygame.surfarray.array3d(pygame.image.load(str(shot)))
+    pixels = pygame.surfarray.array3d(pygame.image.load(str(shot))).astype(int)
     assert pixels.std() > 20
     green = (pixels[..., 1] > pixels[..., 0] + 15) & (pixels[..., 1] > pixels[..., 2] + 15)
     assert green.mean() > 0.2
+    sun_meter = pixels[120, 40]  # x, y: the HUD's yellow sun meter
+    assert sun_meter[0] > 200 and sun_meter[2] < 100
+    assert (tmp_path / "saves" / "autosave.arbor").exists()  # saved on quit
