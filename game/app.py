@@ -54,13 +54,14 @@ def run_app(args: argparse.Namespace | None = None) -> int:
     saves = getattr(args, "saves", None) or os.environ.get("ARBOR_SAVES")
     if saves:
         config.saves = Path(saves)
-    game = Game(ctx, WINDOW, config)
+    game = Game(ctx, WINDOW, config, clock=time.perf_counter)
+    hub = make_input_hub(args, WINDOW, time.perf_counter())
     clock = pygame.time.Clock()
     frames, limit, last = 0, _frames_limit(), time.perf_counter()
     running = True
     while running:
-        for event in pygame.event.get():
-            running = game.handle_event(event) and running
+        for event in hub.poll(pygame.event.get(), time.perf_counter()):
+            running = game.handle_input(event) and running
         now = time.perf_counter()
         game.update(now - last)
         last = now
@@ -74,8 +75,26 @@ def run_app(args: argparse.Namespace | None = None) -> int:
         pygame.display.flip()
         clock.tick(60)
     game.quit()
+    hub.close()
     pygame.quit()
     return 0
+
+
+def make_input_hub(args: argparse.Namespace | None, size: tuple[int, int], now: float):
+    """The input layer for the window: HID trackers always, TUIO, recording and replay on request."""
+    from game.hid_devices import HidManager, load_profiles
+    from game.input import InputHub, Player, Recorder, load_recording
+    from game.render import ASSETS
+
+    sources: list = [HidManager(profiles=load_profiles(ASSETS / "input" / "devices.toml"))]
+    if getattr(args, "tuio", False):
+        from game.tuio import TuioListener
+
+        sources.append(TuioListener(size, args.tuio_host, args.tuio_port))
+    if getattr(args, "replay", None):
+        sources.append(Player(load_recording(args.replay), now))
+    recorder = Recorder(args.record) if getattr(args, "record", None) else None
+    return InputHub(size, sources, recorder)
 
 
 class Viewer:
@@ -89,6 +108,7 @@ class Viewer:
         self.steps = 0
         self.renderer = TreeRenderer(ctx)
         self.camera = OrbitCamera()
+        self._last: tuple[float, float] | None = None
         self.grow_to(self.system.iterations)
 
     def grow_to(self, steps: int) -> None:
@@ -102,20 +122,26 @@ class Viewer:
         self.renderer.set_tree(build_geometry(self.lstring, self.system).mesh)
         self.camera.frame_bounds(self.renderer.lo, self.renderer.hi, self.size[0] / self.size[1])
 
-    def handle_event(self, event) -> bool:
-        """Orbit, zoom, grow; returns False to quit."""
+    def handle_input(self, e) -> bool:
+        """Orbit (drag), zoom (wheel), grow (space), shrink (backspace); returns False to quit."""
         import pygame
 
-        if event.type == pygame.QUIT or (event.type == pygame.KEYDOWN and event.key == pygame.K_ESCAPE):
+        from game.input import DOWN, KEY_DOWN, MOVE, QUIT, WHEEL
+
+        if e.kind == QUIT or (e.kind == KEY_DOWN and e.key == pygame.K_ESCAPE):
             return False
-        if event.type == pygame.MOUSEMOTION and event.buttons[0]:
-            self.camera.yaw -= event.rel[0] * 0.4
-            self.camera.pitch = float(np.clip(self.camera.pitch + event.rel[1] * 0.3, -5.0, 80.0))
-        elif event.type == pygame.MOUSEWHEEL:
-            self.camera.distance *= 0.9**event.y
-        elif event.type == pygame.KEYDOWN and event.key == pygame.K_SPACE:
+        if e.kind == DOWN:
+            self._last = (e.x, e.y)
+        elif e.kind == MOVE and e.dims == 2 and self._last is not None:
+            dx, dy = e.x - self._last[0], e.y - self._last[1]
+            self._last = (e.x, e.y)
+            self.camera.yaw -= dx * 0.4
+            self.camera.pitch = float(np.clip(self.camera.pitch + dy * 0.3, -5.0, 80.0))
+        elif e.kind == WHEEL:
+            self.camera.distance *= 0.9**e.amount
+        elif e.kind == KEY_DOWN and e.key == pygame.K_SPACE:
             self.grow_to(self.steps + 1)
-        elif event.type == pygame.KEYDOWN and event.key == pygame.K_BACKSPACE:
+        elif e.kind == KEY_DOWN and e.key == pygame.K_BACKSPACE:
             self.grow_to(self.steps - 1)
         return True
 
@@ -124,13 +150,16 @@ def run_viewer(source: Path) -> int:
     """Open the viewer window on an .lsys file."""
     import pygame
 
+    from game.input import InputHub
+
     ctx = open_window(WINDOW, f"Arbor - {source.name}")
     viewer = Viewer(ctx, WINDOW, source)
+    hub = InputHub(WINDOW)
     clock = pygame.time.Clock()
     frames, limit, running = 0, _frames_limit(), True
     while running:
-        for event in pygame.event.get():
-            running = viewer.handle_event(event) and running
+        for event in hub.poll(pygame.event.get(), time.perf_counter()):
+            running = viewer.handle_input(event) and running
         viewer.renderer.render(ctx.screen, viewer.camera, sun_direction(viewer.camera.yaw + 55.0, 48.0), WINDOW)
         frames += 1
         running = running and not (limit and frames >= limit)

@@ -96,6 +96,11 @@ def build_parser() -> argparse.ArgumentParser:
     view.add_argument("source", type=Path)
     view.set_defaults(run=lambda a: __import__("game.app", fromlist=["run_viewer"]).run_viewer(a.source))
     parser.add_argument("--saves", type=Path, default=None, help="folder for save files (default: saves/)")
+    parser.add_argument("--tuio", action="store_true", help="accept TUIO 1.1 touch over UDP")
+    parser.add_argument("--tuio-host", default="127.0.0.1", help="address to listen on for TUIO")
+    parser.add_argument("--tuio-port", type=int, default=3333)
+    parser.add_argument("--record", type=Path, default=None, help="record this session's input to a file")
+    parser.add_argument("--replay", type=Path, default=None, help="replay recorded input")
     return parser
 
 

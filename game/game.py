@@ -24,12 +24,25 @@ from engine.sim import load_rules
 from engine.world import World
 from game.camera import OrbitCamera
 from game.gestures import CameraControl, Gestures
+from game.input import (
+    DEVICE,
+    DOWN,
+    FOCUS_LOST,
+    KEY_DOWN,
+    KEY_UP,
+    MOVE,
+    QUIT,
+    ROTATE,
+    UP,
+    WHEEL,
+    InputEvent,
+    PygameTranslator,
+)
 from game.loop import SPEEDS, FixedStepLoop
 from game.render import ASSETS, Overlay, TreeRenderer
 from game.ui import HudInfo, Menu, draw_hud, draw_rain_cloud, range_to_slider, slider_to_range
 
 ROOT = Path(__file__).resolve().parent.parent
-MOUSE = -1
 KEY_YAW, KEY_TILT = 4.0, 3.0  # degrees per key press
 BASE_PITCH = 8.0
 HEALTHY_LEAF, WILTED_LEAF = np.array([1.0, 1.0, 1.0]), np.array([1.45, 1.05, 0.35])
@@ -69,6 +82,10 @@ class Game:
         self.message, self.message_until = "", 0.0
         self.input_log: list[tuple[int, str, float]] = []
         self.menu_pointers: set[int] = set()
+        self.translator = PygameTranslator(size)
+        self._right_y: float | None = None
+        self.cursor3d: tuple[float, float, float] | None = None
+        self.devices: dict[str, str] = {}
         self.keys_water = False
         self.last_autosave = clock()
         self._built: tuple | None = None
@@ -147,6 +164,9 @@ class Game:
         elif action == "save" and value:
             if self.save():
                 self.say("Saved.")
+        elif action == "devices" and value:
+            names = sorted(self.devices) or ["none yet"]
+            self.say("Input devices: " + ", ".join(names), 8)
         elif action == "load" and value:
             world = self._load(self.autosave_path) if self.autosave_path.exists() else None
             if world is not None:
@@ -175,40 +195,60 @@ class Game:
 
     # ----- input ---------------------------------------------------------------------------------
     def handle_event(self, e: pygame.event.Event) -> bool:
-        """Handle one pygame event; returns False when the game should quit."""
-        if e.type == pygame.QUIT:
+        """Handle one pygame event (through the input layer); returns False when the game should quit."""
+        keep = True
+        for event in self.translator.translate(e, self.clock()):
+            keep = self.handle_input(event) and keep
+        return keep
+
+    def handle_input(self, e: InputEvent) -> bool:
+        """Handle one device-independent input event; returns False when the game should quit."""
+        if e.device not in self.devices and e.device not in ("window", "hid") and e.amount >= 0:
+            self.devices[e.device] = e.device.split(":")[0]
+        if e.kind == QUIT:
             return False
-        if e.type in (pygame.FINGERDOWN, pygame.FINGERMOTION, pygame.FINGERUP):
-            pid = hash((e.touch_id, e.finger_id)) & 0x7FFFFFFF
-            self._pointer(e.type, pid, e.x * self.size[0], e.y * self.size[1])
-        elif e.type in (pygame.MOUSEBUTTONDOWN, pygame.MOUSEBUTTONUP) and not getattr(e, "touch", False):
-            self._mouse_button(e)
-        elif e.type == pygame.MOUSEMOTION and not getattr(e, "touch", False):
-            self._mouse_motion(e)
-        elif e.type == pygame.MOUSEWHEEL and not self.menu.visible:
-            self.control.zoom(0.9**e.y)
-        elif e.type == pygame.KEYDOWN:
-            return self._key(e.key, True)
-        elif e.type == pygame.KEYUP:
-            self._key(e.key, False)
-        elif e.type == pygame.WINDOWFOCUSLOST:
+        if e.kind in (DOWN, MOVE, UP):
+            if e.dims == 3:
+                self._pointer3d(e)
+            elif e.device == "mouse" and e.button == 3:
+                self._right_drag(e)
+            elif e.button == 1:
+                self._pointer(e.kind, hash((e.device, e.pointer)) & 0x7FFFFFFF, e.x, e.y, e.t)
+        elif e.kind == WHEEL and not self.menu.visible:
+            self.control.zoom(0.9**e.amount)
+        elif e.kind == ROTATE and not self.menu.visible:
+            self.control.turn(-e.ry)
+            self.control.tilt_by(e.rx)
+        elif e.kind in (KEY_DOWN, KEY_UP):
+            return self._key(e.key, e.kind == KEY_DOWN)
+        elif e.kind == FOCUS_LOST:
             self.gestures.cancel_all()
+        elif e.kind == DEVICE:
+            self.devices_changed(e)
         return True
 
-    def _mouse_button(self, e) -> None:
-        kind = pygame.FINGERDOWN if e.type == pygame.MOUSEBUTTONDOWN else pygame.FINGERUP
-        if e.button == 1:
-            self._pointer(kind, MOUSE, *e.pos)  # right-drag tilts (see _mouse_motion)
+    def devices_changed(self, e: InputEvent) -> None:
+        """A device came, went or misbehaved: tell the player (never crash)."""
+        if e.amount < 0:
+            self.devices.pop(e.device, None)
+        self.say(e.text, 5)
 
-    def _mouse_motion(self, e) -> None:
-        if e.buttons[0]:
-            self._pointer(pygame.FINGERMOTION, MOUSE, *e.pos)
-        elif e.buttons[2] and not self.menu.visible:
-            self.control.tilt_by(e.rel[1] * 0.25)  # right drag: the mouse's tilt gesture
+    def _right_drag(self, e: InputEvent) -> None:
+        """The mouse's tilt gesture: vertical right-button drag."""
+        if e.kind == DOWN:
+            self._right_y = e.y
+        elif e.kind == MOVE and not self.menu.visible and self._right_y is not None:
+            self.control.tilt_by((e.y - self._right_y) * 0.25)
+            self._right_y = e.y
+        else:
+            self._right_y = None
 
-    def _pointer(self, kind: int, pid: int, x: float, y: float) -> None:
-        now = self.clock()
-        if kind == pygame.FINGERDOWN:
+    def _pointer3d(self, e: InputEvent) -> None:
+        """A 3D tracker's cursor: kept for the modeler (strokes in 3D); shown by the HUD."""
+        self.cursor3d = (e.x, e.y, e.z) if e.kind != UP else self.cursor3d
+
+    def _pointer(self, kind: str, pid: int, x: float, y: float, now: float) -> None:
+        if kind == DOWN:
             if self.menu.hit(x, y):
                 self.menu_pointers.add(pid)
                 for action in self.menu.press(x, y):
@@ -216,7 +256,7 @@ class Game:
             else:
                 self.gestures.menu_open = self.menu.visible
                 self.gestures.down(pid, x, y, now)
-        elif kind == pygame.FINGERMOTION:
+        elif kind == MOVE:
             if pid in self.menu_pointers:
                 for action in self.menu.drag(x, y):
                     self.act(*action)

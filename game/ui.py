@@ -50,6 +50,7 @@ class Menu:
             Widget("speed", "1x speed", "button"),
             Widget("save", "Save", "button"),
             Widget("load", "Load", "button"),
+            Widget("devices", "Devices", "button"),
         ]
         self.active: Widget | None = None
         self.rect = pygame.Rect(0, 0, MENU_W, 0)
@@ -60,7 +61,7 @@ class Menu:
 
     def show_at(self, x: float, y: float) -> None:
         """Open the menu with its corner at the tap point, kept inside the screen."""
-        rows = [["orbit_height"], ["sun_speed"], ["water", "replant"], ["speed", "save", "load"]]
+        rows = [["orbit_height"], ["sun_speed"], ["water", "replant"], ["speed", "save", "load", "devices"]]
         height = len(rows) * (ROW_H + PAD) + PAD
         left = int(min(max(x, PAD), self.screen[0] - MENU_W - PAD))
         top = int(min(max(y, PAD), self.screen[1] - height - PAD))

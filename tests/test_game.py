@@ -170,7 +170,9 @@ def test_mouse_and_keyboard_equivalents(game):
     post(pygame.MOUSEBUTTONUP, button=1, pos=(600, 400), touch=False)
     pump(game)
     assert game.control.yaw == pytest.approx((yaw - 40) % 360)
+    post(pygame.MOUSEBUTTONDOWN, button=3, pos=(600, 100), touch=False)
     post(pygame.MOUSEMOTION, buttons=(0, 0, 1), pos=(600, 500), rel=(0, 400), touch=False)
+    post(pygame.MOUSEBUTTONUP, button=3, pos=(600, 500), touch=False)
     pump(game)
     assert game.control.tilt == pytest.approx(MAX_TILT)
     d = game.control.distance

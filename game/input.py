@@ -1,0 +1,192 @@
+"""One input layer: every source (mouse, SDL touch, keyboard, TUIO, HID 3D trackers, recordings)
+becomes the same :class:`InputEvent`, which the camera, the menu and the modeler consume.
+
+Nothing else in the app reads pygame events or devices directly. Sessions can be recorded to a
+JSON-lines file and replayed with their timestamps (tests, kiosk attract mode, bug reports).
+"""
+
+from __future__ import annotations
+
+import json
+from collections.abc import Iterable
+from dataclasses import asdict, dataclass, fields
+from pathlib import Path
+
+import pygame
+
+DOWN, MOVE, UP = "down", "move", "up"
+KEY_DOWN, KEY_UP, WHEEL, ROTATE, QUIT, FOCUS_LOST, DEVICE = (
+    "key_down", "key_up", "wheel", "rotate", "quit", "focus_lost", "device")
+MOUSE_ID = -1
+
+
+@dataclass(frozen=True)
+class InputEvent:
+    """A device-independent input event.
+
+    Pointers (kind down/move/up) carry a 2D position in window pixels, or a 3D position in scene
+    units when ``dims`` is 3; ``pointer`` identifies a finger/cursor within ``device``. ``button`` is
+    the mouse/tracker button (1 = primary, 3 = secondary). ``rotate`` carries 3D-tracker rotation
+    rates (rx, ry, rz); ``device`` events announce devices and problems in ``text``.
+    """
+
+    kind: str
+    t: float
+    device: str = "mouse"
+    pointer: int = 0
+    x: float = 0.0
+    y: float = 0.0
+    z: float = 0.0
+    dims: int = 2
+    pressure: float = 1.0
+    button: int = 1
+    key: int = 0
+    amount: float = 0.0
+    rx: float = 0.0
+    ry: float = 0.0
+    rz: float = 0.0
+    text: str = ""
+
+    def to_json(self) -> str:
+        """One line of a recording (only non-default fields)."""
+        defaults = InputEvent("", 0.0)
+        data = {k: v for k, v in asdict(self).items() if k in ("kind", "t") or v != getattr(defaults, k)}
+        return json.dumps(data, separators=(",", ":"))
+
+    @classmethod
+    def from_json(cls, line: str) -> InputEvent:
+        """Inverse of :meth:`to_json`; raises ValueError for anything that is not an event."""
+        data = json.loads(line)
+        names = {f.name: f.type for f in fields(cls)}
+        if not isinstance(data, dict) or not set(data) <= set(names) or "kind" not in data or "t" not in data:
+            raise ValueError("not an input event")
+        return cls(**data)
+
+
+class PygameTranslator:
+    """pygame events -> InputEvents (mouse, multi-touch fingers, keys, wheel, quit, focus)."""
+
+    def __init__(self, size: tuple[int, int]) -> None:
+        self.size = size
+
+    def translate(self, e: pygame.event.Event, t: float) -> list[InputEvent]:
+        """The InputEvents for one pygame event (often none)."""
+        w, h = self.size
+        if e.type == pygame.QUIT:
+            return [InputEvent(QUIT, t, "window")]
+        if e.type in (pygame.FINGERDOWN, pygame.FINGERMOTION, pygame.FINGERUP):
+            kind = {pygame.FINGERDOWN: DOWN, pygame.FINGERMOTION: MOVE, pygame.FINGERUP: UP}[e.type]
+            # SDL gives finger positions normalised to 0..1 of the window
+            return [InputEvent(kind, t, f"touch:{e.touch_id}", int(e.finger_id), e.x * w, e.y * h,
+                               pressure=float(getattr(e, "pressure", 1.0)))]
+        if getattr(e, "touch", False):
+            return []  # SDL's mouse emulation of touches: the finger events already cover them
+        if e.type in (pygame.MOUSEBUTTONDOWN, pygame.MOUSEBUTTONUP) and e.button in (1, 2, 3):
+            kind = DOWN if e.type == pygame.MOUSEBUTTONDOWN else UP
+            return [InputEvent(kind, t, "mouse", MOUSE_ID, *e.pos, button=e.button)]
+        if e.type == pygame.MOUSEMOTION and any(e.buttons):
+            button = 1 if e.buttons[0] else (3 if e.buttons[2] else 2)
+            return [InputEvent(MOVE, t, "mouse", MOUSE_ID, *e.pos, button=button)]
+        if e.type == pygame.MOUSEWHEEL:
+            return [InputEvent(WHEEL, t, "mouse", amount=float(e.y))]
+        if e.type in (pygame.KEYDOWN, pygame.KEYUP):
+            return [InputEvent(KEY_DOWN if e.type == pygame.KEYDOWN else KEY_UP, t, "keyboard", key=e.key)]
+        if e.type == pygame.WINDOWFOCUSLOST:
+            return [InputEvent(FOCUS_LOST, t, "window")]
+        return []
+
+
+class Recorder:
+    """Appends every event to a JSON-lines file, flushing each line (a crash keeps what came before)."""
+
+    def __init__(self, path: str | Path) -> None:
+        self.path = Path(path)
+        self.path.parent.mkdir(parents=True, exist_ok=True)
+        self.file = open(self.path, "w", encoding="utf-8")  # noqa: SIM115 - kept open while recording
+        self.file.write('{"arbor_input_recording":1}\n')
+
+    def write(self, events: Iterable[InputEvent]) -> None:
+        """Record events."""
+        for e in events:
+            self.file.write(e.to_json() + "\n")
+        self.file.flush()
+
+    def close(self) -> None:
+        """Finish the recording."""
+        self.file.close()
+
+
+def load_recording(path: str | Path) -> list[InputEvent]:
+    """Read a recording; bad lines raise ValueError naming the file and line."""
+    events = []
+    with open(path, encoding="utf-8") as fh:
+        for number, line in enumerate(fh, start=1):
+            if number == 1 and "arbor_input_recording" in line:
+                continue
+            if not line.strip():
+                continue
+            try:
+                events.append(InputEvent.from_json(line))
+            except (ValueError, TypeError) as exc:
+                raise ValueError(f"{path}:{number}: {exc}") from None
+    return events
+
+
+class Player:
+    """Replays a recording against a clock: events come out when their (relative) time has come."""
+
+    def __init__(self, events: list[InputEvent], start: float, loop: bool = False) -> None:
+        self.events = sorted(events, key=lambda e: e.t)
+        self.origin = self.events[0].t if self.events else 0.0
+        self.start = start
+        self.loop = loop
+        self.index = 0
+
+    @property
+    def done(self) -> bool:
+        """True when every event has been played (never, when looping)."""
+        return not self.loop and self.index >= len(self.events)
+
+    def poll(self, now: float) -> list[InputEvent]:
+        """Events due by ``now``, re-timed to the playback clock."""
+        out = []
+        while self.index < len(self.events) and self.events[self.index].t - self.origin <= now - self.start:
+            e = self.events[self.index]
+            out.append(_retime(e, self.start + e.t - self.origin))
+            self.index += 1
+        if self.loop and self.index >= len(self.events) and self.events:
+            self.start, self.index = now, 0
+        return out
+
+
+def _retime(e: InputEvent, t: float) -> InputEvent:
+    data = asdict(e)
+    data["t"] = t
+    return InputEvent(**data)
+
+
+class InputHub:
+    """Collects events from pygame and every other source; optionally records them."""
+
+    def __init__(self, size: tuple[int, int], sources: list | None = None, recorder: Recorder | None = None) -> None:
+        self.translator = PygameTranslator(size)
+        self.sources = list(sources or [])
+        self.recorder = recorder
+
+    def poll(self, pygame_events: Iterable[pygame.event.Event], now: float) -> list[InputEvent]:
+        """All events of this frame, in order: pygame first, then each source's."""
+        events = [ie for e in pygame_events for ie in self.translator.translate(e, now)]
+        for source in self.sources:
+            events.extend(source.poll(now))
+        if self.recorder is not None and events:
+            self.recorder.write(events)
+        return events
+
+    def close(self) -> None:
+        """Stop every source and the recorder."""
+        for source in self.sources:
+            close = getattr(source, "close", None)
+            if close:
+                close()
+        if self.recorder is not None:
+            self.recorder.close()
