@@ -373,17 +373,31 @@ class Game:
         if info.watering:
             self._draw_cloud(camera)
         draw_hud(self.surface, self.font, info)
+        if self.cursor3d is not None:
+            self._draw_cursor3d(camera)
         self.menu.draw(self.surface, self.font)
         return pygame.image.tobytes(self.surface, "RGBA", True)
 
-    def _draw_cloud(self, camera: OrbitCamera) -> None:
-        top = np.array([0.0, max(float(self.renderer.hi[1]), 1.0) * 1.25, 0.0, 1.0])
-        clip = camera.projection(self.size[0] / self.size[1]) @ camera.view() @ top
+    def _project(self, camera: OrbitCamera, point) -> tuple[float, float] | None:
+        clip = camera.projection(self.size[0] / self.size[1]) @ camera.view() @ np.array([*point, 1.0])
         if clip[3] <= 0:
+            return None
+        return (clip[0] / clip[3] * 0.5 + 0.5) * self.size[0], (0.5 - clip[1] / clip[3] * 0.5) * self.size[1]
+
+    def _draw_cloud(self, camera: OrbitCamera) -> None:
+        at = self._project(camera, (0.0, max(float(self.renderer.hi[1]), 1.0) * 1.25, 0.0))
+        if at is not None:
+            draw_rain_cloud(self.surface, (at[0], max(at[1], 60.0)), self.size[1] * 0.12, self.world.sim.state.time)
+
+    def _draw_cursor3d(self, camera: OrbitCamera) -> None:
+        """The 3D tracker's cursor (scene units, relative to the tree's base) as a ring with a drop line."""
+        at = self._project(camera, self.cursor3d)
+        ground = self._project(camera, (self.cursor3d[0], 0.0, self.cursor3d[2]))
+        if at is None:
             return
-        x = (clip[0] / clip[3] * 0.5 + 0.5) * self.size[0]
-        y = (0.5 - clip[1] / clip[3] * 0.5) * self.size[1]
-        draw_rain_cloud(self.surface, (x, max(y, 60.0)), self.size[1] * 0.12, self.world.sim.state.time)
+        if ground is not None:
+            pygame.draw.line(self.surface, (255, 255, 255, 120), at, ground, 1)
+        pygame.draw.circle(self.surface, (255, 230, 120, 230), (int(at[0]), int(at[1])), 10, 3)
 
     def quit(self) -> None:
         """Save on the way out."""

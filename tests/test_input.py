@@ -227,13 +227,17 @@ def test_recorded_session_replays_through_the_real_game(ctx, tmp_path):
     clock2 = [500.0]
     hub = InputHub(SIZE, [Player(events, start=500.0)])
     again = Game(ctx, SIZE, GameConfig(saves=tmp_path / "b", seed=1, resume=False), clock=lambda: clock2[0])
-    while clock2[0] < 502.0:
+    while clock2[0] < 502.0:  # the real frame loop: events, fixed steps, drawing
         for e in hub.poll([], clock2[0]):
             again.handle_input(e)
+        again.update(1 / 60)
         clock2[0] += 1 / 60
+    fbo = ctx.framebuffer(color_attachments=[ctx.renderbuffer(SIZE)], depth_attachment=ctx.depth_renderbuffer(SIZE))
+    again.draw(fbo)
     assert again.control.yaw == pytest.approx(live.control.yaw)
     assert again.menu.visible and live.menu.visible
     assert sorted(again.devices) == ["mouse", "touch:1"]
+    assert again.world.steps == pytest.approx(20, abs=1)  # two seconds of game time at 1x, 0.1 s steps
 
 
 def test_bad_recording_names_its_line(tmp_path):
@@ -250,3 +254,14 @@ def test_touch_coordinates_map_to_window_pixels(ctx, tmp_path):
     assert (ev.kind, ev.device, ev.pointer, ev.x, ev.y, ev.pressure) == (DOWN, "touch:3", 7, 320.0, 540.0, 0.4)
     emulated = pygame.event.Event(pygame.MOUSEBUTTONDOWN, button=1, pos=(1, 1), touch=True)
     assert hub.poll([emulated], 1.0) == []  # SDL's mouse emulation of a touch is not a second pointer
+
+
+def test_tracker_cursor_is_drawn_where_it_is(ctx, tmp_path):
+    game = Game(ctx, SIZE, GameConfig(saves=tmp_path, seed=1, resume=False), clock=lambda: 0.0)
+    game.handle_input(InputEvent(MOVE, 0.0, "hid:SpaceMouse", 0, 0.5, 2.0, 0.0, dims=3))
+    fbo = ctx.framebuffer(color_attachments=[ctx.renderbuffer(SIZE)], depth_attachment=ctx.depth_renderbuffer(SIZE))
+    game.draw(fbo)
+    x, y = game._project(game.camera(), (0.5, 2.0, 0.0))
+    overlay = pygame.image.frombytes(pygame.image.tobytes(game.surface, "RGBA"), SIZE, "RGBA")
+    ring = [overlay.get_at((int(x) + dx, int(y))) for dx in (-10, -9, 9, 10)]
+    assert any(p.a > 150 and p.r > 200 and p.g > 180 for p in ring)
