@@ -28,7 +28,7 @@ class GrowthRules:
     hold_time: float = 20.0
     deadline: float = 40.0
     penalty_time: float = 40.0
-    length_rate: float = 0.1
+    length_rate: float = 0.06
     girth_rate: float = 0.1
     rewrite_step: float = 1.0
     sapling_age: float = 12.0
