@@ -198,13 +198,18 @@ class TreeRenderer:
             self.shadow_prog["u_alpha_test"].value = int(part.kind != 0)
             part.shadow_vao.render()
 
-    def _draw_ground(self, vp: np.ndarray, light: np.ndarray, sun: np.ndarray) -> None:
-        prog = self.ground_prog
+    @staticmethod
+    def _lit_uniforms(prog: moderngl.Program, vp: np.ndarray, light: np.ndarray, sun: np.ndarray) -> None:
+        """Camera, sun and shadow-map uniforms shared by the ground and the tree shaders."""
         prog["u_mvp"].write(_gl(vp))
         prog["u_light_mvp"].write(_gl(light))
         prog["u_shadow"].value = 1
         prog["u_shadow_texel"].value = 1.0 / SHADOW_SIZE
         prog["u_sun_dir"].value = tuple(sun)
+
+    def _draw_ground(self, vp: np.ndarray, light: np.ndarray, sun: np.ndarray) -> None:
+        prog = self.ground_prog
+        self._lit_uniforms(prog, vp, light, sun)
         prog["u_grass"].value = _scale(GRASS, daylight(sun))
         prog["u_horizon"].value = _scale(SKY_HORIZON, daylight(sun))
         prog["u_fade_start"].value = self.radius * 3
@@ -214,12 +219,8 @@ class TreeRenderer:
 
     def _draw_tree(self, vp: np.ndarray, light: np.ndarray, sun: np.ndarray) -> None:
         prog = self.tree_prog
-        prog["u_mvp"].write(_gl(vp))
-        prog["u_light_mvp"].write(_gl(light))
-        prog["u_shadow"].value = 1
+        self._lit_uniforms(prog, vp, light, sun)
         prog["u_tex"].value = 0
-        prog["u_shadow_texel"].value = 1.0 / SHADOW_SIZE
-        prog["u_sun_dir"].value = tuple(sun)
         elevation = max(float(sun[1]), 0.0)
         day = daylight(sun)
         sun_strength = min(elevation * 4.0, 1.0)

@@ -15,3 +15,17 @@ LSYSTEMS = ROOT / "assets" / "lsystems"
 @pytest.fixture(scope="session")
 def lsys_dir() -> Path:
     return LSYSTEMS
+
+
+@pytest.fixture(scope="session")
+def gl_ctx():
+    """One headless EGL context for the whole run, with a (dummy-driver) pygame display for events."""
+    import pygame
+
+    from game.render import headless_context
+
+    pygame.init()
+    pygame.display.set_mode((64, 64))
+    context = headless_context()
+    yield context
+    context.release()

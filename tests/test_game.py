@@ -11,7 +11,6 @@ from engine.sim import load_rules
 from engine.world import replay
 from game.game import Game, GameConfig
 from game.gestures import MAX_TILT
-from game.render import headless_context
 
 SIZE = (1280, 720)
 
@@ -25,12 +24,8 @@ class FakeClock:
 
 
 @pytest.fixture(scope="module")
-def ctx():
-    pygame.init()
-    pygame.display.set_mode((64, 64))
-    context = headless_context()
-    yield context
-    context.release()
+def ctx(gl_ctx):
+    return gl_ctx
 
 
 @pytest.fixture

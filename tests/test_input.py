@@ -12,7 +12,6 @@ from pythonosc.osc_message_builder import OscMessageBuilder
 from game.game import Game, GameConfig
 from game.hid_devices import HidManager, SpaceMouseState, load_profiles, parse_spacemouse
 from game.input import DEVICE, DOWN, MOVE, ROTATE, UP, InputEvent, InputHub, Player, Recorder, load_recording
-from game.render import headless_context
 from game.tuio import TuioListener
 
 SIZE = (1280, 720)
@@ -192,12 +191,8 @@ def test_tuio_cursors_over_loopback():
 
 # ---------- recordings through the real game -----------------------------------------------------
 @pytest.fixture(scope="module")
-def ctx():
-    pygame.init()
-    pygame.display.set_mode((64, 64))
-    context = headless_context()
-    yield context
-    context.release()
+def ctx(gl_ctx):
+    return gl_ctx
 
 
 def session_events():

@@ -13,16 +13,14 @@ from engine.lsys import load_lsystem
 from engine.mesh import Mesh, TreeMesh
 from engine.tree import build_geometry
 from game.cli import main
-from game.render import headless_context, render_image
+from game.render import render_image
 
 SIZE = (480, 320)
 
 
 @pytest.fixture(scope="module")
-def ctx():
-    context = headless_context()
-    yield context
-    context.release()
+def ctx(gl_ctx):
+    return gl_ctx
 
 
 @pytest.fixture(scope="module")
