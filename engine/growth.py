@@ -95,9 +95,32 @@ def render_view(ls: LString, clocks: Clocks, const: dict[str, float]) -> LString
     lb = view.params[view.offsets[leaves]]
     view.params[view.offsets[leaves]] = const["LS"] * _saturate(now - lb, const["TAU"]) * _leaf_keep(lb, clocks.wilt)
     if clocks.wilt > 0:
-        pitch = np.flatnonzero((view.sym == PITCH) & (view.nparams == 1))
-        view.params[view.offsets[pitch]] *= 1.0 + DROOP * clocks.wilt
+        view.params[view.offsets[_droop_angles(ls)]] *= 1.0 + DROOP * clocks.wilt
     return view
+
+
+def _radii(ls: LString, view: LString, segs, clocks: Clocks, const: dict[str, float]) -> np.ndarray:
+    """Pipe-model radii for grown internodes; drawn pieces (modeler F) keep at least their drawn width."""
+    grown = (ls.sym[segs.module] == INTERNODE) & (ls.nparams[segs.module] == 3)
+    offsets = ls.offsets[segs.module]
+    seg_len = np.linalg.norm(segs.end - segs.start, axis=1)
+    order = np.where(grown, ls.params[np.where(grown, offsets + 2, 0)], 0.0)
+    girth_birth = np.where(grown, ls.params[np.where(grown, offsets + 1, 0)], 0.0)
+    full = const["IL"] * const["IO"] ** order
+    weight = np.where(grown, seg_len / full, 0.0)  # each internode feeds one leaf, as far as it has grown
+    pipes = const["TIP"] ** 2 * np.maximum(subtree_sums(view, segs, weight), 1e-6)
+    rings = const["GMAX"] * _saturate(clocks.girth_time - girth_birth, const["GT"])
+    radius = np.sqrt(pipes * (1.0 + rings))
+    return np.where(grown, radius, np.maximum(radius, segs.radius))
+
+
+def _droop_angles(ls: LString) -> np.ndarray:
+    """The branch and leaf angles that droop with wilt: a '&' right before a bud, a leaf or a grown
+    apex. Drawn (modeler) geometry keeps its shape."""
+    pitch = np.flatnonzero((ls.sym[:-1] == PITCH) & (ls.nparams[:-1] == 1))
+    nxt = pitch + 1
+    carried = (ls.sym[nxt] == ord("D")) | (ls.sym[nxt] == LEAF) | ((ls.sym[nxt] == ord("A")) & (ls.nparams[nxt] == 3))
+    return pitch[carried]
 
 
 def grow_geometry(ls: LString, clocks: Clocks, const: dict[str, float], lod: int = 0) -> TreeGeometry:
@@ -106,13 +129,6 @@ def grow_geometry(ls: LString, clocks: Clocks, const: dict[str, float], lod: int
     turtle = interpret(view, TurtleConfig(pipe_model=False, leaves_at_tips=0, leaf_size=const["LS"], width=0.0))
     segs = turtle.segments
     if len(segs):
-        seg_len = np.linalg.norm(segs.end - segs.start, axis=1)
-        order = ls.params[ls.offsets[segs.module] + 2]
-        full = const["IL"] * const["IO"] ** order
-        weight = seg_len / full  # every internode feeds one leaf's pipes, in proportion to its growth
-        girth_birth = ls.params[ls.offsets[segs.module] + 1]
-        pipes = const["TIP"] ** 2 * np.maximum(subtree_sums(view, segs, weight), 1e-6)
-        rings = const["GMAX"] * _saturate(clocks.girth_time - girth_birth, const["GT"])
-        set_radii(segs, np.sqrt(pipes * (1.0 + rings)))
+        set_radii(segs, _radii(ls, view, segs, clocks, const))
     level = LOD_LEVELS[max(0, min(lod, len(LOD_LEVELS) - 1))]
     return TreeGeometry(turtle, tree_mesh(turtle, level))

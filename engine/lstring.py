@@ -122,6 +122,8 @@ def replace_modules(ls: LString, idx: np.ndarray, symbol: int, values: np.ndarra
 
     Other modules keep their symbols and parameters. Vectorised; used to build render views.
     """
+    if len(idx) == 0:
+        return LString(ls.sym.copy(), ls.nparams.copy(), ls.offsets.copy(), ls.params.copy())
     values = np.asarray(values, dtype=np.float64).reshape(len(idx), -1)
     sym = ls.sym.copy()
     sym[idx] = symbol

@@ -1,0 +1,352 @@
+"""Modeler I: drawn strokes become ordinary L-string modules (seed 000 section 4.1, seed 002).
+
+A stroke is sampled (curvature-adaptive), smoothed into an arc-length spline and cut into pieces of
+even length. Each piece becomes ``F(l, Vx, Vy, Vz, Hx, Hy, Hz, Ux, Uy, Uz, M)``: its length, start
+position V, frame (heading H, up U; L = U x H) and variation M (degrees turned from the previous
+piece). Between pieces, the rotation that takes the turtle's heading onto the next piece is written as
+a turn about U then a pitch about L (the U, L, H order of seed 000 4.1.3; no roll is ever needed),
+so the ordinary turtle redraws the stroke exactly. The width ``!(d)`` is inversely proportional to the
+drawing speed (clamped). Growth points ``A(l, Vx, Vy, Vz, d)`` carry the attributes of the F they sit
+on and are placed along the axis with a density lambda(s) (seed 002 algorithm 2); the active rule set
+grows branches from them (assets/lsystems/game_tree.lsys wakes them like dormant buds).
+
+A stroke that starts near an existing axis snaps to the nearest point on it and is inserted there as
+a bracketed branch (the F it starts on is split in two). A stroke passing through an existing trunk is
+bent around it (seed 000 4.1.5): away from it, or, when the axes nearly meet, towards the side of the
+tree with fewer polygons.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from engine import brackets
+from engine.lstring import LString, format_number, parse_lstring
+from engine.strokes import ArcLengthSpline, Stroke, adaptive_sample, speeds_at
+from engine.turtle import INITIAL_FRAME, Segments, TurtleConfig, interpret
+
+DRAWN = ord("F")
+GROWTH_POINT = ord("A")
+F_PARAMS = 11
+
+
+@dataclass
+class ModelerSettings:
+    """How strokes become trunks: piece length, widths, growth-point density, snapping, bypass."""
+
+    piece: float = 0.25  # length of one F piece
+    width_speed: float = 0.6  # diameter = width_speed / speed (scene units / second)
+    min_width: float = 0.03
+    max_width: float = 0.6
+    density: float = 1.2  # growth points per unit length on the upper part of an axis
+    bare_fraction: float = 0.3  # no growth points on the lowest part of each axis
+    branch_angle: float = 55.0
+    snap_distance: float = 0.35  # strokes starting this close to an axis join it
+    bypass_margin: float = 0.05
+    near_axes: float = 0.1  # axes closer than this: bypass towards the side with fewer polygons
+    seed: int = 0
+
+
+@dataclass
+class StrokeResult:
+    """What adding a stroke did, for feedback and tests."""
+
+    pieces: int
+    growth_points: int
+    snapped_to: int | None = None  # module index of the F the stroke joined
+    snap_point: np.ndarray | None = None
+    bypassed: int = 0  # samples moved to avoid a collision
+    text: str = ""
+
+
+def _unit(v: np.ndarray) -> np.ndarray:
+    return v / np.maximum(np.linalg.norm(v, axis=-1, keepdims=True), 1e-300)
+
+
+def _fmt(values) -> str:
+    return ",".join(format_number(float(v)) for v in values)
+
+
+def path_modules(path: np.ndarray, frame: np.ndarray, widths: np.ndarray, growth: list[tuple[int, float]],
+                 settings: ModelerSettings, symbol: str = "F") -> tuple[str, np.ndarray]:
+    """L-string text that makes a turtle with frame ``frame`` at ``path[0]`` draw the polyline ``path``.
+
+    ``widths`` has one diameter per piece; ``growth`` lists (piece index, roll angle) for growth points.
+    Returns the text and the turtle's frame at the end (``symbol`` 'f' moves without drawing).
+    """
+    out: list[str] = []
+    frame = frame.copy()
+    growth_at = dict(growth)
+    prev_dir = frame[:, 0]
+    for i in range(len(path) - 1):
+        d = path[i + 1] - path[i]
+        length = float(np.linalg.norm(d))
+        if length <= 1e-12:
+            continue
+        d = d / length
+        h, lft, up = frame[:, 0], frame[:, 1], frame[:, 2]
+        turn = np.degrees(np.arctan2(d @ lft, d @ h))
+        frame = frame @ _rot_z(turn)
+        h, up = frame[:, 0], frame[:, 2]
+        pitch = np.degrees(np.arctan2(-(d @ up), d @ h))
+        frame = frame @ _rot_y(pitch)
+        frame[:, 0] = d  # remove rounding drift: H is exactly the piece direction
+        frame[:, 2] = _unit(frame[:, 2] - (frame[:, 2] @ d) * d)
+        frame[:, 1] = np.cross(frame[:, 2], d)
+        if abs(turn) > 1e-9:
+            out.append(f"+({format_number(float(turn))})")
+        if abs(pitch) > 1e-9:
+            out.append(f"&({format_number(float(pitch))})")
+        variation = float(np.degrees(np.arccos(np.clip(prev_dir @ d, -1.0, 1.0))))
+        prev_dir = d
+        w = float(widths[min(i, len(widths) - 1)])
+        width = f"!({format_number(w)})" if symbol == "F" else ""
+        out.append(f"{width}{symbol}({_fmt([length, *path[i], *d, *frame[:, 2], variation])})")
+        if i in growth_at:
+            attrs = _fmt([length, *path[i + 1], w])
+            out.append(f"[/({format_number(growth_at[i])})&({format_number(settings.branch_angle)})A({attrs})]")
+    return "".join(out), frame
+
+
+def _rot_z(deg: float) -> np.ndarray:
+    a = np.radians(deg)
+    c, s = np.cos(a), np.sin(a)
+    return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
+
+
+def _rot_y(deg: float) -> np.ndarray:
+    a = np.radians(deg)
+    c, s = np.cos(a), np.sin(a)
+    return np.array([[c, 0.0, s], [0.0, 1.0, 0.0], [-s, 0.0, c]])
+
+
+def smooth_path(stroke: Stroke, piece: float) -> tuple[np.ndarray, np.ndarray]:
+    """Key points by curvature, an arc-length spline through them, resampled every ``piece``.
+
+    Returns the path (m, 3) and the arc length of each path point along the spline.
+    """
+    stroke = stroke.deduplicated()
+    if len(stroke.points) < 2:
+        return stroke.points.copy(), np.zeros(len(stroke.points))
+    keys = stroke.points[adaptive_sample(stroke.points)]
+    spline = ArcLengthSpline(keys)
+    path = spline.resample(piece)
+    return path, np.linspace(0.0, spline.length, len(path))
+
+
+def widths_from_speed(stroke: Stroke, s: np.ndarray, settings: ModelerSettings) -> np.ndarray:
+    """Diameter per piece, inversely proportional to drawing speed (seed 000), clamped."""
+    mids = 0.5 * (s[1:] + s[:-1]) if len(s) > 1 else s
+    speed = speeds_at(stroke.deduplicated(), mids * stroke.length / max(s[-1], 1e-12), 4 * settings.piece)
+    return np.clip(settings.width_speed / np.maximum(speed, 1e-9), settings.min_width, settings.max_width)
+
+
+def growth_points(s: np.ndarray, settings: ModelerSettings, rng: np.random.Generator) -> list[tuple[int, float]]:
+    """Seed 002 algorithm 2: accumulate lambda(s) * ds along the axis; a point wherever it passes 1.
+
+    lambda(s) is 0 on the lowest ``bare_fraction`` of the axis and ``density`` above it. Each point
+    is rolled by the golden angle from the previous one.
+    """
+    total = s[-1] if len(s) else 0.0
+    out, acc, roll = [], float(rng.random()), float(rng.random() * 360.0)
+    for i in range(len(s) - 1):
+        mid = 0.5 * (s[i] + s[i + 1]) / max(total, 1e-12)
+        acc += (s[i + 1] - s[i]) * (settings.density if mid > settings.bare_fraction else 0.0)
+        if acc >= 1.0:
+            acc -= 1.0
+            roll = (roll + 137.5) % 360.0
+            out.append((i, roll))
+    return out
+
+
+def nearest_on_segments(point: np.ndarray, segs: Segments) -> tuple[int, float, float]:
+    """(segment index, fraction along it, distance) of the closest point of any segment to ``point``."""
+    a, b = segs.start, segs.end
+    ab = b - a
+    t = np.clip(np.einsum("ij,ij->i", point - a, ab) / np.maximum(np.einsum("ij,ij->i", ab, ab), 1e-300), 0, 1)
+    dist = np.linalg.norm(a + ab * t[:, None] - point, axis=1)
+    k = int(np.argmin(dist))
+    return k, float(t[k]), float(dist[k])
+
+
+def _segment_distances(points: np.ndarray, segs: Segments) -> tuple[np.ndarray, np.ndarray]:
+    """For each point: distance to every segment axis (n, m) and the closest points (n, m, 3)."""
+    a, ab = segs.start[None], (segs.end - segs.start)[None]
+    rel = points[:, None] - a
+    t = np.clip(np.einsum("nmi,nmi->nm", rel, np.broadcast_to(ab, rel.shape))
+                / np.maximum(np.einsum("mi,mi->m", ab[0], ab[0]), 1e-300), 0, 1)
+    closest = a + ab * t[..., None]
+    return np.linalg.norm(points[:, None] - closest, axis=2), closest
+
+
+def _segments_near(segs: Segments, point: np.ndarray, distance: float) -> np.ndarray:
+    """Segments whose axis passes within ``distance`` of ``point``."""
+    dist, _ = _segment_distances(point[None], segs)
+    return dist[0] < distance
+
+
+def bypass(path: np.ndarray, radius: np.ndarray, segs: Segments, skip: np.ndarray,
+           settings: ModelerSettings, free: np.ndarray | None = None) -> tuple[np.ndarray, int]:
+    """Bend ``path`` around existing segments it would pass through (seed 000 4.1.5).
+
+    ``radius`` is the new axis' radius per path point; segments flagged in ``skip`` (the one the stroke
+    starts on) are ignored, and so are path points not flagged in ``free`` (the joint region).
+    Returns the new path and how many points moved.
+    """
+    if len(segs) == 0 or len(path) < 3:
+        return path, 0
+    moved_total = 0
+    out = path.copy()
+    for _ in range(4):  # pushing away from one trunk may touch another: settle in a few passes
+        dist, closest = _segment_distances(out, segs)
+        need = segs.radius[None, :] + radius[:, None] + settings.bypass_margin
+        hit = (dist < need) & ~skip[None, :]
+        hit[0] = False  # the start point stays where it was drawn or snapped
+        if free is not None:
+            hit &= free[:, None]
+        if not hit.any():
+            break
+        offset = np.zeros_like(out)
+        for j in np.unique(np.nonzero(hit)[1]):
+            offset += _push_from(out, closest[:, j], dist[:, j], need[:, j], hit[:, j], segs, j, settings)
+        out = out + _spread(offset)
+        moved_total += int(hit.any(axis=1).sum())
+    return out, moved_total
+
+
+def _push_from(path, closest, dist, need, hit, segs: Segments, j: int, settings: ModelerSettings) -> np.ndarray:
+    """Offsets that move the hit points of ``path`` out of segment j's cylinder."""
+    away = path - closest
+    axis = _unit(segs.end[j] - segs.start[j])
+    if dist[hit].min() <= settings.near_axes:  # axes (nearly) meet: go to the emptier side
+        crossing = _unit(path[-1] - path[0])
+        normal = _unit(np.cross(axis, crossing))
+        if np.linalg.norm(normal) < 1e-9:
+            normal = _unit(np.cross(axis, np.array([1.0, 0.0, 0.0])))
+        mids = 0.5 * (segs.start + segs.end) - segs.start[j]
+        side = np.sign(np.sum(np.sign(mids @ normal))) or 1.0
+        direction = np.broadcast_to(-side * normal, path.shape)
+    else:
+        direction = _unit(away - (away @ axis)[:, None] * axis)
+    push = np.where(hit, need - dist + 1e-6, 0.0)
+    current = np.einsum("ij,ij->i", away, direction)
+    return direction * np.maximum(push, need - current)[:, None] * hit[:, None]
+
+
+def _spread(offset: np.ndarray) -> np.ndarray:
+    """Smooth the bypass over neighbouring points so the axis bends instead of kinking."""
+    kernel = np.array([0.25, 0.5, 1.0, 0.5, 0.25])
+    out = np.zeros_like(offset)
+    for c in range(3):
+        out[:, c] = np.convolve(offset[:, c], kernel / kernel.max(), mode="same")
+    big = np.linalg.norm(offset, axis=1) > 0
+    out[big] = offset[big] * np.maximum(1.0, np.linalg.norm(out[big], axis=1) / np.maximum(
+        np.linalg.norm(offset[big], axis=1), 1e-12))[:, None]
+    out[0] = 0.0
+    return out
+
+
+@dataclass
+class Modeler:
+    """An editable modeled tree: add strokes, undo, redo. The L-string is the only state."""
+
+    lstring: LString = field(default_factory=LString.empty)
+    settings: ModelerSettings = field(default_factory=ModelerSettings)
+    undo_stack: list[LString] = field(default_factory=list)
+    redo_stack: list[LString] = field(default_factory=list)
+
+    def __post_init__(self) -> None:
+        self.rng = np.random.default_rng(self.settings.seed)
+
+    def segments(self) -> Segments:
+        """The current tree's segments (for snapping, collisions and picking)."""
+        return interpret(self.lstring, TurtleConfig(pipe_model=False, leaves_at_tips=0)).segments
+
+    def convert(self, stroke: Stroke) -> tuple[LString, StrokeResult]:
+        """The L-string this stroke would produce, without committing it (live preview)."""
+        cfg = self.settings
+        path, s = smooth_path(stroke, cfg.piece)
+        if len(path) < 2:
+            return self.lstring, StrokeResult(0, 0)
+        widths = widths_from_speed(stroke, s, cfg)
+        result = StrokeResult(len(path) - 1, 0)
+        growth = growth_points(s, cfg, np.random.default_rng(self.rng.integers(2**31)))
+        result.growth_points = len(growth)
+        if len(self.lstring) == 0:  # the first stroke is the trunk: the tree's base is where it starts
+            path = path - path[0]
+            body, _ = path_modules(path, INITIAL_FRAME, widths, growth, cfg)
+            result.text = body
+            return parse_lstring(body), result
+        segs = self.segments()
+        k, frac, dist = nearest_on_segments(path[0], segs)
+        skip = np.zeros(len(segs), bool)
+        if dist <= cfg.snap_distance + segs.radius[k]:  # near the branch's surface
+            snap = segs.start[k] + frac * (segs.end[k] - segs.start[k])
+            path = path + np.linspace(1.0, 0.0, len(path))[:, None] * (snap - path[0])  # ease onto the axis
+            result.snapped_to, result.snap_point = int(segs.module[k]), snap
+            skip[k] = True
+            skip[segs.parent == k] = True
+        radius = np.append(widths, widths[-1]) / 2
+        if result.snapped_to is not None:  # the joint itself is not a collision
+            near = np.linalg.norm(path - path[0], axis=1) < 2.5 * (segs.radius[k] + radius)
+            skip |= _segments_near(segs, path[0], 2.5 * (segs.radius[k] + radius[0]))
+            path_free = ~near
+        else:
+            path_free = np.ones(len(path), bool)
+        path, result.bypassed = bypass(path, radius, segs, skip, cfg, path_free)
+        if result.snapped_to is not None:
+            body, _ = path_modules(path, segs.frame[k], widths, growth, cfg)
+            result.text = body
+            return _split_and_branch(self.lstring, result.snapped_to, frac, body), result
+        # a new axis away from the tree: move there from the base without drawing, then draw
+        move, frame = path_modules(np.stack([np.zeros(3), path[0]]), INITIAL_FRAME, widths[:1], [], cfg, "f")
+        body, _ = path_modules(path, frame, widths, growth, cfg)
+        result.text = body
+        # (at the start of the string the turtle is still at the base with its initial frame)
+        return parse_lstring("[" + move + body + "]" + self.lstring.to_text()), result
+
+    def add_stroke(self, stroke: Stroke) -> StrokeResult:
+        """Convert a finished stroke and commit it (undoable)."""
+        new, result = self.convert(stroke)
+        if result.pieces:
+            self.undo_stack.append(self.lstring)
+            self.redo_stack.clear()
+            self.lstring = new
+        return result
+
+    def undo(self) -> bool:
+        """Take back the last stroke."""
+        if not self.undo_stack:
+            return False
+        self.redo_stack.append(self.lstring)
+        self.lstring = self.undo_stack.pop()
+        return True
+
+    def redo(self) -> bool:
+        """Put back the last undone stroke."""
+        if not self.redo_stack:
+            return False
+        self.undo_stack.append(self.lstring)
+        self.lstring = self.redo_stack.pop()
+        return True
+
+
+def _split_and_branch(ls: LString, module: int, frac: float, body: str) -> LString:
+    """Split F module ``module`` at ``frac`` of its length and insert ``[body]`` at the split point."""
+    sym, params = ls.module(module)
+    first, second = list(params), list(params)
+    length = params[0]
+    first[0] = length * frac
+    second[0] = length * (1.0 - frac)
+    if len(params) >= 7:  # a drawn piece: the second half starts further along its heading
+        for c in range(3):
+            second[1 + c] = params[1 + c] + params[4 + c] * length * frac
+    text_mid = f"{sym}({_fmt(first)})[{body}]{sym}({_fmt(second)})"
+    keep_before = np.arange(len(ls)) < module
+    keep_after = np.arange(len(ls)) > module
+    before, after = ls.select(keep_before).to_text(), ls.select(keep_after).to_text()
+    out = parse_lstring(before + text_mid + after)
+    brackets.check_balanced(out.sym)
+    return out
