@@ -106,6 +106,15 @@ class LString:
         return self.to_text()
 
 
+def concat(*parts: LString) -> LString:
+    """The L-strings one after the other (array splicing, no text round trip)."""
+    return LString.from_arrays(
+        np.concatenate([p.sym for p in parts]),
+        np.concatenate([p.nparams for p in parts]),
+        np.concatenate([p.params for p in parts]),
+    )
+
+
 def ragged_arange(starts: np.ndarray, counts: np.ndarray) -> np.ndarray:
     """Concatenation of arange(s, s + c) for each (s, c), without a Python loop."""
     counts = np.asarray(counts, dtype=np.int64)

@@ -18,12 +18,13 @@ tree with fewer polygons.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass, field
 
 import numpy as np
 
 from engine import brackets
-from engine.lstring import LString, format_number, parse_lstring
+from engine.lstring import LString, concat, format_number, parse_lstring
 from engine.strokes import ArcLengthSpline, Stroke, adaptive_sample, speeds_at
 from engine.turtle import INITIAL_FRAME, Segments, TurtleConfig, interpret
 
@@ -36,7 +37,7 @@ F_PARAMS = 11
 class ModelerSettings:
     """How strokes become trunks: piece length, widths, growth-point density, snapping, bypass."""
 
-    piece: float = 0.25  # length of one F piece
+    piece: float = 0.25  # length of one F piece (at most 1/24 of the stroke)
     width_speed: float = 0.6  # diameter = width_speed / speed (scene units / second)
     min_width: float = 0.03
     max_width: float = 0.6
@@ -256,18 +257,22 @@ class Modeler:
     settings: ModelerSettings = field(default_factory=ModelerSettings)
     undo_stack: list[LString] = field(default_factory=list)
     redo_stack: list[LString] = field(default_factory=list)
+    segments_of: Callable[[LString], Segments] | None = None  # e.g. a growing tree's drawn view
 
     def __post_init__(self) -> None:
         self.rng = np.random.default_rng(self.settings.seed)
 
     def segments(self) -> Segments:
         """The current tree's segments (for snapping, collisions and picking)."""
+        if self.segments_of is not None:
+            return self.segments_of(self.lstring)
         return interpret(self.lstring, TurtleConfig(pipe_model=False, leaves_at_tips=0)).segments
 
     def convert(self, stroke: Stroke) -> tuple[LString, StrokeResult]:
         """The L-string this stroke would produce, without committing it (live preview)."""
         cfg = self.settings
-        path, s = smooth_path(stroke, cfg.piece)
+        piece = min(cfg.piece, max(stroke.length / 24, 1e-3))  # short strokes still get enough pieces
+        path, s = smooth_path(stroke, piece)
         if len(path) < 2:
             return self.lstring, StrokeResult(0, 0)
         widths = widths_from_speed(stroke, s, cfg)
@@ -283,6 +288,8 @@ class Modeler:
         k, frac, dist = nearest_on_segments(path[0], segs)
         skip = np.zeros(len(segs), bool)
         if dist <= cfg.snap_distance + segs.radius[k]:  # near the branch's surface
+            if not self._is_drawn(int(segs.module[k])):
+                frac = 1.0  # grown internodes take branches at their joints
             snap = segs.start[k] + frac * (segs.end[k] - segs.start[k])
             path = path + np.linspace(1.0, 0.0, len(path))[:, None] * (snap - path[0])  # ease onto the axis
             result.snapped_to, result.snap_point = int(segs.module[k]), snap
@@ -299,13 +306,16 @@ class Modeler:
         if result.snapped_to is not None:
             body, _ = path_modules(path, segs.frame[k], widths, growth, cfg)
             result.text = body
-            return _split_and_branch(self.lstring, result.snapped_to, frac, body), result
+            return _branch_at(self.lstring, result.snapped_to, frac, body), result
         # a new axis away from the tree: move there from the base without drawing, then draw
         move, frame = path_modules(np.stack([np.zeros(3), path[0]]), INITIAL_FRAME, widths[:1], [], cfg, "f")
         body, _ = path_modules(path, frame, widths, growth, cfg)
         result.text = body
         # (at the start of the string the turtle is still at the base with its initial frame)
-        return parse_lstring("[" + move + body + "]" + self.lstring.to_text()), result
+        return concat(parse_lstring("[" + move + body + "]"), self.lstring), result
+
+    def _is_drawn(self, module: int) -> bool:
+        return bool(self.lstring.sym[module] == DRAWN and self.lstring.nparams[module] == F_PARAMS)
 
     def add_stroke(self, stroke: Stroke) -> StrokeResult:
         """Convert a finished stroke and commit it (undoable)."""
@@ -333,9 +343,13 @@ class Modeler:
         return True
 
 
-def _split_and_branch(ls: LString, module: int, frac: float, body: str) -> LString:
-    """Split F module ``module`` at ``frac`` of its length and insert ``[body]`` at the split point."""
+def _branch_at(ls: LString, module: int, frac: float, body: str) -> LString:
+    """Insert ``[body]`` at ``frac`` along module ``module``: drawn pieces are split there; any other
+    module (a grown internode, whose size comes from its age) gets the branch at its end."""
     sym, params = ls.module(module)
+    index = np.arange(len(ls))
+    if not (sym == "F" and len(params) == F_PARAMS):
+        return concat(ls.select(index <= module), parse_lstring(f"[{body}]"), ls.select(index > module))
     first, second = list(params), list(params)
     length = params[0]
     first[0] = length * frac
@@ -343,10 +357,7 @@ def _split_and_branch(ls: LString, module: int, frac: float, body: str) -> LStri
     if len(params) >= 7:  # a drawn piece: the second half starts further along its heading
         for c in range(3):
             second[1 + c] = params[1 + c] + params[4 + c] * length * frac
-    text_mid = f"{sym}({_fmt(first)})[{body}]{sym}({_fmt(second)})"
-    keep_before = np.arange(len(ls)) < module
-    keep_after = np.arange(len(ls)) > module
-    before, after = ls.select(keep_before).to_text(), ls.select(keep_after).to_text()
-    out = parse_lstring(before + text_mid + after)
+    mid = parse_lstring(f"{sym}({_fmt(first)})[{body}]{sym}({_fmt(second)})")
+    out = concat(ls.select(index < module), mid, ls.select(index > module))
     brackets.check_balanced(out.sym)
     return out

@@ -16,7 +16,7 @@ import numpy as np
 
 SAMPLE_K = 2.0
 MIN_RHO = 0.01
-TABLE_PER_SPAN = 24  # spline evaluations per span for the arc-length table
+TABLE_PER_SPAN = 12  # spline evaluations per span for the arc-length table
 
 
 @dataclass

@@ -17,7 +17,7 @@ import numpy as np
 import pygame
 
 from engine.errors import LSysError
-from engine.growth import Clocks
+from engine.growth import Clocks, grow_geometry
 from engine.lsys import load_lsystem
 from engine.save import load_world, save_world
 from engine.sim import load_rules
@@ -39,6 +39,7 @@ from game.input import (
     PygameTranslator,
 )
 from game.loop import SPEEDS, FixedStepLoop
+from game.modeling import ModelingMode
 from game.render import ASSETS, Overlay, TreeRenderer
 from game.ui import HudInfo, Menu, draw_hud, draw_rain_cloud, range_to_slider, slider_to_range
 
@@ -86,9 +87,13 @@ class Game:
         self._right_y: float | None = None
         self.cursor3d: tuple[float, float, float] | None = None
         self.devices: dict[str, str] = {}
+        self.modeling = ModelingMode(self)
+        self.stroke_pointer: int | None = None
+        self.stroke_start: tuple[float, float, float] = (0.0, 0.0, 0.0)
         self.keys_water = False
         self.last_autosave = clock()
         self._built: tuple | None = None
+        self.triangles = 0
         self.world = self._start_world()
         self.previous = copy.deepcopy(self.world.sim.state)
         self.alpha = 1.0
@@ -164,6 +169,12 @@ class Game:
         elif action == "save" and value:
             if self.save():
                 self.say("Saved.")
+        elif action == "modeler" and value:
+            self.modeling.toggle()
+        elif action == "undo" and value:
+            self.modeling.undo()
+        elif action == "redo" and value:
+            self.modeling.redo()
         elif action == "devices" and value:
             names = sorted(self.devices) or ["none yet"]
             self.say("Input devices: " + ", ".join(names), 8)
@@ -244,10 +255,52 @@ class Game:
             self._right_y = None
 
     def _pointer3d(self, e: InputEvent) -> None:
-        """A 3D tracker's cursor: kept for the modeler (strokes in 3D); shown by the HUD."""
-        self.cursor3d = (e.x, e.y, e.z) if e.kind != UP else self.cursor3d
+        """A 3D tracker's cursor (shown by the HUD); in the modeler, its button draws strokes in 3D."""
+        self.cursor3d = (e.x, e.y, e.z)
+        if not self.modeling.active:
+            return
+        if e.kind == DOWN:
+            self.modeling.cancel_points()
+            self.stroke_pointer = -3
+        if self.stroke_pointer == -3:
+            self.modeling.add3d(self.cursor3d, e.t)
+            if e.kind == UP:
+                self.modeling.finish()
+                self.stroke_pointer = None
+
+    def _stroke(self, kind: str, pid: int, x: float, y: float, now: float) -> bool:
+        """Modeler: one pointer draws; a second pointer turns the stroke into a camera gesture."""
+        if not self.modeling.active or self.menu.visible:
+            return False
+        if kind == DOWN and self.stroke_pointer is None and not self.gestures.pointers:
+            if self.menu.hit(x, y):
+                return False
+            self.stroke_pointer, self.stroke_start = pid, (x, y, now)
+            self.modeling.begin2d(x, y, now, self.camera())
+            return True
+        if kind == DOWN and self.stroke_pointer is not None:  # second finger: it was a camera gesture
+            sx, sy, st = self.stroke_start
+            self.modeling.cancel_points()
+            self.gestures.down(self.stroke_pointer, sx, sy, st)
+            self.stroke_pointer = None
+            return False
+        if pid != self.stroke_pointer:
+            return False
+        if kind == MOVE:
+            self.modeling.add2d(x, y, now, self.camera())
+        elif kind == UP:
+            sx, sy, st = self.stroke_start
+            self.stroke_pointer = None
+            if now - st < 0.3 and abs(x - sx) + abs(y - sy) < 12:  # a tap: the menu, as everywhere
+                self.modeling.cancel_points()
+                self._tap(x, y)
+            else:
+                self.modeling.finish()
+        return True
 
     def _pointer(self, kind: str, pid: int, x: float, y: float, now: float) -> None:
+        if self._stroke(kind, pid, x, y, now):
+            return
         if kind == DOWN:
             if self.menu.hit(x, y):
                 self.menu_pointers.add(pid)
@@ -331,8 +384,9 @@ class Game:
         """The orbit camera for this frame: gestures applied to an auto-framed view of the tree."""
         r = self.renderer
         cam = OrbitCamera(yaw=self.control.yaw, pitch=BASE_PITCH + self.control.tilt)
-        height = max(float(r.hi[1]), 2.0)
-        width = max(float(np.max(r.hi[[0, 2]] - r.lo[[0, 2]])), 1.0)
+        r_lo, r_hi = self.modeling.bounds if self.modeling.active and self.modeling.bounds else (r.lo, r.hi)
+        height = max(float(r_hi[1]), 2.0)
+        width = max(float(np.max(r_hi[[0, 2]] - r_lo[[0, 2]])), 1.0)
         lo, hi = np.array([-width / 2, 0.0, -width / 2]), np.array([width / 2, height, width / 2])
         cam.frame_bounds(lo, hi, self.size[0] / self.size[1], fill=0.8)
         cam.distance *= self.control.distance
@@ -340,12 +394,13 @@ class Game:
 
     def _rebuild(self) -> None:
         clocks = self.clocks()
-        key = (id(self.world.tree.lstring), round(clocks.length_time, 6), round(clocks.girth_time, 6),
-               round(clocks.wilt, 4))
+        shown = self.modeling.lstring() if self.modeling.active else self.world.tree.lstring
+        key = (id(shown), round(clocks.length_time, 6), round(clocks.girth_time, 6), round(clocks.wilt, 4))
         if key == self._built:
             return
-        geometry = self.world.tree.geometry(clocks)
+        geometry = grow_geometry(shown, clocks, self.world.tree.geometry_constants)
         self.renderer.set_tree(geometry.mesh)
+        self.triangles = geometry.mesh.n_triangles
         wilt = 1.0 if not self.world.sim.state.alive else clocks.wilt
         self.renderer.leaf_tint = tuple(HEALTHY_LEAF + (WILTED_LEAF - HEALTHY_LEAF) * wilt)
         self.renderer.bark_tint = (1.45, 1.35, 1.25) if self.world.sim.state.alive else (1.0, 1.0, 1.0)

@@ -2,6 +2,7 @@
 
 * one finger dragged horizontally turns the tree about the vertical axis (a full 360 deg);
 * two fingers, one still and one moving vertically, tilt it, at most acos(0.8) ~ 36.9 deg;
+* two fingers sliding sideways together also turn it (one finger draws in the modeler);
 * a pinch zooms, faster when the camera is farther away (the change is proportional to distance);
 * a quick tap shows the menu at the tap point; another tap hides it. While the menu is shown the
   camera gestures are off (touches go to the menu).
@@ -96,7 +97,11 @@ class Gestures:
         (ax, ay), (bx, by) = before[a], before[b]
         old = math.hypot(ax - bx, ay - by)
         new = math.hypot(pa.x - pb.x, pa.y - pb.y)
-        if old > 1 and new > 1:
+        me = self.pointers[pid]
+        same_way = (me.x - me.x0) * (other.x - other.x0) > 0 and abs(dx) > abs(dy)
+        if not other_still and same_way:
+            self.camera.turn(-dx * YAW_PER_PX / 2)  # both fingers sliding sideways together: turn
+        elif old > 1 and new > 1:
             self.camera.zoom(old / new)
 
     def up(self, pid: int, x: float, y: float, t: float) -> tuple[float, float] | None:

@@ -51,6 +51,9 @@ class Menu:
             Widget("save", "Save", "button"),
             Widget("load", "Load", "button"),
             Widget("devices", "Devices", "button"),
+            Widget("modeler", "Modeler", "button"),
+            Widget("undo", "Undo", "button"),
+            Widget("redo", "Redo", "button"),
         ]
         self.active: Widget | None = None
         self.rect = pygame.Rect(0, 0, MENU_W, 0)
@@ -61,7 +64,8 @@ class Menu:
 
     def show_at(self, x: float, y: float) -> None:
         """Open the menu with its corner at the tap point, kept inside the screen."""
-        rows = [["orbit_height"], ["sun_speed"], ["water", "replant"], ["speed", "save", "load", "devices"]]
+        rows = [["orbit_height"], ["sun_speed"], ["water", "replant"], ["speed", "save", "load", "devices"],
+                ["modeler", "undo", "redo"]]
         height = len(rows) * (ROW_H + PAD) + PAD
         left = int(min(max(x, PAD), self.screen[0] - MENU_W - PAD))
         top = int(min(max(y, PAD), self.screen[1] - height - PAD))

@@ -1,0 +1,131 @@
+"""The modeler mode of the game (Modeler I): draw trunks and branches with one finger, the mouse or
+a 3D tracker; the drawing becomes L-string modules of the living tree.
+
+2D pointers draw on the vertical plane through the tree's axis that faces the camera (orbit between
+strokes to draw in depth); 3D trackers draw where they are. The tree appears as the stroke is drawn (a live preview
+of the converted stroke); undo/redo take strokes back and forth. The simulation pauses while
+modeling and resumes, growing branches from the drawn growth points, when the mode is left.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from engine.growth import grow_geometry
+from engine.lstring import LString
+from engine.modeler import Modeler
+from engine.strokes import Stroke
+from game.camera import OrbitCamera
+
+
+class ModelingMode:
+    """Stroke capture, conversion and undo/redo for one game."""
+
+    def __init__(self, game) -> None:
+        self.game = game
+        self.active = False
+        self.modeler: Modeler | None = None
+        self.points: list[np.ndarray] = []
+        self.times: list[float] = []
+        self.preview: LString | None = None
+        self.plane: tuple[np.ndarray, np.ndarray] | None = None  # point, normal
+        self.last_plane: tuple[np.ndarray, np.ndarray] | None = None
+        self.stroke_camera: OrbitCamera | None = None  # the view a 2D stroke is drawn in
+        self.bounds: tuple[np.ndarray, np.ndarray] | None = None  # framing kept while modeling
+        self.resume_speed = 1.0
+
+    def _segments(self, ls: LString):
+        world = self.game.world
+        return grow_geometry(ls, world.clocks(), world.tree.geometry_constants).turtle.segments
+
+    def toggle(self) -> None:
+        """Enter or leave the modeler (pausing the simulation while in it)."""
+        if self.active:
+            self.active = False
+            self.cancel()
+            self.game.set_speed(self.resume_speed)
+            self.game.say("Back to the garden: the tree grows from what you drew.")
+            return
+        self.active = True
+        r = self.game.renderer
+        center, half = (r.lo + r.hi) / 2, np.maximum((r.hi - r.lo) / 2, 1.0) * 1.6
+        self.bounds = (np.array([center[0] - half[0], 0.0, center[2] - half[2]]), center + half)
+        self.resume_speed = self.game.loop.speed or 1.0
+        self.game.set_speed(0.0)
+        self.modeler = Modeler(lstring=self.game.world.tree.lstring, segments_of=self._segments)
+        self.game.say("Modeler: draw trunks and branches with one finger; two fingers move the view.")
+
+    def cancel(self) -> None:
+        """Drop the stroke being drawn."""
+        self.points, self.times, self.preview, self.plane = [], [], None, None
+
+    def begin2d(self, x: float, y: float, t: float, camera: OrbitCamera) -> None:
+        """A finger or the mouse went down: start a stroke on the camera-facing plane."""
+        normal = camera.target - camera.eye
+        normal[1] = 0.0  # a vertical plane: it contains the tree's axis and faces the camera
+        normal /= max(np.linalg.norm(normal), 1e-12)
+        through = np.array([0.0, camera.target[1], 0.0])
+        self.plane = self.last_plane = (through, normal)
+        self.stroke_camera = camera
+        self.cancel_points()
+        self.add2d(x, y, t, camera)
+
+    def cancel_points(self) -> None:
+        self.points, self.times, self.preview = [], [], None
+
+    def add2d(self, x: float, y: float, t: float, camera: OrbitCamera) -> None:
+        """The pointer moved: extend the stroke with the point under it on the drawing plane."""
+        if self.plane is None:
+            return
+        hit = unproject_to_plane(self.stroke_camera or camera, self.game.size, x, y, *self.plane)
+        if hit is not None:
+            self.add3d(hit, t)
+
+    def add3d(self, point, t: float) -> None:
+        """Extend the stroke with a 3D point (a tracker's cursor) and refresh the preview."""
+        self.points.append(np.asarray(point, dtype=np.float64))
+        self.times.append(t)
+        if len(self.points) >= 3 and self.modeler is not None:
+            self.preview, _ = self.modeler.convert(Stroke(np.array(self.points), np.array(self.times)))
+
+    def finish(self) -> None:
+        """The pointer went up: commit the stroke to the tree (undoable)."""
+        if self.modeler is not None and len(self.points) >= 3:
+            result = self.modeler.add_stroke(Stroke(np.array(self.points), np.array(self.times)))
+            self.game.world.tree.lstring = self.modeler.lstring
+            joined = "joined the tree" if result.snapped_to is not None else "started a new axis"
+            bent = f", bent around {result.bypassed} points" if result.bypassed else ""
+            self.game.say(f"Stroke: {result.pieces} pieces, {result.growth_points} growth points, {joined}{bent}.")
+        self.cancel()
+
+    def undo(self) -> None:
+        """Take back the last stroke."""
+        if self.modeler is not None and self.modeler.undo():
+            self.game.world.tree.lstring = self.modeler.lstring
+
+    def redo(self) -> None:
+        """Put back the last undone stroke."""
+        if self.modeler is not None and self.modeler.redo():
+            self.game.world.tree.lstring = self.modeler.lstring
+
+    def lstring(self) -> LString:
+        """What to draw now: the live preview while a stroke is being drawn, else the tree."""
+        return self.preview if self.preview is not None else self.game.world.tree.lstring
+
+
+def unproject_to_plane(camera: OrbitCamera, size: tuple[int, int], x: float, y: float,
+                       point: np.ndarray, normal: np.ndarray) -> np.ndarray | None:
+    """The point of the plane (point, normal) under window pixel (x, y)."""
+    vp = camera.projection(size[0] / size[1]) @ camera.view()
+    inv = np.linalg.inv(vp)
+    ndc = np.array([2 * x / size[0] - 1, 1 - 2 * y / size[1]])
+    near = inv @ np.array([*ndc, -1.0, 1.0])
+    far = inv @ np.array([*ndc, 1.0, 1.0])
+    a, b = near[:3] / near[3], far[:3] / far[3]
+    d = b - a
+    denom = float(d @ normal)
+    if abs(denom) < 1e-12:
+        return None
+    s = float((point - a) @ normal) / denom
+    return a + s * d if s > 0 else None
+

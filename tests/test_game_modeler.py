@@ -1,0 +1,134 @@
+"""Modeler I through the real input path: synthetic touches, mouse and a 3D tracker into the game."""
+
+import numpy as np
+import pytest
+
+from engine.save import load_world, save_world
+from game.game import Game, GameConfig
+from game.input import DOWN, MOVE, UP, InputEvent
+
+SIZE = (1280, 720)
+
+
+@pytest.fixture
+def game(gl_ctx, tmp_path):
+    clock = [0.0]
+    g = Game(gl_ctx, SIZE, GameConfig(saves=tmp_path, seed=3, resume=False), clock=lambda: clock[0])
+    g.clock_box = clock
+    g.draw(gl_ctx.framebuffer(color_attachments=[gl_ctx.renderbuffer(SIZE)],
+                              depth_attachment=gl_ctx.depth_renderbuffer(SIZE)))
+    return g
+
+
+def touch(game, kind, fid, x, y):
+    game.handle_input(InputEvent(kind, game.clock_box[0], "touch:1", fid, x, y))
+
+
+def press_menu(game, name):
+    game._tap(100, 100)
+    center = game.menu.widget(name).rect.center
+    touch(game, DOWN, 8, *center)
+    touch(game, UP, 8, *center)
+    game._tap(1200, 700)  # close the menu again
+    assert not game.menu.visible
+
+
+def draw(game, points, fid=0, dt=0.02, check=None):
+    touch(game, DOWN, fid, *points[0])
+    for p in points[1:]:
+        game.clock_box[0] += dt
+        touch(game, MOVE, fid, *p)
+        if check:
+            check()
+    game.clock_box[0] += dt
+    touch(game, UP, fid, *points[-1])
+
+
+def base_pixel(game):
+    return game._project(game.camera(), (0.0, 0.5, 0.0))
+
+
+def test_one_finger_draws_a_branch_that_becomes_modules(game, gl_ctx):
+    press_menu(game, "modeler")
+    assert game.modeling.active and game.loop.speed == 0
+    before = len(game.world.tree.lstring)
+    x0, y0 = base_pixel(game)
+    shown = []
+
+    def check():  # what the player sees after each move: the tree plus the stroke so far
+        game._rebuild()
+        ls = game.modeling.lstring()
+        drawn = [ls.module(i)[1][0] for i in range(len(ls)) if len(ls.module(i)[1]) == 11]
+        shown.append((game.triangles, sum(drawn)))
+
+    draw(game, [(x0 + 6 * i, y0 - 8 * i) for i in range(40)], check=check)
+    ls = game.world.tree.lstring
+    drawn = [ls.module(i) for i in range(len(ls)) if ls.module(i)[0] == "F" and len(ls.module(i)[1]) == 11]
+    assert len(drawn) > 5 and len(ls) > before
+    assert shown[2][0] > shown[0][0] and shown[-1][1] > 3 * shown[2][1] > 0  # it appears and lengthens as drawn
+    # every drawn point lies on the plane through the tree's axis facing the camera
+    point, normal = game.modeling.last_plane
+    starts = np.array([p[1][1:4] for p in drawn])
+    assert np.abs((starts - point) @ normal).max() < 0.05
+    assert "joined the tree" in game.hud_info().message
+
+
+def test_two_fingers_move_the_view_and_do_not_draw(game):
+    press_menu(game, "modeler")
+    text = game.world.tree.lstring.to_text()
+    yaw = game.control.yaw
+    touch(game, DOWN, 0, 500, 400)
+    touch(game, DOWN, 1, 700, 400)
+    for i in range(1, 10):
+        game.clock_box[0] += 0.02
+        touch(game, MOVE, 0, 500 + 20 * i, 400)
+        touch(game, MOVE, 1, 700 + 20 * i, 400)
+    touch(game, UP, 0, 680, 400)
+    touch(game, UP, 1, 880, 400)
+    assert game.world.tree.lstring.to_text() == text
+    assert game.control.yaw != yaw
+
+
+def test_tap_opens_the_menu_in_the_modeler_and_undo_redo(game):
+    press_menu(game, "modeler")
+    empty = game.world.tree.lstring.to_text()
+    x0, y0 = base_pixel(game)
+    draw(game, [(x0 + 5 * i, y0 - 9 * i) for i in range(30)])
+    drawn = game.world.tree.lstring.to_text()
+    assert drawn != empty
+    press_menu(game, "undo")
+    assert game.world.tree.lstring.to_text() == empty
+    press_menu(game, "redo")
+    assert game.world.tree.lstring.to_text() == drawn
+
+
+def test_tracker_draws_in_3d(game):
+    press_menu(game, "modeler")
+    path = [(0.02 * i, 1.0 + 0.05 * i, 0.03 * i) for i in range(40)]
+    for k, p in enumerate(path):
+        kind = DOWN if k == 0 else (UP if k == len(path) - 1 else MOVE)
+        game.handle_input(InputEvent(kind, 0.05 * k, "hid:SpaceMouse", 0, *p, dims=3))
+    ls = game.world.tree.lstring
+    drawn = np.array([ls.module(i)[1][1:4] for i in range(len(ls)) if len(ls.module(i)[1]) == 11])
+    assert len(drawn) > 5
+    assert np.abs(drawn[:, 2] - drawn[:, 0] * 1.5).max() < 0.05  # follows the tracker's path in depth
+
+
+def test_modeled_tree_saves_reloads_and_keeps_growing(game, tmp_path):
+    press_menu(game, "modeler")
+    x0, y0 = base_pixel(game)
+    draw(game, [(x0 + 7 * i, y0 - 7 * i) for i in range(40)])
+    press_menu(game, "modeler")
+    assert not game.modeling.active and game.loop.speed == 1.0
+    path = tmp_path / "modeled.arbor"
+    save_world(game.world, path)
+    back, _ = load_world(path, game.rules)
+    assert back.tree.lstring.equals(game.world.tree.lstring)
+    apices = back.tree.lstring.count("A")
+    back.sim.state.orbit_height, back.sim.state.sun_meter, back.sim.state.water_meter = 1.0, 0.9, 0.9
+    for _ in range(4000):
+        back.apply("water", float(back.sim.state.water_meter < 0.6))
+        back.step(0.5)
+    grown = back.tree.lstring
+    drawn_points = sum(1 for i in range(len(grown)) if grown.module(i)[0] == "A" and len(grown.module(i)[1]) == 5)
+    assert drawn_points < apices  # growth points woke into growing apices

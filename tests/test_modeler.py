@@ -1,0 +1,136 @@
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from engine.lstring import parse_lstring
+from engine.modeler import Modeler, ModelerSettings, nearest_on_segments
+from engine.strokes import ArcLengthSpline, Stroke, adaptive_sample, curvature, sample_steps
+from engine.turtle import TurtleConfig, interpret
+
+
+def line(a, b, n=200, seconds=1.0):
+    u = np.linspace(0, 1, n)[:, None]
+    return Stroke(np.asarray(a) + u * (np.asarray(b) - np.asarray(a)), np.linspace(0, seconds, n))
+
+
+def spiral(n=500, height=5.0, radius=0.6, turns=2.5, seconds=3.0):
+    u = np.linspace(0, 1, n)
+    angle = 2 * np.pi * turns * u
+    pts = np.stack([radius * np.sin(angle), height * u, radius * (np.cos(angle) - 1)], 1)
+    return Stroke(pts, np.linspace(0, seconds, n))
+
+
+def reconstruction_error(modeler, stroke):
+    segs = interpret(modeler.lstring, TurtleConfig(pipe_model=False, leaves_at_tips=0)).segments
+    trunk = segs.order == 0
+    raw = stroke.points - stroke.points[0]
+    from engine.turtle import Segments
+
+    main = Segments(**{k: getattr(segs, k)[trunk] for k in segs.__dataclass_fields__})
+    return max(nearest_on_segments(p, main)[2] for p in raw) / stroke.length
+
+
+def test_seed004_steps_run_from_2_to_13():
+    assert sample_steps(np.array([1e9, 100.0, 1.0, 0.01, 0.0])).tolist() == [2, 2, 3, 13, 13]
+    straight = np.stack([np.zeros(100), np.linspace(0, 10, 100), np.zeros(100)], 1)
+    assert np.diff(adaptive_sample(straight))[:-1].tolist() == [13] * 7  # smooth: big steps
+    circle = np.stack([np.cos(np.linspace(0, 6, 100)), np.sin(np.linspace(0, 6, 100)), np.zeros(100)], 1) * 0.05
+    assert np.diff(adaptive_sample(circle)).max() <= 3  # tight bend (kappa = 20): small steps
+    assert curvature(circle)[50] == pytest.approx(20.0, rel=0.01)
+
+
+def test_arc_length_spline_is_even():
+    spline = ArcLengthSpline(np.array([[0, 0, 0], [1, 1, 0], [2, 0, 0], [3, 1, 0.5]], float))
+    pts = spline.resample(0.1)
+    steps = np.linalg.norm(np.diff(pts, axis=0), axis=1)
+    assert steps.max() / steps.min() < 1.02
+    np.testing.assert_allclose(pts[[0, -1]], [[0, 0, 0], [3, 1, 0.5]], atol=1e-9)
+
+
+def test_spiral_trunk_is_reproduced_within_1_percent():
+    m, stroke = Modeler(), spiral()
+    result = m.add_stroke(stroke)
+    assert result.pieces == m.lstring.count("F") and result.pieces > 20
+    assert reconstruction_error(m, stroke) < 0.01
+    first = m.lstring.module(next(i for i in range(len(m.lstring)) if m.lstring.module(i)[0] == "F"))
+    assert len(first[1]) == 11  # F(l, V, H, U, M)
+
+
+@given(st.integers(0, 10_000))
+@settings(max_examples=25, deadline=None)
+def test_random_strokes_are_reproduced_within_1_percent(seed):
+    rng = np.random.default_rng(seed)
+    n = int(rng.integers(50, 400))
+    steps = rng.normal(0, 1, (n, 3)) * 0.02 + np.array([0.0, 0.03, 0.0])
+    pts = np.cumsum(steps, axis=0)
+    pts = np.array([np.convolve(pts[:, c], np.ones(9) / 9, mode="valid") for c in range(3)]).T  # hand-like
+    stroke = Stroke(pts, np.linspace(0, n / 100, len(pts)))
+    m = Modeler()
+    m.add_stroke(stroke)
+    assert reconstruction_error(m, stroke) < 0.01
+
+
+def test_width_is_inversely_proportional_to_speed():
+    slow, fast = Modeler(), Modeler()
+    slow.add_stroke(line([0, 0, 0], [0, 4, 0], seconds=2.0))  # 2 units/s
+    fast.add_stroke(line([0, 0, 0], [0, 4, 0], seconds=1.0))  # 4 units/s
+    w_slow = slow.segments().radius.mean()
+    w_fast = fast.segments().radius.mean()
+    assert w_slow == pytest.approx(2 * w_fast, rel=0.05)
+    crazy = Modeler()
+    crazy.add_stroke(line([0, 0, 0], [0, 3, 0], seconds=0.01))
+    assert crazy.segments().radius.min() >= ModelerSettings().min_width / 2 - 1e-12  # clamped
+
+
+def test_growth_points_follow_the_density_and_carry_attributes():
+    m = Modeler(settings=ModelerSettings(density=2.0, bare_fraction=0.3))
+    result = m.add_stroke(line([0, 0, 0], [0, 10, 0], n=400, seconds=5.0))
+    points = [m.lstring.module(i) for i in range(len(m.lstring)) if m.lstring.module(i)[0] == "A"]
+    assert len(points) == result.growth_points
+    assert 2.0 * 7 * 0.8 < len(points) < 2.0 * 7 * 1.2 + 1  # density x the 70 % of the axis above the bare part
+    heights = [p[1][2] for p in points]
+    assert min(heights) > 2.9 and all(len(p[1]) == 5 for p in points)  # A(l, x, y, z, d)
+
+
+def test_branch_snaps_to_the_nearest_point_and_is_bracketed():
+    m = Modeler()
+    m.add_stroke(line([0, 0, 0], [0, 4, 0], seconds=4.0))
+    trunk_text = m.lstring.to_text()
+    result = m.add_stroke(line([0.2, 2.03, 0.1], [2.0, 3.5, 0.0], seconds=1.0))
+    assert result.snapped_to is not None
+    np.testing.assert_allclose(result.snap_point, [0, 2.03, 0], atol=1e-6)
+    segs = m.segments()
+    branch = segs.order == 1
+    np.testing.assert_allclose(segs.start[branch][0], [0, 2.03, 0], atol=1e-6)
+    assert m.lstring.count("[") >= 1 and len(m.lstring) > len(parse_lstring(trunk_text))
+    trunk_len = np.linalg.norm(segs.end[segs.order == 0] - segs.start[segs.order == 0], axis=1).sum()
+    assert trunk_len == pytest.approx(4.0, abs=1e-6)  # the split F keeps the trunk's length
+
+
+def test_stroke_through_a_trunk_is_bent_around_it():
+    m = Modeler()
+    m.add_stroke(line([0, 0, 0], [0, 4, 0], seconds=8.0))  # thick (slow) trunk
+    result = m.add_stroke(line([-2.0, 1.5, 0.15], [2.0, 1.5, 0.15], seconds=2.0))
+    assert result.snapped_to is None and result.bypassed > 0
+    segs = m.segments()
+    trunk, new = segs.order == 0, segs.order == 1
+    pts = np.concatenate([segs.start[new], segs.end[new]])
+    from engine.modeler import _segment_distances
+    from engine.turtle import Segments
+
+    main = Segments(**{k: getattr(segs, k)[trunk] for k in segs.__dataclass_fields__})
+    dist, _ = _segment_distances(pts, main)
+    clearance = dist - main.radius[None, :] - segs.radius[new].max()
+    assert clearance.min() > 0
+
+
+def test_undo_redo():
+    m = Modeler()
+    m.add_stroke(line([0, 0, 0], [0, 3, 0]))
+    one = m.lstring.to_text()
+    m.add_stroke(line([0.05, 1.5, 0], [1, 2, 0]))
+    two = m.lstring.to_text()
+    assert m.undo() and m.lstring.to_text() == one
+    assert m.undo() and len(m.lstring) == 0 and not m.undo()
+    assert m.redo() and m.redo() and m.lstring.to_text() == two and not m.redo()
