@@ -210,8 +210,12 @@ def bypass(path: np.ndarray, radius: np.ndarray, segs: Segments, skip: np.ndarra
         if not hit.any():
             break
         offset = np.zeros_like(out)
-        for j in np.unique(np.nonzero(hit)[1]):
-            offset += _push_from(out, closest[:, j], dist[:, j], need[:, j], hit[:, j], segs, j, settings)
+        depth = np.where(hit, need - dist, -np.inf)
+        deepest = np.argmax(depth, axis=1)  # each point answers to the segment it enters most
+        owner = np.where(hit.any(axis=1), deepest, -1)
+        for j in np.unique(owner[owner >= 0]):
+            mine = owner == j
+            offset += _push_from(out, closest[:, j], dist[:, j], need[:, j], mine, segs, j, settings)
         out = out + _spread(offset)
         moved_total += int(hit.any(axis=1).sum())
     return out, moved_total
@@ -236,17 +240,27 @@ def _push_from(path, closest, dist, need, hit, segs: Segments, j: int, settings:
     return direction * np.maximum(push, need - current)[:, None] * hit[:, None]
 
 
-def _spread(offset: np.ndarray) -> np.ndarray:
-    """Smooth the bypass over neighbouring points so the axis bends instead of kinking."""
-    kernel = np.array([0.25, 0.5, 1.0, 0.5, 0.25])
-    out = np.zeros_like(offset)
-    for c in range(3):
-        out[:, c] = np.convolve(offset[:, c], kernel / kernel.max(), mode="same")
-    big = np.linalg.norm(offset, axis=1) > 0
-    out[big] = offset[big] * np.maximum(1.0, np.linalg.norm(out[big], axis=1) / np.maximum(
-        np.linalg.norm(offset[big], axis=1), 1e-12))[:, None]
-    out[0] = 0.0
-    return out
+def _spread(offset: np.ndarray, weights=(0.35, 0.7, 1.0, 0.7, 0.35)) -> np.ndarray:
+    """Let the neighbours of pushed points follow part of the way, so the axis bends instead of kinking.
+
+    Each point takes the largest of its neighbours' pushes scaled by distance weights (a dilation,
+    not a sum, so overlapping pushes never add up to more than the largest one).
+    """
+    n, half = len(offset), len(weights) // 2
+    best = np.zeros_like(offset)
+    best_norm = np.zeros(n)
+    for k, w in enumerate(weights):
+        shift = k - half
+        cand = np.zeros_like(offset)
+        if shift >= 0:
+            cand[shift:] = offset[: n - shift] * w
+        else:
+            cand[:shift] = offset[-shift:] * w
+        norm = np.linalg.norm(cand, axis=1)
+        better = norm > best_norm
+        best[better], best_norm[better] = cand[better], norm[better]
+    best[0] = 0.0
+    return best
 
 
 @dataclass

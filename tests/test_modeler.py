@@ -134,3 +134,16 @@ def test_undo_redo():
     assert m.undo() and m.lstring.to_text() == one
     assert m.undo() and len(m.lstring) == 0 and not m.undo()
     assert m.redo() and m.redo() and m.lstring.to_text() == two and not m.redo()
+
+
+def test_bypass_goes_to_the_emptier_side_when_axes_meet():
+    m = Modeler(settings=ModelerSettings(density=0.0))
+    m.add_stroke(line([0, 0, 0], [0, 4, 0], seconds=8.0))
+    for k in range(3):  # branches crowd the +x side of the trunk
+        m.add_stroke(line([0.02, 1.0 + k, 0.0], [1.5, 1.8 + k, 0.0], seconds=1.0))
+    result = m.add_stroke(line([0.0, 3.5, -2.0], [0.0, 3.5, 2.0], seconds=2.0))  # straight through the axis
+    assert result.bypassed > 0 and result.snapped_to is None
+    segs = m.segments()
+    new_axis = segs.module < segs.module[segs.order == 0].min()  # a new axis is written first in the string
+    crossing = new_axis & (np.abs(segs.start[:, 2]) < 0.3)
+    assert crossing.any() and segs.start[crossing, 0].max() < 0  # went round on the empty (-x) side
