@@ -11,9 +11,11 @@ on and are placed along the axis with a density lambda(s) (seed 002 algorithm 2)
 grows branches from them (assets/lsystems/game_tree.lsys wakes them like dormant buds).
 
 A stroke that starts near an existing axis snaps to the nearest point on it and is inserted there as
-a bracketed branch (the F it starts on is split in two). A stroke passing through an existing trunk is
-bent around it (seed 000 4.1.5): away from it, or, when the axes nearly meet, towards the side of the
-tree with fewer polygons.
+a bracketed branch (the F it starts on is split in two); one that starts farther away in the air is
+joined to the nearest branch by a connecting piece, and only one starting at the ground begins a new
+trunk. A branch is never drawn thicker than the drawn branch it grows from. A stroke passing through
+an existing trunk is bent around it (seed 000 4.1.5): away from it, or, when the axes nearly meet,
+towards the side of the tree with fewer polygons.
 """
 
 from __future__ import annotations
@@ -38,9 +40,10 @@ class ModelerSettings:
     """How strokes become trunks: piece length, widths, growth-point density, snapping, bypass."""
 
     piece: float = 0.25  # length of one F piece (at most 1/24 of the stroke)
-    width_speed: float = 0.6  # diameter = width_speed / speed (scene units / second)
+    width_speed: float = 0.3  # diameter = width_speed / speed (scene units / second)
     min_width: float = 0.03
-    max_width: float = 0.6
+    max_width: float = 0.5
+    tip_taper: float = 0.6  # the end of a stroke is this much thinner than its start
     density: float = 1.2  # growth points per unit length on the upper part of an axis
     bare_fraction: float = 0.3  # no growth points on the lowest part of each axis
     branch_angle: float = 55.0
@@ -138,10 +141,13 @@ def smooth_path(stroke: Stroke, piece: float) -> tuple[np.ndarray, np.ndarray]:
 
 
 def widths_from_speed(stroke: Stroke, s: np.ndarray, settings: ModelerSettings) -> np.ndarray:
-    """Diameter per piece, inversely proportional to drawing speed (seed 000), clamped."""
+    """Diameter per piece, inversely proportional to drawing speed (seed 000), clamped, and tapering
+    towards the end of the stroke."""
     mids = 0.5 * (s[1:] + s[:-1]) if len(s) > 1 else s
     speed = speeds_at(stroke.deduplicated(), mids * stroke.length / max(s[-1], 1e-12), 4 * settings.piece)
-    return np.clip(settings.width_speed / np.maximum(speed, 1e-9), settings.min_width, settings.max_width)
+    width = np.clip(settings.width_speed / np.maximum(speed, 1e-9), settings.min_width, settings.max_width)
+    taper = 1.0 - (1.0 - settings.tip_taper) * mids / max(s[-1], 1e-12)
+    return np.maximum(width * taper, settings.min_width)
 
 
 def growth_points(s: np.ndarray, settings: ModelerSettings, rng: np.random.Generator) -> list[tuple[int, float]]:
@@ -301,12 +307,19 @@ class Modeler:
         segs = self.segments()
         k, frac, dist = nearest_on_segments(path[0], segs)
         skip = np.zeros(len(segs), bool)
-        if dist <= cfg.snap_distance + segs.radius[k]:  # near the branch's surface
+        on_ground = path[0][1] <= cfg.snap_distance and dist > cfg.snap_distance + segs.radius[k]
+        if not on_ground:  # every stroke off the ground belongs to the tree: join the nearest branch
             if not self._is_drawn(int(segs.module[k])):
                 frac = 1.0  # grown internodes take branches at their joints
             snap = segs.start[k] + frac * (segs.end[k] - segs.start[k])
-            path = path + np.linspace(1.0, 0.0, len(path))[:, None] * (snap - path[0])  # ease onto the axis
+            if dist <= cfg.snap_distance + segs.radius[k]:
+                path = path + np.linspace(1.0, 0.0, len(path))[:, None] * (snap - path[0])  # ease onto the axis
+            else:
+                path = np.concatenate([[snap], path])  # a connecting piece from the branch to the stroke
+                widths = np.concatenate([widths[:1], widths])
             result.snapped_to, result.snap_point = int(segs.module[k]), snap
+            if self._is_drawn(int(segs.module[k])):  # no thicker than the drawn branch it grows from
+                widths = np.minimum(widths, 2 * segs.radius[k] * 0.9)
             skip[k] = True
             skip[segs.parent == k] = True
         radius = np.append(widths, widths[-1]) / 2

@@ -109,12 +109,13 @@ def test_branch_snaps_to_the_nearest_point_and_is_bracketed():
 
 
 def test_stroke_through_a_trunk_is_bent_around_it():
-    m = Modeler()
+    m = Modeler(settings=ModelerSettings(density=0.0))
     m.add_stroke(line([0, 0, 0], [0, 4, 0], seconds=8.0))  # thick (slow) trunk
-    result = m.add_stroke(line([-2.0, 1.5, 0.15], [2.0, 1.5, 0.15], seconds=2.0))
-    assert result.snapped_to is None and result.bypassed > 0
+    m.add_stroke(line([0.0, 0.8, 0.0], [-2.0, 1.5, 0.15], seconds=1.0))  # a side branch
+    result = m.add_stroke(line([-2.0, 1.5, 0.15], [2.0, 1.5, 0.15], seconds=2.0))  # from its tip, across
+    assert result.snapped_to is not None and result.bypassed > 0
     segs = m.segments()
-    trunk, new = segs.order == 0, segs.order == 1
+    trunk, new = segs.order == 0, segs.order == 2
     pts = np.concatenate([segs.start[new], segs.end[new]])
     from engine.modeler import _segment_distances
     from engine.turtle import Segments
@@ -141,9 +142,9 @@ def test_bypass_goes_to_the_emptier_side_when_axes_meet():
     m.add_stroke(line([0, 0, 0], [0, 4, 0], seconds=8.0))
     for k in range(3):  # branches crowd the +x side of the trunk
         m.add_stroke(line([0.02, 1.0 + k, 0.0], [1.5, 1.8 + k, 0.0], seconds=1.0))
-    result = m.add_stroke(line([0.0, 3.5, -2.0], [0.0, 3.5, 2.0], seconds=2.0))  # straight through the axis
-    assert result.bypassed > 0 and result.snapped_to is None
+    m.add_stroke(line([0.0, 2.0, 0.0], [0.0, 3.5, -2.0], seconds=1.0))  # a branch towards -z
+    result = m.add_stroke(line([0.0, 3.5, -2.0], [0.0, 3.5, 2.0], seconds=2.0))  # from its tip through the axis
+    assert result.bypassed > 0 and result.snapped_to is not None
     segs = m.segments()
-    new_axis = segs.module < segs.module[segs.order == 0].min()  # a new axis is written first in the string
-    crossing = new_axis & (np.abs(segs.start[:, 2]) < 0.3)
+    crossing = (segs.order == 2) & (np.abs(segs.start[:, 2]) < 0.3)
     assert crossing.any() and segs.start[crossing, 0].max() < 0  # went round on the empty (-x) side
