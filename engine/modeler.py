@@ -27,7 +27,7 @@ import numpy as np
 
 from engine import brackets
 from engine.lstring import LString, concat, format_number, parse_lstring
-from engine.strokes import ArcLengthSpline, Stroke, adaptive_sample, speeds_at
+from engine.strokes import ArcLengthSpline, Stroke, adaptive_sample, curvature, speeds_at
 from engine.turtle import INITIAL_FRAME, Segments, TurtleConfig, interpret
 
 DRAWN = ord("F")
@@ -126,16 +126,22 @@ def _rot_y(deg: float) -> np.ndarray:
     return np.array([[c, 0.0, s], [0.0, 1.0, 0.0], [-s, 0.0, c]])
 
 
-def smooth_path(stroke: Stroke, piece: float) -> tuple[np.ndarray, np.ndarray]:
-    """Key points by curvature, an arc-length spline through them, resampled every ``piece``.
+def smooth_path(stroke: Stroke, piece: float, tolerance: float = 0.002) -> tuple[np.ndarray, np.ndarray]:
+    """Key points by curvature, an arc-length spline through them, resampled every ``piece`` at most.
 
-    Returns the path (m, 3) and the arc length of each path point along the spline.
+    Where the curve bends, pieces get shorter so a chord never strays more than ``tolerance`` x the
+    stroke length from the curve (sagitta l^2 kappa / 8). Returns the path (m, 3) and the arc length
+    of each path point along the spline.
     """
     stroke = stroke.deduplicated()
     if len(stroke.points) < 2:
         return stroke.points.copy(), np.zeros(len(stroke.points))
     keys = stroke.points[adaptive_sample(stroke.points)]
     spline = ArcLengthSpline(keys)
+    shape = spline.at(np.linspace(0.0, spline.length, 49))  # curvature at the drawing's scale, not tremor
+    kappa = float(curvature(shape).max())
+    if kappa > 0:
+        piece = min(piece, float(np.sqrt(8 * tolerance * spline.length / kappa)))
     path = spline.resample(piece)
     return path, np.linspace(0.0, spline.length, len(path))
 
