@@ -46,7 +46,7 @@ from game.ui import HudInfo, Menu, draw_hud, draw_rain_cloud, range_to_slider, s
 ROOT = Path(__file__).resolve().parent.parent
 KEY_YAW, KEY_TILT = 4.0, 3.0  # degrees per key press
 BASE_PITCH = 8.0
-HEALTHY_LEAF, WILTED_LEAF = np.array([1.0, 1.0, 1.0]), np.array([1.45, 1.05, 0.35])
+HEALTHY_LEAF, WILTED_LEAF = np.array([1.0, 1.0, 1.0]), np.array([2.6, 0.85, 0.45])  # green -> yellow-brown
 
 
 @dataclass

@@ -105,3 +105,30 @@ def test_arbor_opens_a_window(tmp_path):
     sun_meter = pixels[120, 40]  # x, y: the HUD's yellow sun meter
     assert sun_meter[0] > 200 and sun_meter[2] < 100
     assert (tmp_path / "saves" / "autosave.arbor").exists()  # saved on quit
+
+
+def test_wilting_turns_leaves_yellow_brown(ctx):
+    from engine.lstring import parse_lstring
+    from engine.mesh import tree_mesh
+    from engine.turtle import TurtleConfig, interpret
+    from game.camera import OrbitCamera
+    from game.game import HEALTHY_LEAF, WILTED_LEAF
+    from game.render import TreeRenderer, sun_direction
+
+    ls = parse_lstring("!(0.2)F(3)" + "".join(f"[/({k * 137.5})&(60)L(1.2)]F(0.3)" for k in range(12)))
+    renderer = TreeRenderer(ctx)
+    renderer.set_tree(tree_mesh(interpret(ls, TurtleConfig(leaves_at_tips=0, pipe_model=False))))
+    camera = OrbitCamera()
+    camera.frame_bounds(renderer.lo, renderer.hi, 4 / 3)
+    fbo = ctx.simple_framebuffer((400, 300))
+    ratios = []
+    for tint in (HEALTHY_LEAF, WILTED_LEAF):
+        renderer.leaf_tint = tuple(tint)
+        renderer.render(fbo, camera, sun_direction(85, 48), (400, 300))
+        px = np.frombuffer(fbo.read(components=3), np.uint8).reshape(300, 400, 3)[::-1].astype(int)
+        sky = px[5, 5]
+        leafy = (px[..., 1] > px[..., 2] + 30) & (np.abs(px - sky).sum(axis=2) > 60)  # not sky, not bluish
+        leafy[110:] = False  # the crown stands against the sky; below the horizon is grass
+        assert leafy.sum() > 200
+        ratios.append((px[..., 0][leafy] / np.maximum(px[..., 1][leafy], 1)).mean())
+    assert ratios[0] < 0.6 and ratios[1] > 0.9  # green leaves, then yellow-brown ones
