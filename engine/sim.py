@@ -218,14 +218,19 @@ class Simulation:
         )
 
     def growth_speeds(self) -> tuple[float, float]:
-        """(length clock, girth clock) speeds right now: rules rate x earned rate x health."""
+        """(length clock, girth clock) speeds right now.
+
+        Sun sets the length-growth rate and water the girth-growth rate (seed 003): each is the rules'
+        rate x the meter's level x what the meter earned (0 before its first 20 s above half, less
+        after late cycles) x health (1 - wilt). Length growth also needs some water.
+        """
         s, g = self.state, self.rules.growth
         if not s.alive:
             return 0.0, 0.0
         health = 1.0 - s.wilt
         thirsty = s.water_meter < self.rules.health.neglect_level
-        length = 0.0 if thirsty else g.length_rate * s.sun_cycle.rate * health
-        return length, g.girth_rate * s.water_cycle.rate * health
+        length = 0.0 if thirsty else g.length_rate * s.sun_meter * s.sun_cycle.rate * health
+        return length, g.girth_rate * s.water_meter * s.water_cycle.rate * health
 
     def resources(self) -> float:
         """0..1: how well the tree is doing; decides how many dormant buds may wake."""

@@ -64,6 +64,18 @@ def _cmd_export(args: argparse.Namespace) -> int:
     return 0
 
 
+def _cmd_lab(args: argparse.Namespace) -> int:
+    if args.out is None:
+        from game.app import run_lab_window
+
+        return run_lab_window(args.experiment)
+    from game.lab import run_headless
+
+    files = run_headless(args.experiment, args.out)
+    print("\n".join(str(f) for f in files))
+    return 0
+
+
 def _add_growth_args(p: argparse.ArgumentParser) -> None:
     p.add_argument("source", type=Path, help=".lsys file")
     p.add_argument("--steps", type=int, default=None, help="derivation steps (default: the file's n:)")
@@ -92,6 +104,10 @@ def build_parser() -> argparse.ArgumentParser:
     export.add_argument("--lod", type=int, default=0)
     export.add_argument("--out", type=Path, default=Path("tree.glb"))
     export.set_defaults(run=_cmd_export)
+    lab = sub.add_parser("lab", help="educators' lab: run an experiment (window, or --out DIR headless)")
+    lab.add_argument("experiment", type=Path, help="experiment .toml (see assets/experiments)")
+    lab.add_argument("--out", type=Path, default=None, help="write CSV, PNG charts and saves here, no window")
+    lab.set_defaults(run=_cmd_lab)
     view = sub.add_parser("view", help="open a window showing an .lsys tree (drag, wheel, space)")
     view.add_argument("source", type=Path)
     view.set_defaults(run=lambda a: __import__("game.app", fromlist=["run_viewer"]).run_viewer(a.source))

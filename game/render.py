@@ -270,15 +270,27 @@ def sun_direction(azimuth_deg: float = 135.0, elevation_deg: float = 50.0) -> np
 
 
 def render_image(tree: TreeMesh, size: tuple[int, int] = (1280, 720), yaw: float = 30.0, pitch: float = 12.0,
-                 sun: np.ndarray | None = None, ctx: moderngl.Context | None = None, samples: int = 4) -> np.ndarray:
-    """Render a tree headless and return the picture as an (H, W, 3) uint8 array, top row first."""
+                 sun: np.ndarray | None = None, ctx: moderngl.Context | None = None, samples: int = 4,
+                 frame_height: float | None = None) -> np.ndarray:
+    """Render a tree headless and return the picture as an (H, W, 3) uint8 array, top row first.
+
+    ``frame_height`` frames a box of that height around the trunk instead of the tree's own bounds
+    (so several trees rendered alike can be compared side by side).
+    """
     own = ctx is None
     ctx = ctx or headless_context()
     try:
         renderer = TreeRenderer(ctx)
         renderer.set_tree(tree)
         camera = OrbitCamera(yaw=yaw, pitch=pitch)
-        camera.frame_bounds(renderer.lo, renderer.hi, size[0] / size[1])
+        if frame_height is None:
+            camera.frame_bounds(renderer.lo, renderer.hi, size[0] / size[1])
+        else:
+            half = frame_height * 0.35
+            camera.frame_bounds(np.array([-half, 0.0, -half]), np.array([half, frame_height, half]), size[0] / size[1])
+            if renderer.radius < frame_height * 0.6:  # ground and shadows at the shared scale
+                renderer.radius = frame_height * 0.6
+                renderer._make_ground()
         msaa = ctx.framebuffer(
             color_attachments=[ctx.renderbuffer(size, samples=samples)],
             depth_attachment=ctx.depth_renderbuffer(size, samples=samples),

@@ -1,0 +1,83 @@
+"""Line charts of lab time series, drawn with pygame (in the lab screen and into PNG files).
+
+Small multiples: one panel per measurement, one coloured line per tree, with a shared legend. Thick
+lines and large type so a class can read them on a projector.
+"""
+
+from __future__ import annotations
+
+import pygame
+
+COLORS = ((230, 90, 60), (60, 140, 230), (90, 180, 70), (200, 160, 30))
+TITLES = {"height": "Height", "girth": "Trunk girth", "modules": "Modules", "leaves": "Leaves",
+          "sun": "Sun meter", "water": "Water meter", "wilt": "Wilt"}
+BACK, GRID, INK = (250, 250, 246), (215, 215, 205), (40, 40, 36)
+
+
+def _nice(value: float) -> str:
+    if value >= 1000:
+        return f"{value / 1000:.1f}k"
+    return f"{value:.2g}" if value < 10 else f"{value:.0f}"
+
+
+def draw_panel(surface: pygame.Surface, rect: pygame.Rect, metric: str, series: list, font: pygame.font.Font,
+               small: pygame.font.Font) -> None:
+    """One chart: a metric over time for every tree."""
+    pygame.draw.rect(surface, BACK, rect)
+    surface.blit(font.render(TITLES.get(metric, metric), True, INK), (rect.left + 10, rect.top + 4))
+    plot = pygame.Rect(rect.left + 64, rect.top + 40, rect.width - 80, rect.height - 76)
+    values = [v for s in series for v in s.values[metric]]
+    times = [t for s in series for t in s.time]
+    if not values or len(times) < 2:
+        return
+    top = max(max(values), 1e-9) * 1.05
+    if metric in ("sun", "water", "wilt"):
+        top = 1.0
+    t_end = max(times) or 1.0
+    for k in range(5):
+        y = plot.bottom - plot.height * k / 4
+        pygame.draw.line(surface, GRID, (plot.left, y), (plot.right, y), 1)
+        label = small.render(_nice(top * k / 4), True, INK)
+        surface.blit(label, (plot.left - label.get_width() - 6, y - label.get_height() // 2))
+    minutes = small.render(f"{t_end / 60:.0f} min", True, INK)
+    surface.blit(minutes, (plot.right - minutes.get_width(), plot.bottom + 4))
+    surface.blit(small.render("0", True, INK), (plot.left, plot.bottom + 4))
+    for i, s in enumerate(series):
+        pts = [(plot.left + plot.width * t / t_end, plot.bottom - plot.height * min(v / top, 1.0))
+               for t, v in zip(s.time, s.values[metric], strict=True)]
+        if len(pts) > 1:
+            pygame.draw.lines(surface, COLORS[i % len(COLORS)], False, pts, 4)
+
+
+def draw_charts(surface: pygame.Surface, rect: pygame.Rect, series: list,
+                metrics=("height", "girth", "modules", "leaves", "sun", "water")) -> None:
+    """All panels in a grid inside ``rect``, with a legend on top."""
+    pygame.font.init()
+    font, small = pygame.font.Font(None, 34), pygame.font.Font(None, 26)
+    legend_h = 40
+    x = rect.left + 10
+    for i, s in enumerate(series):
+        pygame.draw.rect(surface, COLORS[i % len(COLORS)], (x, rect.top + 12, 28, 16))
+        label = font.render(s.name, True, INK)
+        surface.blit(label, (x + 36, rect.top + 6))
+        x += 36 + label.get_width() + 30
+    cols = 3
+    rows = (len(metrics) + cols - 1) // cols
+    w, h = rect.width // cols, (rect.height - legend_h) // rows
+    for k, metric in enumerate(metrics):
+        panel = pygame.Rect(rect.left + (k % cols) * w + 4, rect.top + legend_h + (k // cols) * h + 4, w - 8, h - 8)
+        draw_panel(surface, panel, metric, series, font, small)
+
+
+def charts_png(series: list, path: str, size: tuple[int, int] = (1600, 900), title: str = "") -> None:
+    """Write the charts of a run as a PNG."""
+    surface = pygame.Surface(size)
+    surface.fill((235, 235, 228))
+    top = 0
+    if title:
+        pygame.font.init()
+        text = pygame.font.Font(None, 44).render(title, True, INK)
+        surface.blit(text, (12, 10))
+        top = 50
+    draw_charts(surface, pygame.Rect(0, top, size[0], size[1] - top), series)
+    pygame.image.save(surface, path)
