@@ -97,6 +97,39 @@ def make_input_hub(args: argparse.Namespace | None, size: tuple[int, int], now: 
     return InputHub(size, sources, recorder)
 
 
+def run_lab_window(experiment: Path) -> int:
+    """The lab screen in a window: trees side by side, live charts, speed and export buttons."""
+    import pygame
+
+    from game.input import InputHub
+    from game.lab import new_lab
+    from game.lab_screen import LabScreen
+
+    lab = new_lab(experiment)
+    ctx = open_window(WINDOW, f"Arbor lab - {lab.experiment.title}")
+    screen = LabScreen(ctx, WINDOW, lab)
+    hub = InputHub(WINDOW)
+    clock = pygame.time.Clock()
+    frames, limit, last, running = 0, _frames_limit(), time.perf_counter(), True
+    while running:
+        for event in hub.poll(pygame.event.get(), time.perf_counter()):
+            running = screen.handle_input(event) and running
+        now = time.perf_counter()
+        screen.update(now - last)
+        last = now
+        screen.draw(ctx.screen)
+        frames += 1
+        if limit and frames >= limit:
+            running = False
+            if os.environ.get("ARBOR_SCREENSHOT"):
+                ctx.finish()
+                _save_screen(ctx, WINDOW, os.environ["ARBOR_SCREENSHOT"])
+        pygame.display.flip()
+        clock.tick(60)
+    pygame.quit()
+    return 0
+
+
 class Viewer:
     """A plain L-system viewer: orbit (drag), zoom (wheel), grow (space) and shrink (backspace)."""
 

@@ -162,16 +162,21 @@ class TreeRenderer:
         return orthographic(reach, 0.01, reach * 4) @ look_at(eye, center)
 
     def render(self, fbo: moderngl.Framebuffer, camera: OrbitCamera, sun_dir: np.ndarray,
-               size: tuple[int, int]) -> None:
-        """Draw the whole scene into ``fbo`` (shadow pass, sky, ground, tree)."""
+               size: tuple[int, int], viewport: tuple[int, int, int, int] | None = None) -> None:
+        """Draw the whole scene into ``fbo`` (shadow pass, sky, ground, tree).
+
+        ``viewport`` (x, y, width, height; GL convention, y from the bottom) draws into part of the
+        framebuffer only, so several trees can share a screen; ``size`` is then that part's size.
+        """
         ctx = self.ctx
         sun = np.asarray(sun_dir, float) / np.linalg.norm(sun_dir)
         light = self.light_matrix(sun)
         self._shadow_pass(light)
         fbo.use()
-        ctx.viewport = (0, 0, *size)
+        area = viewport or (0, 0, *size)
+        fbo.clear(*SKY_HORIZON, 1.0, viewport=area)
+        ctx.viewport = area  # after the clear: clearing a part restores the framebuffer's own viewport
         day = daylight(sun)
-        fbo.clear(*SKY_HORIZON, 1.0)
         vp = camera.projection(size[0] / size[1]) @ camera.view()
         ctx.disable(moderngl.DEPTH_TEST | moderngl.CULL_FACE)
         self.sky_prog["u_inv_vp"].write(_gl(np.linalg.inv(vp)))
@@ -253,6 +258,7 @@ class Overlay:
 
     def draw(self, rgba_bottom_up: bytes) -> None:
         """Upload the overlay pixels (RGBA rows bottom to top) and blend them over the framebuffer."""
+        self.ctx.viewport = (0, 0, *self.size)
         self.texture.write(rgba_bottom_up)
         self.texture.use(location=0)
         self.prog["u_tex"].value = 0

@@ -78,3 +78,52 @@ def test_bad_experiments_are_clear_errors(tmp_path, text, words):
     with pytest.raises(LSysError) as info:
         load_experiment(path, LSYS)
     assert words in info.value.message and str(path) in info.value.file
+
+
+def test_lab_screen_draws_trees_side_by_side_and_exports(gl_ctx, tmp_path):
+    import numpy as np
+
+    from game.input import DOWN, InputEvent
+    from game.lab import new_lab
+    from game.lab_screen import LabScreen
+
+    lab = new_lab(short(EXPERIMENTS / "drought_vs_watered.toml", tmp_path, 900))
+    size = (1280, 720)
+    screen = LabScreen(gl_ctx, size, lab, results=tmp_path / "results")
+    for name, speed in (("100x", 100.0), ("Pause", 0.0), ("10x", 10.0)):
+        rect = screen.buttons[name]
+        screen.handle_input(InputEvent(DOWN, 0.0, "touch:1", 0, *rect.center))
+        assert screen.loop.speed == speed
+    screen.loop.speed = 100.0
+    for _ in range(200):
+        screen.update(1 / 60)
+    assert lab.worlds[0].sim.state.time == lab.worlds[2].sim.state.time > 300  # lock-step
+    fbo = gl_ctx.framebuffer(color_attachments=[gl_ctx.renderbuffer(size)],
+                             depth_attachment=gl_ctx.depth_renderbuffer(size))
+    screen.draw(fbo)
+    img = np.frombuffer(fbo.read(components=3, viewport=(0, 0, *size)), np.uint8).reshape(720, 1280, 3)[::-1]
+    tiles = [img[60:380, i * 426 + 20:(i + 1) * 426 - 20].astype(int) for i in range(3)]
+    # the tiles share camera, sky and ground; what differs between them is the trees
+    changed = [np.abs(t - tiles[2]).sum(axis=2) > 60 for t in tiles]
+    assert changed[0].sum() > 500 and changed[1].sum() > 300  # two living trees against the dry one
+    folder = screen.export()
+    assert sorted(p.name for p in folder.iterdir()) == [
+        "charts.png", "drought.arbor", "every_2_min.arbor", "results.csv", "screen.png", "watered.arbor"]
+
+
+def test_lab_window_opens(tmp_path):
+    import os
+    import shutil
+    import subprocess
+    import sys
+
+    if shutil.which("xvfb-run") is None:
+        pytest.skip("needs xvfb-run (CI installs it)")
+    shot = tmp_path / "lab.png"
+    env = dict(os.environ, SDL_VIDEODRIVER="x11", SDL_AUDIODRIVER="dummy", ARBOR_MAX_FRAMES="3",
+               ARBOR_SCREENSHOT=str(shot))
+    cmd = ["xvfb-run", "-a", "-s", "-screen 0 1280x720x24", sys.executable, "-m", "game.cli", "lab",
+           str(EXPERIMENTS / "sun_vs_shade.toml")]
+    proc = subprocess.run(cmd, env=env, capture_output=True, timeout=120)
+    assert proc.returncode == 0, proc.stderr.decode()[-2000:]
+    assert shot.stat().st_size > 10_000
