@@ -19,8 +19,8 @@ WINDOW = (1280, 720)
 MAX_VIEW_STEPS = 9
 
 
-def open_window(size: tuple[int, int], title: str):
-    """A pygame OpenGL 3.3 core window and its moderngl context."""
+def open_window(size: tuple[int, int], title: str, fullscreen: bool = False):
+    """A pygame OpenGL 3.3 core window (or the whole screen) and its moderngl context."""
     import moderngl
     import pygame
 
@@ -28,7 +28,8 @@ def open_window(size: tuple[int, int], title: str):
     pygame.display.gl_set_attribute(pygame.GL_CONTEXT_MAJOR_VERSION, 3)
     pygame.display.gl_set_attribute(pygame.GL_CONTEXT_MINOR_VERSION, 3)
     pygame.display.gl_set_attribute(pygame.GL_CONTEXT_PROFILE_MASK, pygame.GL_CONTEXT_PROFILE_CORE)
-    pygame.display.set_mode(size, pygame.OPENGL | pygame.DOUBLEBUF)
+    flags = pygame.OPENGL | pygame.DOUBLEBUF | (pygame.FULLSCREEN if fullscreen else 0)
+    pygame.display.set_mode((0, 0) if fullscreen else size, flags)
     pygame.display.set_caption(title)
     return moderngl.create_context()
 
@@ -75,6 +76,51 @@ def run_app(args: argparse.Namespace | None = None) -> int:
         pygame.display.flip()
         clock.tick(60)
     game.quit()
+    hub.close()
+    pygame.quit()
+    return 0
+
+
+def run_kiosk(args: argparse.Namespace) -> int:
+    """Kiosk mode: fullscreen, touch only, never quits without the staff PIN, recovers from faults."""
+    import logging
+
+    import pygame
+
+    from game.game import Game, GameConfig
+    from game.kiosk import Kiosk, load_kiosk_config
+    from game.render import ASSETS
+
+    config = GameConfig()
+    saves = getattr(args, "saves", None) or os.environ.get("ARBOR_SAVES")
+    if saves:
+        config.saves = Path(saves)
+    (config.saves / "kiosk").mkdir(parents=True, exist_ok=True)
+    logging.basicConfig(filename=config.saves / "kiosk" / "kiosk.log", level=logging.INFO,
+                        format="%(asctime)s %(name)s %(levelname)s %(message)s")
+    settings = load_kiosk_config(ASSETS / "kiosk.toml")
+    ctx = open_window(WINDOW, "Arbor", fullscreen=not args.windowed)
+    size = pygame.display.get_surface().get_size()
+    pygame.mouse.set_visible(False)
+    kiosk = Kiosk(lambda: Game(ctx, size, config, clock=time.perf_counter), settings, config.saves,
+                  clock=time.perf_counter)
+    hub = make_input_hub(args, size, time.perf_counter())
+    clock = pygame.time.Clock()
+    frames, limit, last = 0, _frames_limit(), time.perf_counter()
+    while True:
+        now = time.perf_counter()
+        if not kiosk.frame(hub.poll(pygame.event.get(), now), now - last, ctx.screen):
+            break
+        last = now
+        frames += 1
+        if limit and frames >= limit:
+            if os.environ.get("ARBOR_SCREENSHOT"):
+                ctx.finish()
+                _save_screen(ctx, size, os.environ["ARBOR_SCREENSHOT"])
+            break
+        pygame.display.flip()
+        clock.tick(60)
+    kiosk.game.quit()
     hub.close()
     pygame.quit()
     return 0

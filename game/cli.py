@@ -117,17 +117,24 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument("--tuio-port", type=int, default=3333)
     parser.add_argument("--record", type=Path, default=None, help="record this session's input to a file")
     parser.add_argument("--replay", type=Path, default=None, help="replay recorded input")
+    parser.add_argument("--kiosk", action="store_true", help="unattended touchscreen mode (see assets/kiosk.toml)")
+    parser.add_argument("--windowed", action="store_true", help="with --kiosk: a window instead of fullscreen")
     return parser
 
 
 def main(argv: list[str] | None = None) -> int:
     """Entry point of the `arbor` console script."""
+    argv = sys.argv[1:] if argv is None else argv
+    if argv[:1] == ["watchdog"]:  # everything after it belongs to the watched app
+        from game.watchdog import main as watchdog
+
+        return watchdog(argv[1:])
     parser = build_parser()
     args = parser.parse_args(argv)
     if args.command is None:
-        from game.app import run_app
+        from game.app import run_app, run_kiosk
 
-        return run_app(args)
+        return run_kiosk(args) if args.kiosk else run_app(args)
     try:
         return args.run(args)
     except LSysError as err:

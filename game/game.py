@@ -41,6 +41,7 @@ from game.input import (
 from game.loop import SPEEDS, FixedStepLoop
 from game.modeling import ModelingMode
 from game.render import ASSETS, Overlay, TreeRenderer
+from game.strings import text
 from game.ui import HudInfo, Menu, draw_hud, draw_rain_cloud, range_to_slider, slider_to_range
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -87,6 +88,7 @@ class Game:
         self._right_y: float | None = None
         self.cursor3d: tuple[float, float, float] | None = None
         self.devices: dict[str, str] = {}
+        self.overlay_hooks: list = []  # extra overlay layers (kiosk attract text, PIN pad)
         self.modeling = ModelingMode(self)
         self.stroke_pointer: int | None = None
         self.stroke_start: tuple[float, float, float] = (0.0, 0.0, 0.0)
@@ -125,14 +127,14 @@ class Game:
         except LSysError as err:
             kept = path.with_name(path.name + ".broken")
             path.replace(kept)
-            self.say(f"Could not load {path.name} ({err.message}); kept as {kept.name}. New tree planted.", 12)
+            self.say(text("messages.load_failed", name=path.name, error=err.message, kept=kept.name), 12)
             return None
         away = max(self.wall_clock() - saved_at, 0.0)
         day = 2 * math.pi / max(world.sim.state.sun_speed, 1e-6)
         grown = min(away, day)
         world.catch_up(grown)
         if grown > 1:
-            self.say(f"Welcome back: your tree lived {grown / 60:.0f} min while you were away.", 6)
+            self.say(text("messages.welcome_back", minutes=grown / 60), 6)
         return world
 
     def save(self, path: Path | None = None) -> bool:
@@ -142,7 +144,7 @@ class Game:
             path.parent.mkdir(parents=True, exist_ok=True)
             save_world(self.world, path, self.config.lsystem.name, self.wall_clock())
         except OSError as exc:
-            self.say(f"Could not save: {exc.strerror}", 6)
+            self.say(text("messages.save_failed", error=exc.strerror), 6)
             return False
         self.last_autosave = self.clock()
         return True
@@ -162,13 +164,13 @@ class Game:
             self.world.apply(action, sim_value)
             if action == "replant":
                 self.previous = copy.deepcopy(self.world.sim.state)
-                self.say("A new sapling is planted.")
+                self.say(text("messages.planted"))
         elif action == "speed" and value:
             i = SPEEDS.index(self.loop.speed) if self.loop.speed in SPEEDS else 1
             self.set_speed(SPEEDS[(i + 1) % len(SPEEDS)])
         elif action == "save" and value:
             if self.save():
-                self.say("Saved.")
+                self.say(text("messages.saved"))
         elif action == "modeler" and value:
             self.modeling.toggle()
         elif action == "undo" and value:
@@ -176,13 +178,13 @@ class Game:
         elif action == "redo" and value:
             self.modeling.redo()
         elif action == "devices" and value:
-            names = sorted(self.devices) or ["none yet"]
-            self.say("Input devices: " + ", ".join(names), 8)
+            names = sorted(self.devices) or [text("messages.no_devices")]
+            self.say(text("messages.devices", names=", ".join(names)), 8)
         elif action == "load" and value:
             world = self._load(self.autosave_path) if self.autosave_path.exists() else None
             if world is not None:
                 self.world, self.previous = world, copy.deepcopy(world.sim.state)
-                self.say("Loaded.")
+                self.say(text("messages.loaded"))
 
     def _slider_value(self, action: str, value: float) -> float:
         r = self.rules.sun
@@ -197,7 +199,8 @@ class Game:
         self.menu.widget("orbit_height").value = range_to_slider(s.orbit_height, r.orbit_height_min,
                                                                  r.orbit_height_max)
         self.menu.widget("sun_speed").value = range_to_slider(s.sun_speed, r.speed_min, r.speed_max, log=True)
-        self.menu.widget("speed").label = "Paused" if self.loop.speed == 0 else f"{self.loop.speed:g}x speed"
+        speed = self.loop.speed
+        self.menu.widget("speed").label = text("menu.paused") if speed == 0 else text("menu.speed", speed=f"{speed:g}")
 
     def set_speed(self, speed: float) -> None:
         """Time speed: 0 (pause), 1, 10 or 100."""
@@ -418,8 +421,9 @@ class Game:
         s, tree = self.world.sim.state, self.world.tree
         message = self.message if self.clock() < self.message_until else ""
         if not message and tree.budget_hit:
-            message = "This tree has reached its size limit: it keeps thickening, new shoots are slowed."
-        return HudInfo(s.sun_meter, s.water_meter, self.world.sim.status(), s.time, self.loop.speed, message,
+            message = text("messages.budget")
+        return HudInfo(s.sun_meter, s.water_meter, text(f"status.{self.world.sim.status()}"), s.time, self.loop.speed,
+                       message,
                        s.watering)
 
     def _overlay_pixels(self, camera: OrbitCamera) -> bytes:
@@ -431,6 +435,8 @@ class Game:
         if self.cursor3d is not None:
             self._draw_cursor3d(camera)
         self.menu.draw(self.surface, self.font)
+        for hook in self.overlay_hooks:
+            hook(self.surface)
         return pygame.image.tobytes(self.surface, "RGBA", True)
 
     def _project(self, camera: OrbitCamera, point) -> tuple[float, float] | None:

@@ -16,6 +16,7 @@ from engine.lstring import LString
 from engine.modeler import Modeler
 from engine.strokes import Stroke
 from game.camera import OrbitCamera
+from game.strings import text
 
 
 class ModelingMode:
@@ -44,7 +45,7 @@ class ModelingMode:
             self.active = False
             self.cancel()
             self.game.set_speed(self.resume_speed)
-            self.game.say("Back to the garden: the tree grows from what you drew.")
+            self.game.say(text("messages.modeler_off"))
             return
         self.active = True
         r = self.game.renderer
@@ -53,7 +54,7 @@ class ModelingMode:
         self.resume_speed = self.game.loop.speed or 1.0
         self.game.set_speed(0.0)
         self.modeler = Modeler(lstring=self.game.world.tree.lstring, segments_of=self._segments)
-        self.game.say("Modeler: draw trunks and branches with one finger; two fingers move the view.")
+        self.game.say(text("messages.modeler_on"))
 
     def cancel(self) -> None:
         """Drop the stroke being drawn."""
@@ -93,9 +94,10 @@ class ModelingMode:
         if self.modeler is not None and len(self.points) >= 3:
             result = self.modeler.add_stroke(Stroke(np.array(self.points), np.array(self.times)))
             self.game.world.tree.lstring = self.modeler.lstring
-            joined = "joined the tree" if result.snapped_to is not None else "started a new axis"
-            bent = f", bent around {result.bypassed} points" if result.bypassed else ""
-            self.game.say(f"Stroke: {result.pieces} pieces, {result.growth_points} growth points, {joined}{bent}.")
+            how = text("messages.stroke_joined" if result.snapped_to is not None else "messages.stroke_new")
+            if result.bypassed:
+                how += ", " + text("messages.stroke_bent", count=result.bypassed)
+            self.game.say(text("messages.stroke", pieces=result.pieces, points=result.growth_points, how=how))
         self.cancel()
 
     def undo(self) -> None:

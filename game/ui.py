@@ -13,6 +13,8 @@ from dataclasses import dataclass, field
 
 import pygame
 
+from game.strings import text
+
 SUN_YELLOW = (250, 204, 40)
 WATER_BLUE = (60, 140, 240)
 PANEL = (20, 30, 24, 200)
@@ -43,17 +45,13 @@ class Menu:
         self.screen = screen
         self.visible = False
         self.widgets = [
-            Widget("orbit_height", "Sun height", "slider"),
-            Widget("sun_speed", "Sun speed", "slider"),
-            Widget("water", "Water (hold)", "button", hold=True),
-            Widget("replant", "New sapling", "button"),
-            Widget("speed", "1x speed", "button"),
-            Widget("save", "Save", "button"),
-            Widget("load", "Load", "button"),
-            Widget("devices", "Devices", "button"),
-            Widget("modeler", "Modeler", "button"),
-            Widget("undo", "Undo", "button"),
-            Widget("redo", "Redo", "button"),
+            Widget("orbit_height", text("menu.orbit_height"), "slider"),
+            Widget("sun_speed", text("menu.sun_speed"), "slider"),
+            Widget("water", text("menu.water"), "button", hold=True),
+            Widget("replant", text("menu.replant"), "button"),
+            Widget("speed", text("menu.speed", speed="1"), "button"),
+            *(Widget(name, text(f"menu.{name}"), "button") for name in ("save", "load", "devices", "modeler",
+                                                                         "undo", "redo")),
         ]
         self.active: Widget | None = None
         self.rect = pygame.Rect(0, 0, MENU_W, 0)
@@ -166,7 +164,7 @@ class HudInfo:
 def draw_hud(surface: pygame.Surface, font: pygame.font.Font, info: HudInfo) -> None:
     """Meters (yellow sun, blue water), growth state, age, speed and the current message."""
     x, y = 20, 20
-    for label, value, color in (("Sun", info.sun, SUN_YELLOW), ("Water", info.water, WATER_BLUE)):
+    for label, value, color in ((text("hud.sun"), info.sun, SUN_YELLOW), (text("hud.water"), info.water, WATER_BLUE)):
         back = pygame.Surface((300, 40), pygame.SRCALPHA)
         back.fill((0, 0, 0, 120))
         surface.blit(back, (x, y))
@@ -176,9 +174,9 @@ def draw_hud(surface: pygame.Surface, font: pygame.font.Font, info: HudInfo) -> 
         surface.blit(font.render(label, True, TEXT), (x + 8, y + 6))
         y += 48
     minutes = info.age_seconds / 60
-    age = f"{minutes:.0f} min" if minutes < 120 else f"{minutes / 60:.1f} h"
-    speed = "paused" if info.speed == 0 else f"{info.speed:g}x"
-    surface.blit(font.render(f"{info.status} - age {age} - {speed}", True, TEXT), (x, y + 4))
+    age = text("hud.minutes", minutes=minutes) if minutes < 120 else text("hud.hours", hours=minutes / 60)
+    speed = text("hud.paused") if info.speed == 0 else text("hud.speed", speed=info.speed)
+    surface.blit(font.render(text("hud.line", status=info.status, age=age, speed=speed), True, TEXT), (x, y + 4))
     if info.message:
         msg = font.render(info.message, True, TEXT)
         box = msg.get_rect(midbottom=(surface.get_width() // 2, surface.get_height() - 24)).inflate(24, 12)

@@ -1,0 +1,136 @@
+"""Kiosk mode: touch only, staff PIN, attract loop, visitor reset, fault recovery, watchdog, strings."""
+
+import sys
+from pathlib import Path
+
+import pygame
+import pytest
+
+from engine.errors import LSysError
+from game import strings
+from game.game import Game, GameConfig
+from game.input import DOWN, KEY_DOWN, MOVE, QUIT, UP, InputEvent
+from game.kiosk import Kiosk, KioskConfig, load_kiosk_config
+from game.watchdog import watch
+
+SIZE = (1280, 720)
+
+
+class Clock:
+    def __init__(self):
+        self.t = 50.0
+
+    def __call__(self):
+        return self.t
+
+
+@pytest.fixture
+def kiosk(gl_ctx, tmp_path):
+    clock = Clock()
+    config = KioskConfig(attract_after=10.0, reset_after=30.0, admin_hold=2.0, speed=10.0)
+    k = Kiosk(lambda: Game(gl_ctx, SIZE, GameConfig(saves=tmp_path, seed=2, resume=True), clock=clock), config,
+              tmp_path, clock=clock)
+    k.fake = clock
+    k.fbo = gl_ctx.framebuffer(color_attachments=[gl_ctx.renderbuffer(SIZE)],
+                               depth_attachment=gl_ctx.depth_renderbuffer(SIZE))
+    return k
+
+
+def tap(k, x, y, pid=5):
+    assert k.frame([InputEvent(DOWN, k.fake.t, "touch:1", pid, x, y)], 0.0, k.fbo)
+    k.fake.t += 0.1
+    return k.frame([InputEvent(UP, k.fake.t, "touch:1", pid, x, y)], 0.0, k.fbo)
+
+
+def test_settings_file(tmp_path):
+    config = load_kiosk_config("assets/kiosk.toml")
+    assert config.pin.isdigit() and config.reset_after > config.attract_after
+    bad = tmp_path / "k.toml"
+    bad.write_text('pin = "12"\n')
+    with pytest.raises(LSysError, match="PIN"):
+        load_kiosk_config(bad)
+    bad.write_text("wallpaper = 1\n")
+    with pytest.raises(LSysError, match="unknown"):
+        load_kiosk_config(bad)
+
+
+def test_keys_and_window_close_do_not_quit(kiosk):
+    for e in (InputEvent(QUIT, 0.0, "window"), InputEvent(KEY_DOWN, 0.0, "keyboard", key=pygame.K_ESCAPE)):
+        assert kiosk.frame([e], 0.0, kiosk.fbo)
+
+
+def test_staff_pin_quits_only_when_right(kiosk):
+    assert kiosk.frame([InputEvent(DOWN, kiosk.fake.t, "touch:1", 1, 20, 20)], 0.0, kiosk.fbo)
+    kiosk.fake.t += 2.5
+    kiosk.frame([], 0.0, kiosk.fbo)
+    pad = kiosk.pin_pad
+    assert pad is not None
+    for digit in "1111":
+        tap(kiosk, *pad.keys[digit].center)
+    tap(kiosk, *pad.keys["ok"].center)
+    assert pad.wrong and not kiosk.quit_requested
+    for digit in kiosk.config.pin:
+        tap(kiosk, *pad.keys[digit].center)
+    ok = InputEvent(DOWN, kiosk.fake.t, "touch:1", 5, *pad.keys["ok"].center)
+    assert not kiosk.frame([ok], 0.0, kiosk.fbo) and kiosk.quit_requested
+
+
+def test_attract_loop_after_idle_and_visitor_touch_ends_it(kiosk):
+    yaw = kiosk.game.control.yaw
+    kiosk.fake.t += 11.0
+    kiosk.frame([], 1 / 60, kiosk.fbo)
+    assert kiosk.attract is not None
+    for _ in range(40):
+        kiosk.fake.t += 1 / 60
+        kiosk.frame([], 1 / 60, kiosk.fbo)
+    assert kiosk.game.control.yaw != yaw  # the recorded drags turn the tree
+    tap(kiosk, 640, 400)
+    assert kiosk.attract is None
+
+
+def test_idle_visitor_tree_is_saved_and_replanted(kiosk, tmp_path):
+    kiosk.game.world.sim.state.wilt = 0.6
+    kiosk.fake.t += 31.0
+    kiosk.frame([], 1 / 60, kiosk.fbo)
+    saved = list((tmp_path / "kiosk").glob("visitor-*.arbor"))
+    assert len(saved) == 1 and kiosk.game.world.sim.state.wilt == 0.0
+    kiosk.fake.t += 31.0
+    kiosk.frame([], 1 / 60, kiosk.fbo)
+    assert len(list((tmp_path / "kiosk").glob("visitor-*.arbor"))) == 1  # once per visitor
+
+
+def test_a_failing_frame_is_logged_and_the_garden_restarts(kiosk, caplog, monkeypatch):
+    text = kiosk.game.world.tree.lstring.to_text()
+    kiosk.game.save()
+
+    def boom(*_):
+        raise RuntimeError("simulated fault")
+
+    monkeypatch.setattr(kiosk.game, "update", boom)
+    assert kiosk.frame([], 1 / 60, kiosk.fbo)
+    assert kiosk.recoveries == 1 and "simulated fault" in caplog.text
+    assert kiosk.game.world.tree.lstring.to_text() == text  # the tree came back from the autosave
+    assert kiosk.frame([InputEvent(MOVE, 0.0, "touch:1", 0, 10, 10)], 1 / 60, kiosk.fbo)
+
+
+def test_watchdog_restarts_until_a_clean_exit(tmp_path):
+    counter = tmp_path / "runs"
+    script = (f"import pathlib, sys; p = pathlib.Path({str(counter)!r}); n = int(p.read_text()) if p.exists() else 0; "
+              "p.write_text(str(n + 1)); sys.exit(0 if n >= 2 else 3)")
+    pauses = []
+    assert watch([sys.executable, "-c", script], sleep=pauses.append) == 0
+    assert counter.read_text() == "3" and pauses == [1.0, 2.0]
+
+
+def test_strings_come_from_one_file(tmp_path, gl_ctx):
+    folder = tmp_path / "strings"
+    folder.mkdir()
+    (folder / "en.toml").write_text(Path("assets/strings/en.toml").read_text())
+    (folder / "fr.toml").write_text('[menu]\nreplant = "Nouvel arbre"\n')
+    try:
+        strings.set_language("fr", folder)
+        game = Game(gl_ctx, SIZE, GameConfig(saves=tmp_path, seed=1, resume=False), clock=lambda: 0.0)
+        assert game.menu.widget("replant").label == "Nouvel arbre"
+        assert game.menu.widget("save").label == "Save"  # missing keys fall back to English
+    finally:
+        strings.set_language("en")
