@@ -134,3 +134,20 @@ def test_strings_come_from_one_file(tmp_path, gl_ctx):
         assert game.menu.widget("save").label == "Save"  # missing keys fall back to English
     finally:
         strings.set_language("en")
+
+
+def test_kiosk_runs_fullscreen_in_a_real_window(tmp_path):
+    import os
+    import shutil
+    import subprocess
+
+    if shutil.which("xvfb-run") is None:
+        pytest.skip("needs xvfb-run (CI installs it)")
+    shot = tmp_path / "kiosk.png"
+    env = dict(os.environ, SDL_VIDEODRIVER="x11", SDL_AUDIODRIVER="dummy", ARBOR_MAX_FRAMES="5",
+               ARBOR_SCREENSHOT=str(shot), ARBOR_SAVES=str(tmp_path / "saves"))
+    cmd = ["xvfb-run", "-a", "-s", "-screen 0 1024x768x24", sys.executable, "-m", "game.cli", "--kiosk"]
+    proc = subprocess.run(cmd, env=env, capture_output=True, timeout=120)
+    assert proc.returncode == 0, proc.stderr.decode()[-2000:]
+    assert pygame.image.load(str(shot)).get_size() == (1024, 768)  # the whole screen
+    assert (tmp_path / "saves" / "kiosk" / "kiosk.log").exists()
