@@ -124,8 +124,15 @@ def _peek_binary(cur: Cursor) -> str | None:
     return None
 
 
+HostFunctions = Mapping[str, tuple[Callable[..., Value], int, int]]
+
+
 def parse_expression(
-    cur: Cursor, constants: Mapping[str, float], variables: frozenset[str] | set[str], min_prec: int = 0
+    cur: Cursor,
+    constants: Mapping[str, float],
+    variables: frozenset[str] | set[str],
+    min_prec: int = 0,
+    host: HostFunctions | None = None,
 ) -> Expr:
     """Parse one expression from ``cur`` and compile it.
 
@@ -133,7 +140,7 @@ def parse_expression(
     ``constants`` are folded in; names in ``variables`` become column lookups; any other name is an
     error naming its column.
     """
-    left = _parse_prefix(cur, constants, variables)
+    left = _parse_prefix(cur, constants, variables, host)
     while True:
         op = _peek_binary(cur)
         if op is None:
@@ -143,25 +150,27 @@ def parse_expression(
             return left
         cur.pos += len(op)
         next_min = prec if op == "^" else prec + 1  # ^ is right-associative
-        right = parse_expression(cur, constants, variables, next_min)
+        right = parse_expression(cur, constants, variables, next_min, host)
         left = _combine(fn, [left, right])
 
 
-def _parse_prefix(cur: Cursor, constants: Mapping[str, float], variables: frozenset[str] | set[str]) -> Expr:
+def _parse_prefix(
+    cur: Cursor, constants: Mapping[str, float], variables: frozenset[str] | set[str], host: HostFunctions | None
+) -> Expr:
     cur.skip_ws()
     start = cur.pos
     if cur.accept("("):
-        inner = parse_expression(cur, constants, variables)
+        inner = parse_expression(cur, constants, variables, 0, host)
         cur.expect(")", "')' to close '('")
         return inner
     if cur.peek(1) == "-" or cur.peek(1) == "+":
         sign = cur.text[cur.pos]
         cur.pos += 1
-        operand = parse_expression(cur, constants, variables, _UNARY_PREC)
+        operand = parse_expression(cur, constants, variables, _UNARY_PREC, host)
         return operand if sign == "+" else _combine(np.negative, [operand])
     if cur.peek(1) == "!" and cur.peek(2) != "!=":
         cur.pos += 1
-        return _combine(np.logical_not, [parse_expression(cur, constants, variables, _NOT_PREC)])
+        return _combine(np.logical_not, [parse_expression(cur, constants, variables, _NOT_PREC, host)])
     number = cur.number()
     if number is not None:
         return _constant(number)
@@ -169,9 +178,9 @@ def _parse_prefix(cur: Cursor, constants: Mapping[str, float], variables: frozen
     if name is None:
         raise cur.error(f"expected a number, a name or '(', found {cur.describe_next()}")
     if name == "not":
-        return _combine(np.logical_not, [parse_expression(cur, constants, variables, _NOT_PREC)])
+        return _combine(np.logical_not, [parse_expression(cur, constants, variables, _NOT_PREC, host)])
     if cur.peek(1) == "(":
-        return _parse_call(cur, name, start, constants, variables)
+        return _parse_call(cur, name, start, constants, variables, host)
     if name in variables:
         return Expr(lambda ctx: ctx.vars[name], None, frozenset([name]))
     if name in constants:
@@ -182,15 +191,21 @@ def _parse_prefix(cur: Cursor, constants: Mapping[str, float], variables: frozen
 
 
 def _parse_call(
-    cur: Cursor, name: str, start: int, constants: Mapping[str, float], variables: frozenset[str] | set[str]
+    cur: Cursor,
+    name: str,
+    start: int,
+    constants: Mapping[str, float],
+    variables: frozenset[str] | set[str],
+    host: HostFunctions | None,
 ) -> Expr:
-    if name not in FUNCTIONS and name not in RANDOM_FUNCTIONS:
+    table = {**FUNCTIONS, **(host or {})}
+    if name not in table and name not in RANDOM_FUNCTIONS:
         raise cur.error(f"unknown function {name!r}", start)
     cur.expect("(")
     args: list[Expr] = []
     if not cur.accept(")"):
         while True:
-            args.append(parse_expression(cur, constants, variables))
+            args.append(parse_expression(cur, constants, variables, 0, host))
             if cur.accept(")"):
                 break
             cur.expect(",", "',' or ')' in the argument list")
@@ -200,7 +215,7 @@ def _parse_call(
         fns = [a.fn for a in args]
         names = frozenset().union(*(a.names for a in args))
         return Expr(lambda ctx: _rand(ctx, *(f(ctx) for f in fns)), None, names)
-    fn, lo, hi = FUNCTIONS[name]
+    fn, lo, hi = table[name]
     _check_arity(cur, name, start, len(args), lo, hi)
     return _combine(fn, args)
 

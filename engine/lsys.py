@@ -6,6 +6,7 @@ A source is read line by line::
     #define a 18.95             constants, may use earlier ones
     #ignore: + - / &            symbols skipped in context matching (or #consider: the opposite)
     #extern T R                 names the host program supplies at each derivation step
+    #host children              functions the host program supplies (the file cannot run alone)
     n: 6                        header values: n, delta (or angle), step, width, width_scale, seed,
                                 budget, leaf_size, leaves_at_tips
     w: !(1)F(200)/(45)A         the axiom (also 'axiom:' or 'ω:')
@@ -28,7 +29,7 @@ import numpy as np
 
 from engine.cursor import Cursor
 from engine.errors import LSysError
-from engine.expr import EvalContext, Expr, evaluate, parse_expression
+from engine.expr import EvalContext, Expr, HostFunctions, evaluate, parse_expression
 from engine.lstring import MAX_PARAMS, LString, valid_symbol
 
 HEADER_KEYS = {
@@ -106,6 +107,8 @@ class LSystem:
     seed: int = 0
     budget: int | None = None
     externs: tuple[str, ...] = ()
+    overrides: dict[str, float] = field(default_factory=dict)
+    host: dict = field(default_factory=dict)
     file: str = "<string>"
     source: str = ""
 
@@ -130,9 +133,16 @@ def load_lsystem(path: str | Path) -> LSystem:
     return parse_lsystem(text, str(path))
 
 
-def parse_lsystem(text: str, file: str = "<string>") -> LSystem:
-    """Parse .lsys source text into an :class:`LSystem`."""
+def parse_lsystem(text: str, file: str = "<string>", overrides: dict[str, float] | None = None,
+                  host: HostFunctions | None = None) -> LSystem:
+    """Parse .lsys source text into an :class:`LSystem`.
+
+    ``overrides`` replace #define values (species presets); ``host`` adds functions the program
+    supplies (e.g. GeoMaTree's seed directions) to the expression language.
+    """
     system = LSystem(axiom=LString.empty(), productions=[], file=file, source=text)
+    system.overrides = dict(overrides or {})
+    system.host = dict(host or {})
     axiom_seen = False
     for number, raw in enumerate(text.splitlines(), start=1):
         line = raw.rstrip()
@@ -169,12 +179,12 @@ def _directive(system: LSystem, line: str, file: str, number: int) -> None:
         name = cur.name()
         if name is None:
             raise cur.error("expected a constant name after #define")
-        value = parse_expression(cur, system.constants, set())
+        value = parse_expression(cur, system.constants, set(), 0, system.host)
         if value.const is None:
             raise cur.error("a #define value must be a constant expression")
         if not cur.at_end():
             raise cur.error(f"unexpected {cur.describe_next()} after #define value")
-        system.constants[name] = value.const
+        system.constants[name] = system.overrides.get(name, value.const)
     elif word == "extern":
         cur.accept(":")
         names = []
@@ -188,6 +198,17 @@ def _directive(system: LSystem, line: str, file: str, number: int) -> None:
             names.append(name)
             cur.accept(",")
         system.externs = tuple(dict.fromkeys((*system.externs, *names)))
+    elif word == "host":
+        cur.accept(":")
+        while not cur.at_end():
+            at = cur.pos
+            name = cur.name()
+            if name is None:
+                raise cur.error(f"expected a function name in #host, found {cur.describe_next()}")
+            if name not in system.host:
+                raise cur.error(f"this L-system needs the program to supply the function {name}() "
+                                "(it cannot be loaded on its own)", at)
+            cur.accept(",")
     elif word in ("ignore", "consider"):
         cur.accept(":")
         table = np.zeros(256, bool)
@@ -199,7 +220,8 @@ def _directive(system: LSystem, line: str, file: str, number: int) -> None:
             cur.pos += 1
         system.ignore = table if word == "ignore" else ~table
     else:
-        raise cur.error(f"unknown directive #{word or ''}: expected #define, #extern, #ignore or #consider", word_at)
+        raise cur.error(f"unknown directive #{word or ''}: expected #define, #extern, #host, #ignore or #consider",
+                        word_at)
 
 
 def _header(system: LSystem, line: str, file: str, number: int) -> bool:
@@ -210,7 +232,7 @@ def _header(system: LSystem, line: str, file: str, number: int) -> bool:
         raise cur.error("expected 'w: axiom', a header like 'n: 5', a #directive or a production with '->'", key_start)
     cur.pos = line.index(":") + 1
     if key in AXIOM_KEYS:
-        mods = _successor(cur, system.constants, set(), stop_at_bar=False)
+        mods = _successor(cur, system.constants, set(), stop_at_bar=False, host=system.host)
         system.axiom = _constant_lstring(mods)
         return True
     cur.text = _strip_trailing_comment(cur.text)
@@ -250,14 +272,14 @@ def _production(system: LSystem, line: str, file: str, number: int) -> None:
         if head.accept("*"):
             condition = None
         else:
-            condition = parse_expression(head, system.constants, variables)
+            condition = parse_expression(head, system.constants, variables, 0, system.host)
             if condition.const is not None and condition.const != 0:
                 condition = None
     if not head.at_end():
         raise head.error(f"expected ':' condition or '->', found {head.describe_next()}")
     body = Cursor(line, file, number)
     body.pos = arrow.end()
-    alternatives = _alternatives(body, system.constants, variables)
+    alternatives = _alternatives(body, system.constants, variables, system.host)
     key = re.sub(r"\s+", "", line[start : arrow.start()])
     prev = system.productions[-1] if system.productions else None
     explicit = _starts_with_probability(line, arrow.end())
@@ -323,9 +345,10 @@ def _starts_with_probability(line: str, pos: int) -> bool:
     return line[pos:].lstrip().startswith("(")
 
 
-def _alternatives(cur: Cursor, constants: dict[str, float], variables: set[str]) -> list[Alternative]:
+def _alternatives(cur: Cursor, constants: dict[str, float], variables: set[str],
+                  host: HostFunctions | None = None) -> list[Alternative]:
     if cur.peek(1) != "(":
-        return [_alternative(1.0, _successor(cur, constants, variables, stop_at_bar=False))]
+        return [_alternative(1.0, _successor(cur, constants, variables, stop_at_bar=False, host=host))]
     alts: list[Alternative] = []
     while True:
         cur.expect("(")
@@ -333,7 +356,7 @@ def _alternatives(cur: Cursor, constants: dict[str, float], variables: set[str])
         if weight.const is None or not weight.const >= 0:
             raise cur.error("a probability must be a constant number >= 0")
         cur.expect(")", "')' after the probability")
-        alts.append(_alternative(weight.const, _successor(cur, constants, variables, stop_at_bar=True)))
+        alts.append(_alternative(weight.const, _successor(cur, constants, variables, stop_at_bar=True, host=host)))
         if not cur.accept("|"):
             break
     if not cur.at_end():
@@ -344,7 +367,8 @@ def _alternatives(cur: Cursor, constants: dict[str, float], variables: set[str])
 SuccModules = list[tuple[int, list[Expr]]]
 
 
-def _successor(cur: Cursor, constants: dict[str, float], variables: set[str], stop_at_bar: bool) -> SuccModules:
+def _successor(cur: Cursor, constants: dict[str, float], variables: set[str], stop_at_bar: bool,
+               host: HostFunctions | None = None) -> SuccModules:
     mods: SuccModules = []
     open_at: list[int] = []
     while not cur.at_end():
@@ -367,7 +391,7 @@ def _successor(cur: Cursor, constants: dict[str, float], variables: set[str], st
         if cur.text.startswith("(", cur.pos):
             cur.pos += 1
             while True:
-                exprs.append(parse_expression(cur, constants, variables))
+                exprs.append(parse_expression(cur, constants, variables, 0, host))
                 if cur.accept(")"):
                     break
                 cur.expect(",", "',' or ')' in the parameter list")
