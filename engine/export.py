@@ -78,3 +78,31 @@ def export_tree(tree: TreeMesh, path: str | Path, textures: Path, file_format: s
         atomic_write(path, text.encode("utf-8"))
         return [path, *written]
     raise ValueError(f"unknown export format {fmt!r}: use glb or obj")
+
+
+def export_garden(presets, instances, path: str | Path, textures: Path, lod: int = 1) -> Path:
+    """Write many trees as one GLB: one mesh per preset part, one node per tree and part (glTF
+    instancing: every node of a kind references the same mesh, so the file stays small)."""
+    scene = trimesh.Scene()
+    matrices = instances.matrices()
+    materials = {tex: _material(textures / f"{tex}.png", masked, tex) for _, tex, masked in PARTS}
+    for p, preset in enumerate(presets):
+        tree: TreeMesh = preset.levels[lod]
+        for attr, tex, _ in PARTS:
+            mesh: Mesh = getattr(tree, attr)
+            if not mesh.n_triangles:
+                continue
+            geom = f"{preset.name}-{attr}"
+            first = True
+            for i in np.flatnonzero(instances.preset == p):
+                node = f"tree{i}-{attr}"
+                if first:
+                    scene.add_geometry(_trimesh(mesh, materials[tex]), node_name=node, geom_name=geom,
+                                       transform=matrices[i])
+                    first = False
+                else:
+                    scene.graph.update(frame_from=scene.graph.base_frame, frame_to=node, matrix=matrices[i],
+                                       geometry=geom)
+    path = Path(path)
+    atomic_write(path, trimesh.exchange.gltf.export_glb(scene, include_normals=True))
+    return path

@@ -76,6 +76,22 @@ def _cmd_lab(args: argparse.Namespace) -> int:
     return 0
 
 
+def _cmd_landscape(args: argparse.Namespace) -> int:
+    from game.landscape import render_landscape
+
+    render_landscape(args.trees, args.out, args.size, args.seed or 0, args.lod)
+    if args.glb:
+        from engine.export import export_garden
+        from engine.landscape import scatter
+        from game.landscape import build_presets, landscape_size
+
+        presets = build_presets()
+        instances = scatter(args.trees, len(presets), landscape_size(args.trees), args.seed or 0)
+        export_garden(presets, instances, args.glb, ASSETS / "textures")
+        print(f"{args.glb}: {args.trees:,} trees as glTF nodes sharing {len(presets)} trees' meshes")
+    return 0
+
+
 def _add_growth_args(p: argparse.ArgumentParser) -> None:
     p.add_argument("source", type=Path, help=".lsys file")
     p.add_argument("--steps", type=int, default=None, help="derivation steps (default: the file's n:)")
@@ -108,6 +124,14 @@ def build_parser() -> argparse.ArgumentParser:
     lab.add_argument("experiment", type=Path, help="experiment .toml (see assets/experiments)")
     lab.add_argument("--out", type=Path, default=None, help="write CSV, PNG charts and saves here, no window")
     lab.set_defaults(run=_cmd_lab)
+    land = sub.add_parser("landscape", help="render a landscape of many trees (instancing, LOD, culling)")
+    land.add_argument("trees", type=int, help="number of trees")
+    land.add_argument("--size", type=_size, default=(1280, 720))
+    land.add_argument("--seed", type=int, default=0)
+    land.add_argument("--lod", type=int, default=None, help="force one level (default: by distance)")
+    land.add_argument("--out", type=Path, default=Path("landscape.png"))
+    land.add_argument("--glb", type=Path, default=None, help="also export the trees as one GLB (shared meshes)")
+    land.set_defaults(run=_cmd_landscape)
     view = sub.add_parser("view", help="open a window showing an .lsys tree (drag, wheel, space)")
     view.add_argument("source", type=Path)
     view.set_defaults(run=lambda a: __import__("game.app", fromlist=["run_viewer"]).run_viewer(a.source))
