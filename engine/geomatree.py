@@ -1,0 +1,99 @@
+"""GeoMaTree species (seed 001 section 4): growth-model parameters as presets, grown by an L-system.
+
+A preset fills the #defines of assets/lsystems/geomatree.lsys; the tree's seed fixes the n_seed
+random seed points of its growth space (each branch picks one; eq. 1) and, through Algorithm 2,
+how many side branches each level carries. Same preset + another seed -> a similar tree with
+different detail.
+"""
+
+from __future__ import annotations
+
+import tomllib
+from dataclasses import dataclass, fields
+from pathlib import Path
+
+import numpy as np
+
+from engine.divisors import FUNCTIONS, PropagationRule, children_function, children_table
+from engine.errors import LSysError
+from engine.lsys import LSystem, parse_lsystem
+
+
+@dataclass
+class Species:
+    """Seed 001's parameters: r_bud, l_i, theta_i, phi_i, n_seed, v_ext, r_0, phi_k, l_k (+ a few)."""
+
+    name: str = "species"
+    trunk: float = 6.0
+    r_bud: float = 0.62
+    l_i: float = 0.72
+    theta_i: float = 40.0
+    phi_i: float = 137.5
+    n_seed: int = 5
+    seed_spread: float = 18.0
+    v_ext: float = 0.0
+    r_0: float = 0.2
+    phi_k: float = 90.0
+    l_k: float = 0.08
+    levels: int = 5
+    branch_function: str = "sigma"
+    branch_coefficient: int = 1
+    max_children: int = 3
+
+
+def load_species(path: str | Path) -> Species:
+    """A preset file; unknown keys, wrong types or out-of-range values name the file and key."""
+    data = tomllib.loads(Path(path).read_text(encoding="utf-8"))
+    species = Species()
+    kinds = {f.name: type(getattr(species, f.name)) for f in fields(species)}
+    for key, value in data.items():
+        if key not in kinds:
+            raise LSysError(f"unknown species parameter {key!r}", str(path))
+        want = kinds[key]
+        if want is float and isinstance(value, int) and not isinstance(value, bool):
+            value = float(value)
+        if not isinstance(value, want) or isinstance(value, bool):
+            raise LSysError(f"species parameter {key!r} must be a {want.__name__}", str(path))
+        setattr(species, key, value)
+    if species.branch_function not in ("sigma", "sigma_alt", "sigma_star"):
+        raise LSysError("branch_function must be sigma, sigma_alt or sigma_star", str(path))
+    if not (0 < species.r_bud < 1 and 1 <= species.n_seed <= 64 and 1 <= species.levels <= 8
+            and 1 <= species.max_children <= 4):
+        raise LSysError("r_bud in (0, 1), n_seed 1-64, levels 1-8, max_children 1-4", str(path))
+    return species
+
+
+def seed_points(species: Species, seed: int) -> np.ndarray:
+    """(n_seed, 2) pitch and roll offsets (degrees) of the growth space's seed points: uniform over a
+    cone of half-angle seed_spread around the basis direction."""
+    rng = np.random.default_rng([seed, 1])
+    radius = species.seed_spread * np.sqrt(rng.random(species.n_seed))
+    angle = rng.uniform(0, 2 * np.pi, species.n_seed)
+    return np.stack([radius * np.cos(angle), radius * np.sin(angle)], axis=1)
+
+
+def growth_system(species: Species, source: Path, seed: int = 0) -> LSystem:
+    """The species' L-system for one tree (its seed points and branch pattern bound in)."""
+    points = seed_points(species, seed)
+
+    def lookup(column: int):
+        def fn(k):
+            idx = np.clip(np.asarray(k, dtype=np.int64), 0, len(points) - 1)
+            return points[idx, column]
+
+        return fn, 1, 1
+
+    function = FUNCTIONS[species.branch_function]
+    rules = [PropagationRule(lambda k, f=function: abs(f(0, k)), species.branch_coefficient)]
+    # the branch pattern belongs to the species (so every seed of it branches alike); the seed varies detail
+    table = children_table(rules, species.levels + 1, 0, species.max_children)
+    overrides = {
+        "TRUNK": species.trunk, "RBUD": species.r_bud, "LI": species.l_i, "THETA": species.theta_i,
+        "PHI": species.phi_i, "NSEED": float(species.n_seed), "VEXT": species.v_ext, "R0": species.r_0,
+        "PHIK": species.phi_k, "LK": species.l_k, "LEVELS": float(species.levels),
+    }
+    host = {"children": children_function(table), "seed_dt": lookup(0), "seed_dp": lookup(1)}
+    system = parse_lsystem(source.read_text(encoding="utf-8"), str(source), overrides, host)
+    system.iterations = 2 * species.levels
+    system.seed = seed
+    return system
