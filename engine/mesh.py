@@ -299,3 +299,21 @@ def tree_mesh(result: TurtleResult, level: LodLevel = LOD_LEVELS[0]) -> TreeMesh
         leaf_mesh(result.leaves, fraction=level.leaf_fraction),
         leaf_mesh(result.blossoms, aspect=1.0, fraction=level.leaf_fraction, seed=1),
     )
+
+
+def merge_meshes(meshes: list[Mesh], offsets: list[np.ndarray]) -> Mesh:
+    """One mesh from several, each moved by its offset (several trees drawn as one)."""
+    base = np.cumsum([0] + [len(m.positions) for m in meshes[:-1]])
+    return Mesh(
+        np.concatenate([m.positions + np.asarray(o, np.float32) for m, o in zip(meshes, offsets, strict=True)]),
+        np.concatenate([m.normals for m in meshes]),
+        np.concatenate([m.uvs for m in meshes]),
+        np.concatenate([m.indices + np.uint32(b) for m, b in zip(meshes, base, strict=True)]),
+        np.concatenate([m.face_module for m in meshes]),
+    )
+
+
+def merge_trees(trees: list[TreeMesh], offsets: list[np.ndarray]) -> TreeMesh:
+    """Several trees' meshes as one scene's (wood with wood, leaves with leaves)."""
+    return TreeMesh(*(merge_meshes([getattr(t, part) for t in trees], offsets)
+                      for part in ("wood", "leaves", "blossoms")))

@@ -96,6 +96,7 @@ def save_text(world: World, lsystem_name: str, saved_at: float | None = None) ->
         f"saved_at = {time.time() if saved_at is None else saved_at!r}",
         f"seed = {world.seed}",
         f"steps = {world.steps}",
+        f"position = [{format_number(float(world.position[0]))}, {format_number(float(world.position[1]))}]",
         f"lsystem = {_toml_string(lsystem_name)}",
         f"lsystem_sha256 = {_toml_string(world.system.sha256)}",
         f"lsystem_source = {_toml_text(world.system.source)}",
@@ -194,6 +195,11 @@ def load_world(path: str | Path, rules: Rules | None = None, budget_slack: float
         raise SaveError(err.message, err.file, _line_of(text, "lsystem_source") + err.line, err.col) from None
     world = World(system, rules or Rules(), seed=int(_require(data, "seed", int, path, text)))
     world.steps = int(_require(data, "steps", int, path, text))
+    position = data.get("position", [0.0, 0.0])  # optional: saves from before gardens have none
+    if (not isinstance(position, list) or len(position) != 2
+            or not all(isinstance(v, int | float) and not isinstance(v, bool) and math.isfinite(v) for v in position)):
+        raise SaveError("'position' must be [x, z]", str(path), _line_of(text, "position"), 1)
+    world.position = (float(position[0]), float(position[1]))
     try:
         world.sim = Simulation(world.rules, SimState.from_dict(_require(data, "sim", dict, path, text)))
     except (TypeError, ValueError) as exc:

@@ -29,6 +29,7 @@ class World:
     tree: GrowingTree = field(init=False)
     rng: np.random.Generator = field(init=False)
     steps: int = 0
+    position: tuple[float, float] = (0.0, 0.0)  # where the tree stands in a garden (x, z)
 
     def __post_init__(self) -> None:
         self.sim = Simulation(self.rules)

@@ -19,6 +19,7 @@ import pygame
 from engine.errors import LSysError
 from engine.growth import Clocks, grow_geometry
 from engine.lsys import load_lsystem
+from engine.mesh import merge_trees
 from engine.save import load_world, save_world
 from engine.sim import load_rules
 from engine.world import World
@@ -46,6 +47,8 @@ from game.ui import HudInfo, Menu, draw_hud, draw_rain_cloud, range_to_slider, s
 
 ROOT = Path(__file__).resolve().parent.parent
 KEY_YAW, KEY_TILT = 4.0, 3.0  # degrees per key press
+MAX_GARDEN = 6  # trees in one garden
+GARDEN_SPACING = 7.0  # scene units between neighbouring trees
 BASE_PITCH = 8.0
 HEALTHY_LEAF, WILTED_LEAF = np.array([1.0, 1.0, 1.0]), np.array([2.6, 0.85, 0.45])  # green -> yellow-brown
 
@@ -96,6 +99,7 @@ class Game:
         self.last_autosave = clock()
         self._built: tuple | None = None
         self.triangles = 0
+        self.others: list[World] = []  # the rest of the garden (the cared-for tree is self.world)
         self.world = self._start_world()
         self.previous = copy.deepcopy(self.world.sim.state)
         self.alpha = 1.0
@@ -118,6 +122,10 @@ class Game:
         if self.config.resume and self.autosave_path.exists():
             world = self._load(self.autosave_path)
             if world is not None:
+                for path in sorted(self.config.saves.glob("garden-*.arbor")):
+                    other = self._load(path)
+                    if other is not None:
+                        self.others.append(other)
                 return world
         return self._new_world()
 
@@ -138,11 +146,16 @@ class Game:
         return world
 
     def save(self, path: Path | None = None) -> bool:
-        """Save the world (atomically); says so on the HUD."""
+        """Save the cared-for tree (atomically) and, with the autosave, the rest of the garden."""
         path = path or self.autosave_path
         try:
             path.parent.mkdir(parents=True, exist_ok=True)
             save_world(self.world, path, self.config.lsystem.name, self.wall_clock())
+            if path == self.autosave_path:
+                for k, other in enumerate(self.others):
+                    save_world(other, path.parent / f"garden-{k}.arbor", self.config.lsystem.name, self.wall_clock())
+                for stale in sorted(path.parent.glob("garden-*.arbor"))[len(self.others):]:
+                    stale.unlink()
         except OSError as exc:
             self.say(text("messages.save_failed", error=exc.strerror), 6)
             return False
@@ -162,6 +175,9 @@ class Game:
             sim_value = self._slider_value(action, value)
             self.input_log.append((self.world.steps, action, sim_value))
             self.world.apply(action, sim_value)
+            if action in ("orbit_height", "sun_speed"):  # one sun over the whole garden
+                for other in self.others:
+                    other.apply(action, sim_value)
             if action == "replant":
                 self.previous = copy.deepcopy(self.world.sim.state)
                 self.say(text("messages.planted"))
@@ -171,6 +187,13 @@ class Game:
         elif action == "save" and value:
             if self.save():
                 self.say(text("messages.saved"))
+        elif action == "plant" and value:
+            self.plant()
+        elif action == "next" and value and self.others:
+            self.others.append(self.world)
+            self.world = self.others.pop(0)
+            self.previous = copy.deepcopy(self.world.sim.state)
+            self._sync_sliders()
         elif action == "modeler" and value:
             self.modeling.toggle()
         elif action == "undo" and value:
@@ -185,6 +208,24 @@ class Game:
             if world is not None:
                 self.world, self.previous = world, copy.deepcopy(world.sim.state)
                 self.say(text("messages.loaded"))
+
+    def plant(self) -> None:
+        """A new sapling in the garden, beside the others; it becomes the tree you care for."""
+        if len(self.others) + 1 >= MAX_GARDEN:
+            self.say(text("messages.garden_full", count=MAX_GARDEN), 5)
+            return
+        k = len(self.others) + 1
+        angle = k * 2.39996  # golden angle: the garden spirals outwards without crowding
+        radius = GARDEN_SPACING * math.sqrt(k)
+        seed = (self.world.seed * 7919 + k * 104729) % 2**31
+        world = World(self.system, self.rules, seed=seed)
+        world.apply("replant", 1.0)
+        world.apply("orbit_height", self.world.sim.state.orbit_height)
+        world.apply("sun_speed", self.world.sim.state.sun_speed)
+        world.position = (radius * math.cos(angle), radius * math.sin(angle))
+        self.others.append(self.world)
+        self.world, self.previous = world, copy.deepcopy(world.sim.state)
+        self.say(text("messages.garden_planted", count=k + 1), 4)
 
     def _slider_value(self, action: str, value: float) -> float:
         r = self.rules.sun
@@ -374,6 +415,8 @@ class Game:
         def step(dt: float) -> None:
             self.previous = copy.copy(self.world.sim.state)
             self.world.step(dt)
+            for other in self.others:
+                other.step(dt)
 
         self.alpha = self.loop.advance(real_seconds, step)
         if self.clock() - self.last_autosave >= self.config.autosave_seconds:
@@ -398,12 +441,22 @@ class Game:
     def _rebuild(self) -> None:
         clocks = self.clocks()
         shown = self.modeling.lstring() if self.modeling.active else self.world.tree.lstring
-        key = (id(shown), round(clocks.length_time, 6), round(clocks.girth_time, 6), round(clocks.wilt, 4))
+        key = (id(shown), round(clocks.length_time, 6), round(clocks.girth_time, 6), round(clocks.wilt, 4),
+               tuple((id(o.tree.lstring), round(o.sim.state.length_time, 3)) for o in self.others))
         if key == self._built:
             return
         geometry = grow_geometry(shown, clocks, self.world.tree.geometry_constants)
-        self.renderer.set_tree(geometry.mesh)
-        self.triangles = geometry.mesh.n_triangles
+        mesh = geometry.mesh
+        if self.others:  # the garden, drawn around the cared-for tree (which stays at the centre)
+            here = np.array(self.world.position)
+            meshes, offsets = [mesh], [np.zeros(3)]
+            for other in self.others:
+                meshes.append(other.tree.geometry(other.clocks()).mesh)
+                dx, dz = np.array(other.position) - here
+                offsets.append(np.array([dx, 0.0, dz]))
+            mesh = merge_trees(meshes, offsets)
+        self.renderer.set_tree(mesh)
+        self.triangles = mesh.n_triangles
         wilt = 1.0 if not self.world.sim.state.alive else clocks.wilt
         self.renderer.leaf_tint = tuple(HEALTHY_LEAF + (WILTED_LEAF - HEALTHY_LEAF) * wilt)
         self.renderer.bark_tint = (1.45, 1.35, 1.25) if self.world.sim.state.alive else (1.0, 1.0, 1.0)

@@ -118,8 +118,8 @@ def test_pinch_zooms_faster_when_farther(game):
 
 
 def test_tap_shows_menu_at_tap_point_and_blocks_camera(game):
-    tap(game, 400, 300)
-    assert game.menu.visible and game.menu.rect.topleft == (400, 300)
+    tap(game, 400, 120)
+    assert game.menu.visible and game.menu.rect.topleft == (400, 120)
     assert all(w.rect.height >= 48 for w in game.menu.widgets)
     yaw = game.control.yaw
     drag(game, 0, [(900, 650), (1000, 650), (1100, 650)])
@@ -261,3 +261,35 @@ def test_game_screen_with_hud(ctx, game):
     assert water_bar[2] > 200 and water_bar[0] < 100  # blue water meter
     green = (img[..., 1].astype(int) > img[..., 0] + 10) & (img[..., 1].astype(int) > img[..., 2] + 10)
     assert green[300:, :].mean() > 0.3  # grass
+
+
+def test_a_garden_of_several_trees(ctx, tmp_path):
+    clock = FakeClock()
+    game = Game(ctx, SIZE, GameConfig(saves=tmp_path, seed=4), clock=clock, wall_clock=lambda: 1.7e9 + clock.t)
+    fbo = ctx.framebuffer(color_attachments=[ctx.renderbuffer(SIZE)], depth_attachment=ctx.depth_renderbuffer(SIZE))
+    game.draw(fbo)
+    alone = game.triangles
+    first = game.world
+    game.act("plant", 1.0)
+    game.act("plant", 1.0)
+    assert len(game.others) == 2 and game.world is not first
+    positions = {game.world.position, *(o.position for o in game.others)}
+    assert len(positions) == 3  # three places in the garden
+    game.draw(fbo)
+    assert game.triangles > 2.5 * alone  # all three are drawn in one scene
+    game.act("orbit_height", 0.9)
+    assert {round(o.sim.state.orbit_height, 6) for o in [game.world, *game.others]} == {
+        round(game.world.sim.state.orbit_height, 6)}  # one sun for the whole garden
+    game.act("next", 1.0)
+    assert game.world is first  # "next" goes round the garden, oldest first
+    game.set_speed(100.0)
+    for _ in range(30):
+        game.update(1 / 60)
+    assert all(o.sim.state.time > 40 for o in game.others)  # every tree lives on
+    game.quit()
+    again = Game(ctx, SIZE, GameConfig(saves=tmp_path, seed=4), clock=clock, wall_clock=lambda: 1.7e9 + clock.t)
+    assert len(again.others) == 2
+    assert {again.world.position, *(o.position for o in again.others)} == positions
+    for _ in range(6):
+        game.act("plant", 1.0)
+    assert len(game.others) + 1 == 6  # the garden has a limit
