@@ -77,15 +77,14 @@ def _cmd_lab(args: argparse.Namespace) -> int:
 
 
 def _cmd_landscape(args: argparse.Namespace) -> int:
-    from game.landscape import render_landscape
+    from game.landscape import parse_presets, render_landscape
 
-    render_landscape(args.trees, args.out, args.size, args.seed or 0, args.lod)
+    presets = render_landscape(args.trees, args.out, args.size, args.seed or 0, args.lod, parse_presets(args.presets))
     if args.glb:
         from engine.export import export_garden
         from engine.landscape import scatter
-        from game.landscape import build_presets, landscape_size
+        from game.landscape import landscape_size
 
-        presets = build_presets()
         instances = scatter(args.trees, len(presets), landscape_size(args.trees), args.seed or 0)
         export_garden(presets, instances, args.glb, ASSETS / "textures")
         print(f"{args.glb}: {args.trees:,} trees as glTF nodes sharing {len(presets)} trees' meshes")
@@ -131,6 +130,8 @@ def build_parser() -> argparse.ArgumentParser:
     land.add_argument("--lod", type=int, default=None, help="force one level (default: by distance)")
     land.add_argument("--out", type=Path, default=Path("landscape.png"))
     land.add_argument("--glb", type=Path, default=None, help="also export the trees as one GLB (shared meshes)")
+    land.add_argument("--presets", default="abop_2_8_tree:4,abop_2_6_monopodial:7,broadleaf,weeping",
+                      help="comma-separated: LSYS_NAME[:STEPS] or a species from assets/presets")
     land.set_defaults(run=_cmd_landscape)
     view = sub.add_parser("view", help="open a window showing an .lsys tree (drag, wheel, space)")
     view.add_argument("source", type=Path)

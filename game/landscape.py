@@ -18,12 +18,32 @@ from game.render import ASSETS, headless_context, save_png, sun_direction
 DEFAULT_PRESETS = (("abop_2_8_tree", 4), ("abop_2_6_monopodial", 7), ("abop_1_24e", 5))
 
 
+def parse_presets(text: str) -> list[tuple[str, int | None]]:
+    """'abop_2_8_tree:4,broadleaf' -> [('abop_2_8_tree', 4), ('broadleaf', None)]."""
+    out = []
+    for item in filter(None, (part.strip() for part in text.split(","))):
+        name, _, steps = item.partition(":")
+        out.append((name, int(steps) if steps else None))
+    return out
+
+
+def _grow_preset(name: str, steps: int | None):
+    """A GeoMaTree species (assets/presets/NAME.toml) or an L-system (assets/lsystems/NAME.lsys)."""
+    species = ASSETS / "presets" / f"{name}.toml"
+    if species.exists():
+        from engine.geomatree import growth_system, load_species
+
+        system = growth_system(load_species(species), ASSETS / "lsystems" / "geomatree.lsys", seed=1)
+    else:
+        system = load_lsystem(ASSETS / "lsystems" / f"{name}.lsys")
+    return system, derive(system, steps)
+
+
 def build_presets(specs=DEFAULT_PRESETS) -> list[Preset]:
-    """Each (lsys name, steps) grown once and meshed at every LOD level, scaled to about 8 units tall."""
+    """Each (name, steps) grown once and meshed at every LOD level, scaled to about 8 units tall."""
     presets = []
     for name, steps in specs:
-        system = load_lsystem(ASSETS / "lsystems" / f"{name}.lsys")
-        ls = derive(system, steps)
+        system, ls = _grow_preset(name, steps)
         levels = [build_geometry(ls, system, lod=k).mesh for k in range(len(LOD_LEVELS))]
         height = float(levels[0].wood.positions[:, 1].max())
         for tree in levels:
@@ -47,11 +67,11 @@ def overview_camera(size: float) -> OrbitCamera:
 
 
 def render_landscape(count: int, out: Path, size: tuple[int, int] = (1280, 720), seed: int = 0,
-                     lod: int | None = None) -> None:
-    """Headless picture of a landscape of ``count`` trees."""
+                     lod: int | None = None, specs=DEFAULT_PRESETS) -> list[Preset]:
+    """Headless picture of a landscape of ``count`` trees; returns the presets used."""
     from game.landscape_render import LandscapeRenderer
 
-    presets = build_presets()
+    presets = build_presets(specs)
     side = landscape_size(count)
     instances: Instances = scatter(count, len(presets), side, seed)
     ctx = headless_context()
@@ -68,3 +88,4 @@ def render_landscape(count: int, out: Path, size: tuple[int, int] = (1280, 720),
               f"levels {stats.per_level}, {stats.triangles:,} triangles")
     finally:
         ctx.release()
+    return presets

@@ -77,3 +77,16 @@ def test_garden_glb_shares_meshes_between_instances(tmp_path, presets):
     placed = np.array([scene.graph[n][0][:3, 3] for n in scene.graph.nodes_geometry if n.endswith("-wood")])
     assert len(placed) == 25
     assert np.allclose(np.sort(placed[:, 0]), np.sort(instances.position[:, 0]), atol=1e-4)
+
+
+def test_cli_landscape_with_chosen_presets(tmp_path, capsys):
+    from game.cli import main
+
+    out, glb = tmp_path / "land.png", tmp_path / "land.glb"
+    assert main(["landscape", "40", "--size", "320x180", "--presets", "broadleaf,abop_2_8_tree:3", "--out",
+                 str(out), "--glb", str(glb)]) == 0
+    said = capsys.readouterr().out
+    assert "40 trees" in said and "sharing 2 trees' meshes" in said
+    import pygame
+
+    assert pygame.image.load(str(out)).get_size() == (320, 180) and glb.stat().st_size > 10_000
