@@ -9,11 +9,12 @@ different detail.
 from __future__ import annotations
 
 import tomllib
-from dataclasses import dataclass, fields
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
+from engine.config import fill_dataclass
 from engine.divisors import FUNCTIONS, PropagationRule, children_function, children_table
 from engine.errors import LSysError
 from engine.lsys import LSystem, parse_lsystem
@@ -43,18 +44,8 @@ class Species:
 
 def load_species(path: str | Path) -> Species:
     """A preset file; unknown keys, wrong types or out-of-range values name the file and key."""
-    data = tomllib.loads(Path(path).read_text(encoding="utf-8"))
     species = Species()
-    kinds = {f.name: type(getattr(species, f.name)) for f in fields(species)}
-    for key, value in data.items():
-        if key not in kinds:
-            raise LSysError(f"unknown species parameter {key!r}", str(path))
-        want = kinds[key]
-        if want is float and isinstance(value, int) and not isinstance(value, bool):
-            value = float(value)
-        if not isinstance(value, want) or isinstance(value, bool):
-            raise LSysError(f"species parameter {key!r} must be a {want.__name__}", str(path))
-        setattr(species, key, value)
+    fill_dataclass(species, tomllib.loads(Path(path).read_text(encoding="utf-8")), str(path), "species parameter")
     if species.branch_function not in ("sigma", "sigma_alt", "sigma_star"):
         raise LSysError("branch_function must be sigma, sigma_alt or sigma_star", str(path))
     if not (0 < species.r_bud < 1 and 1 <= species.n_seed <= 64 and 1 <= species.levels <= 8

@@ -17,6 +17,7 @@ from pathlib import Path
 
 import numpy as np
 
+from engine.config import fill_dataclass
 from engine.errors import LSysError
 
 
@@ -99,14 +100,7 @@ def load_rules(path: str | Path) -> Rules:
     for table, values in data.items():
         if table not in {f.name for f in fields(Rules)} or not isinstance(values, dict):
             raise LSysError(f"unknown table [{table}]", str(path))
-        section = getattr(rules, table)
-        known = {f.name for f in fields(section)}
-        for key, value in values.items():
-            if key not in known:
-                raise LSysError(f"unknown key {key!r} in [{table}]", str(path))
-            if isinstance(value, bool) or not isinstance(value, int | float) or not math.isfinite(value):
-                raise LSysError(f"[{table}] {key} must be a number", str(path))
-            setattr(section, key, float(value))
+        fill_dataclass(getattr(rules, table), values, str(path), f"key in [{table}]")
     return rules
 
 

@@ -44,6 +44,41 @@ def _save_screen(ctx, size: tuple[int, int], path: str) -> None:
     save_png(pixels[::-1], path)
 
 
+def _main_loop(ctx, size: tuple[int, int], hub, frame) -> None:
+    """Run ``frame(events, seconds)`` at up to 60 fps until it returns False, or until ARBOR_MAX_FRAMES
+    frames have run (then save ARBOR_SCREENSHOT if set: used by tests and bug reports)."""
+    import pygame
+
+    clock = pygame.time.Clock()
+    frames, limit, last = 0, _frames_limit(), time.perf_counter()
+    while True:
+        now = time.perf_counter()
+        if not frame(hub.poll(pygame.event.get(), now), now - last):
+            return
+        last = now
+        frames += 1
+        if limit and frames >= limit:
+            if os.environ.get("ARBOR_SCREENSHOT"):
+                ctx.finish()
+                _save_screen(ctx, size, os.environ["ARBOR_SCREENSHOT"])
+            return
+        pygame.display.flip()
+        clock.tick(60)
+
+
+def _screen_frame(screen, fbo):
+    """A frame function for anything with handle_input(), update() and draw()."""
+    def frame(events, seconds: float) -> bool:
+        keep = True
+        for event in events:
+            keep = screen.handle_input(event) and keep
+        screen.update(seconds)
+        screen.draw(fbo)
+        return keep
+
+    return frame
+
+
 def run_app(args: argparse.Namespace | None = None) -> int:
     """Open the game window and run until closed (Esc or the close button); saves on the way out."""
     import pygame
@@ -57,24 +92,7 @@ def run_app(args: argparse.Namespace | None = None) -> int:
         config.saves = Path(saves)
     game = Game(ctx, WINDOW, config, clock=time.perf_counter)
     hub = make_input_hub(args, WINDOW, time.perf_counter())
-    clock = pygame.time.Clock()
-    frames, limit, last = 0, _frames_limit(), time.perf_counter()
-    running = True
-    while running:
-        for event in hub.poll(pygame.event.get(), time.perf_counter()):
-            running = game.handle_input(event) and running
-        now = time.perf_counter()
-        game.update(now - last)
-        last = now
-        game.draw(ctx.screen)
-        frames += 1
-        if limit and frames >= limit:
-            running = False
-            if os.environ.get("ARBOR_SCREENSHOT"):
-                ctx.finish()
-                _save_screen(ctx, WINDOW, os.environ["ARBOR_SCREENSHOT"])
-        pygame.display.flip()
-        clock.tick(60)
+    _main_loop(ctx, WINDOW, hub, _screen_frame(game, ctx.screen))
     game.quit()
     hub.close()
     pygame.quit()
@@ -105,21 +123,7 @@ def run_kiosk(args: argparse.Namespace) -> int:
     kiosk = Kiosk(lambda: Game(ctx, size, config, clock=time.perf_counter), settings, config.saves,
                   clock=time.perf_counter)
     hub = make_input_hub(args, size, time.perf_counter())
-    clock = pygame.time.Clock()
-    frames, limit, last = 0, _frames_limit(), time.perf_counter()
-    while True:
-        now = time.perf_counter()
-        if not kiosk.frame(hub.poll(pygame.event.get(), now), now - last, ctx.screen):
-            break
-        last = now
-        frames += 1
-        if limit and frames >= limit:
-            if os.environ.get("ARBOR_SCREENSHOT"):
-                ctx.finish()
-                _save_screen(ctx, size, os.environ["ARBOR_SCREENSHOT"])
-            break
-        pygame.display.flip()
-        clock.tick(60)
+    _main_loop(ctx, size, hub, lambda events, seconds: kiosk.frame(events, seconds, ctx.screen))
     kiosk.game.quit()
     hub.close()
     pygame.quit()
@@ -154,24 +158,7 @@ def run_lab_window(experiment: Path) -> int:
     lab = new_lab(experiment)
     ctx = open_window(WINDOW, f"Arbor lab - {lab.experiment.title}")
     screen = LabScreen(ctx, WINDOW, lab)
-    hub = InputHub(WINDOW)
-    clock = pygame.time.Clock()
-    frames, limit, last, running = 0, _frames_limit(), time.perf_counter(), True
-    while running:
-        for event in hub.poll(pygame.event.get(), time.perf_counter()):
-            running = screen.handle_input(event) and running
-        now = time.perf_counter()
-        screen.update(now - last)
-        last = now
-        screen.draw(ctx.screen)
-        frames += 1
-        if limit and frames >= limit:
-            running = False
-            if os.environ.get("ARBOR_SCREENSHOT"):
-                ctx.finish()
-                _save_screen(ctx, WINDOW, os.environ["ARBOR_SCREENSHOT"])
-        pygame.display.flip()
-        clock.tick(60)
+    _main_loop(ctx, WINDOW, InputHub(WINDOW), _screen_frame(screen, ctx.screen))
     pygame.quit()
     return 0
 
@@ -200,6 +187,13 @@ class Viewer:
             self.steps += 1
         self.renderer.set_tree(build_geometry(self.lstring, self.system).mesh)
         self.camera.frame_bounds(self.renderer.lo, self.renderer.hi, self.size[0] / self.size[1])
+
+    def update(self, seconds: float) -> None:
+        """Nothing moves by itself in the viewer."""
+
+    def draw(self, fbo) -> None:
+        """Render the tree."""
+        self.renderer.render(fbo, self.camera, sun_direction(self.camera.yaw + 55.0, 48.0), self.size)
 
     def handle_input(self, e) -> bool:
         """Orbit (drag), zoom (wheel), grow (space), shrink (backspace); returns False to quit."""
@@ -233,16 +227,6 @@ def run_viewer(source: Path) -> int:
 
     ctx = open_window(WINDOW, f"Arbor - {source.name}")
     viewer = Viewer(ctx, WINDOW, source)
-    hub = InputHub(WINDOW)
-    clock = pygame.time.Clock()
-    frames, limit, running = 0, _frames_limit(), True
-    while running:
-        for event in hub.poll(pygame.event.get(), time.perf_counter()):
-            running = viewer.handle_input(event) and running
-        viewer.renderer.render(ctx.screen, viewer.camera, sun_direction(viewer.camera.yaw + 55.0, 48.0), WINDOW)
-        frames += 1
-        running = running and not (limit and frames >= limit)
-        pygame.display.flip()
-        clock.tick(60)
+    _main_loop(ctx, WINDOW, InputHub(WINDOW), _screen_frame(viewer, ctx.screen))
     pygame.quit()
     return 0

@@ -12,15 +12,15 @@
 from __future__ import annotations
 
 import logging
-import math
 import time
 import tomllib
 import traceback
-from dataclasses import dataclass, fields
+from dataclasses import dataclass
 from pathlib import Path
 
 import pygame
 
+from engine.config import fill_dataclass
 from engine.errors import LSysError
 from engine.save import save_world
 from game.input import DOWN, KEY_DOWN, KEY_UP, MOVE, QUIT, UP, InputEvent, Player, load_recording
@@ -48,18 +48,8 @@ class KioskConfig:
 
 def load_kiosk_config(path: str | Path) -> KioskConfig:
     """Read kiosk settings; unknown keys or wrong types are errors naming the file and key."""
-    data = tomllib.loads(Path(path).read_text(encoding="utf-8"))
     config = KioskConfig()
-    kinds = {f.name: type(getattr(config, f.name)) for f in fields(config)}
-    for key, value in data.items():
-        if key not in kinds:
-            raise LSysError(f"unknown kiosk setting {key!r}", str(path))
-        want = kinds[key]
-        if want is float and isinstance(value, int) and not isinstance(value, bool):
-            value = float(value)
-        if not isinstance(value, want) or (want is float and not math.isfinite(value)):
-            raise LSysError(f"kiosk setting {key!r} must be a {want.__name__}", str(path))
-        setattr(config, key, value)
+    fill_dataclass(config, tomllib.loads(Path(path).read_text(encoding="utf-8")), str(path), "kiosk setting")
     if not config.pin.isdigit() or not 4 <= len(config.pin) <= 8:
         raise LSysError("the kiosk PIN must be 4 to 8 digits", str(path))
     return config
