@@ -29,3 +29,13 @@ def gl_ctx():
     context = headless_context()
     yield context
     context.release()
+
+
+class FakeClock:
+    """A settable clock for code that takes ``clock=`` (seconds; call it to read, set ``t`` to move it)."""
+
+    def __init__(self, t: float = 1000.0) -> None:
+        self.t = t
+
+    def __call__(self) -> float:
+        return self.t

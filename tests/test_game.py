@@ -11,16 +11,9 @@ from engine.sim import load_rules
 from engine.world import replay
 from game.game import Game, GameConfig
 from game.gestures import MAX_TILT
+from tests.conftest import FakeClock
 
 SIZE = (1280, 720)
-
-
-class FakeClock:
-    def __init__(self):
-        self.t = 1000.0
-
-    def __call__(self):
-        return self.t
 
 
 @pytest.fixture(scope="module")

@@ -12,21 +12,14 @@ from game.game import Game, GameConfig
 from game.input import DOWN, KEY_DOWN, MOVE, QUIT, UP, InputEvent
 from game.kiosk import Kiosk, KioskConfig, load_kiosk_config
 from game.watchdog import watch
+from tests.conftest import FakeClock
 
 SIZE = (1280, 720)
 
 
-class Clock:
-    def __init__(self):
-        self.t = 50.0
-
-    def __call__(self):
-        return self.t
-
-
 @pytest.fixture
 def kiosk(gl_ctx, tmp_path):
-    clock = Clock()
+    clock = FakeClock(50.0)
     config = KioskConfig(attract_after=10.0, reset_after=30.0, admin_hold=2.0, speed=10.0)
     k = Kiosk(lambda: Game(gl_ctx, SIZE, GameConfig(saves=tmp_path, seed=2, resume=True), clock=clock), config,
               tmp_path, clock=clock)
