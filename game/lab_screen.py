@@ -39,6 +39,7 @@ class LabScreen:
         self.surface = pygame.Surface(size, pygame.SRCALPHA)
         self.buttons = self._layout_buttons()
         self.message = ""
+        self._shown: list[tuple | None] = [None] * len(lab.worlds)  # what each renderer holds
 
     def _layout_buttons(self) -> dict[str, pygame.Rect]:
         labels = ["Pause", "1x", "10x", "100x", "Export"]
@@ -82,8 +83,12 @@ class LabScreen:
         w, h = self.size
         scene_h = int(h * SCENE_FRACTION)
         tile_w = w // n
-        for world, renderer in zip(self.lab.worlds, self.renderers, strict=True):
-            renderer.set_tree(world.tree.geometry(world.clocks()).mesh)
+        for i, (world, renderer) in enumerate(zip(self.lab.worlds, self.renderers, strict=True)):
+            clocks = world.clocks()
+            key = (id(world.tree.lstring), clocks.length_time, clocks.girth_time, clocks.wilt)
+            if key != self._shown[i]:  # rebuild only trees that changed (nothing, while paused)
+                renderer.set_tree(world.tree.geometry(clocks).mesh)
+                self._shown[i] = key
         tallest = max(2.0, *(float(r.hi[1]) for r in self.renderers))
         fbo.use()
         fbo.clear(0.92, 0.92, 0.89, 1.0)
