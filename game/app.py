@@ -31,7 +31,9 @@ def open_window(size: tuple[int, int], title: str, fullscreen: bool = False):
     flags = pygame.OPENGL | pygame.DOUBLEBUF | (pygame.FULLSCREEN if fullscreen else 0)
     pygame.display.set_mode((0, 0) if fullscreen else size, flags)
     pygame.display.set_caption(title)
-    return moderngl.create_context()
+    ctx = moderngl.create_context()
+    ctx.gc_mode = "auto"  # GL objects are freed with their Python objects (a recovered kiosk leaks nothing)
+    return ctx
 
 
 def _frames_limit() -> int:

@@ -36,7 +36,9 @@ def _scale(color: tuple[float, float, float], k: float) -> tuple[float, float, f
 
 def headless_context() -> moderngl.Context:
     """A standalone OpenGL 3.3 context through EGL (no display needed)."""
-    return moderngl.create_standalone_context(backend="egl", require=330)
+    ctx = moderngl.create_standalone_context(backend="egl", require=330)
+    ctx.gc_mode = "auto"  # GL objects are freed with their Python objects (a recovered kiosk leaks nothing)
+    return ctx
 
 
 def _gl(m: np.ndarray) -> bytes:
