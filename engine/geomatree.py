@@ -22,7 +22,11 @@ from engine.lsys import LSystem, parse_lsystem
 
 @dataclass
 class Species:
-    """Seed 001's parameters: r_bud, l_i, theta_i, phi_i, n_seed, v_ext, r_0, phi_k, l_k (+ a few)."""
+    """Seed 001's parameters: r_bud, l_i, theta_i, phi_i, n_seed, v_ext, r_0, phi_k, l_k (+ a few).
+
+    v_ext is the external vector of eq. 1 (gravity, phototropism, wind): each branch turns towards it
+    by |v_ext| degrees (never past it).
+    """
 
     name: str = "species"
     trunk: float = 6.0
@@ -32,7 +36,7 @@ class Species:
     phi_i: float = 137.5
     n_seed: int = 5
     seed_spread: float = 18.0
-    v_ext: float = 0.0
+    v_ext: list = None  # external vector [x, y, z]; its length is degrees of turn per branch
     r_0: float = 0.2
     phi_k: float = 90.0
     l_k: float = 0.08
@@ -41,11 +45,19 @@ class Species:
     branch_coefficient: int = 1
     max_children: int = 3
 
+    def __post_init__(self) -> None:
+        if self.v_ext is None:
+            self.v_ext = [0.0, 0.0, 0.0]
+
 
 def load_species(path: str | Path) -> Species:
     """A preset file; unknown keys, wrong types or out-of-range values name the file and key."""
     species = Species()
     fill_dataclass(species, tomllib.loads(Path(path).read_text(encoding="utf-8")), str(path), "species parameter")
+    if len(species.v_ext) != 3 or not all(isinstance(v, int | float) and not isinstance(v, bool)
+                                          for v in species.v_ext):
+        raise LSysError("v_ext must be three numbers [x, y, z]", str(path))
+    species.v_ext = [float(v) for v in species.v_ext]
     if species.branch_function not in ("sigma", "sigma_alt", "sigma_star"):
         raise LSysError("branch_function must be sigma, sigma_alt or sigma_star", str(path))
     if not (0 < species.r_bud < 1 and 1 <= species.n_seed <= 64 and 1 <= species.levels <= 8
@@ -80,11 +92,13 @@ def growth_system(species: Species, source: Path, seed: int = 0) -> LSystem:
     table = children_table(rules, species.levels + 1, 0, species.max_children)
     overrides = {
         "TRUNK": species.trunk, "RBUD": species.r_bud, "LI": species.l_i, "THETA": species.theta_i,
-        "PHI": species.phi_i, "NSEED": float(species.n_seed), "VEXT": species.v_ext, "R0": species.r_0,
+        "PHI": species.phi_i, "NSEED": float(species.n_seed), "VEXT": float(np.linalg.norm(species.v_ext)),
+        "R0": species.r_0,
         "PHIK": species.phi_k, "LK": species.l_k, "LEVELS": float(species.levels),
     }
     host = {"children": children_function(table), "seed_dt": lookup(0), "seed_dp": lookup(1)}
     system = parse_lsystem(source.read_text(encoding="utf-8"), str(source), overrides, host)
     system.iterations = 2 * species.levels
     system.seed = seed
+    system.tropism_x, system.tropism_y, system.tropism_z = species.v_ext if any(species.v_ext) else (0.0, 1.0, 0.0)
     return system

@@ -43,6 +43,9 @@ HEADER_KEYS = {
     "width_scale": "width_scale",
     "leaf_size": "leaf_size",
     "leaves_at_tips": "leaves_at_tips",
+    "tropism_x": "tropism_x",
+    "tropism_y": "tropism_y",
+    "tropism_z": "tropism_z",
     "seed": "seed",
     "budget": "budget",
 }
@@ -108,6 +111,9 @@ class LSystem:
     budget: int | None = None
     externs: tuple[str, ...] = ()
     overrides: dict[str, float] = field(default_factory=dict)
+    tropism_x: float | None = None
+    tropism_y: float | None = None
+    tropism_z: float | None = None
     host: dict = field(default_factory=dict)
     file: str = "<string>"
     source: str = ""
@@ -116,6 +122,14 @@ class LSystem:
     def sha256(self) -> str:
         """Hash of the source text, so a save can say exactly which rules grew its tree."""
         return hashlib.sha256(self.source.encode("utf-8")).hexdigest()
+
+    @property
+    def tropism(self) -> tuple[float, float, float] | None:
+        """The world vector 'T' bends towards (header tropism_x/y/z), if the source sets one."""
+        parts = (self.tropism_x, self.tropism_y, self.tropism_z)
+        if all(p is None for p in parts):
+            return None
+        return tuple(float(p or 0.0) for p in parts)
 
     @property
     def has_context(self) -> bool:

@@ -7,7 +7,8 @@ after ']' it is the matching '[' (whose transform is the identity): so states ar
 along a tree of parent pointers, computed for all modules at once by pointer jumping in O(n log n).
 
 Symbols: F G (move, draw), f (move), + - (turn about U), & ^ (pitch about L), / \\ (roll about H),
-| (turn around), $ (roll so L is horizontal), [ ] (push, pop), !(w) (width; bare '!' shrinks it),
+| (turn around), $ (roll so L is horizontal), T(a) (bend a degrees towards the tropism vector),
+[ ] (push, pop), !(w) (width; bare '!' shrinks it),
 '(c) (colour index; bare ' increments it), L (leaf) and K (blossom) with an optional size.
 A missing parameter takes the default from the .lsys source (angle, step, width).
 """
@@ -34,8 +35,9 @@ _ROT_AXIS = {ord("+"): (2, 1), ord("-"): (2, -1), ord("&"): (1, 1), ord("^"): (1
              ord("\\"): (0, -1)}
 LEAF, BLOSSOM = ord("L"), ord("K")
 ROLL_LEVEL = ord("$")
+TROPISM = ord("T")
 _TURNLIKE = np.zeros(256, bool)
-_TURNLIKE[[ord(c) for c in "+-&^/\\|$!'"]] = True
+_TURNLIKE[[ord(c) for c in "+-&^/\\|$!'T"]] = True
 
 
 @dataclass
@@ -51,12 +53,13 @@ class TurtleConfig:
     leaves_at_tips: int | None = None  # leaves at every branch tip; None: 3 when the string has no L
     pipe_model: bool | None = None  # radii from the pipe model; None: when the string has no '!'
     pipe_exponent: float = 2.0  # r_parent^e = sum of r_child^e (2 = area preserving, da Vinci)
+    tropism: tuple[float, float, float] | None = None  # world vector that 'T(angle)' bends towards
 
     @classmethod
     def from_system(cls, system, **overrides) -> TurtleConfig:
         """Defaults taken from an LSystem's header (angle, step, width, width_scale, leaves)."""
         cfg = cls(angle=system.angle, step=system.step, width=system.width, width_scale=system.width_scale,
-                  leaf_size=system.leaf_size, leaves_at_tips=system.leaves_at_tips)
+                  leaf_size=system.leaf_size, leaves_at_tips=system.leaves_at_tips, tropism=system.tropism)
         for key, value in overrides.items():
             setattr(cfg, key, value)
         return cfg
@@ -180,7 +183,7 @@ def interpret(ls: LString, cfg: TurtleConfig | None = None) -> TurtleResult:
     rot, move, width, colour = _local_transforms(ls, cfg)
     scalars = np.stack([width, colour], axis=1)
     par = predecessors(ls.sym)
-    states = _solve_states(ls, par, rot, move, scalars)
+    states = _solve_states(ls, par, rot, move, scalars, cfg.tropism)
     want = np.flatnonzero(_DRAW[ls.sym] | (ls.sym == LEAF) | (ls.sym == BLOSSOM))
     in_frame, in_pos, in_sc = states.state_in(want)
     out_pos = states.move_out_pos()
@@ -248,19 +251,45 @@ class _States:
         return self.move_t
 
 
-def _solve_states(ls, par, rot, move, scalars) -> _States:
-    """Solve all turtle states; '$' (which depends on the incoming heading) needs one pass per nesting."""
+def _solve_states(ls, par, rot, move, scalars, tropism: np.ndarray | None = None) -> _States:
+    """Solve all turtle states. '$' and 'T' turn by amounts that depend on the incoming heading, so
+    they are found by repeated passes, one per nesting level of such modules along a path."""
     rolls = np.flatnonzero(ls.sym == ROLL_LEVEL)
+    bends = np.flatnonzero(ls.sym == TROPISM) if tropism is not None else np.zeros(0, np.int64)
+    special = np.concatenate([rolls, bends])
+    angles = _first_param(ls, bends, 0.0) if len(bends) else np.zeros(0)
     for _ in range(64):
         states = _solve_once(ls, par, rot, move, scalars)
-        if len(rolls) == 0:
+        if len(special) == 0:
             break
-        frames_in, _, _ = states.state_in(rolls)
-        new = _level_rolls(frames_in)
-        if np.allclose(new, rot[rolls], atol=1e-12):
+        frames_in, _, _ = states.state_in(special)
+        new = np.concatenate([_level_rolls(frames_in[: len(rolls)]),
+                              _tropism_turns(frames_in[len(rolls):], tropism, angles)])
+        if np.allclose(new, rot[special], atol=1e-12):
             break
-        rot[rolls] = new
+        rot[special] = new
     return states
+
+
+def _tropism_turns(frames_in: np.ndarray, direction: np.ndarray | None, angles: np.ndarray) -> np.ndarray:
+    """Local rotations for 'T(a)': turn the heading by a degrees towards the world vector ``direction``
+    (about H x direction), never past it (ABOP's tropism, applied where the string asks for it)."""
+    if len(frames_in) == 0:
+        return np.zeros((0, 3, 3))
+    h = _unit(frames_in[:, :, 0])
+    target = _unit(np.asarray(direction, float))
+    axis = np.cross(h, target)
+    sin = np.linalg.norm(axis, axis=1)
+    between = np.degrees(np.arctan2(sin, h @ target))
+    turn = np.radians(np.clip(angles, -between, between))
+    k = np.where((sin > 1e-9)[:, None], axis / np.maximum(sin, 1e-12)[:, None], frames_in[:, :, 1])
+    c, s = np.cos(turn), np.sin(turn)
+    kx = np.zeros((len(k), 3, 3))
+    kx[:, 0, 1], kx[:, 0, 2], kx[:, 1, 2] = -k[:, 2], k[:, 1], -k[:, 0]
+    kx[:, 1, 0], kx[:, 2, 0], kx[:, 2, 1] = k[:, 2], -k[:, 1], k[:, 0]
+    world = np.eye(3) + s[:, None, None] * kx + (1 - c)[:, None, None] * np.matmul(kx, kx)
+    local = np.matmul(np.transpose(frames_in, (0, 2, 1)), np.matmul(world, frames_in))
+    return _orthonormal(local)
 
 
 def _solve_once(ls, par, rot, move, scalars) -> _States:

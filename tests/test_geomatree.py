@@ -26,15 +26,29 @@ def test_same_species_other_seed_is_similar_with_different_detail():
 
 
 def test_parameters_do_what_they_say():
-    base = Species(levels=3, n_seed=1, seed_spread=0.0, l_k=0.0, v_ext=0.0)
+    base = Species(levels=3, n_seed=1, seed_spread=0.0, l_k=0.0)
     _, tree = grow(base, 0)
     trunk = tree.segments.order == 0
     assert tree.segments.radius[trunk][0] == pytest.approx(base.r_0)
     buds = tree.segments.start[tree.segments.order == 1]
     assert buds[:, 1].min() == pytest.approx(base.trunk * base.r_bud, rel=1e-6)  # eq. 1: p_i = p_pa + r_bud v_pa
-    up = grow(Species(levels=3, v_ext=15.0), 0)[1].bounds()[1][1]
-    down = grow(Species(levels=3, v_ext=-15.0), 0)[1].bounds()[1][1]
+    up = grow(Species(levels=3, v_ext=[0.0, 15.0, 0.0]), 0)[1].bounds()[1][1]
+    down = grow(Species(levels=3, v_ext=[0.0, -15.0, 0.0]), 0)[1].bounds()[1][1]
     assert up > down  # the external vector bends branches towards the sky or the ground
+    east = grow(Species(levels=3, v_ext=[12.0, 0.0, 0.0]), 0)[1].segments.end[:, 0].mean()
+    west = grow(Species(levels=3, v_ext=[-12.0, 0.0, 0.0]), 0)[1].segments.end[:, 0].mean()
+    assert east > west + 1.0  # and wind blows it sideways
+
+
+def test_branches_follow_the_control_points_of_eq_2():
+    species = Species(levels=1, n_seed=1, seed_spread=0.0, l_k=0.1, r_bud=0.5)
+    _, tree = grow(species, 0)
+    trunk = tree.segments.order == 0
+    points = np.concatenate([tree.segments.start[trunk][:1], tree.segments.end[trunk]])
+    off_axis = np.hypot(points[:, 0], points[:, 2])
+    # the control points at 1/3 and 2/3 of the trunk stand l_k x its length off the axis; the ends sit on it
+    assert off_axis[0] == pytest.approx(0.0, abs=1e-9) and off_axis[-1] == pytest.approx(0.0, abs=1e-9)
+    np.testing.assert_allclose(np.sort(off_axis)[-2:], species.l_k * species.trunk, rtol=1e-6)
 
 
 def test_seed_points_fill_the_growth_space():
