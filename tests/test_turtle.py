@@ -132,3 +132,14 @@ def test_long_chains_of_roll_to_horizontal_stay_rigid():
     np.testing.assert_allclose(np.einsum("nij,nik->njk", frames, frames), np.broadcast_to(np.eye(3), frames.shape),
                                atol=1e-9)
     assert np.abs(frames[1:, 1, 1]).max() < 1e-9  # L horizontal after every '$'
+
+
+def test_tropism_bends_towards_the_vector_and_never_past_it():
+    text = "F" + "T(20)F" * 8
+    wind = interpret(parse_lstring(text), TurtleConfig(tropism=(1.0, 0.0, 0.0), pipe_model=False)).segments
+    headings = wind.frame[:, :, 0]
+    tilt = np.degrees(np.arccos(np.clip(headings @ np.array([1.0, 0.0, 0.0]), -1, 1)))
+    np.testing.assert_allclose(tilt[:6], [90, 70, 50, 30, 10, 0], atol=1e-6)  # 20 degrees a step, then aligned
+    assert tilt.max() <= 90 + 1e-9 and np.allclose(tilt[5:], 0.0, atol=1e-6)
+    still = interpret(parse_lstring(text), TurtleConfig(pipe_model=False)).segments
+    np.testing.assert_allclose(still.end[-1], [0, 9, 0], atol=1e-12)  # no tropism vector: T does nothing
