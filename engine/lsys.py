@@ -144,6 +144,8 @@ def load_lsystem(path: str | Path) -> LSystem:
         text = path.read_text(encoding="utf-8")
     except UnicodeDecodeError as exc:
         raise LSysError(f"not UTF-8 text ({exc.reason})", str(path), 1, 1) from None
+    except OSError as exc:
+        raise LSysError(f"cannot read: {exc.strerror}", str(path), 1, 1) from None
     return parse_lsystem(text, str(path))
 
 

@@ -165,6 +165,9 @@ def main(argv: list[str] | None = None) -> int:
     except LSysError as err:
         print(f"arbor: {err}", file=sys.stderr)
         return 2
+    except OSError as err:  # e.g. an output folder that cannot be written
+        print(f"arbor: {err.filename or ''}: {err.strerror}", file=sys.stderr)
+        return 2
 
 
 if __name__ == "__main__":

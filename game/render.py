@@ -320,4 +320,7 @@ def save_png(pixels: np.ndarray, path: str | Path) -> None:
 
     surf = pygame.image.frombuffer(np.ascontiguousarray(pixels).tobytes(), (pixels.shape[1], pixels.shape[0]),
                                    "RGB")
-    pygame.image.save(surf, str(path))
+    try:
+        pygame.image.save(surf, str(path))
+    except pygame.error as exc:  # e.g. a folder that does not exist: report it like any file error
+        raise OSError(0, str(exc), str(path)) from None

@@ -86,3 +86,9 @@ def test_fuzzed_sources_raise_only_our_error(parts):
         assert err.file == "fuzz.lsys" and err.line >= 1 and err.col >= 1
         return
     derive(system, 2, budget=10_000)
+
+
+def test_missing_file_is_a_clear_error(tmp_path):
+    with pytest.raises(LSysError) as info:
+        load_lsystem(tmp_path / "nope.lsys")
+    assert "cannot read" in info.value.message and info.value.file.endswith("nope.lsys")
