@@ -72,6 +72,7 @@ class ModelingMode:
         self.add2d(x, y, t, camera)
 
     def cancel_points(self) -> None:
+        """Forget the points of the stroke being drawn (the drawing plane stays)."""
         self.points, self.times, self.preview = [], [], None
 
     def add2d(self, x: float, y: float, t: float, camera: OrbitCamera) -> None:
