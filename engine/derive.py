@@ -72,11 +72,15 @@ class Deriver:
         if self.budget is None:
             self.budget = self.system.budget
 
-    def step(self, ls: LString, extern: dict[str, float] | None = None) -> tuple[LString, StepReport]:
-        """Rewrite every module of ``ls`` once, in parallel; ``extern`` supplies the #extern values."""
+    def step(self, ls: LString, extern: dict[str, float] | None = None,
+             only: np.ndarray | None = None) -> tuple[LString, StepReport]:
+        """Rewrite every module of ``ls`` once, in parallel; ``extern`` supplies the #extern values.
+
+        ``only`` (a boolean mask over the modules) limits rewriting to those modules (region edits).
+        """
         self._extern = self._check_extern(extern or {})
         with np.errstate(all="ignore"):
-            matches = self._match_all(ls)
+            matches = self._match_all(ls, only)
             out_len = np.ones(len(ls), dtype=np.int64)
             for m in matches:
                 out_len[m.idx] = m.length
@@ -104,9 +108,9 @@ class Deriver:
             reports.append(report)
         return current, reports
 
-    def _match_all(self, ls: LString) -> list[_Match]:
+    def _match_all(self, ls: LString, only: np.ndarray | None = None) -> list[_Match]:
         n = len(ls)
-        taken = np.zeros(n, dtype=bool)
+        taken = np.zeros(n, dtype=bool) if only is None else ~np.asarray(only, dtype=bool)
         ctx = _ContextIndex(ls, self.system) if self.system.has_context else None
         matches: list[_Match] = []
         by_symbol: dict[int, np.ndarray] = {}

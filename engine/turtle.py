@@ -176,6 +176,15 @@ def predecessors(sym: np.ndarray) -> np.ndarray:
     return par
 
 
+def module_positions(ls: LString, cfg: TurtleConfig | None = None) -> np.ndarray:
+    """Where the turtle is when it reaches each module (n, 3): for regions, overlays and picking."""
+    cfg = cfg or TurtleConfig()
+    brackets.check_balanced(ls.sym)
+    rot, move, width, colour = _local_transforms(ls, cfg)
+    states = _solve_states(ls, predecessors(ls.sym), rot, move, np.stack([width, colour], axis=1), cfg.tropism)
+    return states.state_in(np.arange(len(ls)))[1]
+
+
 def interpret(ls: LString, cfg: TurtleConfig | None = None) -> TurtleResult:
     """Interpret an L-string with the 3D turtle; returns segments and leaf/blossom instances."""
     cfg = cfg or TurtleConfig()

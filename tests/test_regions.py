@@ -1,0 +1,66 @@
+import numpy as np
+import pytest
+
+from engine.derive import Deriver
+from engine.lstring import parse_lstring
+from engine.lsys import parse_lsystem
+from engine.regions import Sphere, Supertoroid, derive_in_region, fit_supertoroid, prune, seed_in_region
+from engine.turtle import TurtleConfig, interpret, module_positions
+
+
+def test_sphere_inside():
+    ball = Sphere((0.0, 2.0, 0.0), 1.0)
+    assert ball.contains(np.array([[0, 2, 0], [0.5, 2.5, 0], [0, 3.1, 0]], float)).tolist() == [True, True, False]
+
+
+def test_supertoroid_surface_and_inside_agree():
+    shape = Supertoroid(a_x=2.0, a_y=1.5, a_z=1.0, alpha_y=4.0, n=0.7, e=1.0, slope_x=0.3)
+    u, v = np.meshgrid(np.linspace(-1.4, 1.4, 30), np.linspace(-np.pi / 2, np.pi / 2, 30))
+    surface = shape.surface(u.ravel(), v.ravel()) * 1.0
+    center = np.array([0.0, 4.0, 0.0])
+    assert shape.contains(center + 0.97 * (surface - center)).mean() > 0.97  # just inside the surface
+    assert not shape.contains(center + 1.05 * (surface - center)).any()  # just outside it
+    torus = Supertoroid(a_x=1.0, a_y=0.5, a_z=1.0, alpha_y=0.0, alpha_x=2.0, alpha_z=2.0)
+    assert not torus.contains(np.array([[0.0, 0.0, 0.0]]))[0] and torus.contains(np.array([[2.0, 0.0, 0.0]]))[0]
+
+
+def test_fit_to_two_outline_strokes_recovers_the_shape():
+    truth = Supertoroid(a_x=2.0, a_y=2.0, a_z=2.0, alpha_y=5.0, n=0.8, b_x=0.5, slope_x=0.25)
+    u = np.linspace(-np.pi / 2 + 0.05, np.pi / 2 - 0.05, 60)
+    left = truth.surface(u, np.full_like(u, np.pi))  # v = pi: the x < axis outline (signed cos)
+    right = truth.surface(u, np.zeros_like(u))
+    fit = fit_supertoroid(left, right)
+    assert fit.alpha_y == pytest.approx(5.0, abs=0.05) and fit.a_x == pytest.approx(2.0, rel=0.03)
+    assert fit.slope_x == pytest.approx(0.25, abs=0.02) and fit.n == pytest.approx(0.8, abs=0.1)
+    pts = np.random.default_rng(0).uniform([-3, 2.5, -3], [4, 7.5, 3], (3000, 3))
+    agree = (fit.contains(pts) == truth.contains(pts)).mean()
+    assert agree > 0.97
+
+
+def test_rules_apply_only_inside_the_region():
+    system = parse_lsystem("w: F(1)\np1: A -> AB")
+    ls = parse_lstring("F(1)[+(90)F(1)A]F(1)[-(90)F(1)A]F(1)A")
+    positions = module_positions(ls)
+    region = Sphere((1.0, 2.0, 0.0), 0.5)  # around the tip of the '-' branch (towards +x)
+    grown = derive_in_region(Deriver(system), ls, positions, region)
+    assert grown.to_text() == "F(1)[+(90)F(1)A]F(1)[-(90)F(1)AB]F(1)A"  # only the A inside the sphere changed
+
+
+def test_empty_region_gets_a_new_axis_there():
+    ls = parse_lstring("F(2)F(2)")
+    seeded = seed_in_region(ls, "F(1)F(1)", np.array([3.0, 1.0, -2.0]))
+    segs = interpret(seeded, TurtleConfig(pipe_model=False)).segments
+    new = segs.order == 1
+    np.testing.assert_allclose(segs.start[new][0], [3.0, 1.0, -2.0], atol=1e-5)
+    np.testing.assert_allclose(segs.end[new][-1], [3.0, 3.0, -2.0], atol=1e-4)  # growing straight up
+    assert interpret(seeded).segments.end[~new].max(axis=0)[1] == pytest.approx(4.0)  # the tree is untouched
+
+
+def test_prune_removes_the_subtree_a_touch_picked():
+    ls = parse_lstring("F(1)[+F(1)[-F(1)L]F(1)L]F(1)L")
+    from engine.mesh import wood_mesh
+
+    mesh = wood_mesh(interpret(ls, TurtleConfig(leaves_at_tips=0)).segments, n_surf=4)
+    touched = int(mesh.face_module[np.flatnonzero(mesh.face_module == 3)[0]])  # a triangle of the branch
+    assert prune(ls, touched).to_text() == "F(1)[+]F(1)L"
+    assert prune(ls, 0).to_text() == ""  # pruning the trunk's base removes everything after it
