@@ -1,0 +1,274 @@
+"""Lobes and growth into them (seed 004 sections 4-5): the crown drawn as a few closed strokes.
+
+Lobe from strokes: closed strokes drawn around the crown at different heights are ordered along the
+lobe's axis and given the same number of points by arc-length interpolation; each loop starts at the
+point whose barycentric direction (eq. 2) is closest to the previous loop's start; strips join
+neighbouring loops and fans close both ends, every triangle wound outwards: a closed manifold.
+
+Growth (all vectorised, no loop over nodes): every attractor joins its nearest active node; a node's
+cluster is split into ceil(theta_h/t) x ceil(theta_v/t) pieces by the azimuth/elevation span of its
+attractors' directions; each piece grows one branch along
+    V_A = V_cluster + alpha V_default + beta V_gravity      (alpha 0.8, beta -0.3)
+with V_cluster the distance-weighted mean direction, as long as half the node's distance to the lobe
+surface; nodes closer to the surface than ``stop`` stop, their attractors retire, and attractors a
+new node reaches are used up.
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass
+from functools import cached_property
+
+import numpy as np
+
+from engine.modeler import ModelerSettings, path_modules
+from engine.turtle import INITIAL_FRAME
+
+_NO_WIDTH = re.compile(r"!\([^)]*\)")
+ALPHA, BETA = 0.8, -0.3
+GRAVITY = np.array([0.0, -1.0, 0.0])
+_RAY = np.array([1.0, 1e-7, 2e-7])  # slightly skewed, so a ray never runs exactly along an edge
+
+
+def _unit(v: np.ndarray) -> np.ndarray:
+    return v / np.maximum(np.linalg.norm(v, axis=-1, keepdims=True), 1e-12)
+
+
+def resample_loop(points: np.ndarray, count: int) -> np.ndarray:
+    """A closed stroke with ``count`` points evenly spaced along its length."""
+    closed = np.concatenate([points, points[:1]])
+    s = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(closed, axis=0), axis=1))])
+    t = np.linspace(0.0, s[-1], count, endpoint=False)
+    return np.stack([np.interp(t, s, closed[:, c]) for c in range(3)], axis=1)
+
+
+def barycentric_directions(loop: np.ndarray) -> np.ndarray:
+    """Eq. 2: for each point p_i, normalize(sum over k != i of (p_k - p_i))."""
+    return _unit(loop.sum(axis=0)[None, :] - len(loop) * loop)
+
+
+@dataclass
+class Lobe:
+    """A closed triangle mesh around part of the crown."""
+
+    vertices: np.ndarray
+    faces: np.ndarray
+
+    @cached_property
+    def _rays(self) -> tuple[np.ndarray, ...]:
+        """Per-triangle terms of the ray test, computed once per lobe."""
+        v0, v1, v2 = (self.vertices[self.faces[:, k]] for k in range(3))
+        e1, e2 = v1 - v0, v2 - v0
+        h = np.cross(_RAY, e2)
+        a = np.einsum("ij,ij->i", e1, h)
+        ok = np.abs(a) > 1e-12
+        f = np.where(ok, 1.0 / np.where(ok, a, 1.0), 0.0)
+        return v0, e1, e2, h, f, ok, self.vertices.min(axis=0), self.vertices.max(axis=0)
+
+    def contains(self, points: np.ndarray) -> np.ndarray:
+        """Inside test by the parity of crossings along a ray (vectorised over points and triangles)."""
+        v0, e1, e2, h, f, ok, lo, hi = self._rays
+        inside = np.zeros(len(points), bool)
+        candidates = np.flatnonzero(np.all((points >= lo) & (points <= hi), axis=1))
+        for start in range(0, len(candidates), 256):
+            rows = candidates[start : start + 256]
+            s = points[rows, None, :] - v0[None]
+            u = f * np.einsum("pij,ij->pi", s, h)
+            q = np.cross(s, e1[None])
+            v = f * (q @ _RAY)
+            t = f * np.einsum("ij,pij->pi", e2, q)
+            hit = ok & (u >= 0) & (v >= 0) & (u + v <= 1) & (t > 0)
+            inside[rows] = hit.sum(axis=1) % 2 == 1
+        return inside
+
+    def sample_inside(self, count: int, rng: np.random.Generator) -> np.ndarray:
+        """``count`` points uniformly inside (rejection sampling in the bounding box)."""
+        lo, hi = self.vertices.min(axis=0), self.vertices.max(axis=0)
+        found: list[np.ndarray] = []
+        for _ in range(64):
+            cand = rng.uniform(lo, hi, (max(2 * count, 64), 3))
+            found.append(cand[self.contains(cand)])
+            if sum(len(f) for f in found) >= count:
+                break
+        return np.concatenate(found)[:count]
+
+
+def lobe_from_loops(loops: list[np.ndarray], points_per_loop: int = 32) -> Lobe:
+    """Stitch two or more closed strokes into a closed lobe mesh (see module docstring)."""
+    if len(loops) < 2:
+        raise ValueError("a lobe needs at least two closed strokes")
+    centers = np.array([np.asarray(loop, float).mean(axis=0) for loop in loops])
+    span = centers.max(axis=0) - centers.min(axis=0)
+    axis = np.eye(3)[int(np.argmax(span))] if span.max() > 1e-9 else np.array([0.0, 1.0, 0.0])
+    order = np.argsort(centers @ axis)
+    rings = [_counter_clockwise(resample_loop(np.asarray(loops[i], float), points_per_loop), axis) for i in order]
+    for k in range(1, len(rings)):  # eq. 2: start where the barycentric directions agree best
+        start = barycentric_directions(rings[k - 1])[0]
+        rings[k] = np.roll(rings[k], -int(np.argmax(barycentric_directions(rings[k]) @ start)), axis=0)
+    n, i = points_per_loop, np.arange(points_per_loop)
+    verts = np.concatenate([*rings, [rings[0].mean(axis=0), rings[-1].mean(axis=0)]])
+    faces = []
+    for k in range(len(rings) - 1):
+        a, b, c, d = k * n + i, k * n + (i + 1) % n, (k + 1) * n + i, (k + 1) * n + (i + 1) % n
+        faces += [np.stack([a, b, c], 1), np.stack([b, d, c], 1)]
+    bottom, top, last = len(verts) - 2, len(verts) - 1, (len(rings) - 1) * n
+    faces.append(np.stack([np.full(n, bottom), (i + 1) % n, i], 1))
+    faces.append(np.stack([np.full(n, top), last + i, last + (i + 1) % n], 1))
+    return Lobe(verts, _wind_outwards(verts, np.concatenate(faces).astype(np.int64)))
+
+
+def _counter_clockwise(ring: np.ndarray, axis: np.ndarray) -> np.ndarray:
+    c = ring.mean(axis=0)
+    normal = np.cross(ring - c, np.roll(ring, -1, axis=0) - c).sum(axis=0)
+    return ring if normal @ axis > 0 else ring[::-1].copy()
+
+
+def _wind_outwards(verts: np.ndarray, faces: np.ndarray) -> np.ndarray:
+    """Flip any triangle whose normal points towards the lobe's centre (lobes are star-shaped)."""
+    tri = verts[faces]
+    normal = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
+    inward = np.einsum("ij,ij->i", normal, tri.mean(axis=1) - verts.mean(axis=0)) < 0
+    faces = faces.copy()
+    faces[inward] = faces[inward][:, ::-1]
+    return faces
+
+
+@dataclass
+class Skeleton:
+    """Branch nodes: position, parent (-1 for the root), heading of the branch into the node."""
+
+    position: np.ndarray
+    parent: np.ndarray
+    heading: np.ndarray
+    active: np.ndarray
+
+    @classmethod
+    def from_trunk(cls, points: np.ndarray) -> Skeleton:
+        """A chain of nodes (a drawn trunk); only its tip grows."""
+        points = np.asarray(points, float)
+        heading = np.vstack([[0.0, 1.0, 0.0], _unit(np.diff(points, axis=0))])
+        active = np.zeros(len(points), bool)
+        active[-1] = True
+        return cls(points, np.arange(len(points)) - 1, heading, active)
+
+
+def _nearest(points: np.ndarray, targets: np.ndarray, chunk: int = 2048) -> tuple[np.ndarray, np.ndarray]:
+    """Index of and distance to the nearest target for every point."""
+    idx = np.empty(len(points), np.int64)
+    dist = np.empty(len(points))
+    tt = np.einsum("ij,ij->i", targets, targets)
+    for s in range(0, len(points), chunk):
+        p = points[s : s + chunk]
+        d2 = np.einsum("ij,ij->i", p, p)[:, None] - 2 * p @ targets.T + tt[None]
+        k = np.argmin(d2, axis=1)
+        idx[s : s + chunk] = k
+        dist[s : s + chunk] = np.sqrt(np.maximum(d2[np.arange(len(p)), k], 0.0))
+    return idx, dist
+
+
+def grow_into_lobes(skeleton: Skeleton, lobes: list[Lobe], attractors: np.ndarray, t_deg: float = 40.0,
+                    step: float = 0.6, kill: float = 0.3, stop: float = 0.15, iterations: int = 30,
+                    max_nodes: int = 8000) -> Skeleton:
+    """Seed 004's growth (see module docstring), bounded by ``max_nodes``. A branch that would leave
+    the lobes once inside them is not grown, so the crown keeps the drawn silhouette."""
+    remaining = np.asarray(attractors, float)
+    surface = np.concatenate([lobe.vertices for lobe in lobes])
+    inside = _inside_any(lobes, skeleton.position)
+    t = np.radians(t_deg)
+    for _ in range(iterations):
+        active = np.flatnonzero(skeleton.active)
+        if len(remaining) == 0 or len(active) == 0 or len(skeleton.parent) >= max_nodes:
+            break
+        owner_local, _ = _nearest(remaining, skeleton.position[active])
+        _, to_surface = _nearest(skeleton.position[active], surface)
+        growing = to_surface > stop
+        keep = growing[owner_local]  # attractors of stopped nodes retire
+        remaining, owner_local = remaining[keep], owner_local[keep]
+        skeleton.active[active] = False
+        if len(remaining) == 0:
+            break
+        nodes, directions, lengths = _grow_step(skeleton, remaining, active, owner_local, to_surface, t, step)
+        new_pos = skeleton.position[nodes] + directions * lengths[:, None]
+        new_inside = _inside_any(lobes, new_pos)
+        stays = new_inside | ~inside[nodes]
+        nodes, directions, new_pos, new_inside = nodes[stays], directions[stays], new_pos[stays], new_inside[stays]
+        room = max_nodes - len(skeleton.parent)
+        nodes, directions, new_pos, new_inside = nodes[:room], directions[:room], new_pos[:room], new_inside[:room]
+        inside = np.concatenate([inside, new_inside])
+        skeleton.position = np.concatenate([skeleton.position, new_pos])
+        skeleton.parent = np.concatenate([skeleton.parent, nodes])
+        skeleton.heading = np.concatenate([skeleton.heading, directions])
+        skeleton.active = np.concatenate([skeleton.active, np.ones(len(nodes), bool)])
+        _, reach = _nearest(remaining, new_pos)
+        remaining = remaining[reach > kill]
+    return skeleton
+
+
+def _inside_any(lobes: list[Lobe], points: np.ndarray) -> np.ndarray:
+    inside = np.zeros(len(points), bool)
+    for lobe in lobes:
+        inside |= lobe.contains(points)
+    return inside
+
+
+def _grow_step(skeleton: Skeleton, points, active, owner_local, to_surface, t, step):
+    """One branch per (node, split piece): parent nodes, unit directions V_A, lengths."""
+    base = skeleton.position[active][owner_local]
+    vec = points - base
+    d = np.linalg.norm(vec, axis=1)
+    unit = vec / np.maximum(d, 1e-12)[:, None]
+    az = np.arctan2(unit[:, 2], unit[:, 0])
+    el = np.arcsin(np.clip(unit[:, 1], -1.0, 1.0))
+    m = len(active)
+    lo_az, hi_az = np.full(m, np.inf), np.full(m, -np.inf)
+    lo_el, hi_el = np.full(m, np.inf), np.full(m, -np.inf)
+    np.minimum.at(lo_az, owner_local, az)
+    np.maximum.at(hi_az, owner_local, az)
+    np.minimum.at(lo_el, owner_local, el)
+    np.maximum.at(hi_el, owner_local, el)
+    nh = np.maximum(np.ceil((hi_az - lo_az) / t), 1).astype(np.int64)
+    nv = np.maximum(np.ceil((hi_el - lo_el) / t), 1).astype(np.int64)
+    span_az = np.maximum(hi_az - lo_az, 1e-12)[owner_local]
+    span_el = np.maximum(hi_el - lo_el, 1e-12)[owner_local]
+    ih = np.minimum(((az - lo_az[owner_local]) / span_az * nh[owner_local]).astype(np.int64), nh[owner_local] - 1)
+    iv = np.minimum(((el - lo_el[owner_local]) / span_el * nv[owner_local]).astype(np.int64), nv[owner_local] - 1)
+    keys, group = np.unique((owner_local * 4096 + ih) * 4096 + iv, return_inverse=True)
+    weighted = np.zeros((len(keys), 3))
+    np.add.at(weighted, group, unit * d[:, None])
+    total = np.bincount(group, weights=d, minlength=len(keys))
+    node_local = keys // (4096 * 4096)
+    nodes = active[node_local]
+    v_cluster = weighted / np.maximum(total, 1e-12)[:, None]
+    directions = _unit(v_cluster + ALPHA * skeleton.heading[nodes] + BETA * GRAVITY)
+    lengths = np.minimum(step, 0.5 * to_surface[node_local] + 0.02)
+    return nodes, directions, lengths
+
+
+def skeleton_text(skeleton: Skeleton) -> str:
+    """The skeleton as ordinary L-string text: F pieces with turns, side branches in brackets, no
+    widths (the pipe model sets the radii). Walks each axis iteratively; recursion only enters side
+    branches, whose nesting is bounded by the number of growth iterations."""
+    children: dict[int, list[int]] = {}
+    for child, parent in enumerate(skeleton.parent.tolist()):
+        if parent >= 0:
+            children.setdefault(parent, []).append(child)
+    settings = ModelerSettings(density=0.0)
+
+    def piece(a: int, b: int, frame: np.ndarray) -> tuple[str, np.ndarray]:
+        text, end = path_modules(skeleton.position[[a, b]], frame, np.ones(1), [], settings)
+        return _NO_WIDTH.sub("", text), end
+
+    def axis(node: int, frame: np.ndarray) -> str:
+        out = []
+        while children.get(node):
+            first, *sides = children[node]
+            for side in sides:
+                text, side_frame = piece(node, side, frame)
+                out.append("[" + text + axis(side, side_frame) + "]")
+            text, frame = piece(node, first, frame)
+            out.append(text)
+            node = first
+        return "".join(out)
+
+    return axis(0, INITIAL_FRAME.copy())

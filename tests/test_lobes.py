@@ -1,0 +1,85 @@
+"""Lobes from closed strokes and growth into them (seed 004, toward issue 6)."""
+
+import numpy as np
+import pytest
+import trimesh
+
+from engine.lobes import Skeleton, grow_into_lobes, lobe_from_loops, skeleton_text
+from engine.lstring import parse_lstring
+from engine.turtle import TurtleConfig, interpret
+
+
+def circle(y: float, radius: float, n: int = 60, roll: int = 0, wobble: float = 0.0) -> np.ndarray:
+    a = np.linspace(0, 2 * np.pi, n, endpoint=False)
+    r = radius * (1 + wobble * np.sin(3 * a))
+    return np.roll(np.stack([r * np.cos(a), np.full(n, y), r * np.sin(a)], 1), roll, axis=0)
+
+
+def crown() -> list:
+    heights = [4.0, 5.0, 6.0, 7.0]
+    radii = [1.2, 2.2, 2.2, 1.2]
+    return [lobe_from_loops([circle(h, r, wobble=0.1) for h, r in zip(heights, radii, strict=True)])]
+
+
+def test_lobe_is_a_closed_outward_mesh_of_the_right_volume():
+    lobe = lobe_from_loops([circle(0.0, 1.0), circle(2.0, 1.0)], points_per_loop=64)
+    mesh = trimesh.Trimesh(lobe.vertices, lobe.faces, process=False)
+    assert mesh.is_watertight and mesh.is_winding_consistent
+    assert mesh.volume == pytest.approx(np.pi * 2.0, rel=0.01)  # a cylinder r=1, h=2
+
+
+def test_stroke_order_and_start_point_do_not_twist_the_lobe():
+    straight = lobe_from_loops([circle(0.0, 1.0), circle(1.0, 1.5), circle(2.0, 1.0)])
+    scrambled = lobe_from_loops([circle(2.0, 1.0, roll=17), circle(0.0, 1.0), circle(1.0, 1.5, roll=40)[::-1]])
+    volume = trimesh.Trimesh(straight.vertices, straight.faces, process=False).volume
+    twisted = trimesh.Trimesh(scrambled.vertices, scrambled.faces, process=False)
+    assert twisted.is_watertight and twisted.is_winding_consistent
+    assert twisted.volume == pytest.approx(volume, rel=0.01)
+
+
+def test_inside_test_matches_the_drawn_shape():
+    lobe = lobe_from_loops([circle(0.0, 1.0), circle(2.0, 1.0)], points_per_loop=64)
+    rng = np.random.default_rng(1)
+    points = rng.uniform([-1.5, -0.5, -1.5], [1.5, 2.5, 1.5], (4000, 3))
+    radial = np.hypot(points[:, 0], points[:, 2])
+    clear_in = (radial < 0.98) & (points[:, 1] > 0.02) & (points[:, 1] < 1.98)
+    clear_out = (radial > 1.0) | (points[:, 1] < 0) | (points[:, 1] > 2)
+    inside = lobe.contains(points)
+    assert inside[clear_in].all() and not inside[clear_out].any()
+    samples = lobe.sample_inside(500, rng)
+    assert len(samples) == 500 and lobe.contains(samples).all()
+
+
+def test_growth_fills_the_lobe_and_never_leaves_it():
+    lobes = crown()
+    rng = np.random.default_rng(0)
+    attractors = np.concatenate([lobes[0].vertices, lobes[0].sample_inside(1500, rng)])
+    trunk = np.array([[0.0, 0.0, 0.0], [0.0, 2.0, 0.0], [0.0, 3.5, 0.0]])
+    skeleton = grow_into_lobes(Skeleton.from_trunk(trunk), lobes, attractors)
+    grown = np.arange(3, len(skeleton.parent))
+    inside = lobes[0].contains(skeleton.position)
+    assert not (inside[skeleton.parent[grown]] & ~inside[grown]).any()
+    assert inside.sum() > 300
+    crown_nodes = skeleton.position[inside]
+    assert np.ptp(crown_nodes[:, 0]) > 0.75 * 4.4 and np.ptp(crown_nodes[:, 2]) > 0.75 * 4.4
+    assert crown_nodes[:, 1].max() > 6.3
+
+
+def test_growth_respects_the_node_budget():
+    lobes = crown()
+    attractors = lobes[0].sample_inside(1500, np.random.default_rng(0))
+    trunk = np.array([[0.0, 0.0, 0.0], [0.0, 3.5, 0.0]])
+    skeleton = grow_into_lobes(Skeleton.from_trunk(trunk), lobes, attractors, max_nodes=200)
+    assert len(skeleton.parent) == 200
+
+
+def test_skeleton_becomes_an_lstring_with_the_same_branch_points():
+    lobes = crown()
+    attractors = lobes[0].sample_inside(600, np.random.default_rng(2))
+    trunk = np.array([[0.0, 0.0, 0.0], [0.0, 3.5, 0.0]])
+    skeleton = grow_into_lobes(Skeleton.from_trunk(trunk), lobes, attractors, max_nodes=400)
+    result = interpret(parse_lstring(skeleton_text(skeleton)), TurtleConfig(width=0.05))
+    ends = result.segments.end
+    assert len(ends) == len(skeleton.parent) - 1
+    gap = np.linalg.norm(ends[:, None, :] - skeleton.position[None, 1:, :], axis=2).min(axis=0)
+    assert gap.max() < 1e-6
