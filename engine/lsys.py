@@ -21,6 +21,7 @@ or 'ε' erases the module. Directives and number headers may end in a ``// comme
 from __future__ import annotations
 
 import hashlib
+import math
 import re
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -260,6 +261,8 @@ def _header(system: LSystem, line: str, file: str, number: int) -> bool:
 
 
 def _set_header(system: LSystem, attr: str, value: float, cur: Cursor) -> None:
+    if not math.isfinite(value):
+        raise cur.error(f"'{attr}' must be a finite number")
     if attr in ("iterations", "seed", "budget", "leaves_at_tips"):
         if value != int(value) or value < 0 or value > 2**62:
             raise cur.error(f"'{attr}' must be a whole number >= 0")

@@ -50,6 +50,7 @@ def test_seed003_tree_matches_the_paper(lsys_dir):
         ("w: F\np1: F(x,x) -> F", 2, 5, "used twice"),
         ("w: F\np1: F -> (0.5) F | (z) G", 2, 21, "unknown name 'z'"),
         ("w: F\nn: 2.5", 2, 7, "whole number"),
+        ("w: F\nn: 1e309", 2, 9, "finite"),
         ("w: F\np1: A B -> F", 2, 5, "exactly one module"),
         ("w: F\np1: F -> F(1,", 2, 14, "expected a number"),
     ],
