@@ -11,7 +11,7 @@ import time
 
 import numpy as np
 
-from engine.lobes import Skeleton, grow_into_lobes, lobe_from_loops, skeleton_text
+from engine.lobes import Crossings, Skeleton, grow_into_lobes, lobe_from_loops, skeleton_text
 
 
 def _ring(center, radius: float, phase: int, n: int = 80) -> np.ndarray:
@@ -44,6 +44,9 @@ def main() -> None:
     trunk = np.array([[0.0, 0.0, 0.0], [0.0, 1.5, 0.0], [0.0, 3.2, 0.0]])
     ms, skeleton = _median_ms(lambda: grow_into_lobes(Skeleton.from_trunk(trunk), lobes, attractors))
     print(f"grow into {len(attractors)} attractors: {ms:.1f} ms, {len(skeleton.parent)} nodes")
+    inside = Crossings(lobes).inside(skeleton.position) >= 0
+    print(f"grown nodes outside every lobe: {int((~inside[len(trunk):]).sum())} (branches from the trunk tip that"
+          " have not yet entered a lobe; none once inside)")
     ms, text = _median_ms(lambda: skeleton_text(skeleton))
     print(f"skeleton -> L-string: {ms:.1f} ms, {len(text)} characters")
 

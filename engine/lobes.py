@@ -18,7 +18,6 @@ from __future__ import annotations
 
 import re
 from dataclasses import dataclass
-from functools import cached_property
 
 import numpy as np
 
@@ -28,7 +27,6 @@ from engine.turtle import INITIAL_FRAME
 _NO_WIDTH = re.compile(r"!\([^)]*\)")
 ALPHA, BETA = 0.8, -0.3
 GRAVITY = np.array([0.0, -1.0, 0.0])
-_RAY = np.array([1.0, 1e-7, 2e-7])  # slightly skewed, so a ray never runs exactly along an edge
 
 
 def _unit(v: np.ndarray) -> np.ndarray:
@@ -55,32 +53,9 @@ class Lobe:
     vertices: np.ndarray
     faces: np.ndarray
 
-    @cached_property
-    def _rays(self) -> tuple[np.ndarray, ...]:
-        """Per-triangle terms of the ray test, computed once per lobe."""
-        v0, v1, v2 = (self.vertices[self.faces[:, k]] for k in range(3))
-        e1, e2 = v1 - v0, v2 - v0
-        h = np.cross(_RAY, e2)
-        a = np.einsum("ij,ij->i", e1, h)
-        ok = np.abs(a) > 1e-12
-        f = np.where(ok, 1.0 / np.where(ok, a, 1.0), 0.0)
-        return v0, e1, e2, h, f, ok, self.vertices.min(axis=0), self.vertices.max(axis=0)
-
     def contains(self, points: np.ndarray) -> np.ndarray:
-        """Inside test by the parity of crossings along a ray (vectorised over points and triangles)."""
-        v0, e1, e2, h, f, ok, lo, hi = self._rays
-        inside = np.zeros(len(points), bool)
-        candidates = np.flatnonzero(np.all((points >= lo) & (points <= hi), axis=1))
-        for start in range(0, len(candidates), 256):
-            rows = candidates[start : start + 256]
-            s = points[rows, None, :] - v0[None]
-            u = f * np.einsum("pij,ij->pi", s, h)
-            q = np.cross(s, e1[None])
-            v = f * (q @ _RAY)
-            t = f * np.einsum("ij,pij->pi", e2, q)
-            hit = ok & (u >= 0) & (v >= 0) & (u + v <= 1) & (t > 0)
-            inside[rows] = hit.sum(axis=1) % 2 == 1
-        return inside
+        """True for points inside the lobe."""
+        return Crossings([self]).inside(points) == 0
 
     def sample_inside(self, count: int, rng: np.random.Generator) -> np.ndarray:
         """``count`` points uniformly inside (rejection sampling in the bounding box)."""
@@ -92,6 +67,46 @@ class Lobe:
             if sum(len(f) for f in found) >= count:
                 break
         return np.concatenate(found)[:count]
+
+
+class Crossings:
+    """Inside test for a set of lobes by the parity of crossings along a ray in +x, done as a 2D
+    point-in-triangle test in the y-z plane (vectorised over points and all lobes' triangles)."""
+
+    def __init__(self, lobes: list[Lobe]) -> None:
+        tri = np.concatenate([lobe.vertices[lobe.faces] for lobe in lobes])
+        self.lobe = np.repeat(np.arange(len(lobes)), [len(lobe.faces) for lobe in lobes])
+        self.count = len(lobes)
+        self.p0 = tri[:, 0]
+        self.e1, self.e2 = tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0]
+        det = self.e1[:, 1] * self.e2[:, 2] - self.e1[:, 2] * self.e2[:, 1]
+        ok = np.abs(det) > 1e-15  # triangles seen edge-on from the ray are never crossed
+        self.inv = np.where(ok, 1.0 / np.where(ok, det, 1.0), 0.0)
+        self.tri_lo, self.tri_hi = tri.min(axis=1), tri.max(axis=1)
+        self.tri_lo[~ok] = np.inf
+        self.lo, self.hi = tri.min(axis=(0, 1)), tri.max(axis=(0, 1))
+        self.nudge = np.array([3.7e-9, 7.1e-9]) * max(float(np.max(self.hi - self.lo)), 1e-6)
+
+    def inside(self, points: np.ndarray) -> np.ndarray:
+        """Index of a lobe containing each point, -1 for points outside all of them."""
+        which = np.full(len(points), -1, np.int64)
+        rows = np.flatnonzero(np.all((points >= self.lo) & (points <= self.hi), axis=1))
+        for start in range(0, len(rows), 1024):
+            chunk = rows[start : start + 1024]
+            # a tiny odd offset keeps the ray off shared edges and vertices (points on a ring's plane)
+            y, z = points[chunk, 1:2] + self.nudge[0], points[chunk, 2:3] + self.nudge[1]
+            near = ((y >= self.tri_lo[:, 1]) & (y <= self.tri_hi[:, 1])
+                    & (z >= self.tri_lo[:, 2]) & (z <= self.tri_hi[:, 2]))
+            p, t = np.nonzero(near)  # only triangles whose y-z box holds the point can be crossed
+            dy, dz = y[p, 0] - self.p0[t, 1], z[p, 0] - self.p0[t, 2]
+            u = (dy * self.e2[t, 2] - dz * self.e2[t, 1]) * self.inv[t]
+            v = (dz * self.e1[t, 1] - dy * self.e1[t, 2]) * self.inv[t]
+            x = self.p0[t, 0] + u * self.e1[t, 0] + v * self.e2[t, 0]
+            hit = (u >= 0) & (v >= 0) & (u + v <= 1) & (x > points[chunk[p], 0])
+            crossings = np.bincount(p[hit] * self.count + self.lobe[t[hit]], minlength=len(chunk) * self.count)
+            odd = crossings.reshape(len(chunk), self.count) % 2 == 1
+            which[chunk] = np.where(odd.any(axis=1), np.argmax(odd, axis=1), -1)
+        return which
 
 
 def lobe_from_loops(loops: list[np.ndarray], points_per_loop: int = 32) -> Lobe:
@@ -153,17 +168,17 @@ class Skeleton:
         return cls(points, np.arange(len(points)) - 1, heading, active)
 
 
-def _nearest(points: np.ndarray, targets: np.ndarray, chunk: int = 2048) -> tuple[np.ndarray, np.ndarray]:
+def _nearest(points: np.ndarray, targets: np.ndarray, chunk: int = 4096) -> tuple[np.ndarray, np.ndarray]:
     """Index of and distance to the nearest target for every point."""
     idx = np.empty(len(points), np.int64)
     dist = np.empty(len(points))
-    tt = np.einsum("ij,ij->i", targets, targets)
+    fast = targets.astype(np.float32)  # single precision only ranks candidates; distances are exact
+    tt = np.einsum("ij,ij->i", fast, fast)
     for s in range(0, len(points), chunk):
         p = points[s : s + chunk]
-        d2 = np.einsum("ij,ij->i", p, p)[:, None] - 2 * p @ targets.T + tt[None]
-        k = np.argmin(d2, axis=1)
+        k = np.argmin(tt[None] - 2.0 * (p.astype(np.float32) @ fast.T), axis=1)  # |p|^2 does not change the order
         idx[s : s + chunk] = k
-        dist[s : s + chunk] = np.sqrt(np.maximum(d2[np.arange(len(p)), k], 0.0))
+        dist[s : s + chunk] = np.linalg.norm(p - targets[k], axis=1)
     return idx, dist
 
 
@@ -174,13 +189,16 @@ def grow_into_lobes(skeleton: Skeleton, lobes: list[Lobe], attractors: np.ndarra
     the lobes once inside them is not grown, so the crown keeps the drawn silhouette."""
     remaining = np.asarray(attractors, float)
     surface = np.concatenate([lobe.vertices for lobe in lobes])
-    inside = _inside_any(lobes, skeleton.position)
+    crossings = Crossings(lobes)
+    inside = crossings.inside(skeleton.position) >= 0
     t = np.radians(t_deg)
+    owner_local = None
     for _ in range(iterations):
         active = np.flatnonzero(skeleton.active)
         if len(remaining) == 0 or len(active) == 0 or len(skeleton.parent) >= max_nodes:
             break
-        owner_local, _ = _nearest(remaining, skeleton.position[active])
+        if owner_local is None:
+            owner_local, _ = _nearest(remaining, skeleton.position[active])
         _, to_surface = _nearest(skeleton.position[active], surface)
         growing = to_surface > stop
         keep = growing[owner_local]  # attractors of stopped nodes retire
@@ -190,26 +208,21 @@ def grow_into_lobes(skeleton: Skeleton, lobes: list[Lobe], attractors: np.ndarra
             break
         nodes, directions, lengths = _grow_step(skeleton, remaining, active, owner_local, to_surface, t, step)
         new_pos = skeleton.position[nodes] + directions * lengths[:, None]
-        new_inside = _inside_any(lobes, new_pos)
+        new_inside = crossings.inside(new_pos) >= 0
         stays = new_inside | ~inside[nodes]
         nodes, directions, new_pos, new_inside = nodes[stays], directions[stays], new_pos[stays], new_inside[stays]
         room = max_nodes - len(skeleton.parent)
         nodes, directions, new_pos, new_inside = nodes[:room], directions[:room], new_pos[:room], new_inside[:room]
+        if len(nodes) == 0:
+            break
         inside = np.concatenate([inside, new_inside])
         skeleton.position = np.concatenate([skeleton.position, new_pos])
         skeleton.parent = np.concatenate([skeleton.parent, nodes])
         skeleton.heading = np.concatenate([skeleton.heading, directions])
         skeleton.active = np.concatenate([skeleton.active, np.ones(len(nodes), bool)])
-        _, reach = _nearest(remaining, new_pos)
-        remaining = remaining[reach > kill]
+        owner_local, reach = _nearest(remaining, new_pos)  # the new nodes are the next active set
+        remaining, owner_local = remaining[reach > kill], owner_local[reach > kill]
     return skeleton
-
-
-def _inside_any(lobes: list[Lobe], points: np.ndarray) -> np.ndarray:
-    inside = np.zeros(len(points), bool)
-    for lobe in lobes:
-        inside |= lobe.contains(points)
-    return inside
 
 
 def _grow_step(skeleton: Skeleton, points, active, owner_local, to_surface, t, step):

@@ -46,6 +46,8 @@ def test_inside_test_matches_the_drawn_shape():
     clear_out = (radial > 1.0) | (points[:, 1] < 0) | (points[:, 1] > 2)
     inside = lobe.contains(points)
     assert inside[clear_in].all() and not inside[clear_out].any()
+    on_grid_lines = np.array([[0.0, 1.0, 0.0], [0.5, 1.0, 0.0], [0.0, 0.5, 0.5], [-0.9, 1.5, 0.0]])
+    assert lobe.contains(on_grid_lines).all()  # rays through shared vertices and edges count once
     samples = lobe.sample_inside(500, rng)
     assert len(samples) == 500 and lobe.contains(samples).all()
 
@@ -83,3 +85,23 @@ def test_skeleton_becomes_an_lstring_with_the_same_branch_points():
     assert len(ends) == len(skeleton.parent) - 1
     gap = np.linalg.norm(ends[:, None, :] - skeleton.position[None, 1:, :], axis=2).min(axis=0)
     assert gap.max() < 1e-6
+
+
+def test_growth_stops_cleanly_when_no_branch_may_grow():
+    lobes = crown()
+    attractors = lobes[0].sample_inside(200, np.random.default_rng(3))
+    trunk = np.array([[0.0, 0.0, 0.0], [0.0, 3.5, 0.0]])
+    skeleton = grow_into_lobes(Skeleton.from_trunk(trunk), lobes, attractors, max_nodes=2)
+    assert len(skeleton.parent) == 2
+    far = np.array([[0.0, 0.0, 0.0], [0.0, 30.0, 0.0]])  # tip far outside: only attractors it cannot reach
+    assert len(grow_into_lobes(Skeleton.from_trunk(far), lobes, np.zeros((0, 3))).parent) == 2
+
+
+def test_a_trunk_drawn_into_the_crown_grows_only_inside_it():
+    lobes = crown()
+    rng = np.random.default_rng(4)
+    attractors = np.concatenate([lobes[0].vertices, lobes[0].sample_inside(1000, rng)])
+    trunk = np.array([[0.0, 0.0, 0.0], [0.0, 2.5, 0.0], [0.0, 4.4, 0.0]])
+    skeleton = grow_into_lobes(Skeleton.from_trunk(trunk), lobes, attractors)
+    assert len(skeleton.parent) > 300
+    assert lobes[0].contains(skeleton.position[2:]).all()
