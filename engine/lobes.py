@@ -21,7 +21,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from engine.modeler import ModelerSettings, path_modules
+from engine.lstring import concat, parse_lstring
+from engine.modeler import Modeler, ModelerSettings, path_modules
 from engine.turtle import INITIAL_FRAME
 
 _NO_WIDTH = re.compile(r"!\([^)]*\)")
@@ -258,10 +259,23 @@ def _grow_step(skeleton: Skeleton, points, active, owner_local, to_surface, t, s
     return nodes, directions, lengths
 
 
-def skeleton_text(skeleton: Skeleton) -> str:
-    """The skeleton as ordinary L-string text: F pieces with turns, side branches in brackets, no
-    widths (the pipe model sets the radii). Walks each axis iteratively; recursion only enters side
-    branches, whose nesting is bounded by the number of growth iterations."""
+def pipe_diameters(skeleton: Skeleton, root_diameter: float, root: int = 0) -> np.ndarray:
+    """Diameter of the piece into every node by the pipe model (area preserving): proportional to the
+    square root of the number of tips it carries, ``root_diameter`` at ``root``."""
+    tips = (np.bincount(skeleton.parent[skeleton.parent >= 0], minlength=len(skeleton.parent)) == 0).astype(float)
+    for node in range(len(tips) - 1, 0, -1):  # children always come after their parents
+        if skeleton.parent[node] >= 0:
+            tips[skeleton.parent[node]] += tips[node]
+    return root_diameter * np.sqrt(tips / max(tips[root], 1.0))
+
+
+def skeleton_text(skeleton: Skeleton, root: int = 0, frame: np.ndarray = INITIAL_FRAME,
+                  diameters: np.ndarray | None = None) -> str:
+    """The skeleton from node ``root`` on, for a turtle standing there with ``frame``, as ordinary
+    L-string text: F pieces with turns, side branches in brackets; each piece gets its diameter from
+    ``diameters`` (per node), or none (then the pipe model sets the radii). Walks each axis
+    iteratively; recursion only enters side branches, whose nesting is bounded by the number of
+    growth iterations."""
     children: dict[int, list[int]] = {}
     for child, parent in enumerate(skeleton.parent.tolist()):
         if parent >= 0:
@@ -269,6 +283,8 @@ def skeleton_text(skeleton: Skeleton) -> str:
     settings = ModelerSettings(density=0.0)
 
     def piece(a: int, b: int, frame: np.ndarray) -> tuple[str, np.ndarray]:
+        if diameters is not None:
+            return path_modules(skeleton.position[[a, b]], frame, diameters[b : b + 1], [], settings)
         text, end = path_modules(skeleton.position[[a, b]], frame, np.ones(1), [], settings)
         return _NO_WIDTH.sub("", text), end
 
@@ -284,4 +300,63 @@ def skeleton_text(skeleton: Skeleton) -> str:
             node = first
         return "".join(out)
 
-    return axis(0, INITIAL_FRAME.copy())
+    return axis(root, np.array(frame, float))
+
+
+def lobe_from_outline(outline: np.ndarray, depth: float = 1.0, rings: int = 7) -> Lobe:
+    """A lobe from one closed silhouette drawn on a vertical plane (a finger or the mouse): at
+    ``rings`` heights the outline's left and right edges give a horizontal ring (an ellipse whose
+    depth is ``depth`` times its width), and the rings are stitched like drawn closed strokes."""
+    outline = np.asarray(outline, float)
+    flat = outline - outline.mean(axis=0)
+    across = np.linalg.svd(flat[:, [0, 2]], full_matrices=False)[2][0]  # the plane's horizontal axis
+    side = np.array([across[0], 0.0, across[1]])
+    normal = np.cross(side, [0.0, 1.0, 0.0])
+    closed = np.concatenate([outline, outline[:1]])
+    y0, y1 = outline[:, 1].min(), outline[:, 1].max()
+    if y1 - y0 < 1e-6:
+        raise ValueError("a silhouette needs some height")
+    a = np.linspace(0, 2 * np.pi, 32, endpoint=False)[:, None]
+    loops = []
+    for y in y0 + (y1 - y0) * (np.arange(rings) + 0.5) / rings:
+        a_y, b_y = closed[:-1, 1], closed[1:, 1]
+        cross = (a_y - y) * (b_y - y) <= 0  # outline pieces that cross this height
+        f = (y - a_y[cross]) / np.where(b_y[cross] == a_y[cross], 1.0, b_y[cross] - a_y[cross])
+        points = closed[:-1][cross] + f[:, None] * (closed[1:][cross] - closed[:-1][cross])
+        along = points @ side
+        centre = points[np.argmin(along)] + (along.max() - along.min()) / 2 * side
+        radius = max((along.max() - along.min()) / 2, 1e-3)
+        loops.append(np.array([centre[0], y, centre[2]]) + radius * (np.cos(a) * side + depth * np.sin(a) * normal))
+    return lobe_from_loops(loops)
+
+
+def grow_crown(modeler: Modeler, lobes: list[Lobe], rng: np.random.Generator, per_lobe: int = 1500,
+               max_nodes: int = 6000) -> int:
+    """Grow the modeled tree into ``lobes`` (seed 004) and commit the branches to its L-string
+    (undoable). Growth starts at the drawn tip nearest the lobes, or on an empty tree at a straight
+    trunk from the base into the lowest lobe. Returns the number of branch pieces added."""
+    surface = np.concatenate([lobe.vertices for lobe in lobes])
+    attractors = np.concatenate([surface] + [lobe.sample_inside(per_lobe, rng) for lobe in lobes])
+    centre = surface.mean(axis=0)
+    if len(modeler.lstring) == 0:
+        lowest = min(lobes, key=lambda lobe: lobe.vertices[:, 1].min())
+        entry = lowest.vertices.mean(axis=0)
+        entry[1] = lowest.vertices[:, 1].min() + 0.2 * np.ptp(lowest.vertices[:, 1])
+        trunk = Skeleton.from_trunk(np.stack([np.zeros(3), entry]))
+        grown = grow_into_lobes(trunk, lobes, attractors, max_nodes=max_nodes)
+        modeler.commit(parse_lstring(skeleton_text(grown)))
+        return len(grown.parent) - 1
+    segs = modeler.segments()
+    tips = np.setdiff1d(np.arange(len(segs)), segs.parent)
+    k = int(tips[np.argmin(np.linalg.norm(segs.end[tips] - centre, axis=1))])
+    start = Skeleton.from_trunk(np.stack([segs.start[k], segs.end[k]]))
+    grown = grow_into_lobes(start, lobes, attractors, max_nodes=max_nodes)
+    if len(grown.parent) == 2:
+        return 0
+    diameters = pipe_diameters(grown, 2.0 * float(segs.radius_end[k]), root=1)
+    body = "[" + skeleton_text(grown, root=1, frame=segs.frame[k], diameters=diameters) + "]"
+    module = int(segs.module[k])
+    index = np.arange(len(modeler.lstring))
+    new = concat(modeler.lstring.select(index <= module), parse_lstring(body), modeler.lstring.select(index > module))
+    modeler.commit(new)
+    return len(grown.parent) - 2

@@ -354,10 +354,14 @@ class Modeler:
         """Convert a finished stroke and commit it (undoable)."""
         new, result = self.convert(stroke)
         if result.pieces:
-            self.undo_stack.append(self.lstring)
-            self.redo_stack.clear()
-            self.lstring = new
+            self.commit(new)
         return result
+
+    def commit(self, new: LString) -> None:
+        """Make ``new`` the tree, undoably (strokes, grown crowns and region edits all land here)."""
+        self.undo_stack.append(self.lstring)
+        self.redo_stack.clear()
+        self.lstring = new
 
     def undo(self) -> bool:
         """Take back the last stroke."""

@@ -4,8 +4,10 @@ import numpy as np
 import pytest
 import trimesh
 
-from engine.lobes import Skeleton, grow_into_lobes, lobe_from_loops, skeleton_text
+from engine.lobes import Skeleton, grow_crown, grow_into_lobes, lobe_from_loops, lobe_from_outline, skeleton_text
 from engine.lstring import parse_lstring
+from engine.modeler import Modeler
+from engine.strokes import Stroke
 from engine.turtle import TurtleConfig, interpret
 
 
@@ -105,3 +107,43 @@ def test_a_trunk_drawn_into_the_crown_grows_only_inside_it():
     skeleton = grow_into_lobes(Skeleton.from_trunk(trunk), lobes, attractors)
     assert len(skeleton.parent) > 300
     assert lobes[0].contains(skeleton.position[2:]).all()
+
+
+def silhouette() -> np.ndarray:
+    a = np.linspace(0, 2 * np.pi, 120, endpoint=False)
+    return np.stack([1.8 * np.cos(a) * (1 + 0.15 * np.sin(2 * a)), 4.6 + 1.6 * np.sin(a), 0 * a], 1)
+
+
+def test_a_drawn_silhouette_becomes_a_lobe_of_its_width_and_height():
+    lobe = lobe_from_outline(silhouette(), depth=0.5)
+    mesh = trimesh.Trimesh(lobe.vertices, lobe.faces, process=False)
+    assert mesh.is_watertight and mesh.is_winding_consistent and mesh.volume > 0
+    lo, hi = lobe.vertices.min(axis=0), lobe.vertices.max(axis=0)
+    assert 3.0 < hi[0] - lo[0] < 3.8 and 2.4 < hi[1] - lo[1] < 3.2  # drawn: 3.6 wide, 3.2 tall
+    assert hi[2] - lo[2] == pytest.approx(0.5 * (hi[0] - lo[0]), rel=0.15)
+
+
+def test_crown_grows_from_the_drawn_trunk_into_the_lobe_and_can_be_undone():
+    modeler = Modeler()
+    u = np.linspace(0, 1, 200)
+    modeler.add_stroke(Stroke(np.stack([0.2 * np.sin(3 * u), 3.0 * u, 0 * u], 1), np.linspace(0, 1.5, 200)))
+    trunk = modeler.lstring
+    trunk_segments = interpret(trunk, TurtleConfig()).segments
+    lobe = lobe_from_outline(silhouette())
+    added = grow_crown(modeler, [lobe], np.random.default_rng(0))
+    segments = interpret(modeler.lstring, TurtleConfig()).segments
+    assert added > 200 and len(segments) == len(trunk_segments) + added
+    np.testing.assert_allclose(segments.start[: len(trunk_segments)], trunk_segments.start, atol=1e-9)
+    crown = segments.end[len(trunk_segments):]
+    assert lobe.contains(crown).mean() > 0.95
+    assert segments.radius[len(trunk_segments):].max() <= trunk_segments.radius_end[-1] * 1.001
+    assert parse_lstring(modeler.lstring.to_text()).equals(modeler.lstring)  # saves as plain text
+    assert modeler.undo() and modeler.lstring is trunk
+
+
+def test_crown_on_an_empty_tree_gets_a_trunk_from_the_ground():
+    modeler = Modeler()
+    added = grow_crown(modeler, [lobe_from_outline(silhouette())], np.random.default_rng(1))
+    segments = interpret(modeler.lstring, TurtleConfig()).segments
+    assert len(segments) == added and np.allclose(segments.start[0], 0.0)
+    assert segments.end[:, 1].max() > 5.5
