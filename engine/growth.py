@@ -108,6 +108,9 @@ def _radii(ls: LString, view: LString, segs, clocks: Clocks, const: dict[str, fl
     girth_birth = np.where(grown, ls.params[np.where(grown, offsets + 1, 0)], 0.0)
     full = const["IL"] * const["IO"] ** order
     weight = np.where(grown, seg_len / full, 0.0)  # each internode feeds one leaf, as far as it has grown
+    drawn = ~grown & (ls.sym[segs.module] == ord("F")) & (ls.nparams[segs.module] == 11)
+    drawn_below = np.bincount(segs.parent[drawn & (segs.parent >= 0)], minlength=len(segs)) > 0
+    weight[drawn & ~drawn_below] = 1.0  # a drawn tip (a stroke's or a crown's) feeds one leaf's pipes
     pipes = const["TIP"] ** 2 * np.maximum(subtree_sums(view, segs, weight), 1e-6)
     rings = const["GMAX"] * _saturate(clocks.girth_time - girth_birth, const["GT"])
     radius = np.sqrt(pipes * (1.0 + rings))

@@ -194,14 +194,15 @@ def grow_into_lobes(skeleton: Skeleton, lobes: list[Lobe], attractors: np.ndarra
     inside = crossings.inside(skeleton.position) >= 0
     t = np.radians(t_deg)
     owner_local = None
-    for _ in range(iterations):
+    for iteration in range(iterations):
         active = np.flatnonzero(skeleton.active)
         if len(remaining) == 0 or len(active) == 0 or len(skeleton.parent) >= max_nodes:
             break
         if owner_local is None:
             owner_local, _ = _nearest(remaining, skeleton.position[active])
         _, to_surface = _nearest(skeleton.position[active], surface)
-        growing = to_surface > stop
+        # only nodes inside a lobe stop at its surface, and the first nodes always sprout
+        growing = (to_surface > stop) | ~inside[active] | (iteration == 0)
         keep = growing[owner_local]  # attractors of stopped nodes retire
         remaining, owner_local = remaining[keep], owner_local[keep]
         skeleton.active[active] = False
@@ -270,10 +271,11 @@ def pipe_diameters(skeleton: Skeleton, root_diameter: float, root: int = 0) -> n
 
 
 def skeleton_text(skeleton: Skeleton, root: int = 0, frame: np.ndarray = INITIAL_FRAME,
-                  diameters: np.ndarray | None = None) -> str:
+                  diameters: np.ndarray | None = None, tip: str = "") -> str:
     """The skeleton from node ``root`` on, for a turtle standing there with ``frame``, as ordinary
     L-string text: F pieces with turns, side branches in brackets; each piece gets its diameter from
-    ``diameters`` (per node), or none (then the pipe model sets the radii). Walks each axis
+    ``diameters`` (per node), or none (then the pipe model sets the radii); ``tip`` ends every branch
+    (e.g. a leaf). Walks each axis
     iteratively; recursion only enters side branches, whose nesting is bounded by the number of
     growth iterations."""
     children: dict[int, list[int]] = {}
@@ -298,7 +300,7 @@ def skeleton_text(skeleton: Skeleton, root: int = 0, frame: np.ndarray = INITIAL
             text, frame = piece(node, first, frame)
             out.append(text)
             node = first
-        return "".join(out)
+        return "".join(out) + tip
 
     return axis(root, np.array(frame, float))
 
@@ -331,30 +333,36 @@ def lobe_from_outline(outline: np.ndarray, depth: float = 1.0, rings: int = 7) -
 
 
 def grow_crown(modeler: Modeler, lobes: list[Lobe], rng: np.random.Generator, per_lobe: int = 1500,
-               max_nodes: int = 6000) -> int:
+               max_nodes: int = 6000, tip: str = "", step_fraction: float = 0.12) -> int:
     """Grow the modeled tree into ``lobes`` (seed 004) and commit the branches to its L-string
     (undoable). Growth starts at the drawn tip nearest the lobes, or on an empty tree at a straight
-    trunk from the base into the lowest lobe. Returns the number of branch pieces added."""
+    trunk from the base into the lowest lobe; ``tip`` ends every new branch (a leaf in the game).
+    Branch pieces are ``step_fraction`` of the crown's size long, so a crown looks alike at any scale.
+    Returns the number of branch pieces added."""
     surface = np.concatenate([lobe.vertices for lobe in lobes])
     attractors = np.concatenate([surface] + [lobe.sample_inside(per_lobe, rng) for lobe in lobes])
     centre = surface.mean(axis=0)
+    step = step_fraction * float(np.ptp(surface, axis=0).max())
+    sizes = {"step": step, "kill": step / 2, "stop": step / 4, "max_nodes": max_nodes}
     if len(modeler.lstring) == 0:
         lowest = min(lobes, key=lambda lobe: lobe.vertices[:, 1].min())
         entry = lowest.vertices.mean(axis=0)
         entry[1] = lowest.vertices[:, 1].min() + 0.2 * np.ptp(lowest.vertices[:, 1])
         trunk = Skeleton.from_trunk(np.stack([np.zeros(3), entry]))
-        grown = grow_into_lobes(trunk, lobes, attractors, max_nodes=max_nodes)
-        modeler.commit(parse_lstring(skeleton_text(grown)))
+        grown = grow_into_lobes(trunk, lobes, attractors, **sizes)
+        modeler.commit(parse_lstring(skeleton_text(grown, tip=tip)))
         return len(grown.parent) - 1
     segs = modeler.segments()
     tips = np.setdiff1d(np.arange(len(segs)), segs.parent)
     k = int(tips[np.argmin(np.linalg.norm(segs.end[tips] - centre, axis=1))])
-    start = Skeleton.from_trunk(np.stack([segs.start[k], segs.end[k]]))
-    grown = grow_into_lobes(start, lobes, attractors, max_nodes=max_nodes)
+    heading = segs.frame[k][:, 0]
+    start = Skeleton(np.stack([segs.start[k], segs.end[k]]), np.array([-1, 0]), np.stack([heading, heading]),
+                     np.array([False, True]))
+    grown = grow_into_lobes(start, lobes, attractors, **sizes)
     if len(grown.parent) == 2:
         return 0
     diameters = pipe_diameters(grown, 2.0 * float(segs.radius_end[k]), root=1)
-    body = "[" + skeleton_text(grown, root=1, frame=segs.frame[k], diameters=diameters) + "]"
+    body = "[" + skeleton_text(grown, root=1, frame=segs.frame[k], diameters=diameters, tip=tip) + "]"
     module = int(segs.module[k])
     index = np.arange(len(modeler.lstring))
     new = concat(modeler.lstring.select(index <= module), parse_lstring(body), modeler.lstring.select(index > module))

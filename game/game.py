@@ -196,6 +196,8 @@ class Game:
             self._sync_sliders()
         elif action == "modeler" and value:
             self.modeling.toggle()
+        elif action == "crown" and value:
+            self.modeling.toggle_crown()
         elif action == "undo" and value:
             self.modeling.undo()
         elif action == "redo" and value:
@@ -487,6 +489,7 @@ class Game:
         draw_hud(self.surface, self.font, info)
         if self.cursor3d is not None:
             self._draw_cursor3d(camera)
+        self.modeling.draw_outline(self.surface, lambda point: self._project(camera, point))
         self.menu.draw(self.surface, self.font)
         for hook in self.overlay_hooks:
             hook(self.surface)

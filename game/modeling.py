@@ -9,10 +9,14 @@ modeling and resumes, growing branches from the drawn growth points, when the mo
 
 from __future__ import annotations
 
+import time
+
 import numpy as np
+import pygame
 
 from engine.growth import grow_geometry
-from engine.lstring import LString
+from engine.lobes import grow_crown, lobe_from_outline
+from engine.lstring import LString, format_number
 from engine.modeler import Modeler
 from engine.strokes import Stroke
 from game.camera import OrbitCamera
@@ -34,6 +38,7 @@ class ModelingMode:
         self.stroke_camera: OrbitCamera | None = None  # the view a 2D stroke is drawn in
         self.bounds: tuple[np.ndarray, np.ndarray] | None = None  # framing kept while modeling
         self.resume_speed = 1.0
+        self.crown = False  # strokes are crown outlines, not branches
 
     def _segments(self, ls: LString):
         world = self.game.world
@@ -55,6 +60,14 @@ class ModelingMode:
         self.game.set_speed(0.0)
         self.modeler = Modeler(lstring=self.game.world.tree.lstring, segments_of=self._segments)
         self.game.say(text("messages.modeler_on"))
+
+    def toggle_crown(self) -> None:
+        """Switch strokes between branches and crown outlines (entering the modeler if needed)."""
+        if not self.active:
+            self.toggle()
+        self.crown = not self.crown
+        self.cancel()
+        self.game.say(text("messages.crown_on" if self.crown else "messages.crown_off"))
 
     def cancel(self) -> None:
         """Drop the stroke being drawn."""
@@ -87,12 +100,14 @@ class ModelingMode:
         """Extend the stroke with a 3D point (a tracker's cursor) and refresh the preview."""
         self.points.append(np.asarray(point, dtype=np.float64))
         self.times.append(t)
-        if len(self.points) >= 3 and self.modeler is not None:
+        if len(self.points) >= 3 and self.modeler is not None and not self.crown:
             self.preview, _ = self.modeler.convert(Stroke(np.array(self.points), np.array(self.times)))
 
     def finish(self) -> None:
         """The pointer went up: commit the stroke to the tree (undoable)."""
-        if self.modeler is not None and len(self.points) >= 3:
+        if self.crown and self.modeler is not None:
+            self._grow_crown()
+        elif self.modeler is not None and len(self.points) >= 3:
             result = self.modeler.add_stroke(Stroke(np.array(self.points), np.array(self.times)))
             self.game.world.tree.lstring = self.modeler.lstring
             how = text("messages.stroke_joined" if result.snapped_to is not None else "messages.stroke_new")
@@ -100,6 +115,35 @@ class ModelingMode:
                 how += ", " + text("messages.stroke_bent", count=result.bypassed)
             self.game.say(text("messages.stroke", pieces=result.pieces, points=result.growth_points, how=how))
         self.cancel()
+
+    def _grow_crown(self) -> None:
+        if len(self.points) < 8:
+            return
+        try:
+            lobe = lobe_from_outline(np.array(self.points))
+        except ValueError:
+            self.game.say(text("messages.crown_flat"))
+            return
+        budget = self.game.world.tree.deriver.budget
+        room = 6000 if budget is None else min(6000, (budget - len(self.modeler.lstring)) // 4)
+        start = time.perf_counter()
+        tree = self.game.world.tree
+        born = self.game.world.clocks().length_time - 0.5 * tree.geometry_constants["TAU"]  # leaves part grown
+        rng = np.random.default_rng(int(self.modeler.rng.integers(2**31)))
+        added = grow_crown(self.modeler, [lobe], rng, per_lobe=250, step_fraction=0.2, max_nodes=max(room, 2),
+                           tip=f"[&(45)L({format_number(born)})]")
+        ms = (time.perf_counter() - start) * 1e3
+        self.game.world.tree.lstring = self.modeler.lstring
+        key = "messages.crown_none" if added == 0 else "messages.crown_full" if added >= room - 2 else "messages.crown"
+        self.game.say(text(key, count=added, ms=ms))
+
+    def draw_outline(self, surface: pygame.Surface, project) -> None:
+        """The crown outline being drawn, as a closed line over the scene (``project``: 3D -> pixels)."""
+        if not (self.crown and len(self.points) >= 2):
+            return
+        pixels = [p for p in (project(point) for point in self.points) if p is not None]
+        if len(pixels) >= 2:
+            pygame.draw.lines(surface, (120, 230, 120, 230), len(pixels) >= 8, pixels, 4)
 
     def undo(self) -> None:
         """Take back the last stroke."""

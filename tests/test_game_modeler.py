@@ -132,3 +132,35 @@ def test_modeled_tree_saves_reloads_and_keeps_growing(game, tmp_path):
     grown = back.tree.lstring
     drawn_points = sum(1 for i in range(len(grown)) if grown.module(i)[0] == "A" and len(grown.module(i)[1]) == 5)
     assert drawn_points < apices  # growth points woke into growing apices
+
+
+def test_crown_outline_grows_the_tree_into_it(game):
+    press_menu(game, "crown")
+    assert game.modeling.active and game.modeling.crown
+    before = game.world.tree.lstring
+
+    def trunk_radius():
+        return game.world.tree.geometry(game.world.clocks()).turtle.segments.radius[0]
+
+    thin = trunk_radius()
+    x0, y0 = base_pixel(game)
+    a = np.linspace(0, 2 * np.pi, 48)
+    outline = [(x0 + 160 * np.cos(t), y0 - 330 + 120 * np.sin(t)) for t in a]
+    touch(game, DOWN, 0, *outline[0])
+    for p in outline[1:24]:
+        game.clock_box[0] += 0.02
+        touch(game, MOVE, 0, *p)
+    pixels = np.frombuffer(game._overlay_pixels(game.camera()), np.uint8).reshape(SIZE[1], SIZE[0], 4)
+    green_line = (pixels[..., 1] > 200) & (pixels[..., 0] < 150) & (pixels[..., 3] > 200)
+    assert green_line.sum() > 300  # the outline is drawn over the scene as it is traced
+    for p in outline[24:]:
+        game.clock_box[0] += 0.02
+        touch(game, MOVE, 0, *p)
+    touch(game, UP, 0, *outline[-1])
+    grown = game.world.tree.lstring
+    assert "branch pieces into the outline" in game.hud_info().message, game.hud_info().message
+    assert len(grown) > len(before) + 500
+    assert grown.count("L") > before.count("L") + 20  # the crown's twigs carry leaves
+    assert trunk_radius() > 3 * thin  # and the trunk carries their pipes (pipe model)
+    press_menu(game, "undo")
+    assert game.world.tree.lstring.equals(before)
