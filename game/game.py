@@ -198,6 +198,8 @@ class Game:
             self.modeling.toggle()
         elif action == "crown" and value:
             self.modeling.toggle_crown()
+        elif action == "prune" and value:
+            self.modeling.toggle_prune()
         elif action == "undo" and value:
             self.modeling.undo()
         elif action == "redo" and value:
@@ -337,9 +339,10 @@ class Game:
         elif kind == UP:
             sx, sy, st = self.stroke_start
             self.stroke_pointer = None
-            if now - st < 0.3 and abs(x - sx) + abs(y - sy) < 12:  # a tap: the menu, as everywhere
+            if now - st < 0.3 and abs(x - sx) + abs(y - sy) < 12:  # a tap: a cut, or the menu as everywhere
                 self.modeling.cancel_points()
-                self._tap(x, y)
+                if not self.modeling.prune_at(x, y, self.camera()):
+                    self._tap(x, y)
             else:
                 self.modeling.finish()
         return True

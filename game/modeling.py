@@ -18,9 +18,12 @@ from engine.growth import grow_geometry
 from engine.lobes import grow_crown, lobe_from_outline
 from engine.lstring import LString, format_number
 from engine.modeler import Modeler
+from engine.regions import prune
 from engine.strokes import Stroke
 from game.camera import OrbitCamera
 from game.strings import text
+
+PICK_PIXELS = 18.0  # how close a tap must be to a branch to cut it
 
 
 class ModelingMode:
@@ -39,6 +42,7 @@ class ModelingMode:
         self.bounds: tuple[np.ndarray, np.ndarray] | None = None  # framing kept while modeling
         self.resume_speed = 1.0
         self.crown = False  # strokes are crown outlines, not branches
+        self.pruning = False  # taps on branches cut them
 
     def _segments(self, ls: LString):
         world = self.game.world
@@ -65,9 +69,42 @@ class ModelingMode:
         """Switch strokes between branches and crown outlines (entering the modeler if needed)."""
         if not self.active:
             self.toggle()
-        self.crown = not self.crown
+        self.crown, self.pruning = not self.crown, False
         self.cancel()
         self.game.say(text("messages.crown_on" if self.crown else "messages.crown_off"))
+
+    def toggle_prune(self) -> None:
+        """Switch the pruning tool on or off (entering the modeler if needed)."""
+        if not self.active:
+            self.toggle()
+        self.pruning, self.crown = not self.pruning, False
+        self.cancel()
+        self.game.say(text("messages.prune_on" if self.pruning else "messages.crown_off"))
+
+    def prune_at(self, x: float, y: float, camera: OrbitCamera) -> bool:
+        """With the prune tool, cut the branch under pixel (x, y) and what grows from it (undoable).
+        False when no branch is there (the tap then opens the menu as usual)."""
+        if not (self.pruning and self.modeler is not None):
+            return False
+        segs = self._segments(self.modeler.lstring)
+        if len(segs) == 0:
+            return False
+        a = project_points(camera, self.game.size, segs.start)
+        b = project_points(camera, self.game.size, segs.end)
+        ab = b - a
+        t = np.clip(np.einsum("ij,ij->i", [x, y] - a, ab) / np.maximum(np.einsum("ij,ij->i", ab, ab), 1e-9), 0, 1)
+        dist = np.linalg.norm(a + t[:, None] * ab - [x, y], axis=1)
+        k = int(np.nanargmin(np.where(np.isnan(dist), np.inf, dist)))
+        if not dist[k] <= PICK_PIXELS:
+            return False
+        if segs.parent[k] < 0:
+            self.game.say(text("messages.prune_base"))
+            return True
+        before = self.modeler.lstring
+        self.modeler.commit(prune(before, int(segs.module[k])))
+        self.game.world.tree.lstring = self.modeler.lstring
+        self.game.say(text("messages.pruned", count=len(segs) - len(self._segments(self.modeler.lstring))))
+        return True
 
     def cancel(self) -> None:
         """Drop the stroke being drawn."""
@@ -100,13 +137,15 @@ class ModelingMode:
         """Extend the stroke with a 3D point (a tracker's cursor) and refresh the preview."""
         self.points.append(np.asarray(point, dtype=np.float64))
         self.times.append(t)
-        if len(self.points) >= 3 and self.modeler is not None and not self.crown:
+        if len(self.points) >= 3 and self.modeler is not None and not (self.crown or self.pruning):
             self.preview, _ = self.modeler.convert(Stroke(np.array(self.points), np.array(self.times)))
 
     def finish(self) -> None:
         """The pointer went up: commit the stroke to the tree (undoable)."""
         if self.crown and self.modeler is not None:
             self._grow_crown()
+        elif self.pruning:
+            pass  # the prune tool cuts with taps; a drag only moves nothing
         elif self.modeler is not None and len(self.points) >= 3:
             result = self.modeler.add_stroke(Stroke(np.array(self.points), np.array(self.times)))
             self.game.world.tree.lstring = self.modeler.lstring
@@ -158,6 +197,13 @@ class ModelingMode:
     def lstring(self) -> LString:
         """What to draw now: the live preview while a stroke is being drawn, else the tree."""
         return self.preview if self.preview is not None else self.game.world.tree.lstring
+
+
+def project_points(camera: OrbitCamera, size: tuple[int, int], points: np.ndarray) -> np.ndarray:
+    """Window pixels of many 3D points (NaN for points behind the camera)."""
+    clip = np.c_[points, np.ones(len(points))] @ (camera.projection(size[0] / size[1]) @ camera.view()).T
+    w = np.where(clip[:, 3] > 1e-9, clip[:, 3], np.nan)
+    return np.stack([(clip[:, 0] / w * 0.5 + 0.5) * size[0], (0.5 - clip[:, 1] / w * 0.5) * size[1]], axis=1)
 
 
 def unproject_to_plane(camera: OrbitCamera, size: tuple[int, int], x: float, y: float,

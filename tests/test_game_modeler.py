@@ -164,3 +164,27 @@ def test_crown_outline_grows_the_tree_into_it(game):
     assert trunk_radius() > 3 * thin  # and the trunk carries their pipes (pipe model)
     press_menu(game, "undo")
     assert game.world.tree.lstring.equals(before)
+
+
+def test_prune_tool_cuts_the_tapped_branch_and_undo_restores_it(game):
+    press_menu(game, "modeler")
+    x0, y0 = base_pixel(game)
+    draw(game, [(x0 + 6 * i, y0 - 8 * i) for i in range(40)])
+    drawn = game.world.tree.lstring
+    press_menu(game, "prune")
+    assert game.modeling.pruning and not game.modeling.crown
+
+    def pieces():
+        return len(game.modeling._segments(game.world.tree.lstring))
+
+    full = pieces()
+    touch(game, DOWN, 0, x0 + 6 * 30, y0 - 8 * 30)  # a tap on the drawn branch, well above the trunk
+    touch(game, UP, 0, x0 + 6 * 30, y0 - 8 * 30)
+    assert not game.menu.visible and "Cut" in game.hud_info().message
+    assert 0 < full - pieces() < full - 2  # only that branch's end went, the trunk stayed
+    touch(game, DOWN, 0, 1200, 80)  # a tap on the sky still opens the menu
+    touch(game, UP, 0, 1200, 80)
+    assert game.menu.visible
+    game._tap(1200, 700)
+    press_menu(game, "undo")
+    assert game.world.tree.lstring.equals(drawn)
