@@ -83,6 +83,7 @@ class Game:
         self.overlay = Overlay(ctx, size)
         pygame.font.init()
         self.font = pygame.font.Font(None, 32)
+        self.small_font = pygame.font.Font(None, 24)
         self.surface = pygame.Surface(size, pygame.SRCALPHA)
         self.message, self.message_until = "", 0.0
         self.input_log: list[tuple[int, str, float]] = []
@@ -200,6 +201,8 @@ class Game:
             self.modeling.toggle_crown()
         elif action == "prune" and value:
             self.modeling.toggle_prune()
+        elif action == "symbols" and value:
+            self.modeling.toggle_symbols()
         elif action == "undo" and value:
             self.modeling.undo()
         elif action == "redo" and value:
@@ -493,6 +496,7 @@ class Game:
         if self.cursor3d is not None:
             self._draw_cursor3d(camera)
         self.modeling.draw_outline(self.surface, lambda point: self._project(camera, point))
+        self.modeling.draw_symbols(self.surface, camera, self.small_font)
         self.menu.draw(self.surface, self.font)
         for hook in self.overlay_hooks:
             hook(self.surface)

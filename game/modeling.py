@@ -14,16 +14,20 @@ import time
 import numpy as np
 import pygame
 
-from engine.growth import grow_geometry
+from engine.growth import grow_geometry, render_view
 from engine.lobes import grow_crown, lobe_from_outline
 from engine.lstring import LString, format_number
 from engine.modeler import Modeler
 from engine.regions import prune
 from engine.strokes import Stroke
+from engine.turtle import TurtleConfig, module_positions
 from game.camera import OrbitCamera
 from game.strings import text
 
 PICK_PIXELS = 18.0  # how close a tap must be to a branch to cut it
+MAX_ROWS = 160  # the overlay's bound: a region over a huge crown shows the spots nearest its centre
+ROW_SYMBOLS = 10  # symbols shown at one spot before an ellipsis
+TRANSFORMATIONS = set("+-&^/\\|!$[]T%")  # drawn in red; every other symbol makes shape
 
 
 class ModelingMode:
@@ -43,6 +47,10 @@ class ModelingMode:
         self.resume_speed = 1.0
         self.crown = False  # strokes are crown outlines, not branches
         self.pruning = False  # taps on branches cut them
+        self.symbols = False  # drags move the region whose L-string symbols are shown
+        self.roi: np.ndarray | None = None
+        self.labels: list[tuple[str, float, float, bool]] = []  # last drawn: symbol, x, y, transformation
+        self._positions: tuple[int, np.ndarray] | None = None
 
     def _segments(self, ls: LString):
         world = self.game.world
@@ -65,21 +73,28 @@ class ModelingMode:
         self.modeler = Modeler(lstring=self.game.world.tree.lstring, segments_of=self._segments)
         self.game.say(text("messages.modeler_on"))
 
-    def toggle_crown(self) -> None:
-        """Switch strokes between branches and crown outlines (entering the modeler if needed)."""
+    def _tool(self, name: str) -> None:
+        """Switch to tool ``name`` (crown, pruning, symbols) or back to branches if it is on already."""
         if not self.active:
             self.toggle()
-        self.crown, self.pruning = not self.crown, False
+        on = not getattr(self, name)
+        self.crown = self.pruning = self.symbols = False
+        setattr(self, name, on)
+        self.roi = None
         self.cancel()
-        self.game.say(text("messages.crown_on" if self.crown else "messages.crown_off"))
+        self.game.say(text(f"messages.{name}_on" if on else "messages.crown_off"))
+
+    def toggle_crown(self) -> None:
+        """Switch strokes between branches and crown outlines (entering the modeler if needed)."""
+        self._tool("crown")
 
     def toggle_prune(self) -> None:
         """Switch the pruning tool on or off (entering the modeler if needed)."""
-        if not self.active:
-            self.toggle()
-        self.pruning, self.crown = not self.pruning, False
-        self.cancel()
-        self.game.say(text("messages.prune_on" if self.pruning else "messages.crown_off"))
+        self._tool("pruning")
+
+    def toggle_symbols(self) -> None:
+        """Switch the L-string overlay tool on or off (entering the modeler if needed)."""
+        self._tool("symbols")
 
     def prune_at(self, x: float, y: float, camera: OrbitCamera) -> bool:
         """With the prune tool, cut the branch under pixel (x, y) and what grows from it (undoable).
@@ -137,15 +152,17 @@ class ModelingMode:
         """Extend the stroke with a 3D point (a tracker's cursor) and refresh the preview."""
         self.points.append(np.asarray(point, dtype=np.float64))
         self.times.append(t)
-        if len(self.points) >= 3 and self.modeler is not None and not (self.crown or self.pruning):
+        if self.symbols:
+            self.roi = self.points[-1]
+        elif len(self.points) >= 3 and self.modeler is not None and not (self.crown or self.pruning):
             self.preview, _ = self.modeler.convert(Stroke(np.array(self.points), np.array(self.times)))
 
     def finish(self) -> None:
         """The pointer went up: commit the stroke to the tree (undoable)."""
         if self.crown and self.modeler is not None:
             self._grow_crown()
-        elif self.pruning:
-            pass  # the prune tool cuts with taps; a drag only moves nothing
+        elif self.pruning or self.symbols:
+            pass  # the prune tool cuts with taps; the symbols tool's drag only moved its region
         elif self.modeler is not None and len(self.points) >= 3:
             result = self.modeler.add_stroke(Stroke(np.array(self.points), np.array(self.times)))
             self.game.world.tree.lstring = self.modeler.lstring
@@ -183,6 +200,54 @@ class ModelingMode:
         pixels = [p for p in (project(point) for point in self.points) if p is not None]
         if len(pixels) >= 2:
             pygame.draw.lines(surface, (120, 230, 120, 230), len(pixels) >= 8, pixels, 4)
+
+    def draw_symbols(self, surface: pygame.Surface, camera: OrbitCamera, font: pygame.font.Font) -> None:
+        """The L-string overlay: symbols of the modules inside the region, at their positions."""
+        self.labels = []
+        if not (self.symbols and self.roi is not None):
+            return
+        ls = self.game.world.tree.lstring
+        positions = self._module_positions(ls)
+        r = self.game.renderer
+        radius = 0.15 * max(float(np.max(r.hi - r.lo)), 1.0)
+        distance = np.linalg.norm(positions - self.roi, axis=1)
+        inside = np.flatnonzero(distance <= radius)
+        inside = inside[np.argsort(distance[inside], kind="stable")]
+        pixels = project_points(camera, self.game.size, positions[inside])
+        centre = project_points(camera, self.game.size, self.roi[None])[0]
+        edge = project_points(camera, self.game.size, (self.roi + radius * camera.view()[0, :3])[None])[0]
+        if np.isfinite(centre).all() and np.isfinite(edge).all():
+            pygame.draw.circle(surface, (255, 255, 255, 160), centre, float(np.linalg.norm(edge - centre)), 2)
+        ok = np.isfinite(pixels).all(axis=1)
+        inside, pixels = inside[ok], pixels[ok]
+        # modules at one spot (turns before a piece) read as one row, nearest the centre first
+        _, first, group = np.unique((pixels // 8).astype(np.int64), axis=0, return_index=True, return_inverse=True)
+        taken: list[pygame.Rect] = []
+        for g in np.argsort(first)[:MAX_ROWS]:  # a row that would overlap a nearer one is left out
+            self._draw_row(surface, font, ls, inside[group.ravel() == g], pixels[first[g]], taken)
+
+    def _draw_row(self, surface, font, ls: LString, modules: np.ndarray, at: np.ndarray, taken: list) -> None:
+        symbols = [chr(c) for c in ls.sym[modules[:ROW_SYMBOLS]]] + (["…"] if len(modules) > ROW_SYMBOLS else [])
+        images = [font.render(c, True, (255, 80, 70) if c in TRANSFORMATIONS else (255, 235, 120)) for c in symbols]
+        width = sum(image.get_width() for image in images)
+        rect = pygame.Rect(int(at[0]), int(at[1] - images[0].get_height() / 2), width, images[0].get_height())
+        if rect.collidelist(taken) >= 0:
+            return
+        taken.append(rect)
+        pygame.draw.rect(surface, (0, 0, 0, 110), rect.inflate(4, 2))
+        x = rect.x
+        for symbol, image in zip(symbols, images, strict=True):
+            surface.blit(image, (x, rect.y))
+            self.labels.append((symbol, x, float(at[1]), symbol in TRANSFORMATIONS))
+            x += image.get_width()
+
+    def _module_positions(self, ls: LString) -> np.ndarray:
+        """Turtle positions of every module of the tree as drawn now (cached per L-string)."""
+        if self._positions is None or self._positions[0] != id(ls):
+            tree, clocks = self.game.world.tree, self.game.world.clocks()
+            view = render_view(ls, clocks, tree.geometry_constants)
+            self._positions = (id(ls), module_positions(view, TurtleConfig(pipe_model=False, leaves_at_tips=0)))
+        return self._positions[1]
 
     def undo(self) -> None:
         """Take back the last stroke."""

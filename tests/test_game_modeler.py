@@ -188,3 +188,23 @@ def test_prune_tool_cuts_the_tapped_branch_and_undo_restores_it(game):
     game._tap(1200, 700)
     press_menu(game, "undo")
     assert game.world.tree.lstring.equals(drawn)
+
+
+def test_symbols_tool_writes_the_lstring_where_it_is(game):
+    press_menu(game, "symbols")
+    assert game.modeling.symbols
+    x0, y0 = base_pixel(game)
+    touch(game, DOWN, 0, x0 + 40, y0 - 60)
+    game.clock_box[0] += 0.5
+    touch(game, MOVE, 0, x0, y0 - 150)  # onto the trunk
+    pixels = np.frombuffer(game._overlay_pixels(game.camera()), np.uint8).reshape(SIZE[1], SIZE[0], 4)[::-1]
+    labels = game.modeling.labels
+    ls = game.world.tree.lstring
+    assert any(turn for *_, turn in labels) and any(not turn for *_, turn in labels)
+    assert {symbol for symbol, *_ in labels} <= {chr(c) for c in ls.sym}
+    assert len(labels) < len(ls)  # only the modules inside the region
+    red = (pixels[..., 0] > 200) & (pixels[..., 1] < 120) & (pixels[..., 3] > 200)
+    _, xs = np.nonzero(red)
+    assert len(xs) > 20 and abs(np.median(xs) - x0) < 120  # red symbols drawn near the trunk
+    touch(game, UP, 0, x0, y0 - 150)
+    assert game.world.tree.lstring is ls  # reading never edits
