@@ -27,7 +27,7 @@ from engine.mesh import LOD_LEVELS, tree_mesh
 from engine.tree import TreeGeometry
 from engine.turtle import TurtleConfig, interpret, set_radii, subtree_sums
 
-INTERNODE, LEAF, PITCH = ord("I"), ord("L"), ord("&")
+INTERNODE, LEAF, BLOSSOM, PITCH = ord("I"), ord("L"), ord("K"), ord("&")
 GEOMETRY_DEFAULTS = {"IL": 1.0, "IO": 0.72, "LS": 1.2, "TIP": 0.012, "GMAX": 3.0, "GT": 200.0, "TAU": 4.0}
 DROOP = 0.6  # branch and leaf angles grow by this fraction at full wilt
 
@@ -85,7 +85,8 @@ def _leaf_keep(birth: np.ndarray, wilt: float) -> np.ndarray:
 
 
 def render_view(ls: LString, clocks: Clocks, const: dict[str, float]) -> LString:
-    """Map I -> F(length) and L(birth) -> L(size) at the given clocks; droop pitch angles with wilt."""
+    """Map I -> F(length), L(birth) -> L(size) and K(birth) -> K(size) at the given clocks; droop pitch
+    angles with wilt."""
     now = clocks.length_time
     idx = np.flatnonzero((ls.sym == INTERNODE) & (ls.nparams == 3))
     birth, order = ls.params[ls.offsets[idx]], ls.params[ls.offsets[idx] + 2]
@@ -94,6 +95,10 @@ def render_view(ls: LString, clocks: Clocks, const: dict[str, float]) -> LString
     leaves = np.flatnonzero((view.sym == LEAF) & (view.nparams == 1))
     lb = view.params[view.offsets[leaves]]
     view.params[view.offsets[leaves]] = const["LS"] * _saturate(now - lb, const["TAU"]) * _leaf_keep(lb, clocks.wilt)
+    blossoms = np.flatnonzero((view.sym == BLOSSOM) & (view.nparams == 1))  # K(birth) from region edits
+    kb = view.params[view.offsets[blossoms]]
+    opened = _saturate(now - kb, const["TAU"]) * _leaf_keep(kb, clocks.wilt)
+    view.params[view.offsets[blossoms]] = 0.4 * const["LS"] * opened
     if clocks.wilt > 0:
         view.params[view.offsets[_droop_angles(ls)]] *= 1.0 + DROOP * clocks.wilt
     return view

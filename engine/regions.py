@@ -61,6 +61,11 @@ class Supertoroid:
         z = self.a_z * (self.alpha_z + ring) * spow(np.sin(v), self.e) + self.b_z + self.slope_z * (y - self.alpha_y)
         return np.stack([x, y, z], axis=-1)
 
+    @property
+    def center(self) -> tuple[float, float, float]:
+        """The middle of the region (where an empty region starts a new axis)."""
+        return (self.b_x, self.alpha_y, self.b_z)
+
     def contains(self, points: np.ndarray) -> np.ndarray:
         """Inside test: at each height the cross-section is a superellipse (minus the hole, if any)."""
         p = np.asarray(points, float).reshape(-1, 3)

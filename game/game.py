@@ -203,6 +203,9 @@ class Game:
             self.modeling.toggle_prune()
         elif action == "symbols" and value:
             self.modeling.toggle_symbols()
+        elif action == "edit" and value:
+            name = self.modeling.next_edit()
+            self.menu.widget("edit").label = text("menu.edit", name=text(f"edits.{name}"))
         elif action == "undo" and value:
             self.modeling.undo()
         elif action == "redo" and value:
@@ -344,7 +347,7 @@ class Game:
             self.stroke_pointer = None
             if now - st < 0.3 and abs(x - sx) + abs(y - sy) < 12:  # a tap: a cut, or the menu as everywhere
                 self.modeling.cancel_points()
-                if not self.modeling.prune_at(x, y, self.camera()):
+                if not (self.modeling.prune_at(x, y, self.camera()) or self.modeling.edit_at(x, y, self.camera())):
                     self._tap(x, y)
             else:
                 self.modeling.finish()

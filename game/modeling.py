@@ -14,14 +14,16 @@ import time
 import numpy as np
 import pygame
 
+from engine.edits import EDIT_SETS, apply_edit, load_edit_sets
 from engine.growth import grow_geometry, render_view
 from engine.lobes import grow_crown, lobe_from_outline
 from engine.lstring import LString, format_number
 from engine.modeler import Modeler
-from engine.regions import prune
+from engine.regions import Sphere, prune
 from engine.strokes import Stroke
 from engine.turtle import TurtleConfig, module_positions
 from game.camera import OrbitCamera
+from game.render import ASSETS
 from game.strings import text
 
 PICK_PIXELS = 18.0  # how close a tap must be to a branch to cut it
@@ -51,6 +53,8 @@ class ModelingMode:
         self.roi: np.ndarray | None = None
         self.labels: list[tuple[str, float, float, bool]] = []  # last drawn: symbol, x, y, transformation
         self._positions: tuple[int, np.ndarray] | None = None
+        self.edit = EDIT_SETS[0]
+        self.edit_sets = load_edit_sets(ASSETS / "edits")
 
     def _segments(self, ls: LString):
         world = self.game.world
@@ -183,8 +187,7 @@ class ModelingMode:
         budget = self.game.world.tree.deriver.budget
         room = 6000 if budget is None else min(6000, (budget - len(self.modeler.lstring)) // 4)
         start = time.perf_counter()
-        tree = self.game.world.tree
-        born = self.game.world.clocks().length_time - 0.5 * tree.geometry_constants["TAU"]  # leaves part grown
+        born = self._born_visible()
         rng = np.random.default_rng(int(self.modeler.rng.integers(2**31)))
         added = grow_crown(self.modeler, [lobe], rng, per_lobe=250, step_fraction=0.2, max_nodes=max(room, 2),
                            tip=f"[&(45)L({format_number(born)})]")
@@ -201,6 +204,39 @@ class ModelingMode:
         if len(pixels) >= 2:
             pygame.draw.lines(surface, (120, 230, 120, 230), len(pixels) >= 8, pixels, 4)
 
+    def _born_visible(self) -> float:
+        """A birth time for leaves and blossoms added while the garden is paused: one growth time
+        constant ago, so they show at once (63 % grown) and finish growing when time runs again."""
+        return self.game.world.clocks().length_time - self.game.world.tree.geometry_constants["TAU"]
+
+    def next_edit(self) -> str:
+        """Choose the next region edit (the menu button cycles through them)."""
+        self.edit = EDIT_SETS[(EDIT_SETS.index(self.edit) + 1) % len(EDIT_SETS)]
+        return self.edit
+
+    def _roi_sphere(self) -> Sphere:
+        r = self.game.renderer
+        return Sphere(tuple(self.roi), 0.15 * max(float(np.max(r.hi - r.lo)), 1.0))
+
+    def edit_at(self, x: float, y: float, camera: OrbitCamera) -> bool:
+        """With the symbols tool, a tap inside the region applies the chosen edit there (undoable).
+        False when the tap is outside the region (it then opens the menu as usual)."""
+        if not (self.symbols and self.roi is not None and self.modeler is not None):
+            return False
+        sphere = self._roi_sphere()
+        centre = project_points(camera, self.game.size, self.roi[None])[0]
+        edge = project_points(camera, self.game.size, (self.roi + sphere.radius * camera.view()[0, :3])[None])[0]
+        if not np.hypot(x - centre[0], y - centre[1]) <= np.linalg.norm(edge - centre):
+            return False
+        ls = self.game.world.tree.lstring
+        new, changed = apply_edit(ls, self._module_positions(ls), sphere, self.edit_sets[self.edit],
+                                  {"T": self._born_visible(), "G": self.game.world.clocks().girth_time})
+        if changed:
+            self.modeler.commit(new)
+            self.game.world.tree.lstring = new
+        self.game.say(text("messages.edited", edit=text(f"edits.{self.edit}"), count=changed))
+        return True
+
     def draw_symbols(self, surface: pygame.Surface, camera: OrbitCamera, font: pygame.font.Font) -> None:
         """The L-string overlay: symbols of the modules inside the region, at their positions."""
         self.labels = []
@@ -208,8 +244,7 @@ class ModelingMode:
             return
         ls = self.game.world.tree.lstring
         positions = self._module_positions(ls)
-        r = self.game.renderer
-        radius = 0.15 * max(float(np.max(r.hi - r.lo)), 1.0)
+        radius = self._roi_sphere().radius
         distance = np.linalg.norm(positions - self.roi, axis=1)
         inside = np.flatnonzero(distance <= radius)
         inside = inside[np.argsort(distance[inside], kind="stable")]

@@ -208,3 +208,27 @@ def test_symbols_tool_writes_the_lstring_where_it_is(game):
     assert len(xs) > 20 and abs(np.median(xs) - x0) < 120  # red symbols drawn near the trunk
     touch(game, UP, 0, x0, y0 - 150)
     assert game.world.tree.lstring is ls  # reading never edits
+
+
+def test_tap_inside_the_symbols_circle_applies_the_chosen_edit(game):
+    press_menu(game, "symbols")
+    x0, y0 = base_pixel(game)
+    touch(game, DOWN, 0, x0, y0 - 100)
+    game.clock_box[0] += 0.5
+    touch(game, MOVE, 0, x0, y0 - 200)
+    touch(game, UP, 0, x0, y0 - 200)
+    before = game.world.tree.lstring
+    assert game.modeling.edit == "add_leaves"
+    game.clock_box[0] += 1.0
+    touch(game, DOWN, 0, x0, y0 - 200)  # tap in the circle
+    touch(game, UP, 0, x0, y0 - 200)
+    assert not game.menu.visible
+    added = game.world.tree.lstring
+    assert added.count("L") > before.count("L") and "Add leaves" in game.hud_info().message
+    press_menu(game, "edit")  # -> erase leaves
+    assert game.menu.widget("edit").label == "Erase leaves"
+    touch(game, DOWN, 0, x0, y0 - 200)
+    touch(game, UP, 0, x0, y0 - 200)
+    assert game.world.tree.lstring.count("L") < added.count("L")
+    press_menu(game, "undo")
+    assert game.world.tree.lstring.equals(added)

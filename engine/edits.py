@@ -1,0 +1,41 @@
+"""Region edits (seed 000 sections 4.2 and 5.2): a chosen production set rewrites only the modules
+whose turtle position lies inside a region of interest.
+
+The built-in sets are ordinary .lsys files (assets/edits/): add or erase leaves, add or erase
+blossoms, bend (gravitropism). "grow" applies the tree's own productions; when no module lies in the
+region it starts a new axis there instead (seed 000 4.2).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from engine.derive import Deriver
+from engine.lstring import LString
+from engine.lsys import LSystem, load_lsystem
+from engine.regions import seed_in_region
+
+EDIT_SETS = ("add_leaves", "erase_leaves", "add_blossoms", "erase_blossoms", "bend")
+EDITS = ("grow", *EDIT_SETS)
+
+
+def load_edit_sets(folder: str | Path) -> dict[str, LSystem]:
+    """The built-in production sets, by name, from ``folder`` (errors name file, line and column)."""
+    return {name: load_lsystem(Path(folder) / f"{name}.lsys") for name in EDIT_SETS}
+
+
+def apply_edit(ls: LString, positions: np.ndarray, region, system: LSystem,
+               extern: dict[str, float] | None = None, new_axis: str | None = None) -> tuple[LString, int]:
+    """Rewrite once with ``system``, only inside ``region``; ``positions`` are the modules' turtle
+    positions. With ``new_axis`` (an axiom) an empty region gets a new axis at its centre. Returns
+    the new string and how many modules were rewritten (-1 when a new axis was started)."""
+    inside = region.contains(positions)
+    if not inside.any():
+        if new_axis is None:
+            return ls, 0
+        return seed_in_region(ls, new_axis, region.center), -1
+    known = set(system.externs)
+    new, report = Deriver(system).step(ls, {k: v for k, v in (extern or {}).items() if k in known}, only=inside)
+    return new, report.rewritten

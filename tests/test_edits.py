@@ -1,0 +1,76 @@
+"""Region edits: built-in production sets applied only inside a region (seed 000 4.2, 5.2)."""
+
+from pathlib import Path
+
+import numpy as np
+
+from engine.edits import apply_edit, load_edit_sets
+from engine.growth import Clocks, grow_geometry, render_view
+from engine.lstring import parse_lstring
+from engine.lsys import load_lsystem
+from engine.regions import Sphere
+from engine.turtle import TurtleConfig, interpret, module_positions
+
+ASSETS = Path(__file__).resolve().parents[1] / "assets"
+SETS = load_edit_sets(ASSETS / "edits")
+
+
+def game_tree(steps: int = 40):
+    from engine.growth import GrowingTree
+
+    system = load_lsystem(ASSETS / "lsystems" / "game_tree.lsys")
+    tree = GrowingTree(system)
+    for k in range(1, steps + 1):
+        tree.rewrite(float(k), float(k), 1.0)
+    return tree, Clocks(length_time=float(steps) + 20, girth_time=float(steps) + 20, wilt=0.0)
+
+
+def positions_of(tree, clocks):
+    return module_positions(render_view(tree.lstring, clocks, tree.geometry_constants), TurtleConfig(pipe_model=False))
+
+
+def test_erase_leaves_removes_only_the_leaves_inside():
+    tree, clocks = game_tree()
+    ls, pos = tree.lstring, positions_of(tree, clocks)
+    leaf = ls.sym == ord("L")
+    region = Sphere(tuple(pos[leaf][len(pos[leaf]) // 2]), 1.5)
+    inside = region.contains(pos) & leaf
+    assert 0 < inside.sum() < leaf.sum()
+    new, changed = apply_edit(ls, pos, region, SETS["erase_leaves"])
+    assert changed == inside.sum()
+    assert (new.sym == ord("L")).sum() == leaf.sum() - inside.sum()
+    assert (new.sym != ord("L")).sum() == (ls.sym != ord("L")).sum()  # nothing else changed
+
+
+def test_added_blossoms_grow_in_and_show_only_inside():
+    tree, clocks = game_tree()
+    ls, pos = tree.lstring, positions_of(tree, clocks)
+    region = Sphere(tuple(pos[ls.sym == ord("I")].mean(axis=0)), 1.0)
+    new, changed = apply_edit(ls, pos, region, SETS["add_blossoms"], {"T": clocks.length_time, "G": 0.0})
+    assert changed > 0 and new.count("K") == changed
+    geometry = grow_geometry(new, clocks, tree.geometry_constants).turtle
+    assert len(geometry.blossoms.position) == 0 or geometry.blossoms.size.max() == 0  # born now: zero size
+    later = Clocks(clocks.length_time + 8, clocks.girth_time, 0.0)
+    opened = grow_geometry(new, later, tree.geometry_constants).turtle.blossoms
+    assert len(opened.position) == changed and opened.size.min() > 0.2
+    assert np.linalg.norm(opened.position - region.center, axis=1).max() < 1.0 + 1.5  # on wood inside the ball
+
+
+def test_bend_turns_branches_down_only_inside():
+    ls = parse_lstring("F(1)[&(30)F(1)F(1)]F(1)[&(30)F(1)F(1)]F(1)")
+    pos = module_positions(ls)
+    region = Sphere((0.0, 2.2, 0.0), 0.5)  # the upper branch's base only
+    new, changed = apply_edit(ls, pos, region, SETS["bend"])
+    assert changed == 1
+    before, after = interpret(ls).segments.end, interpret(new).segments.end
+    moved = np.linalg.norm(after - before, axis=1) > 1e-9
+    assert moved.sum() == 2 and after[moved][:, 1].max() < before[moved][:, 1].max()
+
+
+def test_grow_in_an_empty_region_starts_a_new_axis_there():
+    ls = parse_lstring("F(1)F(1)")
+    pos = module_positions(ls)
+    new, changed = apply_edit(ls, pos, Sphere((2.0, 0.5, 1.0), 0.3), SETS["bend"], new_axis="F(1)")
+    assert changed == -1
+    segs = interpret(new).segments
+    assert np.isclose(np.linalg.norm(segs.start - [2.0, 0.5, 1.0], axis=1).min(), 0.0, atol=1e-6)
