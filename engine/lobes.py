@@ -17,7 +17,7 @@ new node reaches are used up.
 from __future__ import annotations
 
 import re
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -47,12 +47,50 @@ def barycentric_directions(loop: np.ndarray) -> np.ndarray:
     return _unit(loop.sum(axis=0)[None, :] - len(loop) * loop)
 
 
-@dataclass
+@dataclass(eq=False)  # lobes compare by identity (their arrays have no single truth value)
 class Lobe:
-    """A closed triangle mesh around part of the crown."""
+    """A closed triangle mesh around part of the crown: ``rings`` stitched strokes of ``ring_size``
+    points each (the first vertices, ring by ring), then the two cap centres."""
 
     vertices: np.ndarray
     faces: np.ndarray
+    ring_size: int = 0
+
+    def transformed(self, move=(0.0, 0.0, 0.0), scale: float = 1.0, turn_deg: float = 0.0) -> Lobe:
+        """Moved, scaled about its centre and turned about the vertical through it (lobe editing)."""
+        centre = self.vertices.mean(axis=0)
+        a = np.radians(turn_deg)
+        rot = np.array([[np.cos(a), 0.0, np.sin(a)], [0.0, 1.0, 0.0], [-np.sin(a), 0.0, np.cos(a)]])
+        moved = (self.vertices - centre) @ rot.T * scale + centre + np.asarray(move, float)
+        return Lobe(moved, self.faces, self.ring_size)
+
+    def squeezed(self, at, radius: float, amount: float) -> Lobe:
+        """A local smooth deformation: surface within ``radius`` of ``at`` pulled towards the lobe's
+        centre by ``amount`` (0..1; negative pushes out), fading smoothly to nothing at ``radius``."""
+        d = np.linalg.norm(self.vertices - np.asarray(at, float), axis=1)
+        w = np.clip(1.0 - (d / radius) ** 2, 0.0, 1.0) ** 2
+        centre = self.vertices.mean(axis=0)
+        return self._with_rings(self.vertices + (amount * w)[:, None] * (centre - self.vertices))
+
+    def dragged(self, ring: int, index: int, to, width: int = 4) -> Lobe:
+        """One stroke point dragged to ``to``; its neighbours along the stroke follow on a smooth
+        (quadratic Bezier-like) falloff over ``width`` points each side."""
+        n = self.ring_size
+        rings = self.vertices[:-2].reshape(-1, n, 3).copy()
+        offset = np.asarray(to, float) - rings[ring, index]
+        k = np.arange(n)
+        steps = np.minimum((k - index) % n, (index - k) % n)
+        w = np.clip(1.0 - steps / (width + 1.0), 0.0, 1.0) ** 2
+        rings[ring] += w[:, None] * offset
+        return self._with_rings(np.concatenate([rings.reshape(-1, 3), self.vertices[-2:]]))
+
+    def _with_rings(self, vertices: np.ndarray) -> Lobe:
+        """The lobe with new vertices; cap centres follow their rings, triangles stay wound outwards."""
+        vertices = vertices.copy()
+        if self.ring_size:
+            rings = vertices[:-2].reshape(-1, self.ring_size, 3)
+            vertices[-2], vertices[-1] = rings[0].mean(axis=0), rings[-1].mean(axis=0)
+        return Lobe(vertices, _wind_outwards(vertices, self.faces), self.ring_size)
 
     def contains(self, points: np.ndarray) -> np.ndarray:
         """True for points inside the lobe."""
@@ -68,6 +106,42 @@ class Lobe:
             if sum(len(f) for f in found) >= count:
                 break
         return np.concatenate(found)[:count]
+
+
+@dataclass
+class LobeEditor:
+    """The crown's lobes while they are being drawn and edited, with undo and redo."""
+
+    lobes: list[Lobe] = field(default_factory=list)
+    undo_stack: list[list[Lobe]] = field(default_factory=list)
+    redo_stack: list[list[Lobe]] = field(default_factory=list)
+
+    def set(self, index: int, lobe: Lobe | None) -> None:
+        """Replace lobe ``index`` (``len(lobes)`` adds one, None removes it), undoably."""
+        self.undo_stack.append(list(self.lobes))
+        self.redo_stack.clear()
+        if lobe is None:
+            del self.lobes[index]
+        elif index == len(self.lobes):
+            self.lobes.append(lobe)
+        else:
+            self.lobes[index] = lobe
+
+    def undo(self) -> bool:
+        """Take back the last lobe edit."""
+        if not self.undo_stack:
+            return False
+        self.redo_stack.append(self.lobes)
+        self.lobes = self.undo_stack.pop()
+        return True
+
+    def redo(self) -> bool:
+        """Put back the last undone lobe edit."""
+        if not self.redo_stack:
+            return False
+        self.undo_stack.append(self.lobes)
+        self.lobes = self.redo_stack.pop()
+        return True
 
 
 class Crossings:
@@ -131,7 +205,7 @@ def lobe_from_loops(loops: list[np.ndarray], points_per_loop: int = 32) -> Lobe:
     bottom, top, last = len(verts) - 2, len(verts) - 1, (len(rings) - 1) * n
     faces.append(np.stack([np.full(n, bottom), (i + 1) % n, i], 1))
     faces.append(np.stack([np.full(n, top), last + i, last + (i + 1) % n], 1))
-    return Lobe(verts, _wind_outwards(verts, np.concatenate(faces).astype(np.int64)))
+    return Lobe(verts, _wind_outwards(verts, np.concatenate(faces).astype(np.int64)), points_per_loop)
 
 
 def _counter_clockwise(ring: np.ndarray, axis: np.ndarray) -> np.ndarray:

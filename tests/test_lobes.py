@@ -147,3 +147,42 @@ def test_crown_on_an_empty_tree_gets_a_trunk_from_the_ground():
     segments = interpret(modeler.lstring, TurtleConfig()).segments
     assert len(segments) == added and np.allclose(segments.start[0], 0.0)
     assert segments.end[:, 1].max() > 5.5
+
+
+def closed(lobe):
+    mesh = trimesh.Trimesh(lobe.vertices, lobe.faces, process=False)
+    return mesh.is_watertight and mesh.is_winding_consistent and mesh.volume > 0, mesh.volume
+
+
+def test_lobe_editing_moves_scales_turns_squeezes_and_drags_and_stays_closed():
+    lobe = lobe_from_loops([circle(0.0, 1.0, wobble=0.2), circle(1.0, 1.5), circle(2.0, 1.0)])
+    ok, volume = closed(lobe)
+    moved = lobe.transformed(move=(3.0, 0.0, 0.0), scale=2.0, turn_deg=30.0)
+    ok2, volume2 = closed(moved)
+    assert ok and ok2 and volume2 == pytest.approx(8 * volume, rel=1e-6)
+    assert moved.vertices.mean(axis=0) == pytest.approx(lobe.vertices.mean(axis=0) + np.array([3.0, 0.0, 0.0]))
+    squeezed = lobe.squeezed(at=(1.5, 1.0, 0.0), radius=1.0, amount=0.5)
+    ok3, volume3 = closed(squeezed)
+    far = np.linalg.norm(lobe.vertices - [1.5, 1.0, 0.0], axis=1) > 1.0
+    assert ok3 and volume3 < volume and np.allclose(squeezed.vertices[far], lobe.vertices[far])
+    tip = lobe.vertices[lobe.ring_size + 5]  # the middle stroke's sixth point, pulled outwards
+    dragged = lobe.dragged(1, 5, tip * [1.6, 1.0, 1.6])
+    ok4, volume4 = closed(dragged)
+    moved_points = np.linalg.norm(dragged.vertices - lobe.vertices, axis=1) > 1e-12
+    assert ok4 and volume4 > volume and 3 <= moved_points.sum() <= 9
+    assert dragged.vertices[lobe.ring_size + 5] == pytest.approx(tip * [1.6, 1.0, 1.6])
+
+
+def test_lobe_edits_undo_and_redo():
+    from engine.lobes import LobeEditor
+
+    editor = LobeEditor()
+    first = lobe_from_outline(silhouette())
+    editor.set(0, first)
+    editor.set(0, first.transformed(scale=0.5))
+    editor.set(1, first.transformed(move=(4.0, 0.0, 0.0)))
+    assert len(editor.lobes) == 2
+    assert editor.undo() and editor.undo() and editor.lobes == [first]
+    assert editor.redo() and editor.lobes[0] is not first and len(editor.lobes) == 1
+    editor.set(0, None)
+    assert editor.lobes == [] and not editor.redo()
