@@ -7,10 +7,9 @@ from a drawn trunk into ~5,000 attractors, and writing the skeleton as L-string 
 
 from __future__ import annotations
 
-import time
-
 import numpy as np
 
+from benchmarks import median_ms
 from engine.lobes import Crossings, Skeleton, grow_into_lobes, lobe_from_loops, skeleton_text
 
 
@@ -26,28 +25,20 @@ def _lobes() -> list:
                              for k in range(5)]) for (x, y, z), r, h in specs]
 
 
-def _median_ms(fn, runs: int = 10) -> tuple[float, object]:
-    times, out = [], None
-    for _ in range(runs):
-        start = time.perf_counter()
-        out = fn()
-        times.append(time.perf_counter() - start)
-    return float(np.median(times)) * 1e3, out
-
 
 def main() -> None:
     """Print timings and sizes."""
-    ms, lobes = _median_ms(_lobes)
+    ms, lobes = median_ms(_lobes)
     print(f"stitch 3 lobes from 15 strokes: {ms:.1f} ms")
     rng = np.random.default_rng(0)
     attractors = np.concatenate([lobe.vertices for lobe in lobes] + [lobe.sample_inside(1500, rng) for lobe in lobes])
     trunk = np.array([[0.0, 0.0, 0.0], [0.0, 1.5, 0.0], [0.0, 3.2, 0.0]])
-    ms, skeleton = _median_ms(lambda: grow_into_lobes(Skeleton.from_trunk(trunk), lobes, attractors))
+    ms, skeleton = median_ms(lambda: grow_into_lobes(Skeleton.from_trunk(trunk), lobes, attractors))
     print(f"grow into {len(attractors)} attractors: {ms:.1f} ms, {len(skeleton.parent)} nodes")
     inside = Crossings(lobes).inside(skeleton.position) >= 0
     print(f"grown nodes outside every lobe: {int((~inside[len(trunk):]).sum())} (branches from the trunk tip that"
           " have not yet entered a lobe; none once inside)")
-    ms, text = _median_ms(lambda: skeleton_text(skeleton))
+    ms, text = median_ms(lambda: skeleton_text(skeleton))
     print(f"skeleton -> L-string: {ms:.1f} ms, {len(text)} characters")
 
 

@@ -8,10 +8,9 @@ against) an already modeled tree of 8 strokes.
 
 from __future__ import annotations
 
-import time
-
 import numpy as np
 
+from benchmarks import median_ms
 from engine.mesh import tree_mesh
 from engine.modeler import Modeler
 from engine.strokes import Stroke
@@ -35,14 +34,6 @@ def _remesh(modeler: Modeler) -> int:
     return tree_mesh(result).n_triangles
 
 
-def _time(fn, runs: int = 20) -> tuple[float, object]:
-    times, out = [], None
-    for _ in range(runs):
-        start = time.perf_counter()
-        out = fn()
-        times.append(time.perf_counter() - start)
-    return float(np.median(times)) * 1e3, out
-
 
 def main() -> None:
     """Print conversion + re-mesh times."""
@@ -53,7 +44,7 @@ def main() -> None:
         m.add_stroke(trunk)
         return m, _remesh(m)
 
-    ms, (m, tris) = _time(first)
+    ms, (m, tris) = median_ms(first)
     print(f"trunk stroke ({RAW_POINTS:,} raw points) -> {len(m.lstring):,} modules + mesh ({tris:,} triangles): "
           f"{ms:.1f} ms median (goal <= 16 ms)")
     base = Modeler()
@@ -69,7 +60,7 @@ def main() -> None:
         result = m.add_stroke(branch)
         return result, _remesh(m)
 
-    ms, (result, tris) = _time(onto_tree)
+    ms, (result, tris) = median_ms(onto_tree)
     print(f"branch stroke onto an 8-stroke tree (snapped: {result.snapped_to is not None}, "
           f"bypassed {result.bypassed} points) + mesh ({tris:,} triangles): {ms:.1f} ms median")
 

@@ -21,6 +21,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from engine.history import Undoable
 from engine.lstring import concat, parse_lstring
 from engine.modeler import Modeler, ModelerSettings, path_modules
 from engine.turtle import INITIAL_FRAME
@@ -109,8 +110,10 @@ class Lobe:
 
 
 @dataclass
-class LobeEditor:
+class LobeEditor(Undoable):
     """The crown's lobes while they are being drawn and edited, with undo and redo."""
+
+    HISTORY_OF = "lobes"
 
     lobes: list[Lobe] = field(default_factory=list)
     undo_stack: list[list[Lobe]] = field(default_factory=list)
@@ -118,30 +121,14 @@ class LobeEditor:
 
     def set(self, index: int, lobe: Lobe | None) -> None:
         """Replace lobe ``index`` (``len(lobes)`` adds one, None removes it), undoably."""
-        self.undo_stack.append(list(self.lobes))
-        self.redo_stack.clear()
+        lobes = list(self.lobes)
         if lobe is None:
-            del self.lobes[index]
-        elif index == len(self.lobes):
-            self.lobes.append(lobe)
+            del lobes[index]
+        elif index == len(lobes):
+            lobes.append(lobe)
         else:
-            self.lobes[index] = lobe
-
-    def undo(self) -> bool:
-        """Take back the last lobe edit."""
-        if not self.undo_stack:
-            return False
-        self.redo_stack.append(self.lobes)
-        self.lobes = self.undo_stack.pop()
-        return True
-
-    def redo(self) -> bool:
-        """Put back the last undone lobe edit."""
-        if not self.redo_stack:
-            return False
-        self.undo_stack.append(self.lobes)
-        self.lobes = self.redo_stack.pop()
-        return True
+            lobes[index] = lobe
+        self.commit(lobes)
 
 
 class Crossings:

@@ -26,6 +26,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from engine import brackets
+from engine.history import Undoable
 from engine.lstring import LString, concat, format_number, parse_lstring
 from engine.strokes import ArcLengthSpline, Stroke, adaptive_sample, curvature, speeds_at
 from engine.turtle import INITIAL_FRAME, Segments, TurtleConfig, interpret
@@ -276,8 +277,11 @@ def _spread(offset: np.ndarray, weights=(0.35, 0.7, 1.0, 0.7, 0.35)) -> np.ndarr
 
 
 @dataclass
-class Modeler:
-    """An editable modeled tree: add strokes, undo, redo. The L-string is the only state."""
+class Modeler(Undoable):
+    """An editable modeled tree: add strokes, undo, redo. The L-string is the only state; strokes,
+    grown crowns and region edits all ``commit`` a new one."""
+
+    HISTORY_OF = "lstring"
 
     lstring: LString = field(default_factory=LString.empty)
     settings: ModelerSettings = field(default_factory=ModelerSettings)
@@ -356,28 +360,6 @@ class Modeler:
         if result.pieces:
             self.commit(new)
         return result
-
-    def commit(self, new: LString) -> None:
-        """Make ``new`` the tree, undoably (strokes, grown crowns and region edits all land here)."""
-        self.undo_stack.append(self.lstring)
-        self.redo_stack.clear()
-        self.lstring = new
-
-    def undo(self) -> bool:
-        """Take back the last stroke."""
-        if not self.undo_stack:
-            return False
-        self.redo_stack.append(self.lstring)
-        self.lstring = self.undo_stack.pop()
-        return True
-
-    def redo(self) -> bool:
-        """Put back the last undone stroke."""
-        if not self.redo_stack:
-            return False
-        self.undo_stack.append(self.lstring)
-        self.lstring = self.redo_stack.pop()
-        return True
 
 
 def _branch_at(ls: LString, module: int, frac: float, body: str) -> LString:
