@@ -398,12 +398,12 @@ def grow_crown(modeler: Modeler, lobes: list[Lobe], rng: np.random.Generator, pe
     """Grow the modeled tree into ``lobes`` (seed 004) and commit the branches to its L-string
     (undoable). Growth starts at the drawn tip nearest the lobes, or on an empty tree at a straight
     trunk from the base into the lowest lobe; ``tip`` ends every new branch (a leaf in the game).
-    Branch pieces are ``step_fraction`` of the crown's size long, so a crown looks alike at any scale.
+    Branch pieces are ``step_fraction`` of a lobe's size long, so a crown looks alike at any scale.
     Returns the number of branch pieces added."""
     surface = np.concatenate([lobe.vertices for lobe in lobes])
     attractors = np.concatenate([surface] + [lobe.sample_inside(per_lobe, rng) for lobe in lobes])
     centre = surface.mean(axis=0)
-    step = step_fraction * float(np.ptp(surface, axis=0).max())
+    step = step_fraction * float(np.mean([np.ptp(lobe.vertices, axis=0).max() for lobe in lobes]))
     sizes = {"step": step, "kill": step / 2, "stop": step / 4, "max_nodes": max_nodes}
     if len(modeler.lstring) == 0:
         lowest = min(lobes, key=lambda lobe: lobe.vertices[:, 1].min())

@@ -16,7 +16,7 @@ import pygame
 
 from engine.edits import EDIT_SETS, apply_edit, load_edit_sets
 from engine.growth import grow_geometry, render_view
-from engine.lobes import grow_crown, lobe_from_outline
+from engine.lobes import Lobe, grow_crown, lobe_from_loops, lobe_from_outline
 from engine.lstring import LString, format_number
 from engine.modeler import Modeler
 from engine.regions import Sphere, prune
@@ -53,6 +53,7 @@ class ModelingMode:
         self.roi: np.ndarray | None = None
         self.labels: list[tuple[str, float, float, bool]] = []  # last drawn: symbol, x, y, transformation
         self._positions: tuple[int, np.ndarray] | None = None
+        self.crown_states: dict[int, tuple] = {}  # id(L-string) -> (it, tree before crown, lobes, rings)
         self.edit = EDIT_SETS[0]
         self.edit_sets = load_edit_sets(ASSETS / "edits")
 
@@ -176,29 +177,57 @@ class ModelingMode:
             self.game.say(text("messages.stroke", pieces=result.pieces, points=result.growth_points, how=how))
         self.cancel()
 
+    def _crown_state(self) -> tuple[LString, list[Lobe], list[np.ndarray]]:
+        """The tree before its crown, the crown's lobes and the pending rings, for the tree as it is
+        now (so undo and redo of crown steps bring their lobes back too)."""
+        kept = self.crown_states.get(id(self.modeler.lstring))
+        if kept is not None and kept[0] is self.modeler.lstring:
+            return kept[1], kept[2], kept[3]
+        return self.modeler.lstring, [], []
+
     def _grow_crown(self) -> None:
         if len(self.points) < 8:
             return
-        try:
-            lobe = lobe_from_outline(np.array(self.points))
-        except ValueError:
-            self.game.say(text("messages.crown_flat"))
+        points = np.array(self.points)
+        base, lobes, rings = self._crown_state()
+        span = np.ptp(points, axis=0)
+        if span.max() < 1e-3:
             return
+        if span[1] < 0.25 * max(span[0], span[2]):  # a ring around the crown (3D trackers): stitch rings
+            rings = [*rings, points]
+            if len(rings) < 2:
+                self.crown_states[id(self.modeler.lstring)] = (self.modeler.lstring, base, lobes, rings)
+                self.game.say(text("messages.crown_ring"))
+                return
+            lobes = [*lobes[:-1], lobe_from_loops(rings)] if len(rings) > 2 else [*lobes, lobe_from_loops(rings)]
+        else:
+            lobes, rings = [*lobes, lobe_from_outline(points)], []
         budget = self.game.world.tree.deriver.budget
-        room = 6000 if budget is None else min(6000, (budget - len(self.modeler.lstring)) // 4)
+        room = 6000 if budget is None else min(6000, (budget - len(base)) // 4)
         start = time.perf_counter()
-        born = self._born_visible()
+        scratch = Modeler(lstring=base, segments_of=self._segments)
         rng = np.random.default_rng(int(self.modeler.rng.integers(2**31)))
-        added = grow_crown(self.modeler, [lobe], rng, per_lobe=250, step_fraction=0.2, max_nodes=max(room, 2),
-                           tip=f"[&(45)L({format_number(born)})]")
+        added = grow_crown(scratch, lobes, rng, per_lobe=250, step_fraction=0.2, max_nodes=max(room, 2),
+                           tip=f"[&(45)L({format_number(self._born_visible())})]")
         ms = (time.perf_counter() - start) * 1e3
+        self.modeler.commit(scratch.lstring)  # the whole crown regrown into every lobe: one undoable step
+        self.crown_states[id(scratch.lstring)] = (scratch.lstring, base, lobes, rings)
         self.game.world.tree.lstring = self.modeler.lstring
         key = "messages.crown_none" if added == 0 else "messages.crown_full" if added >= room - 2 else "messages.crown"
-        self.game.say(text(key, count=added, ms=ms))
+        self.game.say(text(key, count=added, ms=ms, lobes=len(lobes)))
 
     def draw_outline(self, surface: pygame.Surface, project) -> None:
-        """The crown outline being drawn, as a closed line over the scene (``project``: 3D -> pixels)."""
-        if not (self.crown and len(self.points) >= 2):
+        """The crown's lobes (their stitched strokes, faint) and the outline being drawn, as closed
+        lines over the scene (``project``: 3D -> pixels)."""
+        if not self.crown or self.modeler is None:
+            return
+        _, lobes, rings = self._crown_state()
+        loops = [ring for lobe in lobes for ring in lobe.vertices[:-2].reshape(-1, lobe.ring_size, 3)] + rings
+        for loop in loops:
+            faint = [p for p in (project(point) for point in loop) if p is not None]
+            if len(faint) >= 3:
+                pygame.draw.lines(surface, (170, 240, 170, 110), True, faint, 2)
+        if len(self.points) < 2:
             return
         pixels = [p for p in (project(point) for point in self.points) if p is not None]
         if len(pixels) >= 2:

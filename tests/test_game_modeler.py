@@ -232,3 +232,30 @@ def test_tap_inside_the_symbols_circle_applies_the_chosen_edit(game):
     assert game.world.tree.lstring.count("L") < added.count("L")
     press_menu(game, "undo")
     assert game.world.tree.lstring.equals(added)
+
+
+def test_crown_regrows_into_every_lobe_and_undo_brings_lobes_back(game):
+    press_menu(game, "crown")
+    base = game.world.tree.lstring
+    x0, y0 = base_pixel(game)
+    a = np.linspace(0, 2 * np.pi, 48)
+    draw(game, [(x0 - 90 + 90 * np.cos(t), y0 - 330 + 100 * np.sin(t)) for t in a])
+    one = game.world.tree.lstring
+    assert "1 lobes" in game.hud_info().message
+    draw(game, [(x0 + 110 + 90 * np.cos(t), y0 - 300 + 80 * np.sin(t)) for t in a])
+    two = game.world.tree.lstring
+    assert "2 lobes" in game.hud_info().message
+    assert game.modeling._crown_state()[0] is base  # regrown from the tree before the crown
+    assert two.count("L") > one.count("L")
+    press_menu(game, "undo")
+    assert game.world.tree.lstring is one and len(game.modeling._crown_state()[1]) == 1
+    # a 3D tracker draws rings around the crown: two rings at different heights make one more lobe
+    ring = np.stack([np.cos(a), np.zeros_like(a), np.sin(a)], 1)
+    for k, height in enumerate((2.6, 3.6)):
+        for i, p in enumerate(ring * (0.8 - 0.2 * k) + [0.0, height, 0.0]):
+            game.modeling.add3d(p, i * 0.02)
+        game.modeling.finish()
+        if k == 0:
+            assert "ring" in game.hud_info().message and game.world.tree.lstring is one
+    assert "2 lobes" in game.hud_info().message
+    assert len(game.modeling._crown_state()[2]) == 2
