@@ -396,8 +396,8 @@ def lobe_from_outline(outline: np.ndarray, depth: float = 1.0, rings: int = 7) -
 def grow_crown(modeler: Modeler, lobes: list[Lobe], rng: np.random.Generator, per_lobe: int = 1500,
                max_nodes: int = 6000, tip: str = "", step_fraction: float = 0.12) -> int:
     """Grow the modeled tree into ``lobes`` (seed 004) and commit the branches to its L-string
-    (undoable). Growth starts at the drawn tip nearest the lobes, or on an empty tree at a straight
-    trunk from the base into the lowest lobe; ``tip`` ends every new branch (a leaf in the game).
+    (undoable). Growth starts at the drawn tip nearest the lobes, or where nothing is drawn yet at a
+    straight trunk from the base into the lowest lobe; ``tip`` ends every new branch (a leaf in the game).
     Branch pieces are ``step_fraction`` of a lobe's size long, so a crown looks alike at any scale.
     Returns the number of branch pieces added."""
     surface = np.concatenate([lobe.vertices for lobe in lobes])
@@ -405,15 +405,16 @@ def grow_crown(modeler: Modeler, lobes: list[Lobe], rng: np.random.Generator, pe
     centre = surface.mean(axis=0)
     step = step_fraction * float(np.mean([np.ptp(lobe.vertices, axis=0).max() for lobe in lobes]))
     sizes = {"step": step, "kill": step / 2, "stop": step / 4, "max_nodes": max_nodes}
-    if len(modeler.lstring) == 0:
+    segs = modeler.segments() if len(modeler.lstring) else None
+    if segs is None or len(segs) == 0:  # nothing drawn yet: a trunk from the base into the lowest lobe
         lowest = min(lobes, key=lambda lobe: lobe.vertices[:, 1].min())
         entry = lowest.vertices.mean(axis=0)
         entry[1] = lowest.vertices[:, 1].min() + 0.2 * np.ptp(lowest.vertices[:, 1])
-        trunk = Skeleton.from_trunk(np.stack([np.zeros(3), entry]))
-        grown = grow_into_lobes(trunk, lobes, attractors, **sizes)
-        modeler.commit(parse_lstring(skeleton_text(grown, tip=tip)))
+        grown = grow_into_lobes(Skeleton.from_trunk(np.stack([np.zeros(3), entry])), lobes, attractors, **sizes)
+        text = skeleton_text(grown, tip=tip)
+        kept = modeler.lstring  # modules that draw nothing yet (a new sapling's apex) stay
+        modeler.commit(concat(parse_lstring(f"[{text}]"), kept) if len(kept) else parse_lstring(text))
         return len(grown.parent) - 1
-    segs = modeler.segments()
     tips = np.setdiff1d(np.arange(len(segs)), segs.parent)
     k = int(tips[np.argmin(np.linalg.norm(segs.end[tips] - centre, axis=1))])
     heading = segs.frame[k][:, 0]

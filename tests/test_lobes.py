@@ -186,3 +186,10 @@ def test_lobe_edits_undo_and_redo():
     assert editor.redo() and editor.lobes[0] is not first and len(editor.lobes) == 1
     editor.set(0, None)
     assert editor.lobes == [] and not editor.redo()
+
+
+def test_crown_on_a_string_that_draws_nothing_keeps_its_modules():
+    modeler = Modeler(lstring=parse_lstring("A(0,0,0)"))
+    added = grow_crown(modeler, [lobe_from_outline(silhouette())], np.random.default_rng(5), per_lobe=300)
+    assert added > 50 and modeler.lstring.count("A") == 1
+    assert len(interpret(modeler.lstring, TurtleConfig()).segments) == added
