@@ -27,15 +27,19 @@ def load_edit_sets(folder: str | Path) -> dict[str, LSystem]:
 
 
 def apply_edit(ls: LString, positions: np.ndarray, region, system: LSystem,
-               extern: dict[str, float] | None = None, new_axis: str | None = None) -> tuple[LString, int]:
+               extern: dict[str, float] | None = None, new_axis: str | None = None,
+               budget: int | None = None) -> tuple[LString, int, int]:
     """Rewrite once with ``system``, only inside ``region``; ``positions`` are the modules' turtle
-    positions. With ``new_axis`` (an axiom) an empty region gets a new axis at its centre. Returns
-    the new string and how many modules were rewritten (-1 when a new axis was started)."""
+    positions. With ``new_axis`` (an axiom) an empty region gets a new axis at its centre. A module
+    ``budget`` holds back rewrites that would grow the string past it (erasing always works).
+    Returns the new string, how many modules were rewritten (-1 when a new axis was started) and
+    how many rewrites the budget held back."""
     inside = region.contains(positions)
     if not inside.any():
-        if new_axis is None:
-            return ls, 0
-        return seed_in_region(ls, new_axis, region.center), -1
+        if new_axis is None or (budget is not None and len(ls) >= budget):
+            return ls, 0, 0
+        return seed_in_region(ls, new_axis, region.center), -1, 0
     known = set(system.externs)
-    new, report = Deriver(system).step(ls, {k: v for k, v in (extern or {}).items() if k in known}, only=inside)
-    return new, report.rewritten
+    deriver = Deriver(system, budget=budget if budget is not None else 2**62)
+    new, report = deriver.step(ls, {k: v for k, v in (extern or {}).items() if k in known}, only=inside)
+    return new, report.rewritten, report.deferred

@@ -258,12 +258,14 @@ class ModelingMode:
         if not np.hypot(x - centre[0], y - centre[1]) <= np.linalg.norm(edge - centre):
             return False
         ls = self.game.world.tree.lstring
-        new, changed = apply_edit(ls, self._module_positions(ls), sphere, self.edit_sets[self.edit],
-                                  {"T": self._born_visible(), "G": self.game.world.clocks().girth_time})
+        new, changed, held = apply_edit(ls, self._module_positions(ls), sphere, self.edit_sets[self.edit],
+                                        {"T": self._born_visible(), "G": self.game.world.clocks().girth_time},
+                                        budget=self.game.world.tree.deriver.budget)
         if changed:
             self.modeler.commit(new)
             self.game.world.tree.lstring = new
-        self.game.say(text("messages.edited", edit=text(f"edits.{self.edit}"), count=changed))
+        message = text("messages.edited", edit=text(f"edits.{self.edit}"), count=changed)
+        self.game.say(message + (" " + text("messages.budget") if held else ""))
         return True
 
     def draw_symbols(self, surface: pygame.Surface, camera: OrbitCamera, font: pygame.font.Font) -> None:

@@ -36,7 +36,7 @@ def test_erase_leaves_removes_only_the_leaves_inside():
     region = Sphere(tuple(pos[leaf][len(pos[leaf]) // 2]), 1.5)
     inside = region.contains(pos) & leaf
     assert 0 < inside.sum() < leaf.sum()
-    new, changed = apply_edit(ls, pos, region, SETS["erase_leaves"])
+    new, changed, _ = apply_edit(ls, pos, region, SETS["erase_leaves"])
     assert changed == inside.sum()
     assert (new.sym == ord("L")).sum() == leaf.sum() - inside.sum()
     assert (new.sym != ord("L")).sum() == (ls.sym != ord("L")).sum()  # nothing else changed
@@ -46,7 +46,7 @@ def test_added_blossoms_grow_in_and_show_only_inside():
     tree, clocks = game_tree()
     ls, pos = tree.lstring, positions_of(tree, clocks)
     region = Sphere(tuple(pos[ls.sym == ord("I")].mean(axis=0)), 1.0)
-    new, changed = apply_edit(ls, pos, region, SETS["add_blossoms"], {"T": clocks.length_time, "G": 0.0})
+    new, changed, _ = apply_edit(ls, pos, region, SETS["add_blossoms"], {"T": clocks.length_time, "G": 0.0})
     assert changed > 0 and new.count("K") == changed
     geometry = grow_geometry(new, clocks, tree.geometry_constants).turtle
     assert len(geometry.blossoms.position) == 0 or geometry.blossoms.size.max() == 0  # born now: zero size
@@ -60,7 +60,7 @@ def test_bend_turns_branches_down_only_inside():
     ls = parse_lstring("F(1)[&(30)F(1)F(1)]F(1)[&(30)F(1)F(1)]F(1)")
     pos = module_positions(ls)
     region = Sphere((0.0, 2.2, 0.0), 0.5)  # the upper branch's base only
-    new, changed = apply_edit(ls, pos, region, SETS["bend"])
+    new, changed, _ = apply_edit(ls, pos, region, SETS["bend"])
     assert changed == 1
     before, after = interpret(ls).segments.end, interpret(new).segments.end
     moved = np.linalg.norm(after - before, axis=1) > 1e-9
@@ -70,7 +70,17 @@ def test_bend_turns_branches_down_only_inside():
 def test_grow_in_an_empty_region_starts_a_new_axis_there():
     ls = parse_lstring("F(1)F(1)")
     pos = module_positions(ls)
-    new, changed = apply_edit(ls, pos, Sphere((2.0, 0.5, 1.0), 0.3), SETS["bend"], new_axis="F(1)")
+    new, changed, _ = apply_edit(ls, pos, Sphere((2.0, 0.5, 1.0), 0.3), SETS["bend"], new_axis="F(1)")
     assert changed == -1
     segs = interpret(new).segments
     assert np.isclose(np.linalg.norm(segs.start - [2.0, 0.5, 1.0], axis=1).min(), 0.0, atol=1e-6)
+
+
+def test_a_budget_holds_back_growing_edits_but_not_erasing():
+    tree, clocks = game_tree()
+    ls, pos = tree.lstring, positions_of(tree, clocks)
+    everywhere = Sphere(tuple(pos.mean(axis=0)), 1e6)
+    full, changed, held = apply_edit(ls, pos, everywhere, SETS["add_leaves"], {"T": 1.0}, budget=len(ls) + 40)
+    assert len(full) <= len(ls) + 40 and held > 0 and changed > 0
+    bare, erased, held = apply_edit(ls, pos, everywhere, SETS["erase_leaves"], budget=len(ls) - 1000)
+    assert held == 0 and erased == ls.count("L") and bare.count("L") == 0
