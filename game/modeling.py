@@ -27,6 +27,7 @@ from game.render import ASSETS
 from game.strings import text
 
 PICK_PIXELS = 18.0  # how close a tap must be to a branch to cut it
+MAX_CROWN_MODULES = 24000  # one crown's bound even without a tree budget
 MAX_ROWS = 160  # the overlay's bound: a region over a huge crown shows the spots nearest its centre
 ROW_SYMBOLS = 10  # symbols shown at one spot before an ellipsis
 TRANSFORMATIONS = set("+-&^/\\|!$[]T%")  # drawn in red; every other symbol makes shape
@@ -169,7 +170,14 @@ class ModelingMode:
         elif self.pruning or self.symbols:
             pass  # the prune tool cuts with taps; the symbols tool's drag only moved its region
         elif self.modeler is not None and len(self.points) >= 3:
-            result = self.modeler.add_stroke(Stroke(np.array(self.points), np.array(self.times)))
+            new, result = self.modeler.convert(Stroke(np.array(self.points), np.array(self.times)))
+            budget = self.game.world.tree.deriver.budget
+            if budget is not None and len(new) > max(budget, len(self.modeler.lstring)):
+                self.game.say(text("messages.stroke_budget"))  # nothing is lost: the stroke is just not added
+                self.cancel()
+                return
+            if result.pieces:
+                self.modeler.commit(new)
             self.game.world.tree.lstring = self.modeler.lstring
             how = text("messages.stroke_joined" if result.snapped_to is not None else "messages.stroke_new")
             if result.bypassed:
@@ -202,19 +210,33 @@ class ModelingMode:
             lobes = [*lobes[:-1], lobe_from_loops(rings)] if len(rings) > 2 else [*lobes, lobe_from_loops(rings)]
         else:
             lobes, rings = [*lobes, lobe_from_outline(points)], []
-        budget = self.game.world.tree.deriver.budget
-        room = 6000 if budget is None else min(6000, (budget - len(base)) // 4)
         start = time.perf_counter()
-        scratch = Modeler(lstring=base, segments_of=self._segments)
-        rng = np.random.default_rng(int(self.modeler.rng.integers(2**31)))
-        added = grow_crown(scratch, lobes, rng, per_lobe=250, step_fraction=0.2, max_nodes=max(room, 2),
-                           tip=f"[&(45)L({format_number(self._born_visible())})]")
+        grown, added, limited = self._regrow(base, lobes)
         ms = (time.perf_counter() - start) * 1e3
-        self.modeler.commit(scratch.lstring)  # the whole crown regrown into every lobe: one undoable step
-        self.crown_states[id(scratch.lstring)] = (scratch.lstring, base, lobes, rings)
+        self.modeler.commit(grown)  # the whole crown regrown into every lobe: one undoable step
+        self.crown_states[id(grown)] = (grown, base, lobes, rings)
         self.game.world.tree.lstring = self.modeler.lstring
-        key = "messages.crown_none" if added == 0 else "messages.crown_full" if added >= room - 2 else "messages.crown"
+        key = "messages.crown_none" if added == 0 else "messages.crown_full" if limited else "messages.crown"
         self.game.say(text(key, count=added, ms=ms, lobes=len(lobes)))
+
+    def _regrow(self, base: LString, lobes: list[Lobe]) -> tuple[LString, int, bool]:
+        """The crown grown from ``base`` into ``lobes`` within the tree's module budget: a try that is
+        too big is grown again with proportionally fewer nodes (at most four tries). Returns the L-string,
+        the branch pieces added and whether the budget limited them."""
+        budget = self.game.world.tree.deriver.budget
+        room = MAX_CROWN_MODULES if budget is None else min(MAX_CROWN_MODULES, budget - len(base))
+        nodes, seed = MAX_CROWN_MODULES // 4, int(self.modeler.rng.integers(2**31))
+        for _ in range(4):
+            if room <= 0 or nodes < 2:
+                break
+            scratch = Modeler(lstring=base, segments_of=self._segments)
+            added = grow_crown(scratch, lobes, np.random.default_rng(seed), per_lobe=250, step_fraction=0.2,
+                               max_nodes=nodes, tip=f"[&(45)L({format_number(self._born_visible())})]")
+            extra = len(scratch.lstring) - len(base)
+            if extra <= room:
+                return scratch.lstring, added, added >= nodes - 2 or nodes < MAX_CROWN_MODULES // 4
+            nodes = int(added * room / extra * 0.9)
+        return base, 0, True
 
     def draw_outline(self, surface: pygame.Surface, project) -> None:
         """The crown's lobes (their stitched strokes, faint) and the outline being drawn, as closed

@@ -259,3 +259,19 @@ def test_crown_regrows_into_every_lobe_and_undo_brings_lobes_back(game):
             assert "ring" in game.hud_info().message and game.world.tree.lstring is one
     assert "2 lobes" in game.hud_info().message
     assert len(game.modeling._crown_state()[2]) == 2
+
+
+def test_strokes_and_crowns_stay_within_the_tree_budget(game):
+    press_menu(game, "modeler")
+    before = game.world.tree.lstring
+    game.world.tree.deriver.budget = len(before) + 10
+    x0, y0 = base_pixel(game)
+    draw(game, [(x0 + 6 * i, y0 - 8 * i) for i in range(40)])
+    assert game.world.tree.lstring is before and "size limit" in game.hud_info().message
+    game.world.tree.deriver.budget = len(before) + 400
+    press_menu(game, "crown")
+    a = np.linspace(0, 2 * np.pi, 48)
+    draw(game, [(x0 + 160 * np.cos(t), y0 - 330 + 120 * np.sin(t)) for t in a])
+    grown = game.world.tree.lstring
+    assert len(before) + 100 < len(grown) <= len(before) + 400
+    assert "size limit" in game.hud_info().message
