@@ -28,6 +28,7 @@ from game.strings import text
 
 PICK_PIXELS = 18.0  # how close a tap must be to a branch to cut it
 MAX_CROWN_MODULES = 24000  # one crown's bound even without a tree budget
+MAX_CROWN_STATES = 32  # crown steps whose lobes undo/redo can bring back
 MAX_ROWS = 160  # the overlay's bound: a region over a huge crown shows the spots nearest its centre
 ROW_SYMBOLS = 10  # symbols shown at one spot before an ellipsis
 TRANSFORMATIONS = set("+-&^/\\|!$[]T%")  # drawn in red; every other symbol makes shape
@@ -53,7 +54,7 @@ class ModelingMode:
         self.symbols = False  # drags move the region whose L-string symbols are shown
         self.roi: np.ndarray | None = None
         self.labels: list[tuple[str, float, float, bool]] = []  # last drawn: symbol, x, y, transformation
-        self._positions: tuple[int, np.ndarray] | None = None
+        self._positions: tuple[LString, np.ndarray] | None = None
         self.crown_states: dict[int, tuple] = {}  # id(L-string) -> (it, tree before crown, lobes, rings)
         self.edit = EDIT_SETS[0]
         self.edit_sets = load_edit_sets(ASSETS / "edits")
@@ -77,6 +78,7 @@ class ModelingMode:
         self.resume_speed = self.game.loop.speed or 1.0
         self.game.set_speed(0.0)
         self.modeler = Modeler(lstring=self.game.world.tree.lstring, segments_of=self._segments)
+        self.crown_states.clear()  # a new editing session: earlier crown steps cannot be undone into
         self.game.say(text("messages.modeler_on"))
 
     def _tool(self, name: str) -> None:
@@ -193,6 +195,11 @@ class ModelingMode:
             return kept[1], kept[2], kept[3]
         return self.modeler.lstring, [], []
 
+    def _remember_crown(self, ls: LString, base: LString, lobes: list[Lobe], rings: list[np.ndarray]) -> None:
+        self.crown_states[id(ls)] = (ls, base, lobes, rings)
+        while len(self.crown_states) > MAX_CROWN_STATES:  # bounded: the oldest crown steps are forgotten
+            del self.crown_states[next(iter(self.crown_states))]
+
     def _grow_crown(self) -> None:
         if len(self.points) < 8:
             return
@@ -204,7 +211,7 @@ class ModelingMode:
         if span[1] < 0.25 * max(span[0], span[2]):  # a ring around the crown (3D trackers): stitch rings
             rings = [*rings, points]
             if len(rings) < 2:
-                self.crown_states[id(self.modeler.lstring)] = (self.modeler.lstring, base, lobes, rings)
+                self._remember_crown(self.modeler.lstring, base, lobes, rings)
                 self.game.say(text("messages.crown_ring"))
                 return
             lobes = [*lobes[:-1], lobe_from_loops(rings)] if len(rings) > 2 else [*lobes, lobe_from_loops(rings)]
@@ -214,7 +221,7 @@ class ModelingMode:
         grown, added, limited = self._regrow(base, lobes)
         ms = (time.perf_counter() - start) * 1e3
         self.modeler.commit(grown)  # the whole crown regrown into every lobe: one undoable step
-        self.crown_states[id(grown)] = (grown, base, lobes, rings)
+        self._remember_crown(grown, base, lobes, rings)
         self.game.world.tree.lstring = self.modeler.lstring
         key = "messages.crown_none" if added == 0 else "messages.crown_full" if limited else "messages.crown"
         self.game.say(text(key, count=added, ms=ms, lobes=len(lobes)))
@@ -331,10 +338,10 @@ class ModelingMode:
 
     def _module_positions(self, ls: LString) -> np.ndarray:
         """Turtle positions of every module of the tree as drawn now (cached per L-string)."""
-        if self._positions is None or self._positions[0] != id(ls):
+        if self._positions is None or self._positions[0] is not ls:
             tree, clocks = self.game.world.tree, self.game.world.clocks()
             view = render_view(ls, clocks, tree.geometry_constants)
-            self._positions = (id(ls), module_positions(view, TurtleConfig(pipe_model=False, leaves_at_tips=0)))
+            self._positions = (ls, module_positions(view, TurtleConfig(pipe_model=False, leaves_at_tips=0)))
         return self._positions[1]
 
     def undo(self) -> None:
