@@ -29,7 +29,7 @@ from engine import brackets
 from engine.history import Undoable
 from engine.lstring import LString, concat, format_number, parse_lstring
 from engine.strokes import ArcLengthSpline, Stroke, adaptive_sample, curvature, speeds_at
-from engine.turtle import INITIAL_FRAME, Segments, TurtleConfig, interpret
+from engine.turtle import INITIAL_FRAME, Segments, TurtleConfig, interpret, unit
 
 DRAWN = ord("F")
 GROWTH_POINT = ord("A")
@@ -66,9 +66,6 @@ class StrokeResult:
     text: str = ""
 
 
-def _unit(v: np.ndarray) -> np.ndarray:
-    return v / np.maximum(np.linalg.norm(v, axis=-1, keepdims=True), 1e-300)
-
 
 def _fmt(values) -> str:
     return ",".join(format_number(float(v)) for v in values)
@@ -98,7 +95,7 @@ def path_modules(path: np.ndarray, frame: np.ndarray, widths: np.ndarray, growth
         pitch = np.degrees(np.arctan2(-(d @ up), d @ h))
         frame = frame @ _rot_y(pitch)
         frame[:, 0] = d  # remove rounding drift: H is exactly the piece direction
-        frame[:, 2] = _unit(frame[:, 2] - (frame[:, 2] @ d) * d)
+        frame[:, 2] = unit(frame[:, 2] - (frame[:, 2] @ d) * d)
         frame[:, 1] = np.cross(frame[:, 2], d)
         if abs(turn) > 1e-9:
             out.append(f"+({format_number(float(turn))})")
@@ -237,17 +234,17 @@ def bypass(path: np.ndarray, radius: np.ndarray, segs: Segments, skip: np.ndarra
 def _push_from(path, closest, dist, need, hit, segs: Segments, j: int, settings: ModelerSettings) -> np.ndarray:
     """Offsets that move the hit points of ``path`` out of segment j's cylinder."""
     away = path - closest
-    axis = _unit(segs.end[j] - segs.start[j])
+    axis = unit(segs.end[j] - segs.start[j])
     if dist[hit].min() <= settings.near_axes:  # axes (nearly) meet: go to the emptier side
-        crossing = _unit(path[-1] - path[0])
-        normal = _unit(np.cross(axis, crossing))
+        crossing = unit(path[-1] - path[0])
+        normal = unit(np.cross(axis, crossing))
         if np.linalg.norm(normal) < 1e-9:
-            normal = _unit(np.cross(axis, np.array([1.0, 0.0, 0.0])))
+            normal = unit(np.cross(axis, np.array([1.0, 0.0, 0.0])))
         mids = 0.5 * (segs.start + segs.end) - segs.start[j]
         side = np.sign(np.sum(np.sign(mids @ normal))) or 1.0
         direction = np.broadcast_to(-side * normal, path.shape)
     else:
-        direction = _unit(away - (away @ axis)[:, None] * axis)
+        direction = unit(away - (away @ axis)[:, None] * axis)
     push = np.where(hit, need - dist + 1e-6, 0.0)
     current = np.einsum("ij,ij->i", away, direction)
     return direction * np.maximum(push, need - current)[:, None] * hit[:, None]

@@ -285,8 +285,8 @@ def _tropism_turns(frames_in: np.ndarray, direction: np.ndarray | None, angles: 
     (about H x direction), never past it (ABOP's tropism, applied where the string asks for it)."""
     if len(frames_in) == 0:
         return np.zeros((0, 3, 3))
-    h = _unit(frames_in[:, :, 0])
-    target = _unit(np.asarray(direction, float))
+    h = unit(frames_in[:, :, 0])
+    target = unit(np.asarray(direction, float))
     axis = np.cross(h, target)
     sin = np.linalg.norm(axis, axis=1)
     between = np.degrees(np.arctan2(sin, h @ target))
@@ -337,25 +337,26 @@ def _level_rolls(frames_in: np.ndarray) -> np.ndarray:
     The result is re-orthonormalised: '$' often repeats along an axis (dozens of times on a long
     branch), and any drift from a true rotation would compound.
     """
-    h = _unit(frames_in[:, :, 0])
+    h = unit(frames_in[:, :, 0])
     lft = np.cross(WORLD_UP, h)
     norm = np.linalg.norm(lft, axis=1)
     ok = norm > 1e-9
     lft[ok] /= norm[ok, None]
-    lft[~ok] = _unit(frames_in[~ok, :, 1])
+    lft[~ok] = unit(frames_in[~ok, :, 1])
     target = np.stack([h, lft, np.cross(h, lft)], axis=2)
     return _orthonormal(np.matmul(np.transpose(frames_in, (0, 2, 1)), target))
 
 
-def _unit(v: np.ndarray) -> np.ndarray:
+def unit(v: np.ndarray) -> np.ndarray:
+    """Vectors along the last axis scaled to length 1 (zero vectors stay zero)."""
     return v / np.maximum(np.linalg.norm(v, axis=-1, keepdims=True), 1e-300)
 
 
 def _orthonormal(m: np.ndarray) -> np.ndarray:
     """Gram-Schmidt on the columns: the nearest proper rotation for matrices that almost are."""
-    c0 = _unit(m[:, :, 0])
+    c0 = unit(m[:, :, 0])
     c1 = m[:, :, 1] - np.einsum("ni,ni->n", c0, m[:, :, 1])[:, None] * c0
-    c1 = _unit(c1)
+    c1 = unit(c1)
     return np.stack([c0, c1, np.cross(c0, c1)], axis=2)
 
 

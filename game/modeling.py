@@ -14,9 +14,10 @@ import time
 import numpy as np
 import pygame
 
+from engine.crown import grow_crown
 from engine.edits import EDIT_SETS, apply_edit, load_edit_sets
 from engine.growth import grow_geometry, render_view
-from engine.lobes import Lobe, grow_crown, lobe_from_loops, lobe_from_outline
+from engine.lobes import Lobe, lobe_from_loops, lobe_from_outline
 from engine.lstring import LString, format_number
 from engine.modeler import Modeler
 from engine.regions import Sphere, prune

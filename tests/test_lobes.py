@@ -1,10 +1,12 @@
-"""Lobes from closed strokes and growth into them (seed 004, toward issue 6)."""
+"""Lobes from closed strokes and growth into them (seed 004, toward issue 6): engine/lobes.py and
+engine/crown.py."""
 
 import numpy as np
 import pytest
 import trimesh
 
-from engine.lobes import Skeleton, grow_crown, grow_into_lobes, lobe_from_loops, lobe_from_outline, skeleton_text
+from engine.crown import Skeleton, grow_crown, grow_into_lobes, skeleton_text
+from engine.lobes import LobeEditor, lobe_from_loops, lobe_from_outline
 from engine.lstring import parse_lstring
 from engine.modeler import Modeler
 from engine.strokes import Stroke
@@ -174,8 +176,6 @@ def test_lobe_editing_moves_scales_turns_squeezes_and_drags_and_stays_closed():
 
 
 def test_lobe_edits_undo_and_redo():
-    from engine.lobes import LobeEditor
-
     editor = LobeEditor()
     first = lobe_from_outline(silhouette())
     editor.set(0, first)
