@@ -78,3 +78,10 @@ class OrbitCamera:
         half_w = max(ext[0], ext[2]) / 2
         need = max(half_h / tan_y, half_w / (tan_y * aspect)) / fill
         self.distance = need + max(ext[0], ext[2]) / 2
+
+
+def project_points(camera: OrbitCamera, size: tuple[int, int], points: np.ndarray) -> np.ndarray:
+    """Window pixels of many 3D points (NaN for points behind the camera)."""
+    clip = np.c_[points, np.ones(len(points))] @ (camera.projection(size[0] / size[1]) @ camera.view()).T
+    w = np.where(clip[:, 3] > 1e-9, clip[:, 3], np.nan)
+    return np.stack([(clip[:, 0] / w * 0.5 + 0.5) * size[0], (0.5 - clip[:, 1] / w * 0.5) * size[1]], axis=1)

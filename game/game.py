@@ -23,7 +23,7 @@ from engine.mesh import merge_trees
 from engine.save import load_world, save_world
 from engine.sim import load_rules
 from engine.world import World
-from game.camera import OrbitCamera
+from game.camera import OrbitCamera, project_points
 from game.gestures import CameraControl, Gestures
 from game.input import (
     DEVICE,
@@ -506,10 +506,8 @@ class Game:
         return pygame.image.tobytes(self.surface, "RGBA", True)
 
     def _project(self, camera: OrbitCamera, point) -> tuple[float, float] | None:
-        clip = camera.projection(self.size[0] / self.size[1]) @ camera.view() @ np.array([*point, 1.0])
-        if clip[3] <= 0:
-            return None
-        return (clip[0] / clip[3] * 0.5 + 0.5) * self.size[0], (0.5 - clip[1] / clip[3] * 0.5) * self.size[1]
+        x, y = project_points(camera, self.size, np.asarray(point, float)[None])[0]
+        return (float(x), float(y)) if np.isfinite(x) and np.isfinite(y) else None
 
     def _draw_cloud(self, camera: OrbitCamera) -> None:
         at = self._project(camera, (0.0, max(float(self.renderer.hi[1]), 1.0) * 1.25, 0.0))

@@ -23,16 +23,14 @@ from engine.modeler import Modeler
 from engine.regions import Sphere, prune
 from engine.strokes import Stroke
 from engine.turtle import TurtleConfig, module_positions
-from game.camera import OrbitCamera
+from game.camera import OrbitCamera, project_points
 from game.render import ASSETS
 from game.strings import text
+from game.symbols_overlay import draw_symbols
 
 PICK_PIXELS = 18.0  # how close a tap must be to a branch to cut it
 MAX_CROWN_MODULES = 24000  # one crown's bound even without a tree budget
 MAX_CROWN_STATES = 32  # crown steps whose lobes undo/redo can bring back
-MAX_ROWS = 160  # the overlay's bound: a region over a huge crown shows the spots nearest its centre
-ROW_SYMBOLS = 10  # symbols shown at one spot before an ellipsis
-TRANSFORMATIONS = set("+-&^/\\|!$[]T%")  # drawn in red; every other symbol makes shape
 
 
 class ModelingMode:
@@ -299,43 +297,12 @@ class ModelingMode:
         return True
 
     def draw_symbols(self, surface: pygame.Surface, camera: OrbitCamera, font: pygame.font.Font) -> None:
-        """The L-string overlay: symbols of the modules inside the region, at their positions."""
+        """The L-string overlay of the symbols tool (see game/symbols_overlay.py)."""
         self.labels = []
-        if not (self.symbols and self.roi is not None):
-            return
-        ls = self.game.world.tree.lstring
-        positions = self._module_positions(ls)
-        radius = self._roi_sphere().radius
-        distance = np.linalg.norm(positions - self.roi, axis=1)
-        inside = np.flatnonzero(distance <= radius)
-        inside = inside[np.argsort(distance[inside], kind="stable")]
-        pixels = project_points(camera, self.game.size, positions[inside])
-        centre = project_points(camera, self.game.size, self.roi[None])[0]
-        edge = project_points(camera, self.game.size, (self.roi + radius * camera.view()[0, :3])[None])[0]
-        if np.isfinite(centre).all() and np.isfinite(edge).all():
-            pygame.draw.circle(surface, (255, 255, 255, 160), centre, float(np.linalg.norm(edge - centre)), 2)
-        ok = np.isfinite(pixels).all(axis=1)
-        inside, pixels = inside[ok], pixels[ok]
-        # modules at one spot (turns before a piece) read as one row, nearest the centre first
-        _, first, group = np.unique((pixels // 8).astype(np.int64), axis=0, return_index=True, return_inverse=True)
-        taken: list[pygame.Rect] = []
-        for g in np.argsort(first)[:MAX_ROWS]:  # a row that would overlap a nearer one is left out
-            self._draw_row(surface, font, ls, inside[group.ravel() == g], pixels[first[g]], taken)
-
-    def _draw_row(self, surface, font, ls: LString, modules: np.ndarray, at: np.ndarray, taken: list) -> None:
-        symbols = [chr(c) for c in ls.sym[modules[:ROW_SYMBOLS]]] + (["…"] if len(modules) > ROW_SYMBOLS else [])
-        images = [font.render(c, True, (255, 80, 70) if c in TRANSFORMATIONS else (255, 235, 120)) for c in symbols]
-        width = sum(image.get_width() for image in images)
-        rect = pygame.Rect(int(at[0]), int(at[1] - images[0].get_height() / 2), width, images[0].get_height())
-        if rect.collidelist(taken) >= 0:
-            return
-        taken.append(rect)
-        pygame.draw.rect(surface, (0, 0, 0, 110), rect.inflate(4, 2))
-        x = rect.x
-        for symbol, image in zip(symbols, images, strict=True):
-            surface.blit(image, (x, rect.y))
-            self.labels.append((symbol, x, float(at[1]), symbol in TRANSFORMATIONS))
-            x += image.get_width()
+        if self.symbols and self.roi is not None:
+            ls = self.game.world.tree.lstring
+            self.labels = draw_symbols(surface, font, camera, self.game.size, ls, self._module_positions(ls),
+                                       self._roi_sphere())
 
     def _module_positions(self, ls: LString) -> np.ndarray:
         """Turtle positions of every module of the tree as drawn now (cached per L-string)."""
@@ -358,13 +325,6 @@ class ModelingMode:
     def lstring(self) -> LString:
         """What to draw now: the live preview while a stroke is being drawn, else the tree."""
         return self.preview if self.preview is not None else self.game.world.tree.lstring
-
-
-def project_points(camera: OrbitCamera, size: tuple[int, int], points: np.ndarray) -> np.ndarray:
-    """Window pixels of many 3D points (NaN for points behind the camera)."""
-    clip = np.c_[points, np.ones(len(points))] @ (camera.projection(size[0] / size[1]) @ camera.view()).T
-    w = np.where(clip[:, 3] > 1e-9, clip[:, 3], np.nan)
-    return np.stack([(clip[:, 0] / w * 0.5 + 0.5) * size[0], (0.5 - clip[:, 1] / w * 0.5) * size[1]], axis=1)
 
 
 def unproject_to_plane(camera: OrbitCamera, size: tuple[int, int], x: float, y: float,
