@@ -12,17 +12,15 @@ grown.
 
 from __future__ import annotations
 
-import re
 from dataclasses import dataclass
 
 import numpy as np
 
 from engine.lobes import Crossings, Lobe
-from engine.lstring import concat, parse_lstring
-from engine.modeler import Modeler, ModelerSettings, path_modules
+from engine.lstring import concat, format_number, parse_lstring
+from engine.modeler import Modeler
 from engine.turtle import INITIAL_FRAME, unit
 
-_NO_WIDTH = re.compile(r"!\([^)]*\)")
 ALPHA, BETA = 0.8, -0.3
 GRAVITY = np.array([0.0, -1.0, 0.0])
 
@@ -150,36 +148,92 @@ def pipe_diameters(skeleton: Skeleton, root_diameter: float, root: int = 0) -> n
 def skeleton_text(skeleton: Skeleton, root: int = 0, frame: np.ndarray = INITIAL_FRAME,
                   diameters: np.ndarray | None = None, tip: str = "") -> str:
     """The skeleton from node ``root`` on, for a turtle standing there with ``frame``, as ordinary
-    L-string text: F pieces with turns, side branches in brackets; each piece gets its diameter from
-    ``diameters`` (per node), or none (then the pipe model sets the radii); ``tip`` ends every branch
-    (e.g. a leaf). Walks each axis
-    iteratively; recursion only enters side branches, whose nesting is bounded by the number of
-    growth iterations."""
-    children: dict[int, list[int]] = {}
-    for child, parent in enumerate(skeleton.parent.tolist()):
-        if parent >= 0:
-            children.setdefault(parent, []).append(child)
-    settings = ModelerSettings(density=0.0)
+    L-string text: drawn F pieces (as the modeler writes them) with turns, side branches in brackets;
+    each piece gets its diameter from ``diameters`` (per node), or none (then the pipe model sets the
+    radii); ``tip`` ends every branch (e.g. a leaf). Frames are solved level by level in numpy; the
+    text is assembled with an explicit stack (no recursion, any depth)."""
+    pieces = _piece_texts(skeleton, root, np.array(frame, float), diameters)
+    order = np.argsort(skeleton.parent, kind="stable")
+    starts = np.searchsorted(skeleton.parent[order], np.arange(len(skeleton.parent) + 1))
+    out: list[str] = []
+    stack: list = [root]
+    while stack:
+        item = stack.pop()
+        if isinstance(item, str):
+            out.append(item)
+            continue
+        kids = order[starts[item] : starts[item + 1]].tolist()
+        if not kids:
+            out.append(tip)
+            continue
+        first, *sides = kids
+        tokens: list = []
+        for side in sides:
+            tokens += ["[", pieces[side], side, "]"]
+        tokens += [pieces[first], first]
+        stack.extend(reversed(tokens))
+    return "".join(out)
 
-    def piece(a: int, b: int, frame: np.ndarray) -> tuple[str, np.ndarray]:
-        if diameters is not None:
-            return path_modules(skeleton.position[[a, b]], frame, diameters[b : b + 1], [], settings)
-        text, end = path_modules(skeleton.position[[a, b]], frame, np.ones(1), [], settings)
-        return _NO_WIDTH.sub("", text), end
 
-    def axis(node: int, frame: np.ndarray) -> str:
-        out = []
-        while children.get(node):
-            first, *sides = children[node]
-            for side in sides:
-                text, side_frame = piece(node, side, frame)
-                out.append("[" + text + axis(side, side_frame) + "]")
-            text, frame = piece(node, first, frame)
-            out.append(text)
-            node = first
-        return "".join(out) + tip
+def _piece_texts(skeleton: Skeleton, root: int, frame: np.ndarray, diameters: np.ndarray | None) -> list[str]:
+    """Text of the piece into every node below ``root``: the turn and pitch that aim the turtle (whose
+    frame is the end frame of the piece into the parent) at the node, then F(length, start, heading,
+    up, variation) as path_modules writes it."""
+    parent, pos = skeleton.parent, skeleton.position
+    n = len(parent)
+    depth = np.full(n, -1)
+    depth[root] = 0
+    for _ in range(n):  # parents come before children: levels settle in (tree depth) passes
+        below = (depth < 0) & (parent >= 0)
+        below &= depth[np.maximum(parent, 0)] >= 0
+        if not below.any():
+            break
+        depth[below] = depth[parent[below]] + 1
+    ends = np.zeros((n, 3, 3))
+    ends[root] = frame
+    texts = [""] * n
+    for level in range(1, int(depth.max()) + 1):
+        nodes = np.flatnonzero(depth == level)
+        start = ends[parent[nodes]]
+        vec = pos[nodes] - pos[parent[nodes]]
+        length = np.linalg.norm(vec, axis=1)
+        d = vec / np.maximum(length, 1e-300)[:, None]
+        turn = np.degrees(np.arctan2(_dot(d, start[:, :, 1]), _dot(d, start[:, :, 0])))
+        turned = np.einsum("kij,kjl->kil", start, _rotations(turn, 2))
+        pitch = np.degrees(np.arctan2(-_dot(d, turned[:, :, 2]), _dot(d, turned[:, :, 0])))
+        end = np.einsum("kij,kjl->kil", turned, _rotations(pitch, 1))
+        up = unit(end[:, :, 2] - _dot(end[:, :, 2], d)[:, None] * d)
+        end = np.stack([d, np.cross(up, d), up], axis=2)
+        variation = np.degrees(np.arccos(np.clip(_dot(start[:, :, 0], d), -1.0, 1.0)))
+        moving = length > 1e-12  # a zero-length piece draws nothing and keeps the frame
+        ends[nodes] = np.where(moving[:, None, None], end, start)
+        for k, node in enumerate(nodes.tolist()):
+            if moving[k]:
+                texts[node] = _piece(turn[k], pitch[k], length[k], pos[parent[node]], d[k], up[k], variation[k],
+                                     None if diameters is None else diameters[node])
+    return texts
 
-    return axis(root, np.array(frame, float))
+
+def _dot(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    return np.einsum("ki,ki->k", a, b)
+
+
+def _rotations(deg: np.ndarray, axis: int) -> np.ndarray:
+    """Rotation matrices about the turtle's U (axis 2, turns) or L (axis 1, pitches), one per angle."""
+    a = np.radians(deg)
+    c, s = np.cos(a), np.sin(a)
+    r = np.zeros((len(a), 3, 3))
+    i, j = (0, 1) if axis == 2 else (2, 0)
+    r[:, axis, axis] = 1.0
+    r[:, i, i], r[:, j, j], r[:, i, j], r[:, j, i] = c, c, -s, s
+    return r
+
+
+def _piece(turn, pitch, length, start, d, up, variation, diameter) -> str:
+    out = f"+({format_number(float(turn))})" if abs(turn) > 1e-9 else ""
+    out += f"&({format_number(float(pitch))})" if abs(pitch) > 1e-9 else ""
+    out += f"!({format_number(float(diameter))})" if diameter is not None else ""
+    return out + "F(" + ",".join(format_number(float(v)) for v in (length, *start, *d, *up, variation)) + ")"
 
 
 def grow_crown(modeler: Modeler, lobes: list[Lobe], rng: np.random.Generator, per_lobe: int = 1500,

@@ -193,3 +193,18 @@ def test_crown_on_a_string_that_draws_nothing_keeps_its_modules():
     added = grow_crown(modeler, [lobe_from_outline(silhouette())], np.random.default_rng(5), per_lobe=300)
     assert added > 50 and modeler.lstring.count("A") == 1
     assert len(interpret(modeler.lstring, TurtleConfig()).segments) == added
+
+
+def test_deeply_nested_side_branches_write_without_recursion_limits():
+    n = 3000  # every node is a side branch of the one before it (bracket depth ~n/2)
+    angle = np.arange(n) * 0.3
+    position = np.cumsum(np.stack([np.cos(angle), np.ones(n), np.sin(angle)], 1) * 0.1, axis=0)
+    position -= position[0]  # the turtle starts at the origin
+    parent = np.arange(n) - 1
+    parent[2::2] = np.arange(0, n - 2, 2)  # even nodes hang off the node two back: a side branch there
+    skeleton = Skeleton(position, parent, np.tile([0.0, 1.0, 0.0], (n, 1)), np.zeros(n, bool))
+    text = skeleton_text(skeleton)
+    assert text.count("[") > 1000
+    segments = interpret(parse_lstring(text), TurtleConfig(width=0.05)).segments
+    assert len(segments) == n - 1
+    assert np.linalg.norm(segments.end[:, None, :] - position[None, 1:, :], axis=2).min(axis=0).max() < 1e-6
