@@ -18,7 +18,6 @@ from engine.lsys import LSystem, load_lsystem
 from engine.regions import seed_in_region
 
 EDIT_SETS = ("add_leaves", "erase_leaves", "add_blossoms", "erase_blossoms", "bend")
-EDITS = ("grow", *EDIT_SETS)
 
 
 def load_edit_sets(folder: str | Path) -> dict[str, LSystem]:

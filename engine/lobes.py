@@ -11,6 +11,7 @@ squeezed and have stroke points dragged, with undo; ``Crossings`` tests points a
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from functools import cached_property
 
 import numpy as np
 
@@ -78,7 +79,11 @@ class Lobe:
 
     def contains(self, points: np.ndarray) -> np.ndarray:
         """True for points inside the lobe."""
-        return Crossings([self]).inside(points) == 0
+        return self._crossings.inside(points) == 0
+
+    @cached_property
+    def _crossings(self) -> Crossings:
+        return Crossings([self])  # triangle terms computed once per lobe (lobes are never changed)
 
     def sample_inside(self, count: int, rng: np.random.Generator) -> np.ndarray:
         """``count`` points uniformly inside (rejection sampling in the bounding box)."""
