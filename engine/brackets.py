@@ -40,44 +40,47 @@ def check_balanced(sym: np.ndarray) -> None:
         raise BracketError("'[' is never closed", int(opens[-1]) if len(opens) else 0)
 
 
-def match(sym: np.ndarray) -> np.ndarray:
+def _by_depth(idx: np.ndarray, d: np.ndarray) -> np.ndarray:
+    """``idx`` (ascending) reordered by depth, keeping position order within a depth.
+
+    A stable sort of small integers is a radix sort in numpy: ~10x faster than sorting int64 keys.
+    """
+    small = np.int16 if len(d) == 0 or int(d.max(initial=0)) < 32767 else np.int64
+    return idx[np.argsort(d[idx].astype(small), kind="stable")]
+
+
+def match(sym: np.ndarray, d: np.ndarray | None = None) -> np.ndarray:
     """For every bracket, the index of its partner; -1 for other modules. Assumes balance."""
     n = len(sym)
     out = np.full(n, -1, dtype=np.int64)
     opens = np.flatnonzero(sym == OPEN)
-    closes = np.flatnonzero(sym == CLOSE)
     if len(opens) == 0:
         return out
-    d = depths(sym).astype(np.int64)
-    okey = d[opens] * (n + 1) + opens
-    order = np.argsort(okey, kind="stable")
-    okey_sorted, opens_sorted = okey[order], opens[order]
-    ckey = d[closes] * (n + 1) + closes
-    partner = opens_sorted[np.searchsorted(okey_sorted, ckey) - 1]
-    out[closes] = partner
-    out[partner] = closes
+    closes = np.flatnonzero(sym == CLOSE)
+    d = depths(sym) if d is None else d
+    # brackets of one depth alternate open, close, open, close... in position order
+    opens_sorted = _by_depth(opens, d)
+    closes_sorted = _by_depth(closes, d)
+    out[opens_sorted] = closes_sorted
+    out[closes_sorted] = opens_sorted
     return out
 
 
-def enclosing_open(sym: np.ndarray, d: np.ndarray | None = None) -> np.ndarray:
-    """For every module, the index of the '[' of the branch it lies in (-1 on the main axis).
+def branch_ends(sym: np.ndarray, idx: np.ndarray, d: np.ndarray | None = None) -> np.ndarray:
+    """For the modules ``idx``, the index of the ']' that closes the branch each lies in (``len(sym)``
+    on the main axis): the module and everything after it up to there grows from it.
 
     A bracket itself counts as lying in the branch it opens/closes.
     """
     n = len(sym)
     d = depths(sym) if d is None else d
-    opens = np.flatnonzero(sym == OPEN)
-    out = np.full(n, -1, dtype=np.int64)
-    if len(opens) == 0:
-        return out
-    d64 = d.astype(np.int64)
-    okey = d64[opens] * (n + 1) + opens
-    order = np.argsort(okey, kind="stable")
-    okey_sorted, opens_sorted = okey[order], opens[order]
-    inside = np.flatnonzero(d64 > 0)
-    pos = np.searchsorted(okey_sorted, d64[inside] * (n + 1) + inside, side="right") - 1
-    out[inside] = opens_sorted[pos]
-    return out
+    closes = _by_depth(np.flatnonzero(sym == CLOSE), d)
+    key = d[closes].astype(np.int64) * (n + 1) + closes
+    depth = d[idx].astype(np.int64)
+    pos = np.searchsorted(key, depth * (n + 1) + idx)
+    found = np.minimum(pos, len(closes) - 1) if len(closes) else pos
+    end = closes[found] if len(closes) else np.full(len(idx), n)
+    return np.where(depth > 0, end, n)
 
 
 def first_good(step: np.ndarray, good: np.ndarray) -> np.ndarray:

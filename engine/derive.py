@@ -248,9 +248,7 @@ def apply_cut(ls: LString) -> LString:
     """Apply the cut symbol '%': remove it and the rest of its branch up to the closing ']'."""
     sym = ls.sym
     cuts = np.flatnonzero(sym == CUT)
-    partner = brackets.match(sym)
-    encl = brackets.enclosing_open(sym)[cuts]
-    ends = np.where(encl >= 0, partner[np.maximum(encl, 0)], len(sym))
+    ends = brackets.branch_ends(sym, cuts)
     delta = np.zeros(len(sym) + 1, dtype=np.int64)
     np.add.at(delta, cuts, 1)
     np.add.at(delta, ends, -1)

@@ -15,7 +15,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from engine.brackets import first_good
-from engine.chains import chain_compose, chain_sum
+from engine.chains import chain_compose, chain_sum, to_matrices, to_rows
 from engine.turtle import Leaves, Segments, TurtleResult
 
 
@@ -168,15 +168,15 @@ def _transported_x(segs: Segments, d: np.ndarray) -> np.ndarray:
     """A ring reference direction per segment, parallel-transported along each axis."""
     cont = segs.continues
     chain = np.where(cont, segs.parent, -1)
-    rot = np.broadcast_to(np.eye(3), (len(segs), 3, 3)).copy()
+    rot = np.repeat(np.eye(3).reshape(9, 1), len(segs), axis=1)
     ci = np.flatnonzero(cont)
-    rot[ci] = np.transpose(_min_rotations(d[segs.parent[ci]], d[ci]), (0, 2, 1))
-    acc, _ = chain_compose(chain, rot)
-    acc = np.transpose(acc, (0, 2, 1))  # child-last products, as transport needs
+    # child-last products, as transport needs: compose the transposes parent-first, transpose back
+    rot[:, ci] = to_rows(np.transpose(_min_rotations(d[segs.parent[ci]], d[ci]), (0, 2, 1)))
+    acc = to_matrices(chain_compose(chain, rot))
     lft = segs.frame[:, :, 1]
     x0 = _normalize(lft - np.einsum("ni,ni->n", lft, d)[:, None] * d)
     root = _chain_root(chain)
-    return np.einsum("nij,nj->ni", acc, x0[root])
+    return np.einsum("nji,nj->ni", acc, x0[root])
 
 
 def _chain_root(chain: np.ndarray) -> np.ndarray:
@@ -208,27 +208,35 @@ def _bezier_rings(rings: _Rings, start_ring: np.ndarray, end_ring: np.ndarray, n
     return np.concatenate([start_ring[:, None], mid, end_ring[:, None]], axis=1)
 
 
+def _ring_weights(n_surf: int) -> tuple[np.ndarray, np.ndarray]:
+    """Matrices that turn per-ring (x, y) and (center, r x, r y) rows into a whole ring's flattened
+    vertex normals and positions with one matrix product each (BLAS, not small-array broadcasting)."""
+    ang = np.linspace(0.0, 2 * np.pi, n_surf + 1)
+    eye = np.eye(3, dtype=np.float32)
+    around = np.stack([np.cos(ang), np.sin(ang)]).astype(np.float32)  # (2, per)
+    normal_w = np.einsum("kp,cd->kcpd", around, eye).reshape(6, -1)
+    pos_w = np.concatenate([np.tile(eye, (1, n_surf + 1)), normal_w])
+    return normal_w, pos_w
+
+
 def _tube_mesh(rings: _Rings, ring_seq: np.ndarray, module: np.ndarray, n_surf: int, tips, tip_dir) -> Mesh:
     """Vertices for every ring, quads between consecutive rings of each segment, cones at tips."""
     tan = _normalize(rings.tangent)
-    x = _normalize(rings.x - np.einsum("ni,ni->n", rings.x, tan)[:, None] * tan).astype(np.float32)
-    y = np.cross(tan, x).astype(np.float32)
-    ang = np.linspace(0.0, 2 * np.pi, n_surf + 1)
-    cos, sin = np.cos(ang).astype(np.float32), np.sin(ang).astype(np.float32)
+    x = _normalize(rings.x - np.einsum("ni,ni->n", rings.x, tan)[:, None] * tan)
+    y = np.cross(tan, x)
     per = n_surf + 1
     n_rings = len(rings.center)
     n_tips = len(tips)
+    normal_w, pos_w = _ring_weights(n_surf)
+    basis = np.concatenate([x, y], axis=1).astype(np.float32)
+    scaled = np.concatenate([rings.center, basis * rings.radius[:, None]], axis=1).astype(np.float32)
     positions = np.empty((n_rings * per + n_tips, 3), np.float32)
     normals = np.empty_like(positions)
-    ring_normals = normals[: n_rings * per].reshape(n_rings, per, 3)
-    np.multiply(cos[None, :, None], x[:, None], out=ring_normals)
-    ring_normals += sin[None, :, None] * y[:, None]
-    ring_pos = positions[: n_rings * per].reshape(n_rings, per, 3)
-    np.multiply(ring_normals, rings.radius.astype(np.float32)[:, None, None], out=ring_pos)
-    ring_pos += rings.center.astype(np.float32)[:, None]
+    np.matmul(basis, normal_w, out=normals[: n_rings * per].reshape(n_rings, per * 3))
+    np.matmul(scaled, pos_w, out=positions[: n_rings * per].reshape(n_rings, per * 3))
     uvs = np.empty((len(positions), 2), np.float32)
     ring_uv = uvs[: n_rings * per].reshape(n_rings, per, 2)
-    ring_uv[:, :, 0] = ang / (2 * np.pi)
+    ring_uv[:, :, 0] = np.linspace(0.0, 1.0, per, dtype=np.float32)
     ring_uv[:, :, 1] = rings.v[:, None]
     positions[n_rings * per :] = rings.center[tips] + tip_dir[tips] * rings.radius[tips, None] * 2.0
     normals[n_rings * per :] = tip_dir[tips]
@@ -239,19 +247,16 @@ def _tube_mesh(rings: _Rings, ring_seq: np.ndarray, module: np.ndarray, n_surf: 
 
 
 def _tube_indices(ring_seq: np.ndarray, n_surf: int, tips: np.ndarray, tip_base: int) -> np.ndarray:
+    """Two triangles per side between consecutive rings, (a, a+1, b+1) and (a, b+1, b), then tip cones."""
     per = n_surf + 1
     seq = ring_seq.astype(np.uint32) * np.uint32(per)
-    side = np.arange(n_surf, dtype=np.uint32)
-    a = seq[:, :-1, None] + side
-    b = seq[:, 1:, None] + side
-    quads = np.empty((*a.shape, 6), np.uint32)
-    quads[..., 0] = a
-    quads[..., 1] = a + 1
-    quads[..., 2] = b + 1
-    quads[..., 3] = a
-    quads[..., 4] = b + 1
-    quads[..., 5] = b
-    ring_base = tips.astype(np.uint32)[:, None] * np.uint32(per) + side
+    pairs = np.stack([seq[:, :-1], seq[:, 1:]], axis=-1)  # ring starts (a, b) of every band
+    side = np.repeat(np.arange(n_surf, dtype=np.uint32), 6)
+    which = np.tile(np.array([0, 0, 1, 0, 1, 1]), n_surf)  # a or b, per corner
+    offset = side + np.tile(np.array([0, 1, 1, 0, 1, 0], np.uint32), n_surf)
+    quads = np.take(pairs, which, axis=-1)
+    quads += offset
+    ring_base = tips.astype(np.uint32)[:, None] * np.uint32(per) + np.arange(n_surf, dtype=np.uint32)
     caps = np.empty((*ring_base.shape, 3), np.uint32)
     caps[..., 0] = ring_base
     caps[..., 1] = ring_base + 1

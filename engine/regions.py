@@ -132,9 +132,7 @@ def derive_in_region(deriver: Deriver, ls: LString, positions: np.ndarray, regio
 
 def prune(ls: LString, module: int) -> LString:
     """Remove module ``module`` and everything that grows from it (the rest of its branch)."""
-    partner = brackets.match(ls.sym)
-    encl = brackets.enclosing_open(ls.sym)[module]
-    end = partner[encl] if encl >= 0 else len(ls)
+    end = int(brackets.branch_ends(ls.sym, np.array([module]))[0])
     keep = np.ones(len(ls), bool)
     keep[module:end] = False
     return ls.select(keep)

@@ -20,7 +20,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from engine import brackets
-from engine.chains import chain_compose, chain_sum
+from engine.chains import chain_compose, chain_sum, compose_maps, mat_mul, to_matrices, to_rows
 from engine.lstring import LString
 
 WORLD_UP = np.array([0.0, 1.0, 0.0])
@@ -112,18 +112,18 @@ class TurtleResult:
         return allp.min(axis=0), allp.max(axis=0)
 
 
-def _axis_rotations(axis: int, angles_deg: np.ndarray) -> np.ndarray:
-    """Rotation matrices about local axis 0 (H), 1 (L) or 2 (U) by the given angles."""
+def _axis_rotation_rows(axis: int, angles_deg: np.ndarray) -> np.ndarray:
+    """Rotations about local axis 0 (H), 1 (L) or 2 (U) by the given angles, as (9, k) rows."""
     a = np.radians(angles_deg)
     c, s = np.cos(a), np.sin(a)
-    m = np.zeros((len(a), 3, 3))
+    rows = np.zeros((9, len(a)))
     i, j = [(1, 2), (2, 0), (0, 1)][axis]
-    m[:, axis, axis] = 1.0
-    m[:, i, i] = c
-    m[:, j, j] = c
-    m[:, j, i] = s
-    m[:, i, j] = -s
-    return m
+    rows[4 * axis] = 1.0
+    rows[4 * i] = c
+    rows[4 * j] = c
+    rows[3 * j + i] = s
+    rows[3 * i + j] = -s
+    return rows
 
 
 def _first_param(ls: LString, idx: np.ndarray, default: float) -> np.ndarray:
@@ -133,37 +133,36 @@ def _first_param(ls: LString, idx: np.ndarray, default: float) -> np.ndarray:
     return out
 
 
-def _local_transforms(ls: LString, cfg: TurtleConfig):
-    """Per-module local rotation (n,3,3), move length (n,), width map (a, b) and colour map (a, b)."""
-    n = len(ls)
-    rot = np.broadcast_to(np.eye(3), (n, 3, 3)).copy()
-    for sym, (axis, sign) in _ROT_AXIS.items():
-        idx = np.flatnonzero(ls.sym == sym)
-        if len(idx):
-            rot[idx] = _axis_rotations(axis, sign * _first_param(ls, idx, cfg.angle))
-    turn = np.flatnonzero(ls.sym == ord("|"))
-    rot[turn] = _axis_rotations(2, np.full(len(turn), 180.0))
-    move = np.zeros(n)
-    idx = np.flatnonzero(_MOVE[ls.sym])
-    move[idx] = _first_param(ls, idx, cfg.step)
-    width = _affine_maps(ls, ord("!"), lambda k: (cfg.width_factor, 0.0))
-    colour = _affine_maps(ls, ord("'"), lambda k: (1.0, 1.0))
-    return rot, move, width, colour
+# Rows of a turn block: rotation (0-8), width map a, b (9, 10), colour map a, b (11, 12).
+_WIDTH, _COLOUR = 9, 11
+_BLOCK = 13
+_IDENTITY = np.array([1.0, 0, 0, 0, 1, 0, 0, 0, 1, 1, 0, 1, 0])[:, None]
+_INITIAL_ROWS = INITIAL_FRAME.reshape(9, 1)
 
 
-def _affine_maps(ls: LString, symbol: int, bare) -> np.ndarray:
-    """Scalar state updates as affine maps x -> a x + b: '!(w)' sets (a=0, b=w), bare '!' scales."""
-    n = len(ls)
-    ab = np.zeros((n, 2))
-    ab[:, 0] = 1.0
-    idx = np.flatnonzero(ls.sym == symbol)
-    has = ls.nparams[idx] > 0
-    set_idx = idx[has]
-    ab[set_idx, 0] = 0.0
-    ab[set_idx, 1] = ls.params[ls.offsets[set_idx]]
-    a, b = bare(None)
-    ab[idx[~has]] = (a, b)
-    return ab
+def _turn_blocks(ls: LString, cfg: TurtleConfig, turn_idx: np.ndarray) -> np.ndarray:
+    """Local rotation and scalar maps of every turn-like module, as (13, t) column blocks."""
+    blocks = np.repeat(_IDENTITY, len(turn_idx), axis=1)
+    sym = ls.sym[turn_idx]
+    for code, (axis, sign) in _ROT_AXIS.items():
+        k = np.flatnonzero(sym == code)
+        if len(k):
+            blocks[:9, k] = _axis_rotation_rows(axis, sign * _first_param(ls, turn_idx[k], cfg.angle))
+    k = np.flatnonzero(sym == ord("|"))
+    blocks[:9, k] = _axis_rotation_rows(2, np.full(len(k), 180.0))
+    _affine_rows(ls, turn_idx, sym == ord("!"), blocks[_WIDTH:_WIDTH + 2], cfg.width_factor)
+    _affine_rows(ls, turn_idx, sym == ord("'"), blocks[_COLOUR:_COLOUR + 2], None)
+    return blocks
+
+
+def _affine_rows(ls: LString, turn_idx: np.ndarray, sel: np.ndarray, rows: np.ndarray, factor) -> None:
+    """Scalar updates as maps x -> a x + b: 'S(w)' sets (a=0, b=w); a bare one scales by ``factor``
+    (width) or adds 1 (colour, ``factor`` None)."""
+    k = np.flatnonzero(sel)
+    has = ls.nparams[turn_idx[k]] > 0
+    rows[0, k[has]] = 0.0
+    rows[1, k[has]] = ls.params[ls.offsets[turn_idx[k[has]]]]
+    rows[:, k[~has]] = [[factor], [0.0]] if factor is not None else [[1.0], [1.0]]
 
 
 def predecessors(sym: np.ndarray) -> np.ndarray:
@@ -180,103 +179,82 @@ def module_positions(ls: LString, cfg: TurtleConfig | None = None) -> np.ndarray
     """Where the turtle is when it reaches each module (n, 3): for regions, overlays and picking."""
     cfg = cfg or TurtleConfig()
     brackets.check_balanced(ls.sym)
-    rot, move, width, colour = _local_transforms(ls, cfg)
-    states = _solve_states(ls, predecessors(ls.sym), rot, move, np.stack([width, colour], axis=1), cfg.tropism)
-    return states.state_in(np.arange(len(ls)))[1]
+    states = _solve_states(ls, cfg, predecessors(ls.sym))
+    return states.positions_in(np.arange(len(ls))).T
 
 
 def interpret(ls: LString, cfg: TurtleConfig | None = None) -> TurtleResult:
     """Interpret an L-string with the 3D turtle; returns segments and leaf/blossom instances."""
     cfg = cfg or TurtleConfig()
     brackets.check_balanced(ls.sym)
-    rot, move, width, colour = _local_transforms(ls, cfg)
-    scalars = np.stack([width, colour], axis=1)
-    par = predecessors(ls.sym)
-    states = _solve_states(ls, par, rot, move, scalars, cfg.tropism)
-    want = np.flatnonzero(_DRAW[ls.sym] | (ls.sym == LEAF) | (ls.sym == BLOSSOM))
-    in_frame, in_pos, in_sc = states.state_in(want)
-    out_pos = states.move_out_pos()
-    width0 = 1.0 if cfg.width is None else cfg.width
-    widths = (in_sc[:, 0, 0] * width0 + in_sc[:, 0, 1]) * cfg.width_scale
-    colours = in_sc[:, 1, 1]  # colour index starts at 0
-    segs = _segments(ls, par, want, in_frame, in_pos, out_pos, widths, colours, states)
+    states = _solve_states(ls, cfg, predecessors(ls.sym))
+    segs = _segments(ls, states, cfg)
     use_pipe = cfg.pipe_model if cfg.pipe_model is not None else not np.any(ls.sym == ord("!"))
     if use_pipe:
         tip_r = 0.5 * cfg.width * cfg.width_scale if cfg.width is not None else 0.08 * _mean_tip_length(segs)
         apply_pipe_model(ls, segs, tip_r, cfg.pipe_exponent)
     leaf_size = cfg.leaf_size if cfg.leaf_size is not None else _auto_leaf_size(segs)
-    leaves = _instances(ls, LEAF, want, in_frame, in_pos, leaf_size)
+    leaves = _instances(ls, LEAF, states, leaf_size)
     tips = cfg.leaves_at_tips if cfg.leaves_at_tips is not None else (0 if len(leaves) else 3)
     if tips:
         leaves = _concat_leaves(leaves, _tip_leaves(segs, tips, leaf_size))
-    blossoms = _instances(ls, BLOSSOM, want, in_frame, in_pos, leaf_size)
+    blossoms = _instances(ls, BLOSSOM, states, leaf_size)
     return TurtleResult(segs, leaves, blossoms)
 
 
 @dataclass
 class _States:
-    """Turtle states solved in two levels: short runs of turns between moves, then moves only."""
+    """Turtle states solved in two levels: short runs of turns between moves, then moves only.
+
+    Blocks are column-wise (see engine.chains); each has one extra last column, the state before
+    anything happened (identity turn; initial frame at the origin), which modules with no turn or
+    move before them point to.
+    """
 
     is_move: np.ndarray  # (n,) bool
     move_idx: np.ndarray  # module index of each move
-    base: np.ndarray  # (n,) nearest move strictly before each module on its path (-1 none)
-    before: np.ndarray  # (n,) nearest turn-like module strictly before, if after base (-1 none)
-    compact: np.ndarray  # (n,) index of a module within its own class (turns or moves)
-    turn_r: np.ndarray  # accumulated rotation of each turn since its base
-    turn_s: np.ndarray  # accumulated scalar maps of each turn since its base
-    move_r: np.ndarray  # world frame after each move
-    move_t: np.ndarray  # world position after each move
-    move_s: np.ndarray  # scalar maps after each move
+    base: np.ndarray  # (n,) column of the nearest move strictly before each module on its path
+    before: np.ndarray  # (n,) column of the nearest turn strictly before, if after that move
+    turns: np.ndarray  # (13, t + 1) accumulated rotation and scalar maps of each turn since its move
+    moves: np.ndarray  # (13, m + 1) world frame and scalar maps going into (and out of) each move
+    move_t: np.ndarray  # (3, m + 1) world position after each move
 
-    def _before_maps(self, idx: np.ndarray):
-        b = self.before[idx]
-        has = b >= 0
-        r = np.broadcast_to(np.eye(3), (len(idx), 3, 3)).copy()
-        s = np.zeros((len(idx), 2, 2))
-        s[:, :, 0] = 1.0
-        r[has] = self.turn_r[self.compact[b[has]]]
-        s[has] = self.turn_s[self.compact[b[has]]]
-        return r, s
+    def blocks_in(self, idx: np.ndarray) -> np.ndarray:
+        """World frame rows and scalar maps going *into* the modules ``idx``: (13, k)."""
+        b, t = self.base[idx], self.before[idx]
+        out = np.empty((_BLOCK, len(idx)))
+        mat_mul(self.moves[:9, b], self.turns[:9, t], out[:9])
+        compose_maps(self.moves[9:, b], self.turns[9:, t], out[9:])
+        return out
 
-    def state_in(self, idx: np.ndarray):
-        """World frame, position and scalar maps going *into* the modules ``idx``."""
-        r, s = self._before_maps(idx)
-        base = self.base[idx]
-        has = base >= 0
-        frame = np.matmul(INITIAL_FRAME, r)
-        pos = np.zeros((len(idx), 3))
-        m = self.compact[base[has]]
-        frame[has] = np.matmul(self.move_r[m], r[has])
-        pos[has] = self.move_t[m]
-        ms = self.move_s[m]
-        s_has = s[has]
-        out_s = s.copy()
-        out_s[has, :, 1] = s_has[:, :, 0] * ms[:, :, 1] + s_has[:, :, 1]
-        out_s[has, :, 0] = s_has[:, :, 0] * ms[:, :, 0]
-        return frame, pos, out_s
-
-    def move_out_pos(self) -> np.ndarray:
-        """World position after each move module (indexed like ``move_idx``)."""
-        return self.move_t
+    def positions_in(self, idx: np.ndarray) -> np.ndarray:
+        """World positions going into the modules ``idx``: (3, k)."""
+        return self.move_t[:, self.base[idx]]
 
 
-def _solve_states(ls, par, rot, move, scalars, tropism: np.ndarray | None = None) -> _States:
+def _solve_states(ls: LString, cfg: TurtleConfig, par: np.ndarray) -> _States:
     """Solve all turtle states. '$' and 'T' turn by amounts that depend on the incoming heading, so
     they are found by repeated passes, one per nesting level of such modules along a path."""
+    is_move = _MOVE[ls.sym]
+    turn_idx = np.flatnonzero(~is_move & _TURNLIKE[ls.sym])
+    blocks = _turn_blocks(ls, cfg, turn_idx)
     rolls = np.flatnonzero(ls.sym == ROLL_LEVEL)
-    bends = np.flatnonzero(ls.sym == TROPISM) if tropism is not None else np.zeros(0, np.int64)
+    bends = np.flatnonzero(ls.sym == TROPISM) if cfg.tropism is not None else np.zeros(0, np.int64)
     special = np.concatenate([rolls, bends])
-    angles = _first_param(ls, bends, 0.0) if len(bends) else np.zeros(0)
+    columns = np.searchsorted(turn_idx, special)
+    angles = _first_param(ls, bends, 0.0)
+    move_len = _first_param(ls, np.flatnonzero(is_move), cfg.step)
     for _ in range(64):
-        states = _solve_once(ls, par, rot, move, scalars)
+        states = _solve_once(par, is_move, turn_idx, blocks, move_len)
         if len(special) == 0:
             break
-        frames_in, _, _ = states.state_in(special)
+        frames_in = to_matrices(states.blocks_in(special)[:9])
         new = np.concatenate([_level_rolls(frames_in[: len(rolls)]),
-                              _tropism_turns(frames_in[len(rolls):], tropism, angles)])
-        if np.allclose(new, rot[special], atol=1e-12):
+                              _tropism_turns(frames_in[len(rolls):], cfg.tropism, angles)])
+        new_rows = to_rows(new)
+        if np.allclose(new_rows, blocks[:9, columns], atol=1e-12):
             break
-        rot[special] = new
+        blocks[:9, columns] = new_rows
     return states
 
 
@@ -301,36 +279,45 @@ def _tropism_turns(frames_in: np.ndarray, direction: np.ndarray | None, angles: 
     return _orthonormal(local)
 
 
-def _solve_once(ls, par, rot, move, scalars) -> _States:
-    n = len(ls)
-    is_move = _MOVE[ls.sym]
-    is_turn = ~is_move & _TURNLIKE[ls.sym]
+def _columns(nearest: np.ndarray, compact: np.ndarray, none: int) -> np.ndarray:
+    """Column of each module's nearest turn/move (``none`` where there is none)."""
+    return np.where(nearest >= 0, compact[np.maximum(nearest, 0)], none)
+
+
+def _solve_once(par: np.ndarray, is_move: np.ndarray, turn_idx: np.ndarray, blocks: np.ndarray,
+                move_len: np.ndarray) -> _States:
+    n = len(par)
+    is_turn = np.zeros(n, bool)
+    is_turn[turn_idx] = True
     base = brackets.first_good(par, is_move)
     near = brackets.first_good(par, is_move | is_turn)
-    before = np.where((near >= 0) & ~is_move[np.maximum(near, 0)], near, -1)
-    compact = np.full(n, -1, dtype=np.int64)
-    turn_idx = np.flatnonzero(is_turn)
+    before = np.where((near >= 0) & is_turn[np.maximum(near, 0)], near, -1)
     move_idx = np.flatnonzero(is_move)
-    compact[turn_idx] = np.arange(len(turn_idx))
-    compact[move_idx] = np.arange(len(move_idx))
-    tpar = np.where(before[turn_idx] >= 0, compact[np.maximum(before[turn_idx], 0)], -1)
-    turn_r, turn_s = chain_compose(tpar, rot[turn_idx], scalars[turn_idx])
-    states = _States(is_move, move_idx, base, before, compact, turn_r, turn_s,
-                     np.zeros((0, 3, 3)), np.zeros((0, 3)), np.zeros((0, 2, 2)))
-    r_before, s_before = states._before_maps(move_idx)
-    mpar = np.where(base[move_idx] >= 0, compact[np.maximum(base[move_idx], 0)], -1)
-    acc_r, acc_s = chain_compose(mpar, r_before, s_before)
-    states.move_r = np.matmul(INITIAL_FRAME, acc_r)
-    states.move_t = _move_positions(mpar, states.move_r, move[move_idx])
-    states.move_s = acc_s
-    return states
+    t, m = len(turn_idx), len(move_idx)
+    compact = np.full(n, -1, dtype=np.int64)
+    compact[turn_idx] = np.arange(t)
+    compact[move_idx] = np.arange(m)
+    base_col, before_col = _columns(base, compact, m), _columns(before, compact, t)
+    tpar = before_col[turn_idx]
+    turns = np.concatenate([chain_compose(np.where(tpar < t, tpar, -1), blocks), _IDENTITY], axis=1)
+    mpar = base_col[move_idx]
+    acc = chain_compose(np.where(mpar < m, mpar, -1), np.take(turns, before_col[move_idx], axis=1))
+    moves = np.empty((_BLOCK, m + 1))
+    mat_mul(_INITIAL_ROWS, acc[:9], moves[:9, :m])
+    moves[9:, :m] = acc[9:]
+    moves[:, m] = _IDENTITY[:, 0]
+    moves[:9, m] = _INITIAL_ROWS[:, 0]
+    return _States(is_move, move_idx, base_col, before_col, turns, moves,
+                   _move_positions(np.where(mpar < m, mpar, -1), moves[:, :m], move_len))
 
 
-def _move_positions(mpar: np.ndarray, frames: np.ndarray, length: np.ndarray) -> np.ndarray:
-    """World end position of each move: the sum of step vectors along its chain of moves."""
-    return chain_sum(mpar, frames[:, :, 0] * length[:, None])
-
-
+def _move_positions(mpar: np.ndarray, moves: np.ndarray, length: np.ndarray) -> np.ndarray:
+    """World end position of each move (3, m + 1): the sum of step vectors along its chain of moves;
+    the extra last column is the origin."""
+    heading = moves[[0, 3, 6]] * length
+    out = np.zeros((3, len(mpar) + 1))
+    out[:, :-1] = chain_sum(mpar, heading)
+    return out
 def _level_rolls(frames_in: np.ndarray) -> np.ndarray:
     """Local roll about H that makes L horizontal (ABOP '$'): L' = (V x H)/|V x H|.
 
@@ -360,25 +347,35 @@ def _orthonormal(m: np.ndarray) -> np.ndarray:
     return np.stack([c0, c1, np.cross(c0, c1)], axis=2)
 
 
-def _segments(ls, par, want, in_frame, in_pos, move_end, widths, colours, states: _States) -> Segments:
-    draw = _DRAW[ls.sym[want]]
-    idx = want[draw]
-    start, frame = in_pos[draw], in_frame[draw]
-    end = move_end[states.compact[idx]]
-    seg_of_module = np.full(len(ls), -1, dtype=np.int64)
-    seg_of_module[idx] = np.arange(len(idx))
-    ancestor = brackets.first_good(par, _DRAW[ls.sym])[idx]
-    parent = np.where(ancestor >= 0, seg_of_module[np.maximum(ancestor, 0)], -1)
+def _segments(ls: LString, states: _States, cfg: TurtleConfig) -> Segments:
+    """One row per drawn module. A move's frame and scalar maps going in are those it leaves with."""
+    idx = np.flatnonzero(_DRAW[ls.sym])
+    m = len(states.move_idx)
+    cols = np.searchsorted(states.move_idx, idx)
+    block = states.moves[:, cols]
+    frame = to_matrices(block[:9])
+    width0 = 1.0 if cfg.width is None else cfg.width
+    radius = 0.5 * (block[_WIDTH] * width0 + block[_WIDTH + 1]) * cfg.width_scale
+    colours = block[_COLOUR + 1]  # the colour index starts at 0
+    mpar = states.base[states.move_idx]
+    start = states.move_t[:, mpar[cols]].T
+    end = states.move_t[:, cols].T
+    draw_col = np.zeros(m + 1, bool)
+    draw_col[cols] = True
+    seg_of_col = np.full(m + 1, -1, dtype=np.int64)
+    seg_of_col[cols] = np.arange(len(idx))
+    ancestor = brackets.first_good(np.where(mpar < m, mpar, -1), draw_col[:m])[cols]
+    parent = np.where(ancestor >= 0, seg_of_col[np.maximum(ancestor, 0)], -1)
     depth = brackets.depths(ls.sym)[idx]
     pp = np.maximum(parent, 0)
     scale = 1e-9 * (1.0 + np.abs(end).max(initial=0.0))
-    joined = np.einsum("ni,ni->n", start - end[pp], start - end[pp]) <= scale * scale
+    gap = start - end[pp]
+    joined = np.einsum("ni,ni->n", gap, gap) <= scale * scale
     continues = (parent >= 0) & (depth == depth[pp]) & joined
-    radius = 0.5 * widths[draw]
     radius_end = radius.copy()
     cont = np.flatnonzero(continues)
     radius_end[parent[cont]] = radius[cont]
-    return Segments(start, end, radius, radius_end, frame, depth, idx, parent, continues, colours[draw])
+    return Segments(start, end, radius, radius_end, frame, depth, idx, parent, continues, colours)
 
 
 def subtree_sums(ls: LString, segs: Segments, values: np.ndarray) -> np.ndarray:
@@ -388,9 +385,7 @@ def subtree_sums(ls: LString, segs: Segments, values: np.ndarray) -> np.ndarray:
     so subtree sums are differences of one cumulative sum (no per-segment loop).
     """
     n = len(ls)
-    partner = brackets.match(ls.sym)
-    encl = brackets.enclosing_open(ls.sym)[segs.module]
-    subtree_end = np.where(encl >= 0, partner[np.maximum(encl, 0)], n)
+    subtree_end = brackets.branch_ends(ls.sym, segs.module)
     per_module = np.zeros(n + 1)
     per_module[segs.module] = values
     cum = np.cumsum(per_module)
@@ -415,10 +410,11 @@ def apply_pipe_model(ls: LString, segs: Segments, tip_radius: float, exponent: f
     set_radii(segs, tip_radius * np.maximum(tips, 1.0) ** (1.0 / exponent))
 
 
-def _instances(ls: LString, symbol: int, want, in_frame, in_pos, default_size: float) -> Leaves:
-    sel = ls.sym[want] == symbol
-    idx = want[sel]
-    return Leaves(in_pos[sel], in_frame[sel], _first_param(ls, idx, default_size), idx)
+def _instances(ls: LString, symbol: int, states: _States, default_size: float) -> Leaves:
+    """Leaf or blossom modules as instances at the turtle's state going into them."""
+    idx = np.flatnonzero(ls.sym == symbol)
+    frames = to_matrices(states.blocks_in(idx)[:9])
+    return Leaves(states.positions_in(idx).T, frames, _first_param(ls, idx, default_size), idx)
 
 
 def tip_segments(segs: Segments) -> np.ndarray:
@@ -451,7 +447,8 @@ def _tip_leaves(segs: Segments, k: int, size: float) -> Leaves:
     tip = np.repeat(tips, k)
     j = np.tile(np.arange(k), len(tips))
     roll = np.radians(j * (360.0 / k) + (segs.module[tip] * 37 % 360))[:, None]
-    h, lft, up = (segs.frame[tip][:, :, c] for c in range(3))
+    tip_frames = segs.frame[tips]
+    h, lft, up = (np.repeat(tip_frames[:, :, c], k, axis=0) for c in range(3))
     side = np.cos(roll) * lft + np.sin(roll) * up
     cp, sp = np.cos(np.radians(40.0)), np.sin(np.radians(40.0))
     new_h = cp * h + sp * side
