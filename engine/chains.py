@@ -14,6 +14,7 @@ in O(n log depth).
 from __future__ import annotations
 
 from collections.abc import Callable
+from dataclasses import dataclass
 from itertools import pairwise
 
 import numpy as np
@@ -24,60 +25,65 @@ Combine = Callable[[np.ndarray, np.ndarray], np.ndarray]
 ROT = slice(0, 9)  # rows of a rotation in a column block: R[i, j] is row 3 i + j
 
 
-def _children_index(par: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """CSR child lists: children of i are order[start[i]:start[i] + count[i]]."""
-    order = np.argsort(par, kind="stable")
-    count = np.bincount(par + 1, minlength=len(par) + 1)[1:]
-    start = np.cumsum(count) - count + int(np.count_nonzero(par < 0))
-    return order, start, count
+@dataclass
+class Levels:
+    """Elements of a forest sorted by depth (roots first, string order within a depth).
 
-
-def _gather_children(frontier: np.ndarray, order, start, count) -> np.ndarray:
-    c = count[frontier]
-    total = int(c.sum())
-    if total == 0:
-        return frontier[:0]
-    ends = np.cumsum(c)
-    offsets = np.repeat(start[frontier] - (ends - c), c) + np.arange(total)
-    return order[offsets]
-
-
-def level_order(par: np.ndarray, limit: int = LEVEL_LIMIT) -> tuple[np.ndarray, list[int]]:
-    """Elements sorted by depth (roots first), and where each level starts in that order.
-
-    Stops after ``limit`` levels; elements deeper than that are missing from the order.
+    ``bounds`` are where each walked level starts in ``order``; elements deeper than ``LEVEL_LIMIT``
+    follow the last walked level (in index order) and are finished by pointer jumping.
     """
-    order, start, count = _children_index(par)
-    frontier = np.flatnonzero(par < 0)
-    levels, bounds = [frontier], [0, len(frontier)]
-    for _ in range(limit):
-        frontier = _gather_children(frontier, order, start, count)
-        if len(frontier) == 0:
-            break
-        levels.append(frontier)
-        bounds.append(bounds[-1] + len(frontier))
-    return np.concatenate(levels), bounds
+
+    order: np.ndarray  # (n,) element index at each sorted position
+    where: np.ndarray  # (n,) sorted position of each element
+    parent: np.ndarray  # (n,) sorted position of the parent of each sorted position (-1 root)
+    bounds: list[int]
+
+    @classmethod
+    def of(cls, par: np.ndarray) -> Levels:
+        """Sort the forest given by parent pointers ``par`` (-1 for roots) into levels."""
+        n = len(par)
+        depth = np.minimum(tree_depths(par), LEVEL_LIMIT + 1)
+        order = np.argsort(depth.astype(np.int16), kind="stable")  # a radix sort on small keys
+        where = np.empty(n, dtype=np.int64)
+        where[order] = np.arange(n)
+        parent_of = par[order]
+        parent = np.where(parent_of >= 0, where[np.maximum(parent_of, 0)], -1)
+        bounds = np.concatenate([[0], np.cumsum(np.bincount(depth, minlength=1))]).tolist()
+        return cls(order, where, parent, bounds)
+
+    def scan(self, acc: np.ndarray, combine: Combine) -> np.ndarray:
+        """In place on columns already in level order: acc[:, i] = combine(acc[:, parent[i]], acc[:, i])."""
+        deep = len(self.bounds) > LEVEL_LIMIT + 2  # some elements lie below the walked levels
+        walked = self.bounds[1:-1] if deep else self.bounds[1:]
+        for lo, hi in pairwise(walked):
+            acc[:, lo:hi] = combine(np.take(acc, self.parent[lo:hi], axis=1), acc[:, lo:hi])
+        if deep:
+            done = np.zeros(acc.shape[1], bool)
+            done[: walked[-1]] = True
+            _finish_by_jumping(self.parent, acc, combine, done)
+        return acc
+
+
+def tree_depths(par: np.ndarray) -> np.ndarray:
+    """Number of ancestors of every element (list ranking by pointer jumping, O(n log depth))."""
+    depth = (par >= 0).astype(np.int64)
+    ptr = par.copy()
+    active = np.flatnonzero(ptr >= 0)
+    while len(active):
+        p = ptr[active]
+        depth[active] = depth[active] + depth[p]
+        ptr[active] = ptr[p]
+        active = active[ptr[active] >= 0]
+    return depth
 
 
 def scan(par: np.ndarray, values: np.ndarray, combine: Combine) -> np.ndarray:
     """Generic chain scan over columns: out[:, i] = combine(out[:, par[i]], values[:, i])."""
-    n = values.shape[1]
-    if n == 0:
+    if values.shape[1] == 0:
         return values.copy()
-    order, bounds = level_order(par)
-    where = np.full(n, -1, dtype=np.int64)
-    where[order] = np.arange(len(order))
-    acc = np.take(values, order, axis=1)
-    par_sorted = where[par[order]]
-    for lo, hi in pairwise(bounds[1:]):
-        acc[:, lo:hi] = combine(np.take(acc, par_sorted[lo:hi], axis=1), acc[:, lo:hi])
-    if len(order) == n:
-        return np.take(acc, where, axis=1)
-    out = values.copy()
-    out[:, order] = acc
-    done = np.zeros(n, bool)
-    done[order] = True
-    return _finish_by_jumping(par, out, combine, done)
+    levels = Levels.of(par)
+    acc = levels.scan(np.take(values, levels.order, axis=1), combine)
+    return np.take(acc, levels.where, axis=1)
 
 
 def _finish_by_jumping(par: np.ndarray, acc: np.ndarray, combine: Combine, done: np.ndarray) -> np.ndarray:
@@ -128,7 +134,8 @@ def compose_maps(p: np.ndarray, c: np.ndarray, out: np.ndarray | None = None) ->
     return out
 
 
-def _compose(p: np.ndarray, c: np.ndarray) -> np.ndarray:
+def compose(p: np.ndarray, c: np.ndarray) -> np.ndarray:
+    """Column-wise composition of blocks: rotation rows 0-8 multiplied, scalar map rows composed."""
     out = np.empty((p.shape[0], c.shape[1]))
     mat_mul(p[ROT], c[ROT], out[ROT])
     if p.shape[0] > 9:
@@ -142,7 +149,7 @@ def chain_compose(par: np.ndarray, blocks: np.ndarray) -> np.ndarray:
     ``blocks`` is (9 + 2 s, n): a row-major rotation in rows 0-8, then ``s`` affine scalar maps
     (a, b) composed the same way (parent first). Returns the accumulated blocks.
     """
-    return scan(par, blocks, _compose)
+    return scan(par, blocks, compose)
 
 
 def to_matrices(rows: np.ndarray) -> np.ndarray:

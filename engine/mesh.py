@@ -15,7 +15,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from engine.brackets import first_good
-from engine.chains import chain_compose, chain_sum, to_matrices, to_rows
+from engine.chains import chain_compose, chain_sum
 from engine.turtle import Leaves, Segments, TurtleResult
 
 
@@ -74,8 +74,16 @@ LOD_LEVELS = (
 
 
 def _normalize(v: np.ndarray) -> np.ndarray:
-    n = np.linalg.norm(v, axis=-1, keepdims=True)
+    n = np.sqrt(np.einsum("...i,...i->...", v, v))[..., None]
     return v / np.where(n > 1e-12, n, 1.0)
+
+
+def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Row-wise cross products of (n, 3) arrays (np.cross is several times slower on many short rows)."""
+    out = np.empty(np.broadcast_shapes(a.shape, b.shape))
+    for i, j, k in ((0, 1, 2), (1, 2, 0), (2, 0, 1)):
+        np.subtract(a[:, j] * b[:, k], a[:, k] * b[:, j], out=out[:, i])
+    return out
 
 
 def _directions(segs: Segments) -> np.ndarray:
@@ -83,22 +91,6 @@ def _directions(segs: Segments) -> np.ndarray:
     length = np.linalg.norm(d, axis=1)
     heading = segs.frame[:, :, 0]
     return np.where((length > 1e-12)[:, None], d / np.maximum(length, 1e-12)[:, None], heading)
-
-
-def _min_rotations(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """Rotation matrices taking unit vectors a to b by the shortest arc (Rodrigues)."""
-    v = np.cross(a, b)
-    c = np.einsum("ni,ni->n", a, b)
-    k = np.zeros((len(a), 3, 3))
-    k[:, 0, 1], k[:, 0, 2], k[:, 1, 2] = -v[:, 2], v[:, 1], -v[:, 0]
-    k[:, 1, 0], k[:, 2, 0], k[:, 2, 1] = v[:, 2], -v[:, 1], v[:, 0]
-    factor = np.where(c > -1 + 1e-9, 1.0 / np.maximum(1.0 + c, 1e-9), 0.0)
-    rot = np.eye(3) + k + np.matmul(k, k) * factor[:, None, None]
-    flip = c <= -1 + 1e-9  # opposite directions: half turn about any perpendicular axis
-    if flip.any():
-        perp = _normalize(np.cross(a[flip], np.array([0.3, 0.5, 0.81])))
-        rot[flip] = 2 * perp[:, :, None] * perp[:, None, :] - np.eye(3)
-    return rot
 
 
 def prune_thin(segs: Segments, min_radius: float) -> Segments:
@@ -165,18 +157,37 @@ class _Rings:
 
 
 def _transported_x(segs: Segments, d: np.ndarray) -> np.ndarray:
-    """A ring reference direction per segment, parallel-transported along each axis."""
+    """A ring reference direction per segment, parallel-transported along each axis.
+
+    The transport from a parent's direction a to its child's b is the shortest-arc rotation
+    R = c I + [v]x + v v^T / (1 + c) (v = a x b, c = a . b); along a chain the x of the first segment
+    is carried by R_k ... R_1. Composed parent-first as transposes, so x_i = sum_j acc[j, i] x0_j.
+    """
     cont = segs.continues
     chain = np.where(cont, segs.parent, -1)
-    rot = np.repeat(np.eye(3).reshape(9, 1), len(segs), axis=1)
     ci = np.flatnonzero(cont)
-    # child-last products, as transport needs: compose the transposes parent-first, transpose back
-    rot[:, ci] = to_rows(np.transpose(_min_rotations(d[segs.parent[ci]], d[ci]), (0, 2, 1)))
-    acc = to_matrices(chain_compose(chain, rot))
+    a, b = d[segs.parent[ci]], d[ci]
+    v = _cross(a, b)
+    c = np.einsum("ni,ni->n", a, b)
+    f = np.where(c > -1 + 1e-9, 1.0 / np.maximum(1.0 + c, 1e-9), 0.0)  # opposite: no transport
+    rot = np.repeat(np.eye(3).reshape(9, 1), len(segs), axis=1)
+    for i in range(3):
+        for j in range(3):
+            rot[3 * i + j, ci] = v[:, i] * v[:, j] * f + (c if i == j else 0.0)
+    for i, j, k in ((0, 1, 2), (1, 2, 0), (2, 0, 1)):  # R^T has -[v]x: entry (i, j) is +v_k
+        rot[3 * i + j, ci] += v[:, k]
+        rot[3 * j + i, ci] -= v[:, k]
+    flip = ci[c <= -1 + 1e-9]  # opposite directions: half turn about any perpendicular axis
+    if len(flip):
+        perp = _normalize(_cross(d[flip], np.array([[0.3, 0.5, 0.81]])))
+        rot[:, flip] = (2 * perp[:, :, None] * perp[:, None, :] - np.eye(3)).reshape(-1, 9).T
+    acc = chain_compose(chain, rot)
     lft = segs.frame[:, :, 1]
-    x0 = _normalize(lft - np.einsum("ni,ni->n", lft, d)[:, None] * d)
-    root = _chain_root(chain)
-    return np.einsum("nji,nj->ni", acc, x0[root])
+    x0 = _normalize(lft - np.einsum("ni,ni->n", lft, d)[:, None] * d)[_chain_root(chain)]
+    out = np.empty_like(x0)
+    for i in range(3):
+        out[:, i] = acc[i] * x0[:, 0] + acc[3 + i] * x0[:, 1] + acc[6 + i] * x0[:, 2]
+    return out
 
 
 def _chain_root(chain: np.ndarray) -> np.ndarray:
@@ -223,7 +234,7 @@ def _tube_mesh(rings: _Rings, ring_seq: np.ndarray, module: np.ndarray, n_surf: 
     """Vertices for every ring, quads between consecutive rings of each segment, cones at tips."""
     tan = _normalize(rings.tangent)
     x = _normalize(rings.x - np.einsum("ni,ni->n", rings.x, tan)[:, None] * tan)
-    y = np.cross(tan, x)
+    y = _cross(tan, x)
     per = n_surf + 1
     n_rings = len(rings.center)
     n_tips = len(tips)

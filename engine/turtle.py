@@ -20,7 +20,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from engine import brackets
-from engine.chains import chain_compose, chain_sum, compose_maps, mat_mul, to_matrices, to_rows
+from engine.chains import Levels, compose_maps, mat_mul, to_matrices, to_rows
+from engine.chains import compose as _compose
 from engine.lstring import LString
 
 WORLD_UP = np.array([0.0, 1.0, 0.0])
@@ -206,13 +207,13 @@ def interpret(ls: LString, cfg: TurtleConfig | None = None) -> TurtleResult:
 class _States:
     """Turtle states solved in two levels: short runs of turns between moves, then moves only.
 
-    Blocks are column-wise (see engine.chains); each has one extra last column, the state before
-    anything happened (identity turn; initial frame at the origin), which modules with no turn or
-    move before them point to.
+    Turns and moves are stored column-wise (see engine.chains) in the level order of their own
+    forests, each with one extra last column: the state before anything happened (identity turn;
+    initial frame at the origin), which modules with no turn or move before them point to.
     """
 
-    is_move: np.ndarray  # (n,) bool
-    move_idx: np.ndarray  # module index of each move
+    column: np.ndarray  # (n,) column of each move module (-1 for others)
+    move_parent: np.ndarray  # column of the move before each move column (m: none)
     base: np.ndarray  # (n,) column of the nearest move strictly before each module on its path
     before: np.ndarray  # (n,) column of the nearest turn strictly before, if after that move
     turns: np.ndarray  # (13, t + 1) accumulated rotation and scalar maps of each turn since its move
@@ -232,20 +233,60 @@ class _States:
         return self.move_t[:, self.base[idx]]
 
 
+@dataclass
+class _Topology:
+    """Which turns and moves follow which: fixed for a string, whatever the angles turn out to be."""
+
+    turn_idx: np.ndarray  # module index of each turn column
+    move_idx: np.ndarray
+    turn_levels: Levels
+    move_levels: Levels
+    base: np.ndarray  # (n,) move column before each module (m: none)
+    before: np.ndarray  # (n,) turn column before each module (t: none)
+    move_before: np.ndarray  # turn column before each move column (t: none)
+    column: np.ndarray  # (n,) column of each turn or move module among its kind (-1 for others)
+
+    @classmethod
+    def of(cls, ls: LString, par: np.ndarray) -> _Topology:
+        """Nearest moves and turns on each module's path, and the level order of both forests."""
+        n = len(ls)
+        is_move = _MOVE[ls.sym]
+        is_turn = ~is_move & _TURNLIKE[ls.sym]
+        base = brackets.first_good(par, is_move)
+        near = brackets.first_good(par, is_move | is_turn)
+        before = np.where((near >= 0) & is_turn[np.maximum(near, 0)], near, -1)
+        turn_idx, move_idx = np.flatnonzero(is_turn), np.flatnonzero(is_move)
+        t, m = len(turn_idx), len(move_idx)
+        compact = np.full(n, -1, dtype=np.int64)
+        compact[turn_idx] = np.arange(t)
+        compact[move_idx] = np.arange(m)
+        tpar = _columns(before[turn_idx], compact, -1)
+        mpar = _columns(base[move_idx], compact, -1)
+        turn_levels, move_levels = Levels.of(tpar), Levels.of(mpar)
+        turn_col = np.append(turn_levels.where, t)  # compact index -> column, 'none' -> t
+        move_col = np.append(move_levels.where, m)
+        base_col = move_col[_columns(base, compact, m)]
+        before_col = turn_col[_columns(before, compact, t)]
+        column = np.full(n, -1, dtype=np.int64)
+        column[turn_idx] = turn_levels.where
+        column[move_idx] = move_levels.where
+        return cls(turn_idx[turn_levels.order], move_idx[move_levels.order], turn_levels, move_levels,
+                   base_col, before_col, before_col[move_idx[move_levels.order]], column)
+
+
 def _solve_states(ls: LString, cfg: TurtleConfig, par: np.ndarray) -> _States:
     """Solve all turtle states. '$' and 'T' turn by amounts that depend on the incoming heading, so
     they are found by repeated passes, one per nesting level of such modules along a path."""
-    is_move = _MOVE[ls.sym]
-    turn_idx = np.flatnonzero(~is_move & _TURNLIKE[ls.sym])
-    blocks = _turn_blocks(ls, cfg, turn_idx)
+    topo = _Topology.of(ls, par)
+    blocks = _turn_blocks(ls, cfg, topo.turn_idx)
     rolls = np.flatnonzero(ls.sym == ROLL_LEVEL)
     bends = np.flatnonzero(ls.sym == TROPISM) if cfg.tropism is not None else np.zeros(0, np.int64)
     special = np.concatenate([rolls, bends])
-    columns = np.searchsorted(turn_idx, special)
+    columns = topo.column[special]
     angles = _first_param(ls, bends, 0.0)
-    move_len = _first_param(ls, np.flatnonzero(is_move), cfg.step)
+    move_len = _first_param(ls, topo.move_idx, cfg.step)
     for _ in range(64):
-        states = _solve_once(par, is_move, turn_idx, blocks, move_len)
+        states = _solve_once(topo, blocks, move_len)
         if len(special) == 0:
             break
         frames_in = to_matrices(states.blocks_in(special)[:9])
@@ -280,44 +321,30 @@ def _tropism_turns(frames_in: np.ndarray, direction: np.ndarray | None, angles: 
 
 
 def _columns(nearest: np.ndarray, compact: np.ndarray, none: int) -> np.ndarray:
-    """Column of each module's nearest turn/move (``none`` where there is none)."""
+    """Compact index of each module's nearest turn/move (``none`` where there is none)."""
     return np.where(nearest >= 0, compact[np.maximum(nearest, 0)], none)
 
 
-def _solve_once(par: np.ndarray, is_move: np.ndarray, turn_idx: np.ndarray, blocks: np.ndarray,
-                move_len: np.ndarray) -> _States:
-    n = len(par)
-    is_turn = np.zeros(n, bool)
-    is_turn[turn_idx] = True
-    base = brackets.first_good(par, is_move)
-    near = brackets.first_good(par, is_move | is_turn)
-    before = np.where((near >= 0) & is_turn[np.maximum(near, 0)], near, -1)
-    move_idx = np.flatnonzero(is_move)
-    t, m = len(turn_idx), len(move_idx)
-    compact = np.full(n, -1, dtype=np.int64)
-    compact[turn_idx] = np.arange(t)
-    compact[move_idx] = np.arange(m)
-    base_col, before_col = _columns(base, compact, m), _columns(before, compact, t)
-    tpar = before_col[turn_idx]
-    turns = np.concatenate([chain_compose(np.where(tpar < t, tpar, -1), blocks), _IDENTITY], axis=1)
-    mpar = base_col[move_idx]
-    acc = chain_compose(np.where(mpar < m, mpar, -1), np.take(turns, before_col[move_idx], axis=1))
+def _solve_once(topo: _Topology, blocks: np.ndarray, move_len: np.ndarray) -> _States:
+    """Compose the turn runs, then the moves, each forest level by level in its own column order."""
+    t, m = len(topo.turn_idx), len(topo.move_idx)
+    turns = np.empty((_BLOCK, t + 1))
+    turns[:, :t] = blocks
+    turns[:, t] = _IDENTITY[:, 0]
+    topo.turn_levels.scan(turns[:, :t], _compose)
     moves = np.empty((_BLOCK, m + 1))
-    mat_mul(_INITIAL_ROWS, acc[:9], moves[:9, :m])
-    moves[9:, :m] = acc[9:]
+    np.take(turns, topo.move_before, axis=1, out=moves[:, :m])
+    topo.move_levels.scan(moves[:, :m], _compose)
+    mat_mul(_INITIAL_ROWS, moves[:9, :m].copy(), moves[:9, :m])
     moves[:, m] = _IDENTITY[:, 0]
     moves[:9, m] = _INITIAL_ROWS[:, 0]
-    return _States(is_move, move_idx, base_col, before_col, turns, moves,
-                   _move_positions(np.where(mpar < m, mpar, -1), moves[:, :m], move_len))
+    move_t = np.zeros((3, m + 1))
+    move_t[:, :m] = moves[[0, 3, 6], :m] * move_len
+    topo.move_levels.scan(move_t[:, :m], np.add)
+    parent = topo.move_levels.parent
+    return _States(topo.column, np.where(parent >= 0, parent, m), topo.base, topo.before, turns, moves, move_t)
 
 
-def _move_positions(mpar: np.ndarray, moves: np.ndarray, length: np.ndarray) -> np.ndarray:
-    """World end position of each move (3, m + 1): the sum of step vectors along its chain of moves;
-    the extra last column is the origin."""
-    heading = moves[[0, 3, 6]] * length
-    out = np.zeros((3, len(mpar) + 1))
-    out[:, :-1] = chain_sum(mpar, heading)
-    return out
 def _level_rolls(frames_in: np.ndarray) -> np.ndarray:
     """Local roll about H that makes L horizontal (ABOP '$'): L' = (V x H)/|V x H|.
 
@@ -350,21 +377,21 @@ def _orthonormal(m: np.ndarray) -> np.ndarray:
 def _segments(ls: LString, states: _States, cfg: TurtleConfig) -> Segments:
     """One row per drawn module. A move's frame and scalar maps going in are those it leaves with."""
     idx = np.flatnonzero(_DRAW[ls.sym])
-    m = len(states.move_idx)
-    cols = np.searchsorted(states.move_idx, idx)
-    block = states.moves[:, cols]
+    m = len(states.move_parent)
+    cols = states.column[idx]
+    block = np.take(states.moves, cols, axis=1)
     frame = to_matrices(block[:9])
     width0 = 1.0 if cfg.width is None else cfg.width
     radius = 0.5 * (block[_WIDTH] * width0 + block[_WIDTH + 1]) * cfg.width_scale
     colours = block[_COLOUR + 1]  # the colour index starts at 0
-    mpar = states.base[states.move_idx]
-    start = states.move_t[:, mpar[cols]].T
-    end = states.move_t[:, cols].T
-    draw_col = np.zeros(m + 1, bool)
+    start = np.take(states.move_t, states.move_parent[cols], axis=1).T
+    end = np.take(states.move_t, cols, axis=1).T
+    draw_col = np.zeros(m, bool)
     draw_col[cols] = True
-    seg_of_col = np.full(m + 1, -1, dtype=np.int64)
+    seg_of_col = np.full(m, -1, dtype=np.int64)
     seg_of_col[cols] = np.arange(len(idx))
-    ancestor = brackets.first_good(np.where(mpar < m, mpar, -1), draw_col[:m])[cols]
+    chain = np.where(states.move_parent < m, states.move_parent, -1)
+    ancestor = brackets.first_good(chain, draw_col)[cols]
     parent = np.where(ancestor >= 0, seg_of_col[np.maximum(ancestor, 0)], -1)
     depth = brackets.depths(ls.sym)[idx]
     pp = np.maximum(parent, 0)
@@ -441,21 +468,22 @@ def _tip_leaves(segs: Segments, k: int, size: float) -> Leaves:
     """A cluster of ``k`` leaves at the end of every segment with no child (seed 003 added them at ']').
 
     Leaf i of a tip is rolled i/k of a turn about the twig (plus a per-tip offset) and pitched 40 deg
-    away from it; the frame is built from vectors, not matrix products, since tips are numerous.
+    away from it. With the twig's frame (H, L, U) and side = cos r L + sin r U, the leaf's frame is
+    H' = cos p H + sin p side, U' = -sin p H + cos p side, L' = U' x H' = sin r L - cos r U.
     """
     tips = tip_segments(segs)
-    tip = np.repeat(tips, k)
-    j = np.tile(np.arange(k), len(tips))
-    roll = np.radians(j * (360.0 / k) + (segs.module[tip] * 37 % 360))[:, None]
-    tip_frames = segs.frame[tips]
-    h, lft, up = (np.repeat(tip_frames[:, :, c], k, axis=0) for c in range(3))
-    side = np.cos(roll) * lft + np.sin(roll) * up
+    frame = segs.frame[tips]
+    h, lft, up = (frame[:, None, :, c] for c in range(3))
+    roll = np.radians(np.arange(k) * (360.0 / k) + (segs.module[tips] * 37 % 360)[:, None])[:, :, None]
+    cos_r, sin_r = np.cos(roll), np.sin(roll)
+    side = cos_r * lft + sin_r * up
     cp, sp = np.cos(np.radians(40.0)), np.sin(np.radians(40.0))
-    new_h = cp * h + sp * side
-    new_u = -sp * h + cp * side
-    new_l = np.cross(new_u, new_h)
-    frames = np.stack([new_h, new_l, new_u], axis=2)
-    return Leaves(segs.end[tip], frames, np.full(len(tip), size), segs.module[tip])
+    frames = np.empty((len(tips), k, 3, 3))
+    frames[..., 0] = cp * h + sp * side
+    frames[..., 1] = sin_r * lft - cos_r * up
+    frames[..., 2] = cp * side - sp * h
+    position = np.repeat(segs.end[tips], k, axis=0)
+    return Leaves(position, frames.reshape(-1, 3, 3), np.full(len(position), size), np.repeat(segs.module[tips], k))
 
 
 def _concat_leaves(a: Leaves, b: Leaves) -> Leaves:
