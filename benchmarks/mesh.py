@@ -20,14 +20,20 @@ from engine.turtle import TurtleConfig, interpret
 SOURCE = Path(__file__).resolve().parent.parent / "assets" / "lsystems" / "abop_2_8_tree.lsys"
 
 
-def best_of(fn, repeats: int = 3) -> tuple[float, object]:
+def best_of(fn, repeats: int = 7) -> tuple[float, object]:
     """Fastest wall time of ``repeats`` calls, and the last result."""
-    best, result = float("inf"), None
+    times, result = timed(fn, repeats)
+    return min(times), result
+
+
+def timed(fn, repeats: int) -> tuple[list[float], object]:
+    """Wall times of ``repeats`` calls, and the last result."""
+    times, result = [], None
     for _ in range(repeats):
         start = time.perf_counter()
         result = fn()
-        best = min(best, time.perf_counter() - start)
-    return best, result
+        times.append(time.perf_counter() - start)
+    return times, result
 
 
 def main() -> None:
@@ -35,13 +41,15 @@ def main() -> None:
     system = load_lsystem(SOURCE)
     ls = derive(system, 10)
     cfg = TurtleConfig.from_system(system)
-    t_turtle, result = best_of(lambda: interpret(ls, cfg))
+    turtle_times, result = timed(lambda: interpret(ls, cfg), 9)
     segs = result.segments
-    t_mesh, wood = best_of(lambda: wood_mesh(segs, n_surf=8, n_div=1))
+    mesh_times, wood = timed(lambda: wood_mesh(segs, n_surf=8, n_div=1), 9)
+    both = [a + b for a, b in zip(turtle_times, mesh_times, strict=True)]
     print(f"tree: {len(ls):,} modules, {len(segs):,} segments, {len(result.leaves):,} leaves")
-    print(f"turtle      {t_turtle * 1e3:8.1f} ms")
-    print(f"wood mesh   {t_mesh * 1e3:8.1f} ms  (n_surf=8, n_div=1: {wood.n_triangles:,} triangles)")
-    print(f"together    {(t_turtle + t_mesh) * 1e3:8.1f} ms  (goal <= 100 ms)")
+    print("              best   median (9 runs)")
+    for name, times in (("turtle", turtle_times), ("wood mesh", mesh_times), ("together", both)):
+        print(f"{name:<10} {min(times) * 1e3:8.1f} {np.median(times) * 1e3:8.1f} ms")
+    print(f"(n_surf=8, n_div=1: {wood.n_triangles:,} triangles; goal: together <= 100 ms)")
     print("\nLOD levels (same tree):")
     header = ("level", "n_surf", "n_div", "min r", "leaves", "wood tris", "leaf tris", "ms")
     print("{:>5} {:>6} {:>5} {:>6} {:>6} {:>11} {:>10} {:>8}".format(*header))

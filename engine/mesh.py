@@ -232,11 +232,11 @@ def _ring_weights(n_surf: int) -> tuple[np.ndarray, np.ndarray]:
 
 def _tube_mesh(rings: _Rings, ring_seq: np.ndarray, module: np.ndarray, n_surf: int, tips, tip_dir) -> Mesh:
     """Vertices for every ring, quads between consecutive rings of each segment, cones at tips."""
+    n_rings = len(rings.center)
     tan = _normalize(rings.tangent)
     x = _normalize(rings.x - np.einsum("ni,ni->n", rings.x, tan)[:, None] * tan)
     y = _cross(tan, x)
     per = n_surf + 1
-    n_rings = len(rings.center)
     n_tips = len(tips)
     normal_w, pos_w = _ring_weights(n_surf)
     basis = np.concatenate([x, y], axis=1).astype(np.float32)
@@ -253,8 +253,8 @@ def _tube_mesh(rings: _Rings, ring_seq: np.ndarray, module: np.ndarray, n_surf: 
     normals[n_rings * per :] = tip_dir[tips]
     uvs[n_rings * per :, 0] = 0.5
     uvs[n_rings * per :, 1] = rings.v[tips] + 0.5
-    return Mesh(positions, normals, uvs, _tube_indices(ring_seq, n_surf, tips, n_rings * per), _face_modules(
-        module, ring_seq, n_surf, tips))
+    return Mesh(positions, normals, uvs, _tube_indices(ring_seq, n_surf, tips, n_rings * per),
+                _face_modules(module, ring_seq, n_surf, tips))
 
 
 def _tube_indices(ring_seq: np.ndarray, n_surf: int, tips: np.ndarray, tip_base: int) -> np.ndarray:
@@ -265,14 +265,17 @@ def _tube_indices(ring_seq: np.ndarray, n_surf: int, tips: np.ndarray, tip_base:
     side = np.repeat(np.arange(n_surf, dtype=np.uint32), 6)
     which = np.tile(np.array([0, 0, 1, 0, 1, 1]), n_surf)  # a or b, per corner
     offset = side + np.tile(np.array([0, 1, 1, 0, 1, 0], np.uint32), n_surf)
-    quads = np.take(pairs, which, axis=-1)
+    n_quads = pairs.shape[0] * pairs.shape[1] * n_surf * 2
+    out = np.empty((n_quads + len(tips) * n_surf, 3), np.uint32)
+    quads = out[:n_quads].reshape(*pairs.shape[:2], 6 * n_surf)
+    np.take(pairs, which, axis=-1, out=quads)
     quads += offset
+    caps = out[n_quads:].reshape(len(tips), n_surf, 3)
     ring_base = tips.astype(np.uint32)[:, None] * np.uint32(per) + np.arange(n_surf, dtype=np.uint32)
-    caps = np.empty((*ring_base.shape, 3), np.uint32)
     caps[..., 0] = ring_base
     caps[..., 1] = ring_base + 1
     caps[..., 2] = (tip_base + np.arange(len(tips), dtype=np.uint32))[:, None]
-    return np.concatenate([quads.reshape(-1, 3), caps.reshape(-1, 3)])
+    return out
 
 
 def _face_modules(module: np.ndarray, ring_seq: np.ndarray, n_surf: int, tips: np.ndarray) -> np.ndarray:

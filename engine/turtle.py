@@ -39,6 +39,7 @@ ROLL_LEVEL = ord("$")
 TROPISM = ord("T")
 _TURNLIKE = np.zeros(256, bool)
 _TURNLIKE[[ord(c) for c in "+-&^/\\|$!'T"]] = True
+_COS_DEG, _SIN_DEG = np.cos(np.radians(np.arange(360))), np.sin(np.radians(np.arange(360)))
 
 
 @dataclass
@@ -190,10 +191,7 @@ def interpret(ls: LString, cfg: TurtleConfig | None = None) -> TurtleResult:
     brackets.check_balanced(ls.sym)
     states = _solve_states(ls, cfg, predecessors(ls.sym))
     segs = _segments(ls, states, cfg)
-    use_pipe = cfg.pipe_model if cfg.pipe_model is not None else not np.any(ls.sym == ord("!"))
-    if use_pipe:
-        tip_r = 0.5 * cfg.width * cfg.width_scale if cfg.width is not None else 0.08 * _mean_tip_length(segs)
-        apply_pipe_model(ls, segs, tip_r, cfg.pipe_exponent)
+    _radii(ls, segs, cfg)
     leaf_size = cfg.leaf_size if cfg.leaf_size is not None else _auto_leaf_size(segs)
     leaves = _instances(ls, LEAF, states, leaf_size)
     tips = cfg.leaves_at_tips if cfg.leaves_at_tips is not None else (0 if len(leaves) else 3)
@@ -201,6 +199,14 @@ def interpret(ls: LString, cfg: TurtleConfig | None = None) -> TurtleResult:
         leaves = _concat_leaves(leaves, _tip_leaves(segs, tips, leaf_size))
     blossoms = _instances(ls, BLOSSOM, states, leaf_size)
     return TurtleResult(segs, leaves, blossoms)
+
+
+def _radii(ls: LString, segs: Segments, cfg: TurtleConfig) -> None:
+    """Pipe-model radii where the config asks for them (by default when the string has no '!')."""
+    use_pipe = cfg.pipe_model if cfg.pipe_model is not None else not np.any(ls.sym == ord("!"))
+    if use_pipe:
+        tip_r = 0.5 * cfg.width * cfg.width_scale if cfg.width is not None else 0.08 * _mean_tip_length(segs)
+        apply_pipe_model(ls, segs, tip_r, cfg.pipe_exponent)
 
 
 @dataclass
@@ -277,12 +283,13 @@ class _Topology:
 def _solve_states(ls: LString, cfg: TurtleConfig, par: np.ndarray) -> _States:
     """Solve all turtle states. '$' and 'T' turn by amounts that depend on the incoming heading, so
     they are found by repeated passes, one per nesting level of such modules along a path."""
+    turn_idx = np.flatnonzero(~_MOVE[ls.sym] & _TURNLIKE[ls.sym])
     topo = _Topology.of(ls, par)
-    blocks = _turn_blocks(ls, cfg, topo.turn_idx)
+    blocks = _turn_blocks(ls, cfg, turn_idx)
     rolls = np.flatnonzero(ls.sym == ROLL_LEVEL)
     bends = np.flatnonzero(ls.sym == TROPISM) if cfg.tropism is not None else np.zeros(0, np.int64)
     special = np.concatenate([rolls, bends])
-    columns = topo.column[special]
+    columns = np.searchsorted(turn_idx, special)  # blocks are in string order
     angles = _first_param(ls, bends, 0.0)
     move_len = _first_param(ls, topo.move_idx, cfg.step)
     for _ in range(64):
@@ -329,7 +336,7 @@ def _solve_once(topo: _Topology, blocks: np.ndarray, move_len: np.ndarray) -> _S
     """Compose the turn runs, then the moves, each forest level by level in its own column order."""
     t, m = len(topo.turn_idx), len(topo.move_idx)
     turns = np.empty((_BLOCK, t + 1))
-    turns[:, :t] = blocks
+    np.take(blocks, topo.turn_levels.order, axis=1, out=turns[:, :t])
     turns[:, t] = _IDENTITY[:, 0]
     topo.turn_levels.scan(turns[:, :t], _compose)
     moves = np.empty((_BLOCK, m + 1))
@@ -474,8 +481,11 @@ def _tip_leaves(segs: Segments, k: int, size: float) -> Leaves:
     tips = tip_segments(segs)
     frame = segs.frame[tips]
     h, lft, up = (frame[:, None, :, c] for c in range(3))
-    roll = np.radians(np.arange(k) * (360.0 / k) + (segs.module[tips] * 37 % 360)[:, None])[:, :, None]
-    cos_r, sin_r = np.cos(roll), np.sin(roll)
+    offset = segs.module[tips] * 37 % 360  # whole degrees: looked up, not computed per tip
+    cos_o, sin_o = _COS_DEG[offset][:, None, None], _SIN_DEG[offset][:, None, None]
+    step = np.radians(np.arange(k) * (360.0 / k))
+    cos_s, sin_s = np.cos(step)[None, :, None], np.sin(step)[None, :, None]
+    cos_r, sin_r = cos_o * cos_s - sin_o * sin_s, sin_o * cos_s + cos_o * sin_s
     side = cos_r * lft + sin_r * up
     cp, sp = np.cos(np.radians(40.0)), np.sin(np.radians(40.0))
     frames = np.empty((len(tips), k, 3, 3))

@@ -1,0 +1,51 @@
+import numpy as np
+import pytest
+
+from engine.chains import LEVEL_LIMIT, Levels, chain_compose, chain_sum, mat_mul, to_matrices, to_rows, tree_depths
+
+
+def random_forest(rng, n, deep=0):
+    """Parents precede children (as in a bracketed string); ``deep`` appends one long chain."""
+    par = np.array([-1] + [int(rng.integers(-1, i)) for i in range(1, n)], dtype=np.int64)
+    if deep:
+        chain = np.arange(n - 1, n + deep - 1, dtype=np.int64)
+        par = np.concatenate([par, chain])
+    return par
+
+
+def random_rotations(rng, n):
+    q, _ = np.linalg.qr(rng.normal(size=(n, 3, 3)))
+    return q
+
+
+@pytest.mark.parametrize("deep", [0, LEVEL_LIMIT + 57])
+def test_scans_match_a_sequential_walk(deep):
+    rng = np.random.default_rng(4)
+    par = random_forest(rng, 400, deep)
+    n = len(par)
+    rots = random_rotations(rng, n)
+    values = rng.normal(size=n)
+    expected_rot, expected_sum = rots.copy(), values.copy()
+    for i in range(n):  # parents come first
+        if par[i] >= 0:
+            expected_rot[i] = expected_rot[par[i]] @ rots[i]
+            expected_sum[i] = expected_sum[par[i]] + values[i]
+    np.testing.assert_allclose(to_matrices(chain_compose(par, to_rows(rots))), expected_rot, atol=1e-9)
+    np.testing.assert_allclose(chain_sum(par, values), expected_sum, atol=1e-9)
+
+
+def test_levels_sort_parents_before_children_and_count_depths():
+    rng = np.random.default_rng(5)
+    par = random_forest(rng, 300, 20)
+    depth = tree_depths(par)
+    for i in range(len(par)):
+        assert depth[i] == (0 if par[i] < 0 else depth[par[i]] + 1)
+    levels = Levels.of(par)
+    assert np.all(levels.parent < np.arange(len(par)))  # every parent sits earlier in level order
+    np.testing.assert_array_equal(levels.order[levels.where], np.arange(len(par)))
+
+
+def test_column_products_match_matmul():
+    rng = np.random.default_rng(6)
+    a, b = random_rotations(rng, 50), random_rotations(rng, 50)
+    np.testing.assert_allclose(to_matrices(mat_mul(to_rows(a), to_rows(b))), a @ b, atol=1e-12)
