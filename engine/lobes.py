@@ -35,11 +35,18 @@ def barycentric_directions(loop: np.ndarray) -> np.ndarray:
 @dataclass(eq=False)  # lobes compare by identity (their arrays have no single truth value)
 class Lobe:
     """A closed triangle mesh around part of the crown: ``rings`` stitched strokes of ``ring_size``
-    points each (the first vertices, ring by ring), then the two cap centres."""
+    points each (the first vertices, ring by ring), then the two cap centres, then the inner points
+    of open strokes that close an end."""
 
     vertices: np.ndarray
     faces: np.ndarray
     ring_size: int = 0
+    rings: int = 0  # vertices: rings x ring_size stroke points, 2 cap centres, then open-stroke points
+
+    @property
+    def stroke_rings(self) -> np.ndarray:
+        """The closed strokes' points, (rings, ring_size, 3)."""
+        return self.vertices[: self.rings * self.ring_size].reshape(self.rings, self.ring_size, 3)
 
     def transformed(self, move=(0.0, 0.0, 0.0), scale: float = 1.0, turn_deg: float = 0.0) -> Lobe:
         """Moved, scaled about its centre and turned about the vertical through it (lobe editing)."""
@@ -47,7 +54,7 @@ class Lobe:
         a = np.radians(turn_deg)
         rot = np.array([[np.cos(a), 0.0, np.sin(a)], [0.0, 1.0, 0.0], [-np.sin(a), 0.0, np.cos(a)]])
         moved = (self.vertices - centre) @ rot.T * scale + centre + np.asarray(move, float)
-        return Lobe(moved, self.faces, self.ring_size)
+        return Lobe(moved, self.faces, self.ring_size, self.rings)
 
     def squeezed(self, at, radius: float, amount: float) -> Lobe:
         """A local smooth deformation: surface within ``radius`` of ``at`` pulled towards the lobe's
@@ -61,21 +68,27 @@ class Lobe:
         """One stroke point dragged to ``to``; its neighbours along the stroke follow on a smooth
         (quadratic Bezier-like) falloff over ``width`` points each side."""
         n = self.ring_size
-        rings = self.vertices[:-2].reshape(-1, n, 3).copy()
+        vertices = self.vertices.copy()
+        rings = vertices[: self.rings * n].reshape(-1, n, 3)
         offset = np.asarray(to, float) - rings[ring, index]
         k = np.arange(n)
         steps = np.minimum((k - index) % n, (index - k) % n)
         w = np.clip(1.0 - steps / (width + 1.0), 0.0, 1.0) ** 2
         rings[ring] += w[:, None] * offset
-        return self._with_rings(np.concatenate([rings.reshape(-1, 3), self.vertices[-2:]]))
+        return self._with_rings(vertices)
 
     def _with_rings(self, vertices: np.ndarray) -> Lobe:
-        """The lobe with new vertices; cap centres follow their rings, triangles stay wound outwards."""
+        """The lobe with new vertices; cap centres follow their rings. The triangles keep their
+        (consistent) winding, flipped all together if the edit turned the lobe inside out."""
         vertices = vertices.copy()
-        if self.ring_size:
-            rings = vertices[:-2].reshape(-1, self.ring_size, 3)
-            vertices[-2], vertices[-1] = rings[0].mean(axis=0), rings[-1].mean(axis=0)
-        return Lobe(vertices, _wind_outwards(vertices, self.faces), self.ring_size)
+        if self.rings:
+            cap = self.rings * self.ring_size
+            rings = vertices[:cap].reshape(-1, self.ring_size, 3)
+            vertices[cap], vertices[cap + 1] = rings[0].mean(axis=0), rings[-1].mean(axis=0)
+        tri = vertices[self.faces]
+        volume = np.einsum("ij,ij->", tri[:, 0], np.cross(tri[:, 1], tri[:, 2]))
+        faces = self.faces if volume >= 0 else self.faces[:, ::-1].copy()
+        return Lobe(vertices, faces, self.ring_size, self.rings)
 
     def contains(self, points: np.ndarray) -> np.ndarray:
         """True for points inside the lobe."""
@@ -159,8 +172,13 @@ class Crossings:
         return which
 
 
-def lobe_from_loops(loops: list[np.ndarray], points_per_loop: int = 32) -> Lobe:
-    """Stitch two or more closed strokes into a closed lobe mesh (see module docstring)."""
+def lobe_from_loops(loops: list[np.ndarray], points_per_loop: int = 32,
+                    open_strokes: list[np.ndarray] = ()) -> Lobe:
+    """Stitch two or more closed strokes into a closed lobe mesh (see module docstring).
+
+    Each of ``open_strokes`` (an arch drawn across an end loop, seed 004 condition 2) closes the end
+    loop nearest to it instead of a flat fan; the last one drawn at an end wins.
+    """
     if len(loops) < 2:
         raise ValueError("a lobe needs at least two closed strokes")
     centers = np.array([np.asarray(loop, float).mean(axis=0) for loop in loops])
@@ -172,15 +190,76 @@ def lobe_from_loops(loops: list[np.ndarray], points_per_loop: int = 32) -> Lobe:
         start = barycentric_directions(rings[k - 1])[0]
         rings[k] = np.roll(rings[k], -int(np.argmax(barycentric_directions(rings[k]) @ start)), axis=0)
     n, i = points_per_loop, np.arange(points_per_loop)
-    verts = np.concatenate([*rings, [rings[0].mean(axis=0), rings[-1].mean(axis=0)]])
+    verts = [*rings, [rings[0].mean(axis=0), rings[-1].mean(axis=0)]]
     faces = []
     for k in range(len(rings) - 1):
         a, b, c, d = k * n + i, k * n + (i + 1) % n, (k + 1) * n + i, (k + 1) * n + (i + 1) % n
         faces += [np.stack([a, b, c], 1), np.stack([b, d, c], 1)]
-    bottom, top, last = len(verts) - 2, len(verts) - 1, (len(rings) - 1) * n
-    faces.append(np.stack([np.full(n, bottom), (i + 1) % n, i], 1))
-    faces.append(np.stack([np.full(n, top), last + i, last + (i + 1) % n], 1))
-    return Lobe(verts, _wind_outwards(verts, np.concatenate(faces).astype(np.int64)), points_per_loop)
+    caps = {}
+    for stroke in open_strokes:  # the end whose loop centre is nearest the arch's middle
+        mid = np.asarray(stroke, float).mean(axis=0)
+        caps[0 if np.linalg.norm(mid - rings[0].mean(axis=0)) <= np.linalg.norm(mid - rings[-1].mean(axis=0))
+             else len(rings) - 1] = np.asarray(stroke, float)
+    count = len(rings) * n + 2
+    for end, centre in ((0, count - 2), (len(rings) - 1, count - 1)):
+        if end in caps:
+            inner, cap_faces = _arch_cap(rings[end], end * n, caps[end], count)
+            verts.append(inner)
+            count += len(inner)
+            faces.append(cap_faces)
+        else:  # a flat fan (wound outwards below)
+            faces.append(np.stack([np.full(n, centre), end * n + (i + 1) % n, end * n + i], 1))
+    all_verts = np.concatenate(verts)
+    return Lobe(all_verts, _wind_outwards(all_verts, np.concatenate(faces).astype(np.int64)), n, len(rings))
+
+
+def _arch_cap(ring: np.ndarray, first: int, stroke: np.ndarray, next_index: int) -> tuple[np.ndarray, np.ndarray]:
+    """Close a loop with an open stroke across it (seed 004 condition 2): the stroke's ends go to the
+    loop points whose barycentric directions best match the stroke's directions into itself; the
+    loop's two arcs between them are each stitched to the stroke. Returns the stroke's new inner
+    points and the cap's triangles (loop points keep their indices, ``first`` + k)."""
+    n = len(ring)
+    arch = _resample_open(stroke, max(3, n // 2 + 1))
+    bary = barycentric_directions(ring)
+    i0 = int(np.argmax(bary @ unit(arch[1] - arch[0])))
+    into_end = bary @ unit(arch[-2] - arch[-1])
+    gap = np.minimum((np.arange(n) - i0) % n, (i0 - np.arange(n)) % n)
+    i1 = int(np.argmax(np.where(gap >= 2, into_end, -np.inf)))  # the ends must not be neighbours
+    inner = arch[1:-1]
+    arch_ids = np.concatenate([[first + i0], next_index + np.arange(len(inner)), [first + i1]])
+    arch_pts = np.concatenate([ring[i0:i0 + 1], inner, ring[i1:i1 + 1]])
+    forward = (i0 + np.arange((i1 - i0) % n + 1)) % n
+    backward = (i0 - np.arange((i0 - i1) % n + 1)) % n
+    faces = [_zip_strips(first + arc, ring[arc], arch_ids, arch_pts) for arc in (forward, backward)]
+    return inner, np.concatenate(faces)
+
+
+def _resample_open(points: np.ndarray, count: int) -> np.ndarray:
+    """An open stroke with ``count`` points evenly spaced along its length, ends kept."""
+    s = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(points, axis=0), axis=1))])
+    t = np.linspace(0.0, s[-1], count)
+    return np.stack([np.interp(t, s, points[:, c]) for c in range(3)], axis=1)
+
+
+def _zip_strips(ids_a: np.ndarray, pts_a: np.ndarray, ids_b: np.ndarray, pts_b: np.ndarray) -> np.ndarray:
+    """Triangles between two polylines that share both end points, advancing along whichever is
+    behind in relative arc length (triangles that collapse onto a shared end are left out)."""
+    def progress(pts):
+        s = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(pts, axis=0), axis=1))])
+        return s / max(s[-1], 1e-12)
+
+    ta, tb = progress(pts_a), progress(pts_b)
+    i = j = 0
+    tris = []
+    while i < len(ids_a) - 1 or j < len(ids_b) - 1:
+        if j == len(ids_b) - 1 or (i < len(ids_a) - 1 and ta[i + 1] <= tb[j + 1]):
+            tris.append((ids_a[i], ids_a[i + 1], ids_b[j]))
+            i += 1
+        else:
+            tris.append((ids_a[i], ids_b[j + 1], ids_b[j]))
+            j += 1
+    tris = np.array(tris, dtype=np.int64)
+    return tris[(tris[:, 0] != tris[:, 1]) & (tris[:, 1] != tris[:, 2]) & (tris[:, 0] != tris[:, 2])]
 
 
 def _counter_clockwise(ring: np.ndarray, axis: np.ndarray) -> np.ndarray:

@@ -40,7 +40,7 @@ from game.input import (
     PygameTranslator,
 )
 from game.loop import SPEEDS, FixedStepLoop
-from game.modeling import ModelingMode
+from game.modeling import TOOLS, ModelingMode
 from game.render import ASSETS, Overlay, TreeRenderer
 from game.strings import text
 from game.ui import HudInfo, Menu, draw_hud, draw_rain_cloud, range_to_slider, slider_to_range
@@ -195,17 +195,11 @@ class Game:
             self.world = self.others.pop(0)
             self.previous = copy.deepcopy(self.world.sim.state)
             self._sync_sliders()
-        elif action == "modeler" and value:
-            self.modeling.toggle()
-        elif action == "crown" and value:
-            self.modeling.toggle_crown()
-        elif action == "prune" and value:
-            self.modeling.toggle_prune()
-        elif action == "symbols" and value:
-            self.modeling.toggle_symbols()
+        elif action in TOOLS and value:
+            TOOLS[action](self.modeling)
+            self.menu.widget("edit").label = self.modeling.option_label()
         elif action == "edit" and value:
-            name = self.modeling.next_edit()
-            self.menu.widget("edit").label = text("menu.edit", name=text(f"edits.{name}"))
+            self.menu.widget("edit").label = self.modeling.next_option()
         elif action == "undo" and value:
             self.modeling.undo()
         elif action == "redo" and value:

@@ -9,28 +9,23 @@ modeling and resumes, growing branches from the drawn growth points, when the mo
 
 from __future__ import annotations
 
-import time
-
 import numpy as np
 import pygame
 
-from engine.crown import grow_crown
 from engine.edits import EDIT_SETS, apply_edit, load_edit_sets
 from engine.growth import grow_geometry, render_view
-from engine.lobes import Lobe, lobe_from_loops, lobe_from_outline
-from engine.lstring import LString, format_number
+from engine.lstring import LString
 from engine.modeler import Modeler
 from engine.regions import Sphere, prune
 from engine.strokes import Stroke
 from engine.turtle import TurtleConfig, module_positions
 from game.camera import OrbitCamera, project_points
+from game.crown_tool import CrownTool
 from game.render import ASSETS
 from game.strings import text
 from game.symbols_overlay import draw_symbols
 
 PICK_PIXELS = 18.0  # how close a tap must be to a branch to cut it
-MAX_CROWN_MODULES = 24000  # one crown's bound even without a tree budget
-MAX_CROWN_STATES = 32  # crown steps whose lobes undo/redo can bring back
 
 
 class ModelingMode:
@@ -54,11 +49,13 @@ class ModelingMode:
         self.roi: np.ndarray | None = None
         self.labels: list[tuple[str, float, float, bool]] = []  # last drawn: symbol, x, y, transformation
         self._positions: tuple[LString, np.ndarray] | None = None
-        self.crown_states: dict[int, tuple] = {}  # id(L-string) -> (it, tree before crown, lobes, rings)
+        self.shaping = False  # drags reshape the crown's lobes
+        self.crown_tool = CrownTool(self)
         self.edit = EDIT_SETS[0]
         self.edit_sets = load_edit_sets(ASSETS / "edits")
 
-    def _segments(self, ls: LString):
+    def segments(self, ls: LString):
+        """The tree's segments as drawn now (the modeler's view of the geometry)."""
         world = self.game.world
         return grow_geometry(ls, world.clocks(), world.tree.geometry_constants).turtle.segments
 
@@ -76,24 +73,31 @@ class ModelingMode:
         self.bounds = (np.array([center[0] - half[0], 0.0, center[2] - half[2]]), center + half)
         self.resume_speed = self.game.loop.speed or 1.0
         self.game.set_speed(0.0)
-        self.modeler = Modeler(lstring=self.game.world.tree.lstring, segments_of=self._segments)
-        self.crown_states.clear()  # a new editing session: earlier crown steps cannot be undone into
+        self.modeler = Modeler(lstring=self.game.world.tree.lstring, segments_of=self.segments)
+        self.crown_tool.clear()  # a new editing session: earlier crown steps cannot be undone into
         self.game.say(text("messages.modeler_on"))
 
     def _tool(self, name: str) -> None:
-        """Switch to tool ``name`` (crown, pruning, symbols) or back to branches if it is on already."""
+        """Switch to tool ``name`` (crown, shaping, pruning, symbols) or back to branches if it is on."""
         if not self.active:
             self.toggle()
         on = not getattr(self, name)
-        self.crown = self.pruning = self.symbols = False
+        self.crown = self.shaping = self.pruning = self.symbols = False
         setattr(self, name, on)
         self.roi = None
         self.cancel()
-        self.game.say(text(f"messages.{name}_on" if on else "messages.crown_off"))
+        if name == "shaping" and on:
+            self.game.say(text("messages.shaping_on", op=text(f"shapes.{self.crown_tool.op}")))
+        else:
+            self.game.say(text(f"messages.{name}_on" if on else "messages.crown_off"))
 
     def toggle_crown(self) -> None:
         """Switch strokes between branches and crown outlines (entering the modeler if needed)."""
         self._tool("crown")
+
+    def toggle_shape(self) -> None:
+        """Switch the lobe shaping tool on or off (entering the modeler if needed)."""
+        self._tool("shaping")
 
     def toggle_prune(self) -> None:
         """Switch the pruning tool on or off (entering the modeler if needed)."""
@@ -108,7 +112,7 @@ class ModelingMode:
         False when no branch is there (the tap then opens the menu as usual)."""
         if not (self.pruning and self.modeler is not None):
             return False
-        segs = self._segments(self.modeler.lstring)
+        segs = self.segments(self.modeler.lstring)
         if len(segs) == 0:
             return False
         a = project_points(camera, self.game.size, segs.start)
@@ -125,7 +129,7 @@ class ModelingMode:
         before = self.modeler.lstring
         self.modeler.commit(prune(before, int(segs.module[k])))
         self.game.world.tree.lstring = self.modeler.lstring
-        self.game.say(text("messages.pruned", count=len(segs) - len(self._segments(self.modeler.lstring))))
+        self.game.say(text("messages.pruned", count=len(segs) - len(self.segments(self.modeler.lstring))))
         return True
 
     def cancel(self) -> None:
@@ -141,15 +145,22 @@ class ModelingMode:
         self.plane = self.last_plane = (through, normal)
         self.stroke_camera = camera
         self.cancel_points()
+        if self.shaping:
+            self.crown_tool.begin_shape(x, y, camera)
+            return
         self.add2d(x, y, t, camera)
 
     def cancel_points(self) -> None:
-        """Forget the points of the stroke being drawn (the drawing plane stays)."""
+        """Forget the points of the stroke being drawn (the drawing plane stays) and any shape drag."""
         self.points, self.times, self.preview = [], [], None
+        self.crown_tool.drag = None
 
     def add2d(self, x: float, y: float, t: float, camera: OrbitCamera) -> None:
         """The pointer moved: extend the stroke with the point under it on the drawing plane."""
         if self.plane is None:
+            return
+        if self.shaping:
+            self.crown_tool.drag_shape(x, y, self.stroke_camera or camera)
             return
         hit = unproject_to_plane(self.stroke_camera or camera, self.game.size, x, y, *self.plane)
         if hit is not None:
@@ -167,7 +178,9 @@ class ModelingMode:
     def finish(self) -> None:
         """The pointer went up: commit the stroke to the tree (undoable)."""
         if self.crown and self.modeler is not None:
-            self._grow_crown()
+            self.crown_tool.stroke(np.array(self.points))
+        elif self.shaping:
+            self.crown_tool.end_shape()
         elif self.pruning or self.symbols:
             pass  # the prune tool cuts with taps; the symbols tool's drag only moved its region
         elif self.modeler is not None and len(self.points) >= 3:
@@ -186,90 +199,30 @@ class ModelingMode:
             self.game.say(text("messages.stroke", pieces=result.pieces, points=result.growth_points, how=how))
         self.cancel()
 
-    def _crown_state(self) -> tuple[LString, list[Lobe], list[np.ndarray]]:
-        """The tree before its crown, the crown's lobes and the pending rings, for the tree as it is
-        now (so undo and redo of crown steps bring their lobes back too)."""
-        kept = self.crown_states.get(id(self.modeler.lstring))
-        if kept is not None and kept[0] is self.modeler.lstring:
-            return kept[1], kept[2], kept[3]
-        return self.modeler.lstring, [], []
-
-    def _remember_crown(self, ls: LString, base: LString, lobes: list[Lobe], rings: list[np.ndarray]) -> None:
-        self.crown_states[id(ls)] = (ls, base, lobes, rings)
-        while len(self.crown_states) > MAX_CROWN_STATES:  # bounded: the oldest crown steps are forgotten
-            del self.crown_states[next(iter(self.crown_states))]
-
-    def _grow_crown(self) -> None:
-        if len(self.points) < 8:
-            return
-        points = np.array(self.points)
-        base, lobes, rings = self._crown_state()
-        span = np.ptp(points, axis=0)
-        if span.max() < 1e-3:
-            return
-        if span[1] < 0.25 * max(span[0], span[2]):  # a ring around the crown (3D trackers): stitch rings
-            rings = [*rings, points]
-            if len(rings) < 2:
-                self._remember_crown(self.modeler.lstring, base, lobes, rings)
-                self.game.say(text("messages.crown_ring"))
-                return
-            lobes = [*lobes[:-1], lobe_from_loops(rings)] if len(rings) > 2 else [*lobes, lobe_from_loops(rings)]
-        else:
-            lobes, rings = [*lobes, lobe_from_outline(points)], []
-        start = time.perf_counter()
-        grown, added, limited = self._regrow(base, lobes)
-        ms = (time.perf_counter() - start) * 1e3
-        self.modeler.commit(grown)  # the whole crown regrown into every lobe: one undoable step
-        self._remember_crown(grown, base, lobes, rings)
-        self.game.world.tree.lstring = self.modeler.lstring
-        key = "messages.crown_none" if added == 0 else "messages.crown_full" if limited else "messages.crown"
-        self.game.say(text(key, count=added, ms=ms, lobes=len(lobes)))
-
-    def _regrow(self, base: LString, lobes: list[Lobe]) -> tuple[LString, int, bool]:
-        """The crown grown from ``base`` into ``lobes`` within the tree's module budget: a try that is
-        too big is grown again with proportionally fewer nodes (at most four tries). Returns the L-string,
-        the branch pieces added and whether the budget limited them."""
-        budget = self.game.world.tree.deriver.budget
-        room = MAX_CROWN_MODULES if budget is None else min(MAX_CROWN_MODULES, budget - len(base))
-        nodes, seed = MAX_CROWN_MODULES // 4, int(self.modeler.rng.integers(2**31))
-        for _ in range(4):
-            if room <= 0 or nodes < 2:
-                break
-            scratch = Modeler(lstring=base, segments_of=self._segments)
-            added = grow_crown(scratch, lobes, np.random.default_rng(seed), per_lobe=250, step_fraction=0.2,
-                               max_nodes=nodes, tip=f"[&(45)L({format_number(self._born_visible())})]")
-            extra = len(scratch.lstring) - len(base)
-            if extra <= room:
-                return scratch.lstring, added, added >= nodes - 2 or nodes < MAX_CROWN_MODULES // 4
-            nodes = int(added * room / extra * 0.9)
-        return base, 0, True
-
     def draw_outline(self, surface: pygame.Surface, project) -> None:
-        """The crown's lobes (their stitched strokes, faint) and the outline being drawn, as closed
-        lines over the scene (``project``: 3D -> pixels)."""
-        if not self.crown or self.modeler is None:
-            return
-        _, lobes, rings = self._crown_state()
-        loops = [ring for lobe in lobes for ring in lobe.vertices[:-2].reshape(-1, lobe.ring_size, 3)] + rings
-        for loop in loops:
-            faint = [p for p in (project(point) for point in loop) if p is not None]
-            if len(faint) >= 3:
-                pygame.draw.lines(surface, (170, 240, 170, 110), True, faint, 2)
-        if len(self.points) < 2:
-            return
-        pixels = [p for p in (project(point) for point in self.points) if p is not None]
-        if len(pixels) >= 2:
-            pygame.draw.lines(surface, (120, 230, 120, 230), len(pixels) >= 8, pixels, 4)
+        """The crown's lobes and the crown stroke being drawn, over the scene (crown and shape tools)."""
+        if (self.crown or self.shaping) and self.modeler is not None:
+            self.crown_tool.draw(surface, project, self.points if self.crown else [], self.shaping)
 
-    def _born_visible(self) -> float:
+    def born_visible(self) -> float:
         """A birth time for leaves and blossoms added while the garden is paused: one growth time
         constant ago, so they show at once (63 % grown) and finish growing when time runs again."""
         return self.game.world.clocks().length_time - self.game.world.tree.geometry_constants["TAU"]
 
-    def next_edit(self) -> str:
-        """Choose the next region edit (the menu button cycles through them)."""
-        self.edit = EDIT_SETS[(EDIT_SETS.index(self.edit) + 1) % len(EDIT_SETS)]
-        return self.edit
+    def option_label(self) -> str:
+        """The menu option button's label: the lobe operation with the shape tool, else the region edit."""
+        if self.shaping:
+            return text("menu.shape_op", op=text(f"shapes.{self.crown_tool.op}"))
+        return text("menu.edit", name=text(f"edits.{self.edit}"))
+
+    def next_option(self) -> str:
+        """The menu's option button: the next lobe operation with the shape tool, else the next region
+        edit. Returns the button's new label."""
+        if self.shaping:
+            self.crown_tool.next_op()
+        else:
+            self.edit = EDIT_SETS[(EDIT_SETS.index(self.edit) + 1) % len(EDIT_SETS)]
+        return self.option_label()
 
     def _roi_sphere(self) -> Sphere:
         r = self.game.renderer
@@ -287,7 +240,7 @@ class ModelingMode:
             return False
         ls = self.game.world.tree.lstring
         new, changed, held = apply_edit(ls, self._module_positions(ls), sphere, self.edit_sets[self.edit],
-                                        {"T": self._born_visible(), "G": self.game.world.clocks().girth_time},
+                                        {"T": self.born_visible(), "G": self.game.world.clocks().girth_time},
                                         budget=self.game.world.tree.deriver.budget)
         if changed:
             self.modeler.commit(new)
@@ -325,6 +278,15 @@ class ModelingMode:
     def lstring(self) -> LString:
         """What to draw now: the live preview while a stroke is being drawn, else the tree."""
         return self.preview if self.preview is not None else self.game.world.tree.lstring
+
+
+TOOLS = {  # menu button -> what it switches
+    "modeler": ModelingMode.toggle,
+    "crown": ModelingMode.toggle_crown,
+    "shape": ModelingMode.toggle_shape,
+    "prune": ModelingMode.toggle_prune,
+    "symbols": ModelingMode.toggle_symbols,
+}
 
 
 def unproject_to_plane(camera: OrbitCamera, size: tuple[int, int], x: float, y: float,

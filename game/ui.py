@@ -51,7 +51,8 @@ class Menu:
             Widget("replant", text("menu.replant"), "button"),
             Widget("speed", text("menu.speed", speed="1"), "button"),
             *(Widget(name, text(f"menu.{name}"), "button") for name in ("save", "load", "devices", "modeler",
-                                                                         "crown", "prune", "symbols", "undo", "redo",
+                                                                         "crown", "shape", "prune", "symbols", "undo",
+                                                                         "redo",
                                                                          "plant", "next")),
             Widget("edit", text("menu.edit", name=text("edits.add_leaves")), "button"),
         ]
@@ -65,7 +66,7 @@ class Menu:
     def show_at(self, x: float, y: float) -> None:
         """Open the menu with its corner at the tap point, kept inside the screen."""
         rows = [["orbit_height"], ["sun_speed"], ["water", "replant"], ["speed", "save", "load", "devices"],
-                ["modeler", "crown", "prune", "symbols"], ["edit", "undo", "redo"], ["plant", "next"]]
+                ["modeler", "crown", "shape"], ["prune", "symbols"], ["edit", "undo", "redo"], ["plant", "next"]]
         height = len(rows) * (ROW_H + PAD) + PAD
         left = int(min(max(x, PAD), self.screen[0] - MENU_W - PAD))
         top = int(min(max(y, PAD), self.screen[1] - height - PAD))

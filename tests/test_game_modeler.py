@@ -175,7 +175,7 @@ def test_prune_tool_cuts_the_tapped_branch_and_undo_restores_it(game):
     assert game.modeling.pruning and not game.modeling.crown
 
     def pieces():
-        return len(game.modeling._segments(game.world.tree.lstring))
+        return len(game.modeling.segments(game.world.tree.lstring))
 
     full = pieces()
     touch(game, DOWN, 0, x0 + 6 * 30, y0 - 8 * 30)  # a tap on the drawn branch, well above the trunk
@@ -245,10 +245,10 @@ def test_crown_regrows_into_every_lobe_and_undo_brings_lobes_back(game):
     draw(game, [(x0 + 110 + 90 * np.cos(t), y0 - 300 + 80 * np.sin(t)) for t in a])
     two = game.world.tree.lstring
     assert "2 lobes" in game.hud_info().message
-    assert game.modeling._crown_state()[0] is base  # regrown from the tree before the crown
+    assert game.modeling.crown_tool.state().base is base  # regrown from the tree before the crown
     assert two.count("L") > one.count("L")
     press_menu(game, "undo")
-    assert game.world.tree.lstring is one and len(game.modeling._crown_state()[1]) == 1
+    assert game.world.tree.lstring is one and len(game.modeling.crown_tool.state().lobes) == 1
     # a 3D tracker draws rings around the crown: two rings at different heights make one more lobe
     ring = np.stack([np.cos(a), np.zeros_like(a), np.sin(a)], 1)
     for k, height in enumerate((2.6, 3.6)):
@@ -258,7 +258,7 @@ def test_crown_regrows_into_every_lobe_and_undo_brings_lobes_back(game):
         if k == 0:
             assert "ring" in game.hud_info().message and game.world.tree.lstring is one
     assert "2 lobes" in game.hud_info().message
-    assert len(game.modeling._crown_state()[2]) == 2
+    assert len(game.modeling.crown_tool.state().rings) == 2
 
 
 def test_strokes_and_crowns_stay_within_the_tree_budget(game):
@@ -275,3 +275,59 @@ def test_strokes_and_crowns_stay_within_the_tree_budget(game):
     grown = game.world.tree.lstring
     assert len(before) + 100 < len(grown) <= len(before) + 400
     assert "size limit" in game.hud_info().message
+
+
+def test_shape_tool_moves_scales_and_pulls_lobes_and_the_crown_follows(game):
+    press_menu(game, "crown")
+    x0, y0 = base_pixel(game)
+    a = np.linspace(0, 2 * np.pi, 48)
+    draw(game, [(x0 + 100 * np.cos(t), y0 - 330 + 90 * np.sin(t)) for t in a])
+    crowned = game.world.tree.lstring
+    lobe = game.modeling.crown_tool.state().lobes[0]
+    press_menu(game, "shape")
+    assert game.modeling.shaping and game.menu.widget("edit").label == "Lobe: move"
+    centre = game._project(game.camera(), lobe.vertices.mean(axis=0))
+    draw(game, [(centre[0] + 12 * i, centre[1]) for i in range(16)])  # drag the lobe 180 px right
+    moved = game.modeling.crown_tool.state().lobes[0]
+    shift = moved.vertices.mean(axis=0) - lobe.vertices.mean(axis=0)
+    assert np.hypot(shift[0], shift[2]) > 0.5 and abs(shift[1]) < 1e-6
+    assert np.allclose(np.ptp(moved.vertices, axis=0), np.ptp(lobe.vertices, axis=0))
+    tips = game.modeling.segments(game.world.tree.lstring).end
+    assert game.world.tree.lstring is not crowned and "Lobe move" in game.hud_info().message
+    assert moved.contains(tips[-50:]).mean() > 0.8  # the regrown crown fills the moved lobe
+    press_menu(game, "edit")
+    assert game.menu.widget("edit").label == "Lobe: scale"
+    centre = game._project(game.camera(), moved.vertices.mean(axis=0))
+    draw(game, [(centre[0], centre[1] - 10 * i) for i in range(15)])  # drag up: bigger
+    scaled = game.modeling.crown_tool.state().lobes[0]
+    assert np.ptp(scaled.vertices[:, 1]) / np.ptp(moved.vertices[:, 1]) == pytest.approx(np.exp(140 / 200), rel=0.02)
+    for _ in range(3):
+        press_menu(game, "edit")  # turn, squeeze, point
+    assert game.menu.widget("edit").label == "Lobe: point"
+    ring, index = 3, 0
+    grab = game._project(game.camera(), scaled.stroke_rings[ring, index])
+    draw(game, [(grab[0], grab[1] - 6 * i) for i in range(12)])
+    pulled = game.modeling.crown_tool.state().lobes[0]
+    assert pulled.stroke_rings[ring, index][1] > scaled.stroke_rings[ring, index][1] + 0.2
+    assert np.allclose(pulled.stroke_rings[ring, 16], scaled.stroke_rings[ring, 16])  # far side stays
+    press_menu(game, "undo")
+    assert game.modeling.crown_tool.state().lobes[0] is scaled  # undo brings the lobe back too
+
+
+def test_tracker_arch_closes_the_ring_lobe_with_a_dome(game):
+    press_menu(game, "crown")
+    a = np.linspace(0, 2 * np.pi, 48)
+    ring = np.stack([np.cos(a), np.zeros_like(a), np.sin(a)], 1)
+    for height in (2.6, 3.4):
+        for i, p in enumerate(ring * 0.8 + [0.0, height, 0.0]):
+            game.modeling.add3d(p, i * 0.02)
+        game.modeling.finish()
+    flat = game.modeling.crown_tool.state().lobes[-1]
+    t = np.linspace(-0.8, 0.8, 30)
+    for i, p in enumerate(np.stack([t, 3.4 + 0.7 * (1 - (t / 0.8) ** 2), 0 * t], 1)):  # an arch over the top
+        game.modeling.add3d(p, i * 0.02)
+    game.modeling.finish()
+    domed = game.modeling.crown_tool.state().lobes[-1]
+    assert len(game.modeling.crown_tool.state().arches) == 1
+    assert domed.vertices[:, 1].max() == pytest.approx(4.1, abs=0.05) and flat.vertices[:, 1].max() < 3.5
+    assert domed.contains(np.array([[0.0, 3.8, 0.0]]))[0] and not flat.contains(np.array([[0.0, 3.8, 0.0]]))[0]

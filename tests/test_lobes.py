@@ -32,6 +32,30 @@ def test_lobe_is_a_closed_outward_mesh_of_the_right_volume():
     assert mesh.volume == pytest.approx(np.pi * 2.0, rel=0.01)  # a cylinder r=1, h=2
 
 
+def arch(y: float, radius: float, rise: float, turn_deg: float = 0.0, n: int = 40) -> np.ndarray:
+    """An open stroke across the loop of ``radius`` at height ``y``, bulging ``rise`` beyond it."""
+    t = np.linspace(-1.0, 1.0, n)
+    a = np.radians(turn_deg)
+    return np.stack([radius * t * np.cos(a), y + rise * (1 - t * t), radius * t * np.sin(a)], 1)
+
+
+@pytest.mark.parametrize("turn", [0.0, 37.0, 90.0])
+def test_open_strokes_close_the_ends_as_domes(turn):
+    flat = lobe_from_loops([circle(0.0, 1.0), circle(2.0, 1.0)], points_per_loop=32)
+    domed = lobe_from_loops([circle(0.0, 1.0), circle(2.0, 1.0)], points_per_loop=32,
+                            open_strokes=[arch(2.0, 1.0, 0.8, turn), arch(0.0, 1.0, -0.5, turn + 10)])
+    mesh = trimesh.Trimesh(domed.vertices, domed.faces, process=False)
+    assert mesh.is_watertight and mesh.is_winding_consistent and mesh.volume > 0
+    flat_volume = trimesh.Trimesh(flat.vertices, flat.faces, process=False).volume
+    assert mesh.volume > flat_volume * 1.15  # the arches add volume above and below the loops
+    assert domed.vertices[:, 1].max() == pytest.approx(2.8, abs=0.02)  # the top arch's apex is kept
+    assert domed.contains(np.array([[0.0, 2.5, 0.0], [0.0, -0.3, 0.0]])).all()
+    assert not domed.contains(np.array([[0.0, 3.0, 0.0], [0.0, -0.7, 0.0]])).any()
+    moved = domed.transformed(move=(1.0, 0.0, 0.0)).squeezed((0.0, 2.6, 0.0), 0.6, 0.3).dragged(1, 5, (1.5, 2.0, 0.5))
+    moved_mesh = trimesh.Trimesh(moved.vertices, moved.faces, process=False)
+    assert moved_mesh.is_watertight and moved_mesh.is_winding_consistent
+
+
 def test_stroke_order_and_start_point_do_not_twist_the_lobe():
     straight = lobe_from_loops([circle(0.0, 1.0), circle(1.0, 1.5), circle(2.0, 1.0)])
     scrambled = lobe_from_loops([circle(2.0, 1.0, roll=17), circle(0.0, 1.0), circle(1.0, 1.5, roll=40)[::-1]])
