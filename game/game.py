@@ -493,7 +493,7 @@ class Game:
         if self.cursor3d is not None:
             self._draw_cursor3d(camera)
         self.modeling.draw_outline(self.surface, lambda point: self._project(camera, point))
-        self.modeling.draw_symbols(self.surface, camera, self.small_font)
+        self.modeling.draw_symbols(self.surface, camera, self.small_font, lambda point: self._project(camera, point))
         self.menu.draw(self.surface, self.font)
         for hook in self.overlay_hooks:
             hook(self.surface)

@@ -12,18 +12,17 @@ from __future__ import annotations
 import numpy as np
 import pygame
 
-from engine.edits import EDIT_SETS, apply_edit, load_edit_sets
-from engine.growth import grow_geometry, render_view
+from engine.edits import EDIT_SETS, load_edit_sets
+from engine.growth import grow_geometry
 from engine.lstring import LString
 from engine.modeler import Modeler
-from engine.regions import Sphere, prune
+from engine.regions import prune
 from engine.strokes import Stroke
-from engine.turtle import TurtleConfig, module_positions
 from game.camera import OrbitCamera, project_points
 from game.crown_tool import CrownTool
+from game.region_tool import RegionTool
 from game.render import ASSETS
 from game.strings import text
-from game.symbols_overlay import draw_symbols
 
 PICK_PIXELS = 18.0  # how close a tap must be to a branch to cut it
 
@@ -46,9 +45,8 @@ class ModelingMode:
         self.crown = False  # strokes are crown outlines, not branches
         self.pruning = False  # taps on branches cut them
         self.symbols = False  # drags move the region whose L-string symbols are shown
-        self.roi: np.ndarray | None = None
-        self.labels: list[tuple[str, float, float, bool]] = []  # last drawn: symbol, x, y, transformation
-        self._positions: tuple[LString, np.ndarray] | None = None
+        self.region_tool = RegionTool(self)
+        self.pointer: tuple[float, float] | None = None  # the window pixel of the point being added
         self.shaping = False  # drags reshape the crown's lobes
         self.crown_tool = CrownTool(self)
         self.edit = EDIT_SETS[0]
@@ -84,7 +82,7 @@ class ModelingMode:
         on = not getattr(self, name)
         self.crown = self.shaping = self.pruning = self.symbols = False
         setattr(self, name, on)
-        self.roi = None
+        self.region_tool.clear()
         self.cancel()
         if name == "shaping" and on:
             self.game.say(text("messages.shaping_on", op=text(f"shapes.{self.crown_tool.op}")))
@@ -151,9 +149,11 @@ class ModelingMode:
         self.add2d(x, y, t, camera)
 
     def cancel_points(self) -> None:
-        """Forget the points of the stroke being drawn (the drawing plane stays) and any shape drag."""
+        """Forget the points of the stroke being drawn (the drawing plane stays) and any shape or
+        region drag in progress."""
         self.points, self.times, self.preview = [], [], None
         self.crown_tool.drag = None
+        self.region_tool.pixels = []
 
     def add2d(self, x: float, y: float, t: float, camera: OrbitCamera) -> None:
         """The pointer moved: extend the stroke with the point under it on the drawing plane."""
@@ -164,14 +164,16 @@ class ModelingMode:
             return
         hit = unproject_to_plane(self.stroke_camera or camera, self.game.size, x, y, *self.plane)
         if hit is not None:
+            self.pointer = (x, y)
             self.add3d(hit, t)
+            self.pointer = None
 
     def add3d(self, point, t: float) -> None:
         """Extend the stroke with a 3D point (a tracker's cursor) and refresh the preview."""
         self.points.append(np.asarray(point, dtype=np.float64))
         self.times.append(t)
-        if self.symbols:
-            self.roi = self.points[-1]
+        if self.symbols and self.pointer is not None:
+            self.region_tool.drag(*self.pointer, self.points[-1])
         elif len(self.points) >= 3 and self.modeler is not None and not (self.crown or self.pruning):
             self.preview, _ = self.modeler.convert(Stroke(np.array(self.points), np.array(self.times)))
 
@@ -181,8 +183,10 @@ class ModelingMode:
             self.crown_tool.stroke(np.array(self.points))
         elif self.shaping:
             self.crown_tool.end_shape()
-        elif self.pruning or self.symbols:
-            pass  # the prune tool cuts with taps; the symbols tool's drag only moved its region
+        elif self.symbols and self.stroke_camera is not None:
+            self.region_tool.finish(self.points, self.stroke_camera)
+        elif self.pruning:
+            pass  # the prune tool cuts with taps
         elif self.modeler is not None and len(self.points) >= 3:
             new, result = self.modeler.convert(Stroke(np.array(self.points), np.array(self.times)))
             budget = self.game.world.tree.deriver.budget
@@ -224,46 +228,17 @@ class ModelingMode:
             self.edit = EDIT_SETS[(EDIT_SETS.index(self.edit) + 1) % len(EDIT_SETS)]
         return self.option_label()
 
-    def _roi_sphere(self) -> Sphere:
-        r = self.game.renderer
-        return Sphere(tuple(self.roi), 0.15 * max(float(np.max(r.hi - r.lo)), 1.0))
-
     def edit_at(self, x: float, y: float, camera: OrbitCamera) -> bool:
         """With the symbols tool, a tap inside the region applies the chosen edit there (undoable).
         False when the tap is outside the region (it then opens the menu as usual)."""
-        if not (self.symbols and self.roi is not None and self.modeler is not None):
-            return False
-        sphere = self._roi_sphere()
-        centre = project_points(camera, self.game.size, self.roi[None])[0]
-        edge = project_points(camera, self.game.size, (self.roi + sphere.radius * camera.view()[0, :3])[None])[0]
-        if not np.hypot(x - centre[0], y - centre[1]) <= np.linalg.norm(edge - centre):
-            return False
-        ls = self.game.world.tree.lstring
-        new, changed, held = apply_edit(ls, self._module_positions(ls), sphere, self.edit_sets[self.edit],
-                                        {"T": self.born_visible(), "G": self.game.world.clocks().girth_time},
-                                        budget=self.game.world.tree.deriver.budget)
-        if changed:
-            self.modeler.commit(new)
-            self.game.world.tree.lstring = new
-        message = text("messages.edited", edit=text(f"edits.{self.edit}"), count=changed)
-        self.game.say(message + (" " + text("messages.budget") if held else ""))
-        return True
+        return self.symbols and self.region_tool.edit_at(x, y, camera, self.edit, self.edit_sets[self.edit])
 
-    def draw_symbols(self, surface: pygame.Surface, camera: OrbitCamera, font: pygame.font.Font) -> None:
-        """The L-string overlay of the symbols tool (see game/symbols_overlay.py)."""
-        self.labels = []
-        if self.symbols and self.roi is not None:
-            ls = self.game.world.tree.lstring
-            self.labels = draw_symbols(surface, font, camera, self.game.size, ls, self._module_positions(ls),
-                                       self._roi_sphere())
-
-    def _module_positions(self, ls: LString) -> np.ndarray:
-        """Turtle positions of every module of the tree as drawn now (cached per L-string)."""
-        if self._positions is None or self._positions[0] is not ls:
-            tree, clocks = self.game.world.tree, self.game.world.clocks()
-            view = render_view(ls, clocks, tree.geometry_constants)
-            self._positions = (ls, module_positions(view, TurtleConfig(pipe_model=False, leaves_at_tips=0)))
-        return self._positions[1]
+    def draw_symbols(self, surface: pygame.Surface, camera: OrbitCamera, font: pygame.font.Font, project) -> None:
+        """The symbols tool's region, contours and L-string overlay (see game/region_tool.py)."""
+        if self.symbols:
+            self.region_tool.draw(surface, camera, font, project, self.points)
+        else:
+            self.region_tool.labels = []
 
     def undo(self) -> None:
         """Take back the last stroke."""

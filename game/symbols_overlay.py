@@ -20,18 +20,19 @@ TRANSFORMATIONS = set("+-&^/\\|!$[]T%")
 
 
 def draw_symbols(surface: pygame.Surface, font: pygame.font.Font, camera: OrbitCamera, size: tuple[int, int],
-                 ls: LString, positions: np.ndarray, region: Sphere) -> list[tuple[str, float, float, bool]]:
-    """Draw the region's circle and its modules' symbols; returns what was written: (symbol, x, y,
-    is a transformation) for every symbol."""
+                 ls: LString, positions: np.ndarray, region) -> list[tuple[str, float, float, bool]]:
+    """Draw the modules' symbols inside ``region`` (anything with ``contains`` and ``center``; a
+    sphere's circle is drawn too); returns what was written: (symbol, x, y, is a transformation)."""
     roi = np.asarray(region.center, float)
     distance = np.linalg.norm(positions - roi, axis=1)
-    inside = np.flatnonzero(distance <= region.radius)
+    inside = np.flatnonzero(region.contains(positions))
     inside = inside[np.argsort(distance[inside], kind="stable")]
     pixels = project_points(camera, size, positions[inside])
-    centre = project_points(camera, size, roi[None])[0]
-    edge = project_points(camera, size, (roi + region.radius * camera.view()[0, :3])[None])[0]
-    if np.isfinite(centre).all() and np.isfinite(edge).all():
-        pygame.draw.circle(surface, (255, 255, 255, 160), centre, float(np.linalg.norm(edge - centre)), 2)
+    if isinstance(region, Sphere):
+        centre = project_points(camera, size, roi[None])[0]
+        edge = project_points(camera, size, (roi + region.radius * camera.view()[0, :3])[None])[0]
+        if np.isfinite(centre).all() and np.isfinite(edge).all():
+            pygame.draw.circle(surface, (255, 255, 255, 160), centre, float(np.linalg.norm(edge - centre)), 2)
     ok = np.isfinite(pixels).all(axis=1)
     inside, pixels = inside[ok], pixels[ok]
     _, first, group = np.unique((pixels // 8).astype(np.int64), axis=0, return_index=True, return_inverse=True)

@@ -198,7 +198,7 @@ def test_symbols_tool_writes_the_lstring_where_it_is(game):
     game.clock_box[0] += 0.5
     touch(game, MOVE, 0, x0, y0 - 150)  # onto the trunk
     pixels = np.frombuffer(game._overlay_pixels(game.camera()), np.uint8).reshape(SIZE[1], SIZE[0], 4)[::-1]
-    labels = game.modeling.labels
+    labels = game.modeling.region_tool.labels
     ls = game.world.tree.lstring
     assert any(turn for *_, turn in labels) and any(not turn for *_, turn in labels)
     assert {symbol for symbol, *_ in labels} <= {chr(c) for c in ls.sym}
@@ -331,3 +331,29 @@ def test_tracker_arch_closes_the_ring_lobe_with_a_dome(game):
     assert len(game.modeling.crown_tool.state().arches) == 1
     assert domed.vertices[:, 1].max() == pytest.approx(4.1, abs=0.05) and flat.vertices[:, 1].max() < 3.5
     assert domed.contains(np.array([[0.0, 3.8, 0.0]]))[0] and not flat.contains(np.array([[0.0, 3.8, 0.0]]))[0]
+
+
+def test_two_outlines_make_a_supertoroid_region_and_edits_stay_inside_it(game):
+    from engine.regions import Supertoroid
+
+    press_menu(game, "modeler")
+    x0, y0 = base_pixel(game)
+    draw(game, [(x0 + 5 * i, y0 - 9 * i) for i in range(45)])  # a long branch up to the right
+    press_menu(game, "symbols")
+    draw(game, [(x0 - 50, y0 - 60 - 12 * i) for i in range(20)])  # left outline
+    assert game.modeling.region_tool.region is None and "outline" in game.hud_info().message
+    draw(game, [(x0 + 70 + (i % 2), y0 - 60 - 12 * i) for i in range(20)])  # right outline
+    region = game.modeling.region_tool.region
+    assert isinstance(region, Supertoroid) and "two outlines" in game.hud_info().message
+    before = game.world.tree.lstring
+    positions = game.modeling.region_tool.positions(before)
+    inside = region.contains(positions)
+    eligible = np.isin(before.sym, [ord("I"), ord("F")]) & inside
+    assert 0 < eligible.sum() < np.isin(before.sym, [ord("I"), ord("F")]).sum()  # some modules are outside
+    touch(game, DOWN, 0, x0 + 10, y0 - 180)  # a tap inside the region
+    touch(game, UP, 0, x0 + 10, y0 - 180)
+    after = game.world.tree.lstring
+    assert after.count("L") - before.count("L") == eligible.sum()  # one leaf per internode inside, none outside
+    touch(game, DOWN, 0, x0 + 400, y0 - 180)  # a tap well outside: the menu, no edit
+    touch(game, UP, 0, x0 + 400, y0 - 180)
+    assert game.menu.visible and game.world.tree.lstring is after
