@@ -4,15 +4,20 @@ from __future__ import annotations
 
 
 class Undoable:
-    """Mixin: ``undo_stack``/``redo_stack`` of past values of the attribute named by ``HISTORY_OF``."""
+    """Mixin: ``undo_stack``/``redo_stack`` of past values of the attribute named by ``HISTORY_OF``.
+
+    At most ``UNDO_LIMIT`` steps are kept (the oldest go first): a kiosk edits all day long.
+    """
 
     HISTORY_OF = ""
+    UNDO_LIMIT = 64
     undo_stack: list
     redo_stack: list
 
     def commit(self, new) -> None:
         """Make ``new`` the current value, undoably (a new change drops what was undone)."""
         self.undo_stack.append(getattr(self, self.HISTORY_OF))
+        del self.undo_stack[: -self.UNDO_LIMIT]
         self.redo_stack.clear()
         setattr(self, self.HISTORY_OF, new)
 

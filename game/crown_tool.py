@@ -214,7 +214,7 @@ class CrownTool:
 
     def draw(self, surface: pygame.Surface, project, points: list[np.ndarray], shaping: bool) -> None:
         """The lobes' stroke rings (faint; the one being reshaped bright), pending rings and arches,
-        and the crown stroke being drawn (``project``: 3D -> pixels)."""
+        and the crown stroke being drawn (``project``: 3D points -> the pixels of those in view)."""
         state = self.state()
         lobes = list(state.lobes)
         if self.drag is not None and self.drag.edited is not None:
@@ -233,6 +233,6 @@ class CrownTool:
 
 
 def _polyline(surface: pygame.Surface, project, points: np.ndarray, colour, closed: bool, width: int) -> None:
-    pixels = [p for p in (project(point) for point in points) if p is not None]
+    pixels = project(points)
     if len(pixels) >= (3 if closed else 2):
         pygame.draw.lines(surface, colour, closed, pixels, width)

@@ -492,8 +492,9 @@ class Game:
         draw_hud(self.surface, self.font, info)
         if self.cursor3d is not None:
             self._draw_cursor3d(camera)
-        self.modeling.draw_outline(self.surface, lambda point: self._project(camera, point))
-        self.modeling.draw_symbols(self.surface, camera, self.small_font, lambda point: self._project(camera, point))
+        project = lambda points: self._project_many(camera, points)  # noqa: E731
+        self.modeling.draw_outline(self.surface, project)
+        self.modeling.draw_symbols(self.surface, camera, self.small_font, project)
         self.menu.draw(self.surface, self.font)
         for hook in self.overlay_hooks:
             hook(self.surface)
@@ -502,6 +503,11 @@ class Game:
     def _project(self, camera: OrbitCamera, point) -> tuple[float, float] | None:
         x, y = project_points(camera, self.size, np.asarray(point, float)[None])[0]
         return (float(x), float(y)) if np.isfinite(x) and np.isfinite(y) else None
+
+    def _project_many(self, camera: OrbitCamera, points) -> list[tuple[float, float]]:
+        """Window pixels of many 3D points at once, leaving out those behind the camera."""
+        pixels = project_points(camera, self.size, np.asarray(points, float).reshape(-1, 3))
+        return [(float(x), float(y)) for x, y in pixels[np.isfinite(pixels).all(axis=1)]]
 
     def _draw_cloud(self, camera: OrbitCamera) -> None:
         at = self._project(camera, (0.0, max(float(self.renderer.hi[1]), 1.0) * 1.25, 0.0))

@@ -131,14 +131,14 @@ class RegionTool:
         the contour being drawn."""
         self.labels = []
         for contour in [*self.contours, *([np.array(points)] if self._is_contour() else [])]:
-            pixels = [p for p in (project(q) for q in contour) if p is not None]
+            pixels = project(contour)
             if len(pixels) >= 2:
                 pygame.draw.lines(surface, (255, 255, 255, 200), False, pixels, 3)
         if self.region is None:
             return
         if isinstance(self.region, Supertoroid):
             for ring in self._outline():
-                pixels = [p for p in (project(q) for q in ring) if p is not None]
+                pixels = project(ring)
                 if len(pixels) >= 3:
                     pygame.draw.lines(surface, (255, 255, 255, 170), True, pixels, 2)
         ls = self.mode.game.world.tree.lstring

@@ -148,3 +148,15 @@ def test_bypass_goes_to_the_emptier_side_when_axes_meet():
     segs = m.segments()
     crossing = (segs.order == 2) & (np.abs(segs.start[:, 2]) < 0.3)
     assert crossing.any() and segs.start[crossing, 0].max() < 0  # went round on the empty (-x) side
+
+
+def test_undo_history_is_bounded():
+    from engine.lstring import parse_lstring
+
+    modeler = Modeler(lstring=parse_lstring("F"))
+    for i in range(modeler.UNDO_LIMIT + 30):
+        modeler.commit(parse_lstring(f"F({i})"))
+    assert len(modeler.undo_stack) == modeler.UNDO_LIMIT
+    while modeler.undo():
+        pass
+    assert modeler.lstring.equals(parse_lstring("F(29)"))  # the 30 oldest steps were let go
