@@ -44,17 +44,20 @@ class Skeleton:
         return cls(points, np.arange(len(points)) - 1, heading, active)
 
 
-def _nearest(points: np.ndarray, targets: np.ndarray, chunk: int = 4096) -> tuple[np.ndarray, np.ndarray]:
+def _nearest(points: np.ndarray, targets: np.ndarray, chunk: int = 8192) -> tuple[np.ndarray, np.ndarray]:
     """Index of and distance to the nearest target for every point."""
     idx = np.empty(len(points), np.int64)
     dist = np.empty(len(points))
-    fast = targets.astype(np.float32)  # single precision only ranks candidates; distances are exact
-    tt = np.einsum("ij,ij->i", fast, fast)
+    fast = -2.0 * targets.astype(np.float32)  # single precision only ranks candidates; distances are exact
+    tt = 0.25 * np.einsum("ij,ij->i", fast, fast)
+    points32 = points.astype(np.float32)
     for s in range(0, len(points), chunk):
-        p = points[s : s + chunk]
-        k = np.argmin(tt[None] - 2.0 * (p.astype(np.float32) @ fast.T), axis=1)  # |p|^2 does not change the order
+        scores = points32[s : s + chunk] @ fast.T
+        scores += tt  # |p|^2 - 2 p.q + |q|^2 without the |p|^2, which does not change the order
+        k = np.argmin(scores, axis=1)
         idx[s : s + chunk] = k
-        dist[s : s + chunk] = np.linalg.norm(p - targets[k], axis=1)
+        gap = points[s : s + chunk] - targets[k]
+        dist[s : s + chunk] = np.sqrt(np.einsum("ij,ij->i", gap, gap))
     return idx, dist
 
 
@@ -106,7 +109,7 @@ def _grow_step(skeleton: Skeleton, points, active, owner_local, to_surface, t, s
     """One branch per (node, split piece): parent nodes, unit directions V_A, lengths."""
     base = skeleton.position[active][owner_local]
     vec = points - base
-    d = np.linalg.norm(vec, axis=1)
+    d = np.sqrt(np.einsum("ij,ij->i", vec, vec))
     toward = vec / np.maximum(d, 1e-12)[:, None]
     az = np.arctan2(toward[:, 2], toward[:, 0])
     el = np.arcsin(np.clip(toward[:, 1], -1.0, 1.0))
@@ -124,8 +127,8 @@ def _grow_step(skeleton: Skeleton, points, active, owner_local, to_surface, t, s
     ih = np.minimum(((az - lo_az[owner_local]) / span_az * nh[owner_local]).astype(np.int64), nh[owner_local] - 1)
     iv = np.minimum(((el - lo_el[owner_local]) / span_el * nv[owner_local]).astype(np.int64), nv[owner_local] - 1)
     keys, group = np.unique((owner_local * 4096 + ih) * 4096 + iv, return_inverse=True)
-    weighted = np.zeros((len(keys), 3))
-    np.add.at(weighted, group, toward * d[:, None])
+    group = group.ravel()
+    weighted = np.stack([np.bincount(group, weights=vec[:, c], minlength=len(keys)) for c in range(3)], axis=1)
     total = np.bincount(group, weights=d, minlength=len(keys))
     node_local = keys // (4096 * 4096)
     nodes = active[node_local]

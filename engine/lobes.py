@@ -134,7 +134,13 @@ class LobeEditor(Undoable):
 
 class Crossings:
     """Inside test for a set of lobes by the parity of crossings along a ray in +x, done as a 2D
-    point-in-triangle test in the y-z plane (vectorised over points and all lobes' triangles)."""
+    point-in-triangle test in the y-z plane (vectorised over points and all lobes' triangles).
+
+    Triangles are binned on a ``GRID`` x ``GRID`` grid over their y-z boxes, so a point is tested
+    only against the triangles of its cell (a few dozen of a thousand).
+    """
+
+    GRID = 24
 
     def __init__(self, lobes: list[Lobe]) -> None:
         tri = np.concatenate([lobe.vertices[lobe.faces] for lobe in lobes])
@@ -146,30 +152,56 @@ class Crossings:
         ok = np.abs(det) > 1e-15  # triangles seen edge-on from the ray are never crossed
         self.inv = np.where(ok, 1.0 / np.where(ok, det, 1.0), 0.0)
         self.tri_lo, self.tri_hi = tri.min(axis=1), tri.max(axis=1)
-        self.tri_lo[~ok] = np.inf
         self.lo, self.hi = tri.min(axis=(0, 1)), tri.max(axis=(0, 1))
         self.nudge = np.array([3.7e-9, 7.1e-9]) * max(float(np.max(self.hi - self.lo)), 1e-6)
+        self._bin(np.flatnonzero(ok))
+
+    def _cells(self, yz: np.ndarray) -> np.ndarray:
+        """Grid cell coordinates (clipped) of y-z points, (k, 2)."""
+        span = np.maximum(self.hi[1:] - self.lo[1:], 1e-12)
+        return np.clip(((yz - self.lo[1:]) / span * self.GRID).astype(np.int64), 0, self.GRID - 1)
+
+    def _bin(self, usable: np.ndarray) -> None:
+        """CSR lists of the triangles whose y-z box touches each cell."""
+        c0, c1 = self._cells(self.tri_lo[usable, 1:]), self._cells(self.tri_hi[usable, 1:])
+        ny, nz = c1[:, 0] - c0[:, 0] + 1, c1[:, 1] - c0[:, 1] + 1
+        tri = np.repeat(usable, ny * nz)
+        k = _ranges(ny * nz)  # position of each (triangle, cell) pair within its triangle's box
+        rep_nz = np.repeat(nz, ny * nz)
+        cell = (np.repeat(c0[:, 0], ny * nz) + k // rep_nz) * self.GRID + np.repeat(c0[:, 1], ny * nz) + k % rep_nz
+        order = np.argsort(cell, kind="stable")
+        self.cell_tris = tri[order]
+        self.cell_start = np.searchsorted(cell[order], np.arange(self.GRID * self.GRID + 1))
 
     def inside(self, points: np.ndarray) -> np.ndarray:
         """Index of a lobe containing each point, -1 for points outside all of them."""
         which = np.full(len(points), -1, np.int64)
         rows = np.flatnonzero(np.all((points >= self.lo) & (points <= self.hi), axis=1))
-        for start in range(0, len(rows), 1024):
-            chunk = rows[start : start + 1024]
-            # a tiny odd offset keeps the ray off shared edges and vertices (points on a ring's plane)
-            y, z = points[chunk, 1:2] + self.nudge[0], points[chunk, 2:3] + self.nudge[1]
-            near = ((y >= self.tri_lo[:, 1]) & (y <= self.tri_hi[:, 1])
-                    & (z >= self.tri_lo[:, 2]) & (z <= self.tri_hi[:, 2]))
-            p, t = np.nonzero(near)  # only triangles whose y-z box holds the point can be crossed
-            dy, dz = y[p, 0] - self.p0[t, 1], z[p, 0] - self.p0[t, 2]
-            u = (dy * self.e2[t, 2] - dz * self.e2[t, 1]) * self.inv[t]
-            v = (dz * self.e1[t, 1] - dy * self.e1[t, 2]) * self.inv[t]
-            x = self.p0[t, 0] + u * self.e1[t, 0] + v * self.e2[t, 0]
-            hit = (u >= 0) & (v >= 0) & (u + v <= 1) & (x > points[chunk[p], 0])
-            crossings = np.bincount(p[hit] * self.count + self.lobe[t[hit]], minlength=len(chunk) * self.count)
-            odd = crossings.reshape(len(chunk), self.count) % 2 == 1
-            which[chunk] = np.where(odd.any(axis=1), np.argmax(odd, axis=1), -1)
+        if len(rows) == 0:
+            return which
+        # a tiny odd offset keeps the ray off shared edges and vertices (points on a ring's plane)
+        yz = points[rows, 1:] + self.nudge
+        cy, cz = self._cells(yz).T
+        cell = cy * self.GRID + cz
+        count = self.cell_start[cell + 1] - self.cell_start[cell]
+        p = np.repeat(np.arange(len(rows)), count)
+        t = self.cell_tris[np.repeat(self.cell_start[cell], count) + _ranges(count)]
+        y, z = yz[p, 0], yz[p, 1]
+        dy, dz = y - self.p0[t, 1], z - self.p0[t, 2]
+        u = (dy * self.e2[t, 2] - dz * self.e2[t, 1]) * self.inv[t]
+        v = (dz * self.e1[t, 1] - dy * self.e1[t, 2]) * self.inv[t]
+        x = self.p0[t, 0] + u * self.e1[t, 0] + v * self.e2[t, 0]
+        hit = (u >= 0) & (v >= 0) & (u + v <= 1) & (x > points[rows[p], 0])
+        crossings = np.bincount(p[hit] * self.count + self.lobe[t[hit]], minlength=len(rows) * self.count)
+        odd = crossings.reshape(len(rows), self.count) % 2 == 1
+        which[rows] = np.where(odd.any(axis=1), np.argmax(odd, axis=1), -1)
         return which
+
+
+def _ranges(counts: np.ndarray) -> np.ndarray:
+    """0, 1, ..., c - 1 for every c in ``counts``, concatenated."""
+    total = int(counts.sum())
+    return np.arange(total) - np.repeat(np.cumsum(counts) - counts, counts)
 
 
 def lobe_from_loops(loops: list[np.ndarray], points_per_loop: int = 32,
