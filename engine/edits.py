@@ -2,8 +2,9 @@
 whose turtle position lies inside a region of interest.
 
 The built-in sets are ordinary .lsys files (assets/edits/): add or erase leaves, add or erase
-blossoms, bend (gravitropism). "grow" applies the tree's own productions; when no module lies in the
-region it starts a new axis there instead (seed 000 4.2).
+blossoms, bend (gravitropism) and grow (the game tree's buds and apices in the region wake and are
+due at once; an empty region gets a new axis, seed 000 4.2). A system's own productions can be
+applied in a region the same way.
 """
 
 from __future__ import annotations
@@ -17,7 +18,7 @@ from engine.lstring import LString
 from engine.lsys import LSystem, load_lsystem
 from engine.regions import seed_in_region
 
-EDIT_SETS = ("add_leaves", "erase_leaves", "add_blossoms", "erase_blossoms", "bend")
+EDIT_SETS = ("add_leaves", "erase_leaves", "add_blossoms", "erase_blossoms", "bend", "grow")
 
 
 def load_edit_sets(folder: str | Path) -> dict[str, LSystem]:

@@ -114,14 +114,17 @@ class RegionTool:
         if mode.modeler is None or not self.hit(x, y, camera):
             return False
         world = mode.game.world
-        ls = world.tree.lstring
-        new, changed, held = apply_edit(ls, self.positions(ls), self.region, system,
-                                        {"T": mode.born_visible(), "G": world.clocks().girth_time},
+        ls, clocks = world.tree.lstring, world.clocks()
+        now, plastochron = clocks.length_time, float(world.tree.system.constants.get("P", 4.0))
+        extern = {"T": mode.born_visible(), "G": clocks.girth_time, "NOW": now, "P": plastochron}
+        axis = f"I({now:g},{clocks.girth_time:g},1)A({now - plastochron:g},1,0)" if edit == "grow" else None
+        new, changed, held = apply_edit(ls, self.positions(ls), self.region, system, extern, new_axis=axis,
                                         budget=world.tree.deriver.budget)
         if changed:
             mode.modeler.commit(new)
             world.tree.lstring = new
-        message = text("messages.edited", edit=text(f"edits.{edit}"), count=changed)
+        key = "messages.new_axis" if changed < 0 else "messages.grown" if edit == "grow" else "messages.edited"
+        message = text(key, edit=text(f"edits.{edit}"), count=changed)
         mode.game.say(message + (" " + text("messages.budget") if held else ""))
         return True
 

@@ -357,3 +357,35 @@ def test_two_outlines_make_a_supertoroid_region_and_edits_stay_inside_it(game):
     touch(game, DOWN, 0, x0 + 400, y0 - 180)  # a tap well outside: the menu, no edit
     touch(game, UP, 0, x0 + 400, y0 - 180)
     assert game.menu.visible and game.world.tree.lstring is after
+
+
+def test_grow_edit_wakes_buds_in_the_region_and_starts_an_axis_in_an_empty_one(game):
+    press_menu(game, "symbols")
+    for _ in range(5):
+        press_menu(game, "edit")
+    assert game.modeling.edit == "grow" and game.menu.widget("edit").label == "Grow"
+    x0, y0 = base_pixel(game)
+    bx, by = game._project(game.camera(), (0.0, 2.0, 0.0))  # where the sapling has buds
+    touch(game, DOWN, 0, bx, by + 40)
+    game.clock_box[0] += 0.5
+    touch(game, MOVE, 0, bx, by)  # the sphere over the buds
+    touch(game, UP, 0, bx, by)
+    before = game.world.tree.lstring
+    inside = game.modeling.region_tool.region.contains(game.modeling.region_tool.positions(before))
+    buds = int(((before.sym == ord("D")) & inside).sum())
+    assert buds > 0
+    touch(game, DOWN, 0, bx, by)
+    touch(game, UP, 0, bx, by)
+    after = game.world.tree.lstring
+    assert after.count("D") == before.count("D") - buds and after.count("A") == before.count("A") + buds
+    now, p = game.world.clocks().length_time, game.world.tree.system.constants["P"]
+    apices = [after.module(i)[1] for i in np.flatnonzero(after.sym == ord("A"))]
+    assert sum(1 for params in apices if params[0] == pytest.approx(now - p)) >= buds  # due at once
+    touch(game, DOWN, 0, x0 + 300, y0 - 300)  # drag the sphere into the empty sky
+    game.clock_box[0] += 0.5
+    touch(game, MOVE, 0, x0 + 320, y0 - 320)
+    touch(game, UP, 0, x0 + 320, y0 - 320)
+    touch(game, DOWN, 0, x0 + 320, y0 - 320)
+    touch(game, UP, 0, x0 + 320, y0 - 320)
+    seeded = game.world.tree.lstring
+    assert "new axis" in game.hud_info().message and seeded.count("A") == after.count("A") + 1
