@@ -83,6 +83,15 @@ def branch_ends(sym: np.ndarray, idx: np.ndarray, d: np.ndarray | None = None) -
     return np.where(depth > 0, end, n)
 
 
+def rest_of_branches(sym: np.ndarray, starts: np.ndarray) -> np.ndarray:
+    """Mask of the modules from each of ``starts`` up to the ']' closing its branch (the end of the
+    string on the main axis): what a cut at those modules removes."""
+    delta = np.zeros(len(sym) + 1, dtype=np.int64)
+    np.add.at(delta, starts, 1)
+    np.add.at(delta, branch_ends(sym, starts), -1)
+    return np.cumsum(delta[:-1]) > 0
+
+
 def first_good(step: np.ndarray, good: np.ndarray) -> np.ndarray:
     """Follow pointers ``step`` (-1 = none) from each index until an index where ``good`` holds.
 

@@ -246,14 +246,7 @@ def _assemble(ls: LString, matches: list[_Match], out_len: np.ndarray) -> LStrin
 
 def apply_cut(ls: LString) -> LString:
     """Apply the cut symbol '%': remove it and the rest of its branch up to the closing ']'."""
-    sym = ls.sym
-    cuts = np.flatnonzero(sym == CUT)
-    ends = brackets.branch_ends(sym, cuts)
-    delta = np.zeros(len(sym) + 1, dtype=np.int64)
-    np.add.at(delta, cuts, 1)
-    np.add.at(delta, ends, -1)
-    removed = np.cumsum(delta[:-1]) > 0
-    return ls.select(~removed)
+    return ls.select(~brackets.rest_of_branches(ls.sym, np.flatnonzero(ls.sym == CUT)))
 
 
 def derive(system: LSystem, steps: int | None = None, seed: int | None = None, budget: int | None = None) -> LString:

@@ -231,7 +231,7 @@ class ModelingMode:
     def edit_at(self, x: float, y: float, camera: OrbitCamera) -> bool:
         """With the symbols tool, a tap inside the region applies the chosen edit there (undoable).
         False when the tap is outside the region (it then opens the menu as usual)."""
-        return self.symbols and self.region_tool.edit_at(x, y, camera, self.edit, self.edit_sets[self.edit])
+        return self.symbols and self.region_tool.edit_at(x, y, camera, self.edit, self.edit_sets.get(self.edit))
 
     def draw_symbols(self, surface: pygame.Surface, camera: OrbitCamera, font: pygame.font.Font, project) -> None:
         """The symbols tool's region, contours and L-string overlay (see game/region_tool.py)."""

@@ -12,7 +12,7 @@ from __future__ import annotations
 import numpy as np
 import pygame
 
-from engine.edits import apply_edit
+from engine.edits import apply_edit, prune_region
 from engine.growth import render_view
 from engine.lstring import LString
 from engine.regions import Sphere, Supertoroid, fit_supertoroid
@@ -22,6 +22,7 @@ from game.strings import text
 from game.symbols_overlay import draw_symbols
 
 CONTOUR_PIXELS = 80.0  # a drag at least this tall, and twice as tall as wide, is a contour
+GROUPS = {"grow": "grown", "prune": "pruned_region"}  # edits with their own message
 
 
 class RegionTool:
@@ -118,12 +119,15 @@ class RegionTool:
         now, plastochron = clocks.length_time, float(world.tree.system.constants.get("P", 4.0))
         extern = {"T": mode.born_visible(), "G": clocks.girth_time, "NOW": now, "P": plastochron}
         axis = f"I({now:g},{clocks.girth_time:g},1)A({now - plastochron:g},1,0)" if edit == "grow" else None
-        new, changed, held = apply_edit(ls, self.positions(ls), self.region, system, extern, new_axis=axis,
-                                        budget=world.tree.deriver.budget)
+        if edit == "prune":
+            (new, changed), held = prune_region(ls, self.positions(ls), self.region), 0
+        else:
+            new, changed, held = apply_edit(ls, self.positions(ls), self.region, system, extern, new_axis=axis,
+                                            budget=world.tree.deriver.budget)
         if changed:
             mode.modeler.commit(new)
             world.tree.lstring = new
-        key = "messages.new_axis" if changed < 0 else "messages.grown" if edit == "grow" else "messages.edited"
+        key = "messages.new_axis" if changed < 0 else f"messages.{GROUPS.get(edit, 'edited')}"
         message = text(key, edit=text(f"edits.{edit}"), count=changed)
         mode.game.say(message + (" " + text("messages.budget") if held else ""))
         return True

@@ -84,3 +84,23 @@ def test_a_budget_holds_back_growing_edits_but_not_erasing():
     assert len(full) <= len(ls) + 40 and held > 0 and changed > 0
     bare, erased, held = apply_edit(ls, pos, everywhere, SETS["erase_leaves"], budget=len(ls) - 1000)
     assert held == 0 and erased == ls.count("L") and bare.count("L") == 0
+
+
+def test_prune_region_removes_the_subtrees_that_start_inside_and_nothing_else():
+    from engine.edits import prune_region
+
+    tree, clocks = game_tree(60)
+    ls, pos = tree.lstring, positions_of(tree, clocks)
+    wood = np.flatnonzero(ls.sym == ord("I"))
+    region = Sphere(tuple(pos[wood[len(wood) // 2]] + [0.0, 0.0, 0.0]), 0.8)
+    new, removed = prune_region(ls, pos, region)
+    assert 0 < removed < len(ls) and len(new) == len(ls) - removed
+    new_pos = positions_of(type(tree)(tree.system, lstring=new), clocks)
+    kept_wood = new_pos[new.sym == ord("I")]
+    starts = np.array([pos[i] for i in wood[1:] if region.contains(pos[i][None])[0]])
+    assert len(starts) and not region.contains(kept_wood[1:]).any()  # no piece starts in the region any more
+    assert {round(float(y), 6) for y in kept_wood[:, 1]} <= {round(float(y), 6) for y in pos[wood][:, 1]}
+    assert prune_region(new, new_pos, region)[1] == 0  # nothing left to cut there
+    everything = Sphere((0.0, 0.0, 0.0), 1e6)
+    stump, _ = prune_region(ls, pos, everything)
+    assert stump.count("I") == 1  # the trunk's first piece always stays
