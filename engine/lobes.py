@@ -65,16 +65,17 @@ class Lobe:
         return self._with_rings(self.vertices + (amount * w)[:, None] * (centre - self.vertices))
 
     def dragged(self, ring: int, index: int, to, width: int = 4) -> Lobe:
-        """One stroke point dragged to ``to``; its neighbours along the stroke follow on a smooth
-        (quadratic Bezier-like) falloff over ``width`` points each side."""
+        """One stroke point dragged to ``to``, as the control point of the stroke segment of ``width``
+        points each side (seed 004 Fig. 6a): the segment's ends stay and its points follow the
+        quadratic Bezier curve through them, moving by 4 s (1 - s) of the drag at parameter s."""
         n = self.ring_size
         vertices = self.vertices.copy()
         rings = vertices[: self.rings * n].reshape(-1, n, 3)
         offset = np.asarray(to, float) - rings[ring, index]
         k = np.arange(n)
-        steps = np.minimum((k - index) % n, (index - k) % n)
-        w = np.clip(1.0 - steps / (width + 1.0), 0.0, 1.0) ** 2
-        rings[ring] += w[:, None] * offset
+        steps = np.minimum((k - index) % n, (index - k) % n)  # along the closed stroke, either way
+        s = 0.5 - 0.5 * np.minimum(steps / (width + 1.0), 1.0)  # 0 at the segment's ends, 1/2 at the point
+        rings[ring] += (4.0 * s * (1.0 - s))[:, None] * offset
         return self._with_rings(vertices)
 
     def _with_rings(self, vertices: np.ndarray) -> Lobe:
