@@ -134,6 +134,59 @@ def compose_maps(p: np.ndarray, c: np.ndarray, out: np.ndarray | None = None) ->
     return out
 
 
+def quat_mul(p: np.ndarray, c: np.ndarray, out: np.ndarray | None = None) -> np.ndarray:
+    """Column-wise Hamilton products p c of quaternions stored as rows (w, x, y, z): the rotation
+    p then c in the rotated frame, as the matrix product R_p R_c."""
+    pw, px, py, pz = p
+    cw, cx, cy, cz = c
+    out = np.empty((4, np.broadcast_shapes(p.shape, c.shape)[1])) if out is None else out
+    out[0] = pw * cw - px * cx - py * cy - pz * cz
+    out[1] = pw * cx + px * cw + py * cz - pz * cy
+    out[2] = pw * cy - px * cz + py * cw + pz * cx
+    out[3] = pw * cz + px * cy - py * cx + pz * cw
+    return out
+
+
+def compose_turtle(p: np.ndarray, c: np.ndarray) -> np.ndarray:
+    """Column-wise composition of turtle blocks: a quaternion in rows 0-3, then scalar maps."""
+    out = np.empty((p.shape[0], c.shape[1]))
+    quat_mul(p[:4], c[:4], out[:4])
+    compose_maps(p[4:], c[4:], out[4:])
+    return out
+
+
+def quat_to_rows(q: np.ndarray) -> np.ndarray:
+    """Unit quaternions (4, n) as row-major rotation matrices (9, n)."""
+    w, x, y, z = q
+    xx, yy, zz, xy, xz, yz, wx, wy, wz = x * x, y * y, z * z, x * y, x * z, y * z, w * x, w * y, w * z
+    return np.stack([1 - 2 * (yy + zz), 2 * (xy - wz), 2 * (xz + wy),
+                     2 * (xy + wz), 1 - 2 * (xx + zz), 2 * (yz - wx),
+                     2 * (xz - wy), 2 * (yz + wx), 1 - 2 * (xx + yy)])
+
+
+def rows_to_quat(rows: np.ndarray) -> np.ndarray:
+    """Row-major rotation matrices (9, n) as unit quaternions (4, n), w >= 0 (Shepperd's method: the
+    largest of the four squared components picks the well-conditioned formula)."""
+    m00, m01, m02, m10, m11, m12, m20, m21, m22 = rows
+    squares = np.stack([1 + m00 + m11 + m22, 1 + m00 - m11 - m22, 1 - m00 + m11 - m22, 1 - m00 - m11 + m22])
+    pick = np.argmax(squares, axis=0)
+    big = 0.5 * np.sqrt(np.maximum(squares[pick, np.arange(rows.shape[1])], 1e-300))
+    quarter = 0.25 / big
+    q = np.empty((4, rows.shape[1]))
+    candidates = (
+        (big, (m21 - m12) * quarter, (m02 - m20) * quarter, (m10 - m01) * quarter),
+        ((m21 - m12) * quarter, big, (m01 + m10) * quarter, (m02 + m20) * quarter),
+        ((m02 - m20) * quarter, (m01 + m10) * quarter, big, (m12 + m21) * quarter),
+        ((m10 - m01) * quarter, (m02 + m20) * quarter, (m12 + m21) * quarter, big),
+    )
+    for k, values in enumerate(candidates):
+        sel = pick == k
+        for r in range(4):
+            q[r, sel] = values[r][sel]
+    q *= np.where(q[0] < 0, -1.0, 1.0)
+    return q / np.linalg.norm(q, axis=0)
+
+
 def compose(p: np.ndarray, c: np.ndarray) -> np.ndarray:
     """Column-wise composition of blocks: rotation rows 0-8 multiplied, scalar map rows composed."""
     out = np.empty((p.shape[0], c.shape[1]))

@@ -20,8 +20,16 @@ from dataclasses import dataclass
 import numpy as np
 
 from engine import brackets
-from engine.chains import Levels, compose_maps, mat_mul, to_matrices, to_rows
-from engine.chains import compose as _compose
+from engine.chains import (
+    Levels,
+    compose_maps,
+    compose_turtle,
+    quat_mul,
+    quat_to_rows,
+    rows_to_quat,
+    to_matrices,
+    to_rows,
+)
 from engine.lstring import LString
 
 WORLD_UP = np.array([0.0, 1.0, 0.0])
@@ -114,18 +122,13 @@ class TurtleResult:
         return allp.min(axis=0), allp.max(axis=0)
 
 
-def _axis_rotation_rows(axis: int, angles_deg: np.ndarray) -> np.ndarray:
-    """Rotations about local axis 0 (H), 1 (L) or 2 (U) by the given angles, as (9, k) rows."""
-    a = np.radians(angles_deg)
-    c, s = np.cos(a), np.sin(a)
-    rows = np.zeros((9, len(a)))
-    i, j = [(1, 2), (2, 0), (0, 1)][axis]
-    rows[4 * axis] = 1.0
-    rows[4 * i] = c
-    rows[4 * j] = c
-    rows[3 * j + i] = s
-    rows[3 * i + j] = -s
-    return rows
+def _axis_quaternions(axis: int, angles_deg: np.ndarray) -> np.ndarray:
+    """Rotations about local axis 0 (H), 1 (L) or 2 (U) by the given angles, as quaternion rows (4, k)."""
+    half = np.radians(angles_deg) / 2
+    q = np.zeros((4, len(half)))
+    q[0] = np.cos(half)
+    q[1 + axis] = np.sin(half)
+    return q
 
 
 def _first_param(ls: LString, idx: np.ndarray, default: float) -> np.ndarray:
@@ -135,23 +138,25 @@ def _first_param(ls: LString, idx: np.ndarray, default: float) -> np.ndarray:
     return out
 
 
-# Rows of a turn block: rotation (0-8), width map a, b (9, 10), colour map a, b (11, 12).
-_WIDTH, _COLOUR = 9, 11
-_BLOCK = 13
-_IDENTITY = np.array([1.0, 0, 0, 0, 1, 0, 0, 0, 1, 1, 0, 1, 0])[:, None]
-_INITIAL_ROWS = INITIAL_FRAME.reshape(9, 1)
+# Rows of a turn block: rotation as a quaternion (0-3), width map a, b (4, 5), colour map a, b (6, 7).
+_WIDTH, _COLOUR = 4, 6
+_BLOCK = 8
+_IDENTITY = np.array([1.0, 0, 0, 0, 1, 0, 1, 0])[:, None]
+# INITIAL_FRAME is a signed permutation: world rows are local rows picked and signed, exactly
+_INITIAL_PERM = (3 * np.argmax(np.abs(INITIAL_FRAME), axis=1)[:, None] + np.arange(3)).ravel()
+_INITIAL_SIGN = np.repeat(INITIAL_FRAME[np.arange(3), np.argmax(np.abs(INITIAL_FRAME), axis=1)], 3)[:, None]
 
 
 def _turn_blocks(ls: LString, cfg: TurtleConfig, turn_idx: np.ndarray) -> np.ndarray:
-    """Local rotation and scalar maps of every turn-like module, as (13, t) column blocks."""
+    """Local rotation and scalar maps of every turn-like module, as (8, t) column blocks."""
     blocks = np.repeat(_IDENTITY, len(turn_idx), axis=1)
     sym = ls.sym[turn_idx]
     for code, (axis, sign) in _ROT_AXIS.items():
         k = np.flatnonzero(sym == code)
         if len(k):
-            blocks[:9, k] = _axis_rotation_rows(axis, sign * _first_param(ls, turn_idx[k], cfg.angle))
+            blocks[:4, k] = _axis_quaternions(axis, sign * _first_param(ls, turn_idx[k], cfg.angle))
     k = np.flatnonzero(sym == ord("|"))
-    blocks[:9, k] = _axis_rotation_rows(2, np.full(len(k), 180.0))
+    blocks[:4, k] = _axis_quaternions(2, np.full(len(k), 180.0))
     _affine_rows(ls, turn_idx, sym == ord("!"), blocks[_WIDTH:_WIDTH + 2], cfg.width_factor)
     _affine_rows(ls, turn_idx, sym == ord("'"), blocks[_COLOUR:_COLOUR + 2], None)
     return blocks
@@ -213,6 +218,7 @@ def _radii(ls: LString, segs: Segments, cfg: TurtleConfig) -> None:
 class _States:
     """Turtle states solved in two levels: short runs of turns between moves, then moves only.
 
+    Rotations are unit quaternions relative to the initial frame (4 numbers to compose, not 9).
     Turns and moves are stored column-wise (see engine.chains) in the level order of their own
     forests, each with one extra last column: the state before anything happened (identity turn;
     initial frame at the origin), which modules with no turn or move before them point to.
@@ -227,11 +233,11 @@ class _States:
     move_t: np.ndarray  # (3, m + 1) world position after each move
 
     def blocks_in(self, idx: np.ndarray) -> np.ndarray:
-        """World frame rows and scalar maps going *into* the modules ``idx``: (13, k)."""
+        """World frame (quaternion rows) and scalar maps going *into* the modules ``idx``: (8, k)."""
         b, t = self.base[idx], self.before[idx]
         out = np.empty((_BLOCK, len(idx)))
-        mat_mul(self.moves[:9, b], self.turns[:9, t], out[:9])
-        compose_maps(self.moves[9:, b], self.turns[9:, t], out[9:])
+        quat_mul(self.moves[:4, b], self.turns[:4, t], out[:4])
+        compose_maps(self.moves[4:, b], self.turns[4:, t], out[4:])
         return out
 
     def positions_in(self, idx: np.ndarray) -> np.ndarray:
@@ -283,26 +289,25 @@ class _Topology:
 def _solve_states(ls: LString, cfg: TurtleConfig, par: np.ndarray) -> _States:
     """Solve all turtle states. '$' and 'T' turn by amounts that depend on the incoming heading, so
     they are found by repeated passes, one per nesting level of such modules along a path."""
-    turn_idx = np.flatnonzero(~_MOVE[ls.sym] & _TURNLIKE[ls.sym])
     topo = _Topology.of(ls, par)
-    blocks = _turn_blocks(ls, cfg, turn_idx)
+    blocks = _turn_blocks(ls, cfg, topo.turn_idx)  # in the turns' level order
     rolls = np.flatnonzero(ls.sym == ROLL_LEVEL)
     bends = np.flatnonzero(ls.sym == TROPISM) if cfg.tropism is not None else np.zeros(0, np.int64)
     special = np.concatenate([rolls, bends])
-    columns = np.searchsorted(turn_idx, special)  # blocks are in string order
+    columns = topo.column[special]
     angles = _first_param(ls, bends, 0.0)
     move_len = _first_param(ls, topo.move_idx, cfg.step)
     for _ in range(64):
         states = _solve_once(topo, blocks, move_len)
         if len(special) == 0:
             break
-        frames_in = to_matrices(states.blocks_in(special)[:9])
+        frames_in = _world_frames(states.blocks_in(special)[:4])
         new = np.concatenate([_level_rolls(frames_in[: len(rolls)]),
                               _tropism_turns(frames_in[len(rolls):], cfg.tropism, angles)])
-        new_rows = to_rows(new)
-        if np.allclose(new_rows, blocks[:9, columns], atol=1e-12):
+        new_quat = rows_to_quat(to_rows(new))
+        if np.allclose(new_quat, blocks[:4, columns], atol=1e-12):
             break
-        blocks[:9, columns] = new_rows
+        blocks[:4, columns] = new_quat
     return states
 
 
@@ -336,20 +341,31 @@ def _solve_once(topo: _Topology, blocks: np.ndarray, move_len: np.ndarray) -> _S
     """Compose the turn runs, then the moves, each forest level by level in its own column order."""
     t, m = len(topo.turn_idx), len(topo.move_idx)
     turns = np.empty((_BLOCK, t + 1))
-    np.take(blocks, topo.turn_levels.order, axis=1, out=turns[:, :t])
+    turns[:, :t] = blocks
     turns[:, t] = _IDENTITY[:, 0]
-    topo.turn_levels.scan(turns[:, :t], _compose)
+    topo.turn_levels.scan(turns[:, :t], compose_turtle)
     moves = np.empty((_BLOCK, m + 1))
-    np.take(turns, topo.move_before, axis=1, out=moves[:, :m])
-    topo.move_levels.scan(moves[:, :m], _compose)
-    mat_mul(_INITIAL_ROWS, moves[:9, :m].copy(), moves[:9, :m])
+    moves[:, :m] = np.take(turns, topo.move_before, axis=1)
+    topo.move_levels.scan(moves[:, :m], compose_turtle)
     moves[:, m] = _IDENTITY[:, 0]
-    moves[:9, m] = _INITIAL_ROWS[:, 0]
     move_t = np.zeros((3, m + 1))
-    move_t[:, :m] = moves[[0, 3, 6], :m] * move_len
+    move_t[:, :m] = _headings(moves[:4, :m]) * move_len
     topo.move_levels.scan(move_t[:, :m], np.add)
     parent = topo.move_levels.parent
     return _States(topo.column, np.where(parent >= 0, parent, m), topo.base, topo.before, turns, moves, move_t)
+
+
+def _headings(q: np.ndarray) -> np.ndarray:
+    """World headings (3, k) of turtles turned by quaternion rows (4, k) from the initial frame."""
+    w, x, y, z = q
+    local = np.stack([1 - 2 * (y * y + z * z), 2 * (x * y + w * z), 2 * (x * z - w * y)])
+    return INITIAL_FRAME @ local
+
+
+def _world_frames(q: np.ndarray) -> np.ndarray:
+    """World frames (k, 3, 3) of turtles turned by quaternion rows (4, k) from the initial frame
+    (applied as a matrix, so axis-aligned frames stay exact)."""
+    return to_matrices(quat_to_rows(q)[_INITIAL_PERM] * _INITIAL_SIGN)
 
 
 def _level_rolls(frames_in: np.ndarray) -> np.ndarray:
@@ -387,7 +403,7 @@ def _segments(ls: LString, states: _States, cfg: TurtleConfig) -> Segments:
     m = len(states.move_parent)
     cols = states.column[idx]
     block = np.take(states.moves, cols, axis=1)
-    frame = to_matrices(block[:9])
+    frame = _world_frames(block[:4])
     width0 = 1.0 if cfg.width is None else cfg.width
     radius = 0.5 * (block[_WIDTH] * width0 + block[_WIDTH + 1]) * cfg.width_scale
     colours = block[_COLOUR + 1]  # the colour index starts at 0
@@ -447,7 +463,7 @@ def apply_pipe_model(ls: LString, segs: Segments, tip_radius: float, exponent: f
 def _instances(ls: LString, symbol: int, states: _States, default_size: float) -> Leaves:
     """Leaf or blossom modules as instances at the turtle's state going into them."""
     idx = np.flatnonzero(ls.sym == symbol)
-    frames = to_matrices(states.blocks_in(idx)[:9])
+    frames = _world_frames(states.blocks_in(idx)[:4])
     return Leaves(states.positions_in(idx).T, frames, _first_param(ls, idx, default_size), idx)
 
 

@@ -49,3 +49,17 @@ def test_column_products_match_matmul():
     rng = np.random.default_rng(6)
     a, b = random_rotations(rng, 50), random_rotations(rng, 50)
     np.testing.assert_allclose(to_matrices(mat_mul(to_rows(a), to_rows(b))), a @ b, atol=1e-12)
+
+
+def test_quaternions_compose_like_matrices_and_round_trip():
+    from engine.chains import quat_mul, quat_to_rows, rows_to_quat
+
+    rng = np.random.default_rng(7)
+    a, b = random_rotations(rng, 200), random_rotations(rng, 200)
+    a[:, :, 0] *= np.linalg.det(a)[:, None]  # proper rotations only
+    b[:, :, 0] *= np.linalg.det(b)[:, None]
+    qa, qb = rows_to_quat(to_rows(a)), rows_to_quat(to_rows(b))
+    np.testing.assert_allclose(to_matrices(quat_to_rows(qa)), a, atol=1e-12)
+    np.testing.assert_allclose(to_matrices(quat_to_rows(quat_mul(qa, qb))), a @ b, atol=1e-12)
+    half_turns = np.array([np.diag([1.0, -1, -1]), np.diag([-1.0, 1, -1]), np.diag([-1.0, -1, 1])])
+    np.testing.assert_allclose(to_matrices(quat_to_rows(rows_to_quat(to_rows(half_turns)))), half_turns, atol=1e-12)

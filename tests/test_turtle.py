@@ -101,7 +101,7 @@ def test_width_colour_order_and_module_index():
 def test_leaves_and_blossoms_are_instances():
     result = interpret(parse_lstring("F[+L(0.5)]FK"), TurtleConfig(leaves_at_tips=0))
     assert len(result.leaves) == 1 and len(result.blossoms) == 1
-    np.testing.assert_allclose(result.leaves.position[0], [0, 1, 0])
+    np.testing.assert_allclose(result.leaves.position[0], [0, 1, 0], atol=1e-12)
     assert result.leaves.size[0] == 0.5 and result.leaves.module[0] == 3
     np.testing.assert_allclose(result.blossoms.position[0], [0, 2, 0])
 
