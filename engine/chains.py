@@ -205,6 +205,11 @@ def chain_compose(par: np.ndarray, blocks: np.ndarray) -> np.ndarray:
     return scan(par, blocks, compose)
 
 
+def chain_quaternions(par: np.ndarray, quats: np.ndarray) -> np.ndarray:
+    """Products of unit quaternions (4, n) along each path, parent on the left."""
+    return scan(par, quats, lambda p, c: quat_mul(p, c))
+
+
 def to_matrices(rows: np.ndarray) -> np.ndarray:
     """(9, n) row-major columns -> (n, 3, 3) matrices."""
     return np.ascontiguousarray(rows.T).reshape(-1, 3, 3)

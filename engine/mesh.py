@@ -15,7 +15,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from engine.brackets import first_good
-from engine.chains import chain_compose, chain_sum
+from engine.chains import chain_quaternions, chain_sum, quat_to_rows
 from engine.turtle import Leaves, Segments, TurtleResult
 
 
@@ -27,7 +27,7 @@ class Mesh:
     normals: np.ndarray  # (V, 3) float32
     uvs: np.ndarray  # (V, 2) float32
     indices: np.ndarray  # (F, 3) uint32
-    face_module: np.ndarray  # (F,) int64
+    face_module: np.ndarray  # (F,) int32 (module indices; strings stay far below 2^31 modules)
 
     @property
     def n_triangles(self) -> int:
@@ -38,7 +38,7 @@ class Mesh:
     def empty(cls) -> Mesh:
         """A mesh with nothing in it."""
         z = np.zeros((0, 3), np.float32)
-        return cls(z, z.copy(), np.zeros((0, 2), np.float32), np.zeros((0, 3), np.uint32), np.zeros(0, np.int64))
+        return cls(z, z.copy(), np.zeros((0, 2), np.float32), np.zeros((0, 3), np.uint32), np.zeros(0, np.int32))
 
 
 @dataclass
@@ -159,29 +159,25 @@ class _Rings:
 def _transported_x(segs: Segments, d: np.ndarray) -> np.ndarray:
     """A ring reference direction per segment, parallel-transported along each axis.
 
-    The transport from a parent's direction a to its child's b is the shortest-arc rotation
-    R = c I + [v]x + v v^T / (1 + c) (v = a x b, c = a . b); along a chain the x of the first segment
-    is carried by R_k ... R_1. Composed parent-first as transposes, so x_i = sum_j acc[j, i] x0_j.
+    The transport from a parent's direction a to its child's b is the shortest-arc rotation, the
+    unit quaternion q ~ (1 + a.b, a x b) (a half turn about a perpendicular when they are opposite).
+    Along a chain the first segment's x is carried by q_k ... q_1; the scan composes parent-first,
+    so it multiplies the inverses and the result is read transposed: x_i = sum_j R(acc)[j, i] x0_j.
     """
     cont = segs.continues
     chain = np.where(cont, segs.parent, -1)
     ci = np.flatnonzero(cont)
     a, b = d[segs.parent[ci]], d[ci]
-    v = _cross(a, b)
-    c = np.einsum("ni,ni->n", a, b)
-    f = np.where(c > -1 + 1e-9, 1.0 / np.maximum(1.0 + c, 1e-9), 0.0)  # opposite: no transport
-    rot = np.repeat(np.eye(3).reshape(9, 1), len(segs), axis=1)
-    for i in range(3):
-        for j in range(3):
-            rot[3 * i + j, ci] = v[:, i] * v[:, j] * f + (c if i == j else 0.0)
-    for i, j, k in ((0, 1, 2), (1, 2, 0), (2, 0, 1)):  # R^T has -[v]x: entry (i, j) is +v_k
-        rot[3 * i + j, ci] += v[:, k]
-        rot[3 * j + i, ci] -= v[:, k]
-    flip = ci[c <= -1 + 1e-9]  # opposite directions: half turn about any perpendicular axis
+    inverse = np.zeros((4, len(segs)))
+    inverse[0] = 1.0
+    inverse[0, ci] = 1.0 + np.einsum("ni,ni->n", a, b)
+    inverse[1:, ci] = -_cross(a, b).T
+    flip = ci[inverse[0, ci] <= 1e-9]
     if len(flip):
-        perp = _normalize(_cross(d[flip], np.array([[0.3, 0.5, 0.81]])))
-        rot[:, flip] = (2 * perp[:, :, None] * perp[:, None, :] - np.eye(3)).reshape(-1, 9).T
-    acc = chain_compose(chain, rot)
+        inverse[0, flip] = 0.0
+        inverse[1:, flip] = _normalize(_cross(d[flip], np.array([[0.3, 0.5, 0.81]]))).T
+    inverse /= np.sqrt(np.einsum("ij,ij->j", inverse, inverse))
+    acc = quat_to_rows(chain_quaternions(chain, inverse))
     lft = segs.frame[:, :, 1]
     x0 = _normalize(lft - np.einsum("ni,ni->n", lft, d)[:, None] * d)[_chain_root(chain)]
     out = np.empty_like(x0)
@@ -239,8 +235,11 @@ def _tube_mesh(rings: _Rings, ring_seq: np.ndarray, module: np.ndarray, n_surf: 
     per = n_surf + 1
     n_tips = len(tips)
     normal_w, pos_w = _ring_weights(n_surf)
-    basis = np.concatenate([x, y], axis=1).astype(np.float32)
-    scaled = np.concatenate([rings.center, basis * rings.radius[:, None]], axis=1).astype(np.float32)
+    basis = np.empty((n_rings, 6), np.float32)
+    basis[:, :3], basis[:, 3:] = x, y
+    scaled = np.empty((n_rings, 9), np.float32)
+    scaled[:, :3] = rings.center
+    np.multiply(basis, rings.radius.astype(np.float32)[:, None], out=scaled[:, 3:])
     positions = np.empty((n_rings * per + n_tips, 3), np.float32)
     normals = np.empty_like(positions)
     np.matmul(basis, normal_w, out=normals[: n_rings * per].reshape(n_rings, per * 3))
@@ -268,7 +267,7 @@ def _tube_indices(ring_seq: np.ndarray, n_surf: int, tips: np.ndarray, tip_base:
     n_quads = pairs.shape[0] * pairs.shape[1] * n_surf * 2
     out = np.empty((n_quads + len(tips) * n_surf, 3), np.uint32)
     quads = out[:n_quads].reshape(*pairs.shape[:2], 6 * n_surf)
-    np.take(pairs, which, axis=-1, out=quads)
+    np.take(pairs, which, axis=-1, out=quads, mode="clip")  # 'raise' would buffer all of out
     quads += offset
     caps = out[n_quads:].reshape(len(tips), n_surf, 3)
     ring_base = tips.astype(np.uint32)[:, None] * np.uint32(per) + np.arange(n_surf, dtype=np.uint32)
@@ -279,6 +278,7 @@ def _tube_indices(ring_seq: np.ndarray, n_surf: int, tips: np.ndarray, tip_base:
 
 
 def _face_modules(module: np.ndarray, ring_seq: np.ndarray, n_surf: int, tips: np.ndarray) -> np.ndarray:
+    module = module.astype(np.int32)
     tube = np.repeat(module, 2 * n_surf * (ring_seq.shape[1] - 1))
     return np.concatenate([tube, np.repeat(module[tips], n_surf)])
 
@@ -305,7 +305,8 @@ def leaf_mesh(leaves: Leaves, aspect: float = 0.5, fraction: float = 1.0, seed: 
     base = (np.arange(k) * 4)[:, None]
     idx = np.concatenate([base + np.array([0, 1, 2]), base + np.array([0, 2, 3])], axis=1).reshape(-1, 3)
     return Mesh(corners.reshape(-1, 3).astype(np.float32), normals.reshape(-1, 3).astype(np.float32),
-                uvs.reshape(-1, 2).astype(np.float32), idx.astype(np.uint32), np.repeat(leaves.module, 2))
+                uvs.reshape(-1, 2).astype(np.float32), idx.astype(np.uint32),
+                np.repeat(leaves.module.astype(np.int32), 2))
 
 
 def tree_mesh(result: TurtleResult, level: LodLevel = LOD_LEVELS[0]) -> TreeMesh:

@@ -495,19 +495,20 @@ def _tip_leaves(segs: Segments, k: int, size: float) -> Leaves:
     H' = cos p H + sin p side, U' = -sin p H + cos p side, L' = U' x H' = sin r L - cos r U.
     """
     tips = tip_segments(segs)
-    frame = segs.frame[tips]
-    h, lft, up = (frame[:, None, :, c] for c in range(3))
+    frame = np.take(segs.frame, tips, axis=0)
+    h, lft, up = frame[:, :, 0].copy(), frame[:, :, 1].copy(), frame[:, :, 2].copy()  # contiguous rows
     offset = segs.module[tips] * 37 % 360  # whole degrees: looked up, not computed per tip
-    cos_o, sin_o = _COS_DEG[offset][:, None, None], _SIN_DEG[offset][:, None, None]
-    step = np.radians(np.arange(k) * (360.0 / k))
-    cos_s, sin_s = np.cos(step)[None, :, None], np.sin(step)[None, :, None]
-    cos_r, sin_r = cos_o * cos_s - sin_o * sin_s, sin_o * cos_s + cos_o * sin_s
-    side = cos_r * lft + sin_r * up
+    cos_o, sin_o = _COS_DEG[offset], _SIN_DEG[offset]
     cp, sp = np.cos(np.radians(40.0)), np.sin(np.radians(40.0))
     frames = np.empty((len(tips), k, 3, 3))
-    frames[..., 0] = cp * h + sp * side
-    frames[..., 1] = sin_r * lft - cos_r * up
-    frames[..., 2] = cp * side - sp * h
+    for j in range(k):  # roll r = offset + j/k of a turn, by the angle-sum formulas
+        a = np.radians(j * 360.0 / k)
+        cos_r = (cos_o * np.cos(a) - sin_o * np.sin(a))[:, None]
+        sin_r = (sin_o * np.cos(a) + cos_o * np.sin(a))[:, None]
+        side = cos_r * lft + sin_r * up
+        frames[:, j, :, 0] = cp * h + sp * side
+        frames[:, j, :, 1] = sin_r * lft - cos_r * up
+        frames[:, j, :, 2] = cp * side - sp * h
     position = np.repeat(segs.end[tips], k, axis=0)
     return Leaves(position, frames.reshape(-1, 3, 3), np.full(len(position), size), np.repeat(segs.module[tips], k))
 
