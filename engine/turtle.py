@@ -215,6 +215,48 @@ def _radii(ls: LString, segs: Segments, cfg: TurtleConfig) -> None:
 
 
 @dataclass
+class _Topology:
+    """Which turns and moves follow which: fixed for a string, whatever the angles turn out to be."""
+
+    turn_idx: np.ndarray  # module index of each turn column
+    move_idx: np.ndarray  # module index of each move column
+    turn_levels: Levels
+    move_levels: Levels
+    nearest_move: np.ndarray  # (n,) the nearest move strictly before each module on its path (-1 none)
+    nearest_turn: np.ndarray  # (n,) the nearest turn strictly before, if after that move (-1 none)
+    column: np.ndarray  # (n,) column of each turn or move module among its kind (-1 for others)
+
+    @classmethod
+    def of(cls, ls: LString, par: np.ndarray) -> _Topology:
+        """Nearest moves and turns on each module's path, and the level order of both forests."""
+        n = len(ls)
+        is_move = _MOVE[ls.sym]
+        is_turn = ~is_move & _TURNLIKE[ls.sym]
+        nearest_move = brackets.first_good(par, is_move)
+        near = brackets.first_good(par, is_move | is_turn)
+        nearest_turn = np.where((near >= 0) & is_turn[np.maximum(near, 0)], near, -1)
+        turn_idx, move_idx = np.flatnonzero(is_turn), np.flatnonzero(is_move)
+        column = np.full(n, -1, dtype=np.int64)
+        column[turn_idx] = np.arange(len(turn_idx))  # for now: index among its kind
+        column[move_idx] = np.arange(len(move_idx))
+        tpar = _columns(nearest_turn[turn_idx], column, -1)
+        mpar = _columns(nearest_move[move_idx], column, -1)
+        turn_levels, move_levels = Levels.of(tpar), Levels.of(mpar)
+        column[turn_idx] = turn_levels.where
+        column[move_idx] = move_levels.where
+        return cls(turn_idx[turn_levels.order], move_idx[move_levels.order], turn_levels, move_levels,
+                   nearest_move, nearest_turn, column)
+
+    def base(self, idx: np.ndarray) -> np.ndarray:
+        """Column of the nearest move before each of the modules ``idx`` (m: none)."""
+        return _columns(self.nearest_move[idx], self.column, len(self.move_idx))
+
+    def before(self, idx: np.ndarray) -> np.ndarray:
+        """Column of the nearest turn before each of the modules ``idx`` after that move (t: none)."""
+        return _columns(self.nearest_turn[idx], self.column, len(self.turn_idx))
+
+
+@dataclass
 class _States:
     """Turtle states solved in two levels: short runs of turns between moves, then moves only.
 
@@ -224,17 +266,15 @@ class _States:
     initial frame at the origin), which modules with no turn or move before them point to.
     """
 
-    column: np.ndarray  # (n,) column of each move module (-1 for others)
+    topo: _Topology
     move_parent: np.ndarray  # column of the move before each move column (m: none)
-    base: np.ndarray  # (n,) column of the nearest move strictly before each module on its path
-    before: np.ndarray  # (n,) column of the nearest turn strictly before, if after that move
-    turns: np.ndarray  # (13, t + 1) accumulated rotation and scalar maps of each turn since its move
-    moves: np.ndarray  # (13, m + 1) world frame and scalar maps going into (and out of) each move
+    turns: np.ndarray  # (8, t + 1) accumulated rotation and scalar maps of each turn since its move
+    moves: np.ndarray  # (8, m + 1) world frame and scalar maps going into (and out of) each move
     move_t: np.ndarray  # (3, m + 1) world position after each move
 
     def blocks_in(self, idx: np.ndarray) -> np.ndarray:
         """World frame (quaternion rows) and scalar maps going *into* the modules ``idx``: (8, k)."""
-        b, t = self.base[idx], self.before[idx]
+        b, t = self.topo.base(idx), self.topo.before(idx)
         out = np.empty((_BLOCK, len(idx)))
         quat_mul(self.moves[:4, b], self.turns[:4, t], out[:4])
         compose_maps(self.moves[4:, b], self.turns[4:, t], out[4:])
@@ -242,48 +282,7 @@ class _States:
 
     def positions_in(self, idx: np.ndarray) -> np.ndarray:
         """World positions going into the modules ``idx``: (3, k)."""
-        return self.move_t[:, self.base[idx]]
-
-
-@dataclass
-class _Topology:
-    """Which turns and moves follow which: fixed for a string, whatever the angles turn out to be."""
-
-    turn_idx: np.ndarray  # module index of each turn column
-    move_idx: np.ndarray
-    turn_levels: Levels
-    move_levels: Levels
-    base: np.ndarray  # (n,) move column before each module (m: none)
-    before: np.ndarray  # (n,) turn column before each module (t: none)
-    move_before: np.ndarray  # turn column before each move column (t: none)
-    column: np.ndarray  # (n,) column of each turn or move module among its kind (-1 for others)
-
-    @classmethod
-    def of(cls, ls: LString, par: np.ndarray) -> _Topology:
-        """Nearest moves and turns on each module's path, and the level order of both forests."""
-        n = len(ls)
-        is_move = _MOVE[ls.sym]
-        is_turn = ~is_move & _TURNLIKE[ls.sym]
-        base = brackets.first_good(par, is_move)
-        near = brackets.first_good(par, is_move | is_turn)
-        before = np.where((near >= 0) & is_turn[np.maximum(near, 0)], near, -1)
-        turn_idx, move_idx = np.flatnonzero(is_turn), np.flatnonzero(is_move)
-        t, m = len(turn_idx), len(move_idx)
-        compact = np.full(n, -1, dtype=np.int64)
-        compact[turn_idx] = np.arange(t)
-        compact[move_idx] = np.arange(m)
-        tpar = _columns(before[turn_idx], compact, -1)
-        mpar = _columns(base[move_idx], compact, -1)
-        turn_levels, move_levels = Levels.of(tpar), Levels.of(mpar)
-        turn_col = np.append(turn_levels.where, t)  # compact index -> column, 'none' -> t
-        move_col = np.append(move_levels.where, m)
-        base_col = move_col[_columns(base, compact, m)]
-        before_col = turn_col[_columns(before, compact, t)]
-        column = np.full(n, -1, dtype=np.int64)
-        column[turn_idx] = turn_levels.where
-        column[move_idx] = move_levels.where
-        return cls(turn_idx[turn_levels.order], move_idx[move_levels.order], turn_levels, move_levels,
-                   base_col, before_col, before_col[move_idx[move_levels.order]], column)
+        return self.move_t[:, self.topo.base(idx)]
 
 
 def _solve_states(ls: LString, cfg: TurtleConfig, par: np.ndarray) -> _States:
@@ -332,9 +331,9 @@ def _tropism_turns(frames_in: np.ndarray, direction: np.ndarray | None, angles: 
     return _orthonormal(local)
 
 
-def _columns(nearest: np.ndarray, compact: np.ndarray, none: int) -> np.ndarray:
-    """Compact index of each module's nearest turn/move (``none`` where there is none)."""
-    return np.where(nearest >= 0, compact[np.maximum(nearest, 0)], none)
+def _columns(nearest: np.ndarray, column: np.ndarray, none: int) -> np.ndarray:
+    """Column of each module's nearest turn/move (``none`` where there is none)."""
+    return np.where(nearest >= 0, column[np.maximum(nearest, 0)], none)
 
 
 def _solve_once(topo: _Topology, blocks: np.ndarray, move_len: np.ndarray) -> _States:
@@ -345,14 +344,14 @@ def _solve_once(topo: _Topology, blocks: np.ndarray, move_len: np.ndarray) -> _S
     turns[:, t] = _IDENTITY[:, 0]
     topo.turn_levels.scan(turns[:, :t], compose_turtle)
     moves = np.empty((_BLOCK, m + 1))
-    moves[:, :m] = np.take(turns, topo.move_before, axis=1)
+    moves[:, :m] = np.take(turns, topo.before(topo.move_idx), axis=1)
     topo.move_levels.scan(moves[:, :m], compose_turtle)
     moves[:, m] = _IDENTITY[:, 0]
     move_t = np.zeros((3, m + 1))
     move_t[:, :m] = _headings(moves[:4, :m]) * move_len
     topo.move_levels.scan(move_t[:, :m], np.add)
     parent = topo.move_levels.parent
-    return _States(topo.column, np.where(parent >= 0, parent, m), topo.base, topo.before, turns, moves, move_t)
+    return _States(topo, np.where(parent >= 0, parent, m), turns, moves, move_t)
 
 
 def _headings(q: np.ndarray) -> np.ndarray:
@@ -401,7 +400,7 @@ def _segments(ls: LString, states: _States, cfg: TurtleConfig) -> Segments:
     """One row per drawn module. A move's frame and scalar maps going in are those it leaves with."""
     idx = np.flatnonzero(_DRAW[ls.sym])
     m = len(states.move_parent)
-    cols = states.column[idx]
+    cols = states.topo.column[idx]
     block = np.take(states.moves, cols, axis=1)
     frame = _world_frames(block[:4])
     width0 = 1.0 if cfg.width is None else cfg.width
