@@ -78,6 +78,12 @@ def _normalize(v: np.ndarray) -> np.ndarray:
     return v / np.where(n > 1e-12, n, 1.0)
 
 
+def _row_norms(rows: np.ndarray) -> np.ndarray:
+    """Lengths of the column vectors of (3, n) rows (1 where a vector is ~zero, so dividing keeps it)."""
+    n = np.sqrt(rows[0] * rows[0] + rows[1] * rows[1] + rows[2] * rows[2])
+    return np.where(n > 1e-12, n, 1.0)
+
+
 def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     """Row-wise cross products of (n, 3) arrays (np.cross is several times slower on many short rows)."""
     out = np.empty(np.broadcast_shapes(a.shape, b.shape))
@@ -229,27 +235,32 @@ def _ring_weights(n_surf: int) -> tuple[np.ndarray, np.ndarray]:
 def _tube_mesh(rings: _Rings, ring_seq: np.ndarray, module: np.ndarray, n_surf: int, tips, tip_dir) -> Mesh:
     """Vertices for every ring, quads between consecutive rings of each segment, cones at tips."""
     n_rings = len(rings.center)
-    tan = _normalize(rings.tangent)
-    x = _normalize(rings.x - np.einsum("ni,ni->n", rings.x, tan)[:, None] * tan)
-    y = _cross(tan, x)
     per = n_surf + 1
     n_tips = len(tips)
+    # ring frames on rows (3, n): whole-row operations instead of many 3-vectors
+    tan, x = rings.tangent.T.copy(), rings.x.T.copy()
+    tan /= _row_norms(tan)
+    x -= (x[0] * tan[0] + x[1] * tan[1] + x[2] * tan[2]) * tan
+    x /= _row_norms(x)
+    rows = np.empty((15, n_rings), np.float32)  # x, y, centre, r x, r y
+    rows[0:3] = x
+    rows[3:6] = (tan[1] * x[2] - tan[2] * x[1], tan[2] * x[0] - tan[0] * x[2], tan[0] * x[1] - tan[1] * x[0])
+    rows[6:9] = rings.center.T
+    radius = rings.radius.astype(np.float32)
+    np.multiply(rows[0:6], radius, out=rows[9:15])
     normal_w, pos_w = _ring_weights(n_surf)
-    basis = np.empty((n_rings, 6), np.float32)
-    basis[:, :3], basis[:, 3:] = x, y
-    scaled = np.empty((n_rings, 9), np.float32)
-    scaled[:, :3] = rings.center
-    np.multiply(basis, rings.radius.astype(np.float32)[:, None], out=scaled[:, 3:])
     positions = np.empty((n_rings * per + n_tips, 3), np.float32)
     normals = np.empty_like(positions)
-    np.matmul(basis, normal_w, out=normals[: n_rings * per].reshape(n_rings, per * 3))
-    np.matmul(scaled, pos_w, out=positions[: n_rings * per].reshape(n_rings, per * 3))
+    np.matmul(rows[0:6].T, normal_w, out=normals[: n_rings * per].reshape(n_rings, per * 3))
+    np.matmul(rows[6:15].T, pos_w, out=positions[: n_rings * per].reshape(n_rings, per * 3))
     uvs = np.empty((len(positions), 2), np.float32)
-    ring_uv = uvs[: n_rings * per].reshape(n_rings, per, 2)
-    ring_uv[:, :, 0] = np.linspace(0.0, 1.0, per, dtype=np.float32)
-    ring_uv[:, :, 1] = rings.v[:, None]
-    positions[n_rings * per :] = rings.center[tips] + tip_dir[tips] * rings.radius[tips, None] * 2.0
-    normals[n_rings * per :] = tip_dir[tips]
+    uv_w = np.zeros((2, per, 2), np.float32)  # (1, v) -> u around the ring, v along the branch
+    uv_w[0, :, 0], uv_w[1, :, 1] = np.linspace(0.0, 1.0, per), 1.0
+    ones_v = np.stack([np.ones(n_rings, np.float32), rings.v.astype(np.float32)], axis=1)
+    np.matmul(ones_v, uv_w.reshape(2, -1), out=uvs[: n_rings * per].reshape(n_rings, per * 2))
+    tip_dir = np.take(tip_dir, tips, axis=0)
+    positions[n_rings * per :] = np.take(rings.center, tips, axis=0) + tip_dir * (2.0 * rings.radius[tips, None])
+    normals[n_rings * per :] = tip_dir
     uvs[n_rings * per :, 0] = 0.5
     uvs[n_rings * per :, 1] = rings.v[tips] + 0.5
     return Mesh(positions, normals, uvs, _tube_indices(ring_seq, n_surf, tips, n_rings * per),
