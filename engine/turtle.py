@@ -25,9 +25,7 @@ from engine.chains import (
     compose_maps,
     compose_turtle,
     quat_mul,
-    quat_to_rows,
     rows_to_quat,
-    to_matrices,
     to_rows,
 )
 from engine.lstring import LString
@@ -42,6 +40,10 @@ _MOVE = _DRAW.copy()
 _MOVE[ord("f")] = True
 _ROT_AXIS = {ord("+"): (2, 1), ord("-"): (2, -1), ord("&"): (1, 1), ord("^"): (1, -1), ord("/"): (0, 1),
              ord("\\"): (0, -1)}
+_AXIS_OF = np.full(256, -1)
+_SIGN_OF = np.zeros(256)
+for _code, (_axis, _sign) in _ROT_AXIS.items():
+    _AXIS_OF[_code], _SIGN_OF[_code] = _axis, _sign
 LEAF, BLOSSOM = ord("L"), ord("K")
 ROLL_LEVEL = ord("$")
 TROPISM = ord("T")
@@ -142,19 +144,18 @@ def _first_param(ls: LString, idx: np.ndarray, default: float) -> np.ndarray:
 _WIDTH, _COLOUR = 4, 6
 _BLOCK = 8
 _IDENTITY = np.array([1.0, 0, 0, 0, 1, 0, 1, 0])[:, None]
-# INITIAL_FRAME is a signed permutation: world rows are local rows picked and signed, exactly
-_INITIAL_PERM = (3 * np.argmax(np.abs(INITIAL_FRAME), axis=1)[:, None] + np.arange(3)).ravel()
-_INITIAL_SIGN = np.repeat(INITIAL_FRAME[np.arange(3), np.argmax(np.abs(INITIAL_FRAME), axis=1)], 3)[:, None]
+assert np.array_equal(np.abs(INITIAL_FRAME).sum(axis=1), np.ones(3))  # a signed permutation (_world_frames)
 
 
 def _turn_blocks(ls: LString, cfg: TurtleConfig, turn_idx: np.ndarray) -> np.ndarray:
-    """Local rotation and scalar maps of every turn-like module, as (8, t) column blocks."""
-    blocks = np.repeat(_IDENTITY, len(turn_idx), axis=1)
+    """Local rotation and scalar maps of every turn-like module, as (8, t + 1) column blocks (the last
+    column: no turn)."""
+    blocks = np.repeat(_IDENTITY, len(turn_idx) + 1, axis=1)
     sym = ls.sym[turn_idx]
-    for code, (axis, sign) in _ROT_AXIS.items():
-        k = np.flatnonzero(sym == code)
-        if len(k):
-            blocks[:4, k] = _axis_quaternions(axis, sign * _first_param(ls, turn_idx[k], cfg.angle))
+    k = np.flatnonzero(_AXIS_OF[sym] >= 0)  # all turns, pitches and rolls at once
+    half = np.radians(_SIGN_OF[sym[k]] * _first_param(ls, turn_idx[k], cfg.angle)) / 2
+    blocks[0, k] = np.cos(half)
+    blocks[1 + _AXIS_OF[sym[k]], k] = np.sin(half)
     k = np.flatnonzero(sym == ord("|"))
     blocks[:4, k] = _axis_quaternions(2, np.full(len(k), 180.0))
     _affine_rows(ls, turn_idx, sym == ord("!"), blocks[_WIDTH:_WIDTH + 2], cfg.width_factor)
@@ -297,7 +298,7 @@ def _solve_states(ls: LString, cfg: TurtleConfig, par: np.ndarray) -> _States:
     angles = _first_param(ls, bends, 0.0)
     move_len = _first_param(ls, topo.move_idx, cfg.step)
     for _ in range(64):
-        states = _solve_once(topo, blocks, move_len)
+        states = _solve_once(topo, blocks, move_len, keep=len(special) > 0)
         if len(special) == 0:
             break
         frames_in = _world_frames(states.blocks_in(special)[:4])
@@ -336,12 +337,11 @@ def _columns(nearest: np.ndarray, column: np.ndarray, none: int) -> np.ndarray:
     return np.where(nearest >= 0, column[np.maximum(nearest, 0)], none)
 
 
-def _solve_once(topo: _Topology, blocks: np.ndarray, move_len: np.ndarray) -> _States:
-    """Compose the turn runs, then the moves, each forest level by level in its own column order."""
+def _solve_once(topo: _Topology, blocks: np.ndarray, move_len: np.ndarray, keep: bool) -> _States:
+    """Compose the turn runs, then the moves, each forest level by level in its own column order
+    (``keep``: leave ``blocks`` as they are; else they are composed in place)."""
     t, m = len(topo.turn_idx), len(topo.move_idx)
-    turns = np.empty((_BLOCK, t + 1))
-    turns[:, :t] = blocks
-    turns[:, t] = _IDENTITY[:, 0]
+    turns = blocks.copy() if keep else blocks
     topo.turn_levels.scan(turns[:, :t], compose_turtle)
     moves = np.empty((_BLOCK, m + 1))
     moves[:, :m] = np.take(turns, topo.before(topo.move_idx), axis=1)
@@ -362,9 +362,19 @@ def _headings(q: np.ndarray) -> np.ndarray:
 
 
 def _world_frames(q: np.ndarray) -> np.ndarray:
-    """World frames (k, 3, 3) of turtles turned by quaternion rows (4, k) from the initial frame
-    (applied as a matrix, so axis-aligned frames stay exact)."""
-    return to_matrices(quat_to_rows(q)[_INITIAL_PERM] * _INITIAL_SIGN)
+    """World frames (k, 3, 3) of turtles turned by quaternion rows (4, k) from the initial frame,
+    written entry by entry (the initial frame picks and signs rows, so axis-aligned frames are exact)."""
+    w, x, y, z = q
+    xx, yy, zz, xy, xz, yz, wx, wy, wz = x * x, y * y, z * z, x * y, x * z, y * z, w * x, w * y, w * z
+    local = ((1 - 2 * (yy + zz), 2 * (xy - wz), 2 * (xz + wy)),
+             (2 * (xy + wz), 1 - 2 * (xx + zz), 2 * (yz - wx)),
+             (2 * (xz - wy), 2 * (yz + wx), 1 - 2 * (xx + yy)))
+    out = np.empty((q.shape[1], 3, 3))
+    for r in range(3):
+        source = int(np.argmax(np.abs(INITIAL_FRAME[r])))
+        for c in range(3):
+            np.multiply(local[source][c], INITIAL_FRAME[r, source], out=out[:, r, c])
+    return out
 
 
 def _level_rolls(frames_in: np.ndarray) -> np.ndarray:
