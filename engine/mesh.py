@@ -15,7 +15,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from engine.brackets import first_good
-from engine.chains import chain_quaternions, chain_sum, quat_to_rows
+from engine.chains import chain_sum
 from engine.turtle import Leaves, Segments, TurtleResult
 
 
@@ -165,31 +165,29 @@ class _Rings:
 def _transported_x(segs: Segments, d: np.ndarray) -> np.ndarray:
     """A ring reference direction per segment, parallel-transported along each axis.
 
-    The transport from a parent's direction a to its child's b is the shortest-arc rotation, the
-    unit quaternion q ~ (1 + a.b, a x b) (a half turn about a perpendicular when they are opposite).
-    Along a chain the first segment's x is carried by q_k ... q_1; the scan composes parent-first,
-    so it multiplies the inverses and the result is read transposed: x_i = sum_j R(acc)[j, i] x0_j.
+    With x = cos(phi) L + sin(phi) U in each segment's turtle frame, transport across a joint (the
+    shortest-arc rotation P from the parent's direction to the child's) only adds the twist
+    tau = angle of P(L_parent) in the child's (L, U): so phi is a chain sum of twists, one number
+    per joint, instead of a product of rotations.
     """
     cont = segs.continues
     chain = np.where(cont, segs.parent, -1)
+    lft, up = segs.frame[:, :, 1], segs.frame[:, :, 2]
+    angle = np.zeros(len(segs))
     ci = np.flatnonzero(cont)
-    a, b = d[segs.parent[ci]], d[ci]
-    inverse = np.zeros((4, len(segs)))
-    inverse[0] = 1.0
-    inverse[0, ci] = 1.0 + np.einsum("ni,ni->n", a, b)
-    inverse[1:, ci] = -_cross(a, b).T
-    flip = ci[inverse[0, ci] <= 1e-9]
-    if len(flip):
-        inverse[0, flip] = 0.0
-        inverse[1:, flip] = _normalize(_cross(d[flip], np.array([[0.3, 0.5, 0.81]]))).T
-    inverse /= np.sqrt(np.einsum("ij,ij->j", inverse, inverse))
-    acc = quat_to_rows(chain_quaternions(chain, inverse))
-    lft = segs.frame[:, :, 1]
-    x0 = _normalize(lft - np.einsum("ni,ni->n", lft, d)[:, None] * d)[_chain_root(chain)]
-    out = np.empty_like(x0)
-    for i in range(3):
-        out[:, i] = acc[i] * x0[:, 0] + acc[3 + i] * x0[:, 1] + acc[6 + i] * x0[:, 2]
-    return out
+    pi_ = segs.parent[ci]
+    a, b, carried = d[pi_], d[ci], lft[pi_]
+    w = _cross(a, b)
+    c = np.einsum("ni,ni->n", a, b)
+    ok = c > -1 + 1e-9
+    moved = c[:, None] * carried + _cross(w, carried)
+    moved[ok] += (np.einsum("ni,ni->n", w[ok], carried[ok]) / (1.0 + c[ok]))[:, None] * w[ok]
+    if not ok.all():  # opposite directions: a half turn about a perpendicular
+        p = _normalize(_cross(a[~ok], np.array([[0.3, 0.5, 0.81]])))
+        moved[~ok] = 2 * np.einsum("ni,ni->n", p, carried[~ok])[:, None] * p - carried[~ok]
+    angle[ci] = np.arctan2(np.einsum("ni,ni->n", moved, up[ci]), np.einsum("ni,ni->n", moved, lft[ci]))
+    phi = chain_sum(chain, angle)
+    return np.cos(phi)[:, None] * lft + np.sin(phi)[:, None] * up
 
 
 def _chain_root(chain: np.ndarray) -> np.ndarray:
