@@ -27,9 +27,9 @@ def depths(sym: np.ndarray) -> np.ndarray:
     return np.where(sym == CLOSE, after + 1, after)
 
 
-def check_balanced(sym: np.ndarray) -> None:
-    """Raise :class:`BracketError` if brackets do not balance."""
-    d = depths(sym)
+def check_balanced(sym: np.ndarray, d: np.ndarray | None = None) -> np.ndarray:
+    """Raise :class:`BracketError` if brackets do not balance; else return the depths (``d`` if given)."""
+    d = depths(sym) if d is None else d
     is_close = sym == CLOSE
     bad = np.flatnonzero(is_close & (d <= 0))
     if len(bad):
@@ -38,6 +38,7 @@ def check_balanced(sym: np.ndarray) -> None:
     if final:
         opens = np.flatnonzero(sym == OPEN)
         raise BracketError("'[' is never closed", int(opens[-1]) if len(opens) else 0)
+    return d
 
 
 def _by_depth(idx: np.ndarray, d: np.ndarray) -> np.ndarray:

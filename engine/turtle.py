@@ -173,11 +173,12 @@ def _affine_rows(ls: LString, turn_idx: np.ndarray, sel: np.ndarray, rows: np.nd
     rows[:, k[~has]] = [[factor], [0.0]] if factor is not None else [[1.0], [1.0]]
 
 
-def predecessors(sym: np.ndarray) -> np.ndarray:
-    """For each module, the module whose output state is its input state (-1 for the first)."""
+def predecessors(sym: np.ndarray, depth: np.ndarray | None = None) -> np.ndarray:
+    """For each module, the module whose output state is its input state (-1 for the first);
+    ``depth``: the bracket depths, when the caller has them."""
     n = len(sym)
     par = np.arange(n, dtype=np.int64) - 1
-    partner = brackets.match(sym)
+    partner = brackets.match(sym, depth)
     after_close = np.flatnonzero(sym[:-1] == brackets.CLOSE) + 1
     par[after_close] = partner[after_close - 1]
     return par
@@ -194,9 +195,9 @@ def module_positions(ls: LString, cfg: TurtleConfig | None = None) -> np.ndarray
 def interpret(ls: LString, cfg: TurtleConfig | None = None) -> TurtleResult:
     """Interpret an L-string with the 3D turtle; returns segments and leaf/blossom instances."""
     cfg = cfg or TurtleConfig()
-    brackets.check_balanced(ls.sym)
-    states = _solve_states(ls, cfg, predecessors(ls.sym))
-    segs = _segments(ls, states, cfg)
+    depth = brackets.check_balanced(ls.sym)
+    states = _solve_states(ls, cfg, predecessors(ls.sym, depth))
+    segs = _segments(ls, states, cfg, depth)
     _radii(ls, segs, cfg)
     leaf_size = cfg.leaf_size if cfg.leaf_size is not None else _auto_leaf_size(segs)
     leaves = _instances(ls, LEAF, states, leaf_size)
@@ -233,16 +234,24 @@ class _Topology:
         n = len(ls)
         is_move = _MOVE[ls.sym]
         is_turn = ~is_move & _TURNLIKE[ls.sym]
-        nearest_move = brackets.first_good(par, is_move)
         near = brackets.first_good(par, is_move | is_turn)
-        nearest_turn = np.where((near >= 0) & is_turn[np.maximum(near, 0)], near, -1)
+        after_turn = (near >= 0) & is_turn[np.maximum(near, 0)]
+        nearest_turn = np.where(after_turn, near, -1)
         turn_idx, move_idx = np.flatnonzero(is_turn), np.flatnonzero(is_move)
         column = np.full(n, -1, dtype=np.int64)
         column[turn_idx] = np.arange(len(turn_idx))  # for now: index among its kind
         column[move_idx] = np.arange(len(move_idx))
         tpar = _columns(nearest_turn[turn_idx], column, -1)
+        turn_levels = Levels.of(tpar)
+        # a run of turns starts right after a move (or at the start): its first turn's nearest module
+        # is that move, and the whole run shares it
+        run_move = turn_levels.scan(near[turn_idx[turn_levels.order]][None], lambda p, c: p)[0]
+        move_of_turn = np.empty(len(turn_idx), np.int64)
+        move_of_turn[turn_levels.order] = run_move
+        nearest_move = near.copy()
+        nearest_move[after_turn] = move_of_turn[column[near[after_turn]]]
         mpar = _columns(nearest_move[move_idx], column, -1)
-        turn_levels, move_levels = Levels.of(tpar), Levels.of(mpar)
+        move_levels = Levels.of(mpar)
         column[turn_idx] = turn_levels.where
         column[move_idx] = move_levels.where
         return cls(turn_idx[turn_levels.order], move_idx[move_levels.order], turn_levels, move_levels,
@@ -406,7 +415,7 @@ def _orthonormal(m: np.ndarray) -> np.ndarray:
     return np.stack([c0, c1, np.cross(c0, c1)], axis=2)
 
 
-def _segments(ls: LString, states: _States, cfg: TurtleConfig) -> Segments:
+def _segments(ls: LString, states: _States, cfg: TurtleConfig, depths: np.ndarray) -> Segments:
     """One row per drawn module. A move's frame and scalar maps going in are those it leaves with."""
     idx = np.flatnonzero(_DRAW[ls.sym])
     m = len(states.move_parent)
@@ -425,7 +434,7 @@ def _segments(ls: LString, states: _States, cfg: TurtleConfig) -> Segments:
     chain = np.where(states.move_parent < m, states.move_parent, -1)
     ancestor = brackets.first_good(chain, draw_col)[cols]
     parent = np.where(ancestor >= 0, seg_of_col[np.maximum(ancestor, 0)], -1)
-    depth = brackets.depths(ls.sym)[idx]
+    depth = depths[idx]
     pp = np.maximum(parent, 0)
     scale = 1e-9 * (1.0 + np.abs(end).max(initial=0.0))
     gap = start - end[pp]
