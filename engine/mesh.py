@@ -181,7 +181,7 @@ def _transported_x(segs: Segments, d: np.ndarray) -> np.ndarray:
     c = np.einsum("ni,ni->n", a, b)
     ok = c > -1 + 1e-9
     moved = c[:, None] * carried + _cross(w, carried)
-    moved[ok] += (np.einsum("ni,ni->n", w[ok], carried[ok]) / (1.0 + c[ok]))[:, None] * w[ok]
+    moved += (np.einsum("ni,ni->n", w, carried) / np.where(ok, 1.0 + c, 1.0))[:, None] * w
     if not ok.all():  # opposite directions: a half turn about a perpendicular
         p = _normalize(_cross(a[~ok], np.array([[0.3, 0.5, 0.81]])))
         moved[~ok] = 2 * np.einsum("ni,ni->n", p, carried[~ok])[:, None] * p - carried[~ok]

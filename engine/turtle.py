@@ -150,7 +150,8 @@ assert np.array_equal(np.abs(INITIAL_FRAME).sum(axis=1), np.ones(3))  # a signed
 def _turn_blocks(ls: LString, cfg: TurtleConfig, turn_idx: np.ndarray) -> np.ndarray:
     """Local rotation and scalar maps of every turn-like module, as (8, t + 1) column blocks (the last
     column: no turn)."""
-    blocks = np.repeat(_IDENTITY, len(turn_idx) + 1, axis=1)
+    blocks = np.empty((_BLOCK, len(turn_idx) + 1))
+    blocks[:] = _IDENTITY
     sym = ls.sym[turn_idx]
     k = np.flatnonzero(_AXIS_OF[sym] >= 0)  # all turns, pitches and rolls at once
     half = np.radians(_SIGN_OF[sym[k]] * _first_param(ls, turn_idx[k], cfg.angle)) / 2
