@@ -426,8 +426,8 @@ def _segments(ls: LString, states: _States, cfg: TurtleConfig, depths: np.ndarra
     width0 = 1.0 if cfg.width is None else cfg.width
     radius = 0.5 * (block[_WIDTH] * width0 + block[_WIDTH + 1]) * cfg.width_scale
     colours = block[_COLOUR + 1]  # the colour index starts at 0
-    start = np.take(states.move_t, states.move_parent[cols], axis=1).T
-    end = np.take(states.move_t, cols, axis=1).T
+    start = np.ascontiguousarray(np.take(states.move_t, states.move_parent[cols], axis=1).T)
+    end = np.ascontiguousarray(np.take(states.move_t, cols, axis=1).T)
     draw_col = np.zeros(m, bool)
     draw_col[cols] = True
     seg_of_col = np.full(m, -1, dtype=np.int64)
