@@ -155,13 +155,18 @@ def compose_turtle(p: np.ndarray, c: np.ndarray) -> np.ndarray:
     return out
 
 
-def quat_to_rows(q: np.ndarray) -> np.ndarray:
-    """Unit quaternions (4, n) as row-major rotation matrices (9, n)."""
+def quat_entries(q: np.ndarray) -> tuple[tuple[np.ndarray, ...], ...]:
+    """The rotation matrix entries (row by row, each an (n,) array) of unit quaternions (4, n)."""
     w, x, y, z = q
     xx, yy, zz, xy, xz, yz, wx, wy, wz = x * x, y * y, z * z, x * y, x * z, y * z, w * x, w * y, w * z
-    return np.stack([1 - 2 * (yy + zz), 2 * (xy - wz), 2 * (xz + wy),
-                     2 * (xy + wz), 1 - 2 * (xx + zz), 2 * (yz - wx),
-                     2 * (xz - wy), 2 * (yz + wx), 1 - 2 * (xx + yy)])
+    return ((1 - 2 * (yy + zz), 2 * (xy - wz), 2 * (xz + wy)),
+            (2 * (xy + wz), 1 - 2 * (xx + zz), 2 * (yz - wx)),
+            (2 * (xz - wy), 2 * (yz + wx), 1 - 2 * (xx + yy)))
+
+
+def quat_to_rows(q: np.ndarray) -> np.ndarray:
+    """Unit quaternions (4, n) as row-major rotation matrices (9, n)."""
+    return np.stack([entry for row in quat_entries(q) for entry in row])
 
 
 def rows_to_quat(rows: np.ndarray) -> np.ndarray:
@@ -203,11 +208,6 @@ def chain_compose(par: np.ndarray, blocks: np.ndarray) -> np.ndarray:
     (a, b) composed the same way (parent first). Returns the accumulated blocks.
     """
     return scan(par, blocks, compose)
-
-
-def chain_quaternions(par: np.ndarray, quats: np.ndarray) -> np.ndarray:
-    """Products of unit quaternions (4, n) along each path, parent on the left."""
-    return scan(par, quats, lambda p, c: quat_mul(p, c))
 
 
 def to_matrices(rows: np.ndarray) -> np.ndarray:

@@ -14,8 +14,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from engine.brackets import first_good
-from engine.chains import chain_sum
+from engine.chains import chain_sum, tree_depths
 from engine.turtle import Leaves, Segments, TurtleResult
 
 
@@ -134,7 +133,7 @@ def wood_mesh(segs: Segments, n_surf: int = 8, n_div: int = 1, tip_taper: float 
     tangents = np.concatenate([tangent_end, d[starts]])
     xs = np.concatenate([x_end, x_axis[starts]])
     radii = np.concatenate([r_end, segs.radius[starts]])
-    step = chain_sum(np.where(cont, segs.parent, -1), np.ones(m))  # growth steps along the axis
+    step = tree_depths(np.where(cont, segs.parent, -1)) + 1.0  # growth steps along the axis
     vs = np.concatenate([step, step[starts] - 1.0])
     start_ring = np.empty(m, dtype=np.int64)
     start_ring[cont] = segs.parent[cont]
@@ -188,13 +187,6 @@ def _transported_x(segs: Segments, d: np.ndarray) -> np.ndarray:
     angle[ci] = np.arctan2(np.einsum("ni,ni->n", moved, up[ci]), np.einsum("ni,ni->n", moved, lft[ci]))
     phi = chain_sum(chain, angle)
     return np.cos(phi)[:, None] * lft + np.sin(phi)[:, None] * up
-
-
-def _chain_root(chain: np.ndarray) -> np.ndarray:
-    """Index of the first element of each element's chain."""
-    good = chain < 0
-    up = first_good(chain, good)
-    return np.where(good, np.arange(len(chain)), up)
 
 
 def _bezier_rings(rings: _Rings, start_ring: np.ndarray, end_ring: np.ndarray, n_div: int) -> np.ndarray:

@@ -24,6 +24,7 @@ from engine.chains import (
     Levels,
     compose_maps,
     compose_turtle,
+    quat_entries,
     quat_mul,
     rows_to_quat,
     to_rows,
@@ -374,11 +375,7 @@ def _headings(q: np.ndarray) -> np.ndarray:
 def _world_frames(q: np.ndarray) -> np.ndarray:
     """World frames (k, 3, 3) of turtles turned by quaternion rows (4, k) from the initial frame,
     written entry by entry (the initial frame picks and signs rows, so axis-aligned frames are exact)."""
-    w, x, y, z = q
-    xx, yy, zz, xy, xz, yz, wx, wy, wz = x * x, y * y, z * z, x * y, x * z, y * z, w * x, w * y, w * z
-    local = ((1 - 2 * (yy + zz), 2 * (xy - wz), 2 * (xz + wy)),
-             (2 * (xy + wz), 1 - 2 * (xx + zz), 2 * (yz - wx)),
-             (2 * (xz - wy), 2 * (yz + wx), 1 - 2 * (xx + yy)))
+    local = quat_entries(q)
     out = np.empty((q.shape[1], 3, 3))
     for r in range(3):
         source = int(np.argmax(np.abs(INITIAL_FRAME[r])))
@@ -433,7 +430,8 @@ def _segments(ls: LString, states: _States, cfg: TurtleConfig, depths: np.ndarra
     seg_of_col = np.full(m, -1, dtype=np.int64)
     seg_of_col[cols] = np.arange(len(idx))
     chain = np.where(states.move_parent < m, states.move_parent, -1)
-    ancestor = brackets.first_good(chain, draw_col)[cols]
+    # the segment a piece grows from: the nearest drawing move before it ('f' moves are skipped)
+    ancestor = chain[cols] if draw_col.all() else brackets.first_good(chain, draw_col)[cols]
     parent = np.where(ancestor >= 0, seg_of_col[np.maximum(ancestor, 0)], -1)
     depth = depths[idx]
     pp = np.maximum(parent, 0)
