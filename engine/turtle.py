@@ -494,13 +494,15 @@ def _mean_tip_length(segs: Segments) -> float:
     tips = tip_segments(segs)
     if len(tips) == 0:
         return 1.0
-    length = float(np.linalg.norm(segs.end[tips] - segs.start[tips], axis=1).mean())
+    gap = np.take(segs.end, tips, axis=0) - np.take(segs.start, tips, axis=0)
+    length = float(np.sqrt(np.einsum("ij,ij->i", gap, gap)).mean())
     return length if length > 0 else 1.0
 
 
 def _auto_leaf_size(segs: Segments) -> float:
     """Leaves sized to the twigs that carry them, and never lost in a big crown."""
-    height = float(np.ptp(segs.end[:, 1])) if len(segs) else 0.0
+    ys = segs.end[:, 1]
+    height = float(ys.max() - ys.min()) if len(segs) else 0.0
     return max(0.8 * _mean_tip_length(segs), 0.025 * height)
 
 
@@ -531,4 +533,6 @@ def _tip_leaves(segs: Segments, k: int, size: float) -> Leaves:
 
 
 def _concat_leaves(a: Leaves, b: Leaves) -> Leaves:
+    if len(a) == 0 or len(b) == 0:
+        return b if len(a) == 0 else a
     return Leaves(*(np.concatenate([getattr(a, f), getattr(b, f)]) for f in ("position", "frame", "size", "module")))
