@@ -70,6 +70,7 @@ def grow_into_lobes(skeleton: Skeleton, lobes: list[Lobe], attractors: np.ndarra
     surface = np.concatenate([lobe.vertices for lobe in lobes])
     crossings = Crossings(lobes)
     inside = crossings.inside(skeleton.position) >= 0
+    deep = np.zeros(len(skeleton.parent), bool)  # the branch has been well inside a lobe
     t = np.radians(t_deg)
     owner_local = None
     for iteration in range(iterations):
@@ -79,8 +80,10 @@ def grow_into_lobes(skeleton: Skeleton, lobes: list[Lobe], attractors: np.ndarra
         if owner_local is None:
             owner_local, _ = _nearest(remaining, skeleton.position[active])
         _, to_surface = _nearest(skeleton.position[active], surface)
-        # only nodes inside a lobe stop at its surface, and the first nodes always sprout
-        growing = (to_surface > stop) | ~inside[active] | (iteration == 0)
+        deep[active] |= inside[active] & (to_surface > 2 * stop)
+        # only nodes inside a lobe stop at its surface, once their branch has been well inside it (a
+        # branch entering through the surface keeps going), and the first nodes always sprout
+        growing = (to_surface > stop) | ~inside[active] | ~deep[active] | (iteration == 0)
         keep = growing[owner_local]  # attractors of stopped nodes retire
         remaining, owner_local = remaining[keep], owner_local[keep]
         skeleton.active[active] = False
@@ -96,6 +99,7 @@ def grow_into_lobes(skeleton: Skeleton, lobes: list[Lobe], attractors: np.ndarra
         if len(nodes) == 0:
             break
         inside = np.concatenate([inside, new_inside])
+        deep = np.concatenate([deep, deep[nodes]])
         skeleton.position = np.concatenate([skeleton.position, new_pos])
         skeleton.parent = np.concatenate([skeleton.parent, nodes])
         skeleton.heading = np.concatenate([skeleton.heading, directions])

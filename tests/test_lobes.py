@@ -95,6 +95,15 @@ def test_growth_fills_the_lobe_and_never_leaves_it():
     assert crown_nodes[:, 1].max() > 6.3
 
 
+def test_a_branch_entering_through_the_surface_keeps_growing_into_the_lobe():
+    lobes = crown()  # its bottom ring is at y = 4
+    attractors = np.concatenate([lobes[0].vertices, lobes[0].sample_inside(1500, np.random.default_rng(3))])
+    trunk = np.array([[0.0, 0.0, 0.0], [0.0, 4.0, 0.0]])  # the tip sits on the lobe's bottom
+    skeleton = grow_into_lobes(Skeleton.from_trunk(trunk), lobes, attractors)
+    crown_nodes = skeleton.position[lobes[0].contains(skeleton.position)]
+    assert len(crown_nodes) > 300 and crown_nodes[:, 1].max() > 6.3  # not stopped at the surface it entered by
+
+
 def test_growth_respects_the_node_budget():
     lobes = crown()
     attractors = lobes[0].sample_inside(1500, np.random.default_rng(0))
