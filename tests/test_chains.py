@@ -1,7 +1,17 @@
 import numpy as np
 import pytest
 
-from engine.chains import LEVEL_LIMIT, Levels, chain_compose, chain_sum, mat_mul, to_matrices, to_rows, tree_depths
+from engine.chains import (
+    LEVEL_LIMIT,
+    Levels,
+    chain_sum,
+    quat_mul,
+    quat_to_rows,
+    rows_to_quat,
+    scan,
+    to_rows,
+    tree_depths,
+)
 
 
 def random_forest(rng, n, deep=0):
@@ -15,7 +25,12 @@ def random_forest(rng, n, deep=0):
 
 def random_rotations(rng, n):
     q, _ = np.linalg.qr(rng.normal(size=(n, 3, 3)))
+    q[:, :, 0] *= np.linalg.det(q)[:, None]  # proper rotations only
     return q
+
+
+def matrices(rows):
+    return rows.T.reshape(-1, 3, 3)
 
 
 @pytest.mark.parametrize("deep", [0, LEVEL_LIMIT + 57])
@@ -30,7 +45,8 @@ def test_scans_match_a_sequential_walk(deep):
         if par[i] >= 0:
             expected_rot[i] = expected_rot[par[i]] @ rots[i]
             expected_sum[i] = expected_sum[par[i]] + values[i]
-    np.testing.assert_allclose(to_matrices(chain_compose(par, to_rows(rots))), expected_rot, atol=1e-9)
+    products = scan(par, rows_to_quat(to_rows(rots)), quat_mul)
+    np.testing.assert_allclose(matrices(quat_to_rows(products)), expected_rot, atol=1e-9)
     np.testing.assert_allclose(chain_sum(par, values), expected_sum, atol=1e-9)
 
 
@@ -45,21 +61,11 @@ def test_levels_sort_parents_before_children_and_count_depths():
     np.testing.assert_array_equal(levels.order[levels.where], np.arange(len(par)))
 
 
-def test_column_products_match_matmul():
-    rng = np.random.default_rng(6)
-    a, b = random_rotations(rng, 50), random_rotations(rng, 50)
-    np.testing.assert_allclose(to_matrices(mat_mul(to_rows(a), to_rows(b))), a @ b, atol=1e-12)
-
-
 def test_quaternions_compose_like_matrices_and_round_trip():
-    from engine.chains import quat_mul, quat_to_rows, rows_to_quat
-
     rng = np.random.default_rng(7)
     a, b = random_rotations(rng, 200), random_rotations(rng, 200)
-    a[:, :, 0] *= np.linalg.det(a)[:, None]  # proper rotations only
-    b[:, :, 0] *= np.linalg.det(b)[:, None]
     qa, qb = rows_to_quat(to_rows(a)), rows_to_quat(to_rows(b))
-    np.testing.assert_allclose(to_matrices(quat_to_rows(qa)), a, atol=1e-12)
-    np.testing.assert_allclose(to_matrices(quat_to_rows(quat_mul(qa, qb))), a @ b, atol=1e-12)
+    np.testing.assert_allclose(matrices(quat_to_rows(qa)), a, atol=1e-12)
+    np.testing.assert_allclose(matrices(quat_to_rows(quat_mul(qa, qb))), a @ b, atol=1e-12)
     half_turns = np.array([np.diag([1.0, -1, -1]), np.diag([-1.0, 1, -1]), np.diag([-1.0, -1, 1])])
-    np.testing.assert_allclose(to_matrices(quat_to_rows(rows_to_quat(to_rows(half_turns)))), half_turns, atol=1e-12)
+    np.testing.assert_allclose(matrices(quat_to_rows(rows_to_quat(to_rows(half_turns)))), half_turns, atol=1e-12)
