@@ -281,7 +281,7 @@ class _States:
     topo: _Topology
     move_parent: np.ndarray  # column of the move before each move column (m: none)
     turns: np.ndarray  # (8, t + 1) accumulated rotation and scalar maps of each turn since its move
-    moves: np.ndarray  # (8, m + 1) world frame and scalar maps going into (and out of) each move
+    moves: np.ndarray  # (8, m + 1) frame (from the initial one) and scalar maps into and out of each move
     move_t: np.ndarray  # (3, m + 1) world position after each move
 
     def blocks_in(self, idx: np.ndarray) -> np.ndarray:

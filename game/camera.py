@@ -85,3 +85,21 @@ def project_points(camera: OrbitCamera, size: tuple[int, int], points: np.ndarra
     clip = np.c_[points, np.ones(len(points))] @ (camera.projection(size[0] / size[1]) @ camera.view()).T
     w = np.where(clip[:, 3] > 1e-9, clip[:, 3], np.nan)
     return np.stack([(clip[:, 0] / w * 0.5 + 0.5) * size[0], (0.5 - clip[:, 1] / w * 0.5) * size[1]], axis=1)
+
+
+def unproject_to_plane(camera: OrbitCamera, size: tuple[int, int], x: float, y: float,
+                       point: np.ndarray, normal: np.ndarray) -> np.ndarray | None:
+    """The point of the plane (point, normal) under window pixel (x, y)."""
+    vp = camera.projection(size[0] / size[1]) @ camera.view()
+    inv = np.linalg.inv(vp)
+    ndc = np.array([2 * x / size[0] - 1, 1 - 2 * y / size[1]])
+    near = inv @ np.array([*ndc, -1.0, 1.0])
+    far = inv @ np.array([*ndc, 1.0, 1.0])
+    a, b = near[:3] / near[3], far[:3] / far[3]
+    d = b - a
+    denom = float(d @ normal)
+    if abs(denom) < 1e-12:
+        return None
+    s = float((point - a) @ normal) / denom
+    return a + s * d if s > 0 else None
+

@@ -21,7 +21,7 @@ from engine.crown import grow_crown
 from engine.lobes import Lobe, lobe_from_loops, lobe_from_outline
 from engine.lstring import LString, format_number
 from engine.modeler import Modeler
-from game.camera import OrbitCamera, project_points
+from game.camera import OrbitCamera, project_points, unproject_to_plane
 from game.strings import text
 
 MAX_CROWN_MODULES = 24000  # one crown's bound even without a tree budget
@@ -205,8 +205,6 @@ class CrownTool:
 
     def _on_plane(self, x: float, y: float, through: np.ndarray, camera: OrbitCamera) -> np.ndarray:
         """The point under pixel (x, y) on the camera-facing plane through ``through``."""
-        from game.modeling import unproject_to_plane
-
         normal = camera.target - camera.eye
         normal = normal / max(float(np.linalg.norm(normal)), 1e-12)
         hit = unproject_to_plane(camera, self.mode.game.size, x, y, through, normal)

@@ -18,7 +18,7 @@ from engine.lstring import LString
 from engine.modeler import Modeler
 from engine.regions import prune
 from engine.strokes import Stroke
-from game.camera import OrbitCamera, project_points
+from game.camera import OrbitCamera, project_points, unproject_to_plane
 from game.crown_tool import CrownTool
 from game.region_tool import RegionTool
 from game.render import ASSETS
@@ -262,21 +262,3 @@ TOOLS = {  # menu button -> what it switches
     "prune": ModelingMode.toggle_prune,
     "symbols": ModelingMode.toggle_symbols,
 }
-
-
-def unproject_to_plane(camera: OrbitCamera, size: tuple[int, int], x: float, y: float,
-                       point: np.ndarray, normal: np.ndarray) -> np.ndarray | None:
-    """The point of the plane (point, normal) under window pixel (x, y)."""
-    vp = camera.projection(size[0] / size[1]) @ camera.view()
-    inv = np.linalg.inv(vp)
-    ndc = np.array([2 * x / size[0] - 1, 1 - 2 * y / size[1]])
-    near = inv @ np.array([*ndc, -1.0, 1.0])
-    far = inv @ np.array([*ndc, 1.0, 1.0])
-    a, b = near[:3] / near[3], far[:3] / far[3]
-    d = b - a
-    denom = float(d @ normal)
-    if abs(denom) < 1e-12:
-        return None
-    s = float((point - a) @ normal) / denom
-    return a + s * d if s > 0 else None
-
