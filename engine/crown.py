@@ -16,6 +16,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from engine import brackets
 from engine.lobes import Crossings, Lobe
 from engine.lstring import concat, format_number, parse_lstring
 from engine.modeler import Modeler
@@ -274,9 +275,15 @@ def grow_crown(modeler: Modeler, lobes: list[Lobe], rng: np.random.Generator, pe
     if len(grown.parent) == 2:
         return 0
     diameters = pipe_diameters(grown, 2.0 * float(segs.radius_end[k]), root=1)
-    body = "[" + skeleton_text(grown, root=1, frame=segs.frame[k], diameters=diameters, tip=tip) + "]"
-    module = int(segs.module[k])
-    index = np.arange(len(modeler.lstring))
-    new = concat(modeler.lstring.select(index <= module), parse_lstring(body), modeler.lstring.select(index > module))
-    modeler.commit(new)
+    body = parse_lstring(skeleton_text(grown, root=1, frame=segs.frame[k], diameters=diameters, tip=tip))
+    ls, module = modeler.lstring, int(segs.module[k])
+    end = int(brackets.branch_ends(ls.sym, np.array([module]))[0])
+    index = np.arange(len(ls))
+    # the crown continues the tip's axis (one smooth joint, no cap inside the wood); what followed the
+    # tip on its branch (buds, leaves, an apex) stays at the tip in a bracket of its own
+    rest = ls.select((index > module) & (index < end))
+    parts = [ls.select(index <= module)]
+    if len(rest):
+        parts += [parse_lstring("["), rest, parse_lstring("]")]
+    modeler.commit(concat(*parts, body, ls.select(index >= end)))
     return len(grown.parent) - 2

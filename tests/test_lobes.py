@@ -172,6 +172,8 @@ def test_crown_grows_from_the_drawn_trunk_into_the_lobe_and_can_be_undone():
     crown = segments.end[len(trunk_segments):]
     assert lobe.contains(crown).mean() > 0.95
     assert segments.radius[len(trunk_segments):].max() <= trunk_segments.radius_end[-1] * 1.001
+    first = len(trunk_segments)  # the crown continues the trunk's axis: one shared joint ring, no cap
+    assert (segments.continues[first:] & (segments.parent[first:] == first - 1)).sum() == 1
     assert parse_lstring(modeler.lstring.to_text()).equals(modeler.lstring)  # saves as plain text
     assert modeler.undo() and modeler.lstring is trunk
 
