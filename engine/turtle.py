@@ -431,14 +431,16 @@ def _segments(ls: LString, states: _States, cfg: TurtleConfig, depths: np.ndarra
     seg_of_col[cols] = np.arange(len(idx))
     chain = np.where(states.move_parent < m, states.move_parent, -1)
     # the segment a piece grows from: the nearest drawing move before it ('f' moves are skipped)
-    ancestor = chain[cols] if draw_col.all() else brackets.first_good(chain, draw_col)[cols]
+    all_draw = bool(draw_col.all())
+    ancestor = chain[cols] if all_draw else brackets.first_good(chain, draw_col)[cols]
     parent = np.where(ancestor >= 0, seg_of_col[np.maximum(ancestor, 0)], -1)
     depth = depths[idx]
     pp = np.maximum(parent, 0)
-    scale = 1e-9 * (1.0 + np.abs(end).max(initial=0.0))
-    gap = start - end[pp]
-    joined = np.einsum("ni,ni->n", gap, gap) <= scale * scale
-    continues = (parent >= 0) & (depth == depth[pp]) & joined
+    continues = (parent >= 0) & (depth == depth[pp])
+    if not all_draw:  # an 'f' between a piece and its parent leaves a gap: a new axis starts there
+        scale = 1e-9 * (1.0 + np.abs(end).max(initial=0.0))
+        gap = start - end[pp]
+        continues &= np.einsum("ni,ni->n", gap, gap) <= scale * scale
     radius_end = radius.copy()
     cont = np.flatnonzero(continues)
     radius_end[parent[cont]] = radius[cont]
