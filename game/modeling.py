@@ -46,7 +46,6 @@ class ModelingMode:
         self.pruning = False  # taps on branches cut them
         self.symbols = False  # drags move the region whose L-string symbols are shown
         self.region_tool = RegionTool(self)
-        self.pointer: tuple[float, float] | None = None  # the window pixel of the point being added
         self.shaping = False  # drags reshape the crown's lobes
         self.crown_tool = CrownTool(self)
         self.edit = EDIT_SETS[0]
@@ -164,16 +163,15 @@ class ModelingMode:
             return
         hit = unproject_to_plane(self.stroke_camera or camera, self.game.size, x, y, *self.plane)
         if hit is not None:
-            self.pointer = (x, y)
-            self.add3d(hit, t)
-            self.pointer = None
+            self.add3d(hit, t, (x, y))
 
-    def add3d(self, point, t: float) -> None:
-        """Extend the stroke with a 3D point (a tracker's cursor) and refresh the preview."""
+    def add3d(self, point, t: float, pixel: tuple[float, float] | None = None) -> None:
+        """Extend the stroke with a 3D point (a tracker's cursor; ``pixel``: where a 2D pointer is) and
+        refresh the preview."""
         self.points.append(np.asarray(point, dtype=np.float64))
         self.times.append(t)
-        if self.symbols and self.pointer is not None:
-            self.region_tool.drag(*self.pointer, self.points[-1])
+        if self.symbols:
+            self.region_tool.drag(self.points[-1], pixel)
         elif len(self.points) >= 3 and self.modeler is not None and not (self.crown or self.pruning):
             self.preview, _ = self.modeler.convert(Stroke(np.array(self.points), np.array(self.times)))
 

@@ -51,13 +51,17 @@ class RegionTool:
         r = self.mode.game.renderer
         return 0.15 * max(float(np.max(r.hi - r.lo)), 1.0)
 
-    def drag(self, x: float, y: float, point: np.ndarray) -> None:
-        """The pointer moved to pixel (x, y), ``point`` on the drawing plane: a short drag moves the
-        sphere with it (a tap does not); a tall one is drawn as a contour and leaves the region be."""
+    def drag(self, point: np.ndarray, pixel: tuple[float, float] | None) -> None:
+        """The pointer moved to ``point`` (at window ``pixel`` for a 2D pointer; None for a 3D
+        tracker, whose drags always move the sphere): a short drag moves the sphere with it (a tap
+        does not); a tall one is drawn as a contour and leaves the region where it is."""
+        if pixel is None:
+            self.region = Sphere(tuple(point), self._radius())
+            return
         if not self.pixels:
             self.kept = self.region
-        self.pixels.append((x, y))
-        moved = abs(x - self.pixels[0][0]) + abs(y - self.pixels[0][1]) >= 12  # not a tap
+        self.pixels.append(pixel)
+        moved = abs(pixel[0] - self.pixels[0][0]) + abs(pixel[1] - self.pixels[0][1]) >= 12  # not a tap
         if moved and not self._is_contour():
             self.region = Sphere(tuple(point), self._radius())
 
