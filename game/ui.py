@@ -21,7 +21,7 @@ PANEL = (20, 30, 24, 200)
 TEXT = (245, 245, 240)
 ACCENT = (120, 190, 90)
 ROW_H = 64  # touch targets: >= 48 px
-MENU_W = 360
+MENU_W = 420
 PAD = 10
 
 
@@ -66,7 +66,7 @@ class Menu:
     def show_at(self, x: float, y: float) -> None:
         """Open the menu with its corner at the tap point, kept inside the screen."""
         rows = [["orbit_height"], ["sun_speed"], ["water", "replant"], ["speed", "save", "load", "devices"],
-                ["modeler", "crown", "shape"], ["prune", "symbols"], ["edit", "undo", "redo"], ["plant", "next"]]
+                ["modeler", "crown", "shape"], ["prune", "symbols", "undo", "redo"], ["edit"], ["plant", "next"]]
         height = len(rows) * (ROW_H + PAD) + PAD
         left = int(min(max(x, PAD), self.screen[0] - MENU_W - PAD))
         top = int(min(max(y, PAD), self.screen[1] - height - PAD))
