@@ -87,6 +87,13 @@ def project_points(camera: OrbitCamera, size: tuple[int, int], points: np.ndarra
     return np.stack([(clip[:, 0] / w * 0.5 + 0.5) * size[0], (0.5 - clip[:, 1] / w * 0.5) * size[1]], axis=1)
 
 
+def project_ball(camera: OrbitCamera, size: tuple[int, int], center, radius: float) -> tuple[np.ndarray, float]:
+    """Window pixel of a ball's centre and its radius in pixels (NaN when behind the camera)."""
+    centre = np.asarray(center, float)
+    pixels = project_points(camera, size, np.stack([centre, centre + radius * camera.view()[0, :3]]))
+    return pixels[0], float(np.linalg.norm(pixels[1] - pixels[0]))
+
+
 def unproject_to_plane(camera: OrbitCamera, size: tuple[int, int], x: float, y: float,
                        point: np.ndarray, normal: np.ndarray) -> np.ndarray | None:
     """The point of the plane (point, normal) under window pixel (x, y)."""

@@ -23,6 +23,7 @@ from engine.lstring import LString, format_number
 from engine.modeler import Modeler
 from game.camera import OrbitCamera, project_points, unproject_to_plane
 from game.strings import text
+from game.ui import draw_polyline
 
 MAX_CROWN_MODULES = 24000  # one crown's bound even without a tree budget
 MAX_CROWN_STATES = 32  # crown steps whose lobes undo/redo can bring back
@@ -221,16 +222,10 @@ class CrownTool:
             bright = shaping and self.drag is not None and i == self.drag.index
             colour = (255, 240, 150, 230) if bright else (170, 240, 170, 110)
             for loop in lobe.stroke_rings:
-                _polyline(surface, project, loop, colour, True, 3 if bright else 2)
+                draw_polyline(surface, project, loop, colour, True, 3 if bright else 2)
         for loop in state.rings:
-            _polyline(surface, project, loop, (170, 240, 170, 110), True, 2)
+            draw_polyline(surface, project, loop, (170, 240, 170, 110), True, 2)
         for arch in state.arches:
-            _polyline(surface, project, arch, (170, 240, 170, 110), False, 2)
+            draw_polyline(surface, project, arch, (170, 240, 170, 110), False, 2)
         if len(points) >= 2 and not shaping:
-            _polyline(surface, project, np.array(points), (120, 230, 120, 230), len(points) >= 8, 4)
-
-
-def _polyline(surface: pygame.Surface, project, points: np.ndarray, colour, closed: bool, width: int) -> None:
-    pixels = project(points)
-    if len(pixels) >= (3 if closed else 2):
-        pygame.draw.lines(surface, colour, closed, pixels, width)
+            draw_polyline(surface, project, np.array(points), (120, 230, 120, 230), len(points) >= 8, 4)

@@ -17,9 +17,10 @@ from engine.growth import render_view
 from engine.lstring import LString
 from engine.regions import Sphere, Supertoroid, fit_supertoroid
 from engine.turtle import TurtleConfig, module_positions
-from game.camera import OrbitCamera, project_points
+from game.camera import OrbitCamera, project_ball, project_points
 from game.strings import text
 from game.symbols_overlay import draw_symbols
+from game.ui import draw_polyline
 
 CONTOUR_PIXELS = 80.0  # a drag at least this tall, and twice as tall as wide, is a contour
 GROUPS = {"grow": "grown", "prune": "pruned_region"}  # edits with their own message
@@ -104,10 +105,8 @@ class RegionTool:
             return False
         size = self.mode.game.size
         if isinstance(self.region, Sphere):
-            centre = np.asarray(self.region.center, float)
-            c = project_points(camera, size, centre[None])[0]
-            edge = project_points(camera, size, (centre + self.region.radius * camera.view()[0, :3])[None])[0]
-            return bool(np.hypot(x - c[0], y - c[1]) <= np.linalg.norm(edge - c))
+            c, radius = project_ball(camera, size, self.region.center, self.region.radius)
+            return bool(np.hypot(x - c[0], y - c[1]) <= radius)
         pixels = project_points(camera, size, self._outline().reshape(-1, 3))
         lo, hi = np.nanmin(pixels, axis=0), np.nanmax(pixels, axis=0)
         return bool(lo[0] <= x <= hi[0] and lo[1] <= y <= hi[1])
@@ -142,16 +141,12 @@ class RegionTool:
         the contour being drawn."""
         self.labels = []
         for contour in [*self.contours, *([np.array(points)] if self._is_contour() else [])]:
-            pixels = project(contour)
-            if len(pixels) >= 2:
-                pygame.draw.lines(surface, (255, 255, 255, 200), False, pixels, 3)
+            draw_polyline(surface, project, contour, (255, 255, 255, 200), False, 3)
         if self.region is None:
             return
         if isinstance(self.region, Supertoroid):
             for ring in self._outline():
-                pixels = project(ring)
-                if len(pixels) >= 3:
-                    pygame.draw.lines(surface, (255, 255, 255, 170), True, pixels, 2)
+                draw_polyline(surface, project, ring, (255, 255, 255, 170), True, 2)
         ls = self.mode.game.world.tree.lstring
         self.labels = draw_symbols(surface, font, camera, self.mode.game.size, ls, self.positions(ls), self.region)
 

@@ -12,7 +12,7 @@ import pygame
 
 from engine.lstring import LString
 from engine.regions import Sphere
-from game.camera import OrbitCamera, project_points
+from game.camera import OrbitCamera, project_ball, project_points
 
 MAX_ROWS = 160
 ROW_SYMBOLS = 10  # symbols shown at one spot before an ellipsis
@@ -29,10 +29,9 @@ def draw_symbols(surface: pygame.Surface, font: pygame.font.Font, camera: OrbitC
     inside = inside[np.argsort(distance[inside], kind="stable")]
     pixels = project_points(camera, size, positions[inside])
     if isinstance(region, Sphere):
-        centre = project_points(camera, size, roi[None])[0]
-        edge = project_points(camera, size, (roi + region.radius * camera.view()[0, :3])[None])[0]
-        if np.isfinite(centre).all() and np.isfinite(edge).all():
-            pygame.draw.circle(surface, (255, 255, 255, 160), centre, float(np.linalg.norm(edge - centre)), 2)
+        centre, radius = project_ball(camera, size, roi, region.radius)
+        if np.isfinite(centre).all() and np.isfinite(radius):
+            pygame.draw.circle(surface, (255, 255, 255, 160), centre, radius, 2)
     ok = np.isfinite(pixels).all(axis=1)
     inside, pixels = inside[ok], pixels[ok]
     _, first, group = np.unique((pixels // 8).astype(np.int64), axis=0, return_index=True, return_inverse=True)

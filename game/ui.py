@@ -189,6 +189,13 @@ def draw_hud(surface: pygame.Surface, font: pygame.font.Font, info: HudInfo) -> 
         surface.blit(msg, msg.get_rect(center=box.center))
 
 
+def draw_polyline(surface: pygame.Surface, project, points, colour, closed: bool, width: int) -> None:
+    """A 3D polyline over the scene (``project``: 3D points -> the pixels of those in view)."""
+    pixels = project(points)
+    if len(pixels) >= (3 if closed else 2):
+        pygame.draw.lines(surface, colour, closed, pixels, width)
+
+
 def draw_rain_cloud(surface: pygame.Surface, center: tuple[float, float], size: float, t: float) -> None:
     """A grey cloud with falling rain, drawn while the watering can is held."""
     cx, cy = center
