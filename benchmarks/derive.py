@@ -11,8 +11,8 @@ import time
 import tracemalloc
 from pathlib import Path
 
-from engine.derive import Deriver
-from engine.lsys import load_lsystem
+from engine.lsystem.derive import Deriver
+from engine.lsystem.lsys import load_lsystem
 
 SOURCE = Path(__file__).resolve().parent.parent / "assets" / "lsystems" / "abop_2_8_tree.lsys"
 TARGET_MODULES = 1_000_000

@@ -41,8 +41,8 @@ def main() -> None:
     """Run both scenarios and print percentiles."""
     import pygame
 
-    from game.game import Game, GameConfig
-    from game.render import headless_context
+    from game.render.renderer import headless_context
+    from game.screens.game import Game, GameConfig
 
     pygame.init()
     pygame.display.set_mode((64, 64))

@@ -13,11 +13,11 @@ import time
 
 import numpy as np
 
-from engine.landscape import scatter
-from engine.mesh import LOD_LEVELS
-from game.landscape import build_presets, landscape_size, overview_camera
-from game.landscape_render import LandscapeRenderer
-from game.render import headless_context, sun_direction
+from engine.forest.landscape import scatter
+from engine.geometry.mesh import LOD_LEVELS
+from game.commands.landscape import build_presets, landscape_size, overview_camera
+from game.render.landscape import LandscapeRenderer
+from game.render.renderer import headless_context, sun_direction
 
 SIZE = (1280, 720)
 

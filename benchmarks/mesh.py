@@ -12,10 +12,10 @@ from pathlib import Path
 
 import numpy as np
 
-from engine.derive import derive
-from engine.lsys import load_lsystem
-from engine.mesh import LOD_LEVELS, tree_mesh, wood_mesh
-from engine.turtle import TurtleConfig, interpret
+from engine.geometry.mesh import LOD_LEVELS, tree_mesh, wood_mesh
+from engine.geometry.turtle import TurtleConfig, interpret
+from engine.lsystem.derive import derive
+from engine.lsystem.lsys import load_lsystem
 
 SOURCE = Path(__file__).resolve().parent.parent / "assets" / "lsystems" / "abop_2_8_tree.lsys"
 
@@ -65,8 +65,8 @@ def main() -> None:
 def render_frames(meshes) -> None:
     """Headless frame time at 1280x720 for each LOD level (median of 5 frames after a warm-up)."""
     try:
-        from game.camera import OrbitCamera
-        from game.render import TreeRenderer, headless_context, sun_direction
+        from game.render.camera import OrbitCamera
+        from game.render.renderer import TreeRenderer, headless_context, sun_direction
     except ImportError as exc:  # pragma: no cover - game extras missing
         print(f"render skipped: {exc}")
         return

@@ -4,7 +4,7 @@ propagation (Algorithm 2) against a fixed three-way branching rule.
 Run: python -m benchmarks.propagation
 Both trees are ordinary L-systems derived by the same engine and meshed by the same mesher
 (n_surf = 6, straight segments): assets/lsystems/divisor_tree.lsys with children(level) from
-engine/divisors.py, and the same file with children() fixed at 3.
+engine/forest/divisors.py, and the same file with children() fixed at 3.
 """
 
 from __future__ import annotations
@@ -13,11 +13,11 @@ from pathlib import Path
 
 import numpy as np
 
-from engine.derive import derive
-from engine.divisors import PropagationRule, children_function, children_table, sigma, sigma_alt
-from engine.lsys import parse_lsystem
-from engine.mesh import wood_mesh
-from engine.turtle import TurtleConfig, interpret
+from engine.forest.divisors import PropagationRule, children_function, children_table, sigma, sigma_alt
+from engine.geometry.mesh import wood_mesh
+from engine.geometry.turtle import TurtleConfig, interpret
+from engine.lsystem.derive import derive
+from engine.lsystem.lsys import parse_lsystem
 
 SOURCE = Path(__file__).resolve().parent.parent / "assets" / "lsystems" / "divisor_tree.lsys"
 STEPS = 9

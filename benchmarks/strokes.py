@@ -11,10 +11,10 @@ from __future__ import annotations
 import numpy as np
 
 from benchmarks import median_ms
-from engine.mesh import tree_mesh
-from engine.modeler import Modeler
-from engine.strokes import Stroke
-from engine.turtle import TurtleConfig, interpret
+from engine.geometry.mesh import tree_mesh
+from engine.geometry.turtle import TurtleConfig, interpret
+from engine.modeling.modeler import Modeler
+from engine.modeling.strokes import Stroke
 
 RAW_POINTS = 2000
 

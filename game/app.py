@@ -9,14 +9,9 @@ from pathlib import Path
 
 import numpy as np
 
-from engine.derive import Deriver
-from engine.lsys import load_lsystem
-from engine.tree import build_geometry
-from game.camera import OrbitCamera
-from game.render import TreeRenderer, save_png, sun_direction
+from game.render.renderer import save_png
 
 WINDOW = (1280, 720)
-MAX_VIEW_STEPS = 9
 
 
 def open_window(size: tuple[int, int], title: str, fullscreen: bool = False):
@@ -85,7 +80,7 @@ def run_app(args: argparse.Namespace | None = None) -> int:
     """Open the game window and run until closed (Esc or the close button); saves on the way out."""
     import pygame
 
-    from game.game import Game, GameConfig
+    from game.screens.game import Game, GameConfig
 
     ctx = open_window(WINDOW, "Arbor")
     config = GameConfig()
@@ -107,9 +102,9 @@ def run_kiosk(args: argparse.Namespace) -> int:
 
     import pygame
 
-    from game.game import Game, GameConfig
-    from game.kiosk import Kiosk, load_kiosk_config
-    from game.render import ASSETS
+    from game.paths import ASSETS
+    from game.screens.game import Game, GameConfig
+    from game.screens.kiosk import Kiosk, load_kiosk_config
 
     config = GameConfig()
     saves = getattr(args, "saves", None) or os.environ.get("ARBOR_SAVES")
@@ -134,13 +129,13 @@ def run_kiosk(args: argparse.Namespace) -> int:
 
 def make_input_hub(args: argparse.Namespace | None, size: tuple[int, int], now: float):
     """The input layer for the window: HID trackers always, TUIO, recording and replay on request."""
-    from game.hid_devices import HidManager, load_profiles
-    from game.input import InputHub, Player, Recorder, load_recording
-    from game.render import ASSETS
+    from game.input.events import InputHub, Player, Recorder, load_recording
+    from game.input.hid import HidManager, load_profiles
+    from game.paths import ASSETS
 
     sources: list = [HidManager(profiles=load_profiles(ASSETS / "input" / "devices.toml"))]
     if getattr(args, "tuio", False):
-        from game.tuio import TuioListener
+        from game.input.tuio import TuioListener
 
         sources.append(TuioListener(size, args.tuio_host, args.tuio_port))
     if getattr(args, "replay", None):
@@ -153,9 +148,9 @@ def run_lab_window(experiment: Path) -> int:
     """The lab screen in a window: trees side by side, live charts, speed and export buttons."""
     import pygame
 
-    from game.input import InputHub
-    from game.lab import new_lab
-    from game.lab_screen import LabScreen
+    from game.commands.lab import new_lab
+    from game.input.events import InputHub
+    from game.screens.lab import LabScreen
 
     lab = new_lab(experiment)
     ctx = open_window(WINDOW, f"Arbor lab - {lab.experiment.title}")
@@ -165,67 +160,12 @@ def run_lab_window(experiment: Path) -> int:
     return 0
 
 
-class Viewer:
-    """A plain L-system viewer: orbit (drag), zoom (wheel), grow (space) and shrink (backspace)."""
-
-    def __init__(self, ctx, size: tuple[int, int], source: Path) -> None:
-        self.size = size
-        self.system = load_lsystem(source)
-        self.deriver = Deriver(self.system, budget=2_000_000)
-        self.lstring = self.system.axiom
-        self.steps = 0
-        self.renderer = TreeRenderer(ctx)
-        self.camera = OrbitCamera()
-        self._last: tuple[float, float] | None = None
-        self.grow_to(self.system.iterations)
-
-    def grow_to(self, steps: int) -> None:
-        """Derive up to ``steps`` steps (clamped) and upload the new geometry."""
-        steps = max(0, min(steps, MAX_VIEW_STEPS))
-        if steps < self.steps:
-            self.lstring, self.steps = self.system.axiom, 0
-        while self.steps < steps:
-            self.lstring, _ = self.deriver.step(self.lstring)
-            self.steps += 1
-        self.renderer.set_tree(build_geometry(self.lstring, self.system).mesh)
-        self.camera.frame_bounds(self.renderer.lo, self.renderer.hi, self.size[0] / self.size[1])
-
-    def update(self, seconds: float) -> None:
-        """Nothing moves by itself in the viewer."""
-
-    def draw(self, fbo) -> None:
-        """Render the tree."""
-        self.renderer.render(fbo, self.camera, sun_direction(self.camera.yaw + 55.0, 48.0), self.size)
-
-    def handle_input(self, e) -> bool:
-        """Orbit (drag), zoom (wheel), grow (space), shrink (backspace); returns False to quit."""
-        import pygame
-
-        from game.input import DOWN, KEY_DOWN, MOVE, QUIT, WHEEL
-
-        if e.kind == QUIT or (e.kind == KEY_DOWN and e.key == pygame.K_ESCAPE):
-            return False
-        if e.kind == DOWN:
-            self._last = (e.x, e.y)
-        elif e.kind == MOVE and e.dims == 2 and self._last is not None:
-            dx, dy = e.x - self._last[0], e.y - self._last[1]
-            self._last = (e.x, e.y)
-            self.camera.yaw -= dx * 0.4
-            self.camera.pitch = float(np.clip(self.camera.pitch + dy * 0.3, -5.0, 80.0))
-        elif e.kind == WHEEL:
-            self.camera.distance *= 0.9**e.amount
-        elif e.kind == KEY_DOWN and e.key == pygame.K_SPACE:
-            self.grow_to(self.steps + 1)
-        elif e.kind == KEY_DOWN and e.key == pygame.K_BACKSPACE:
-            self.grow_to(self.steps - 1)
-        return True
-
-
 def run_viewer(source: Path) -> int:
     """Open the viewer window on an .lsys file."""
     import pygame
 
-    from game.input import InputHub
+    from game.input.events import InputHub
+    from game.screens.viewer import Viewer
 
     ctx = open_window(WINDOW, f"Arbor - {source.name}")
     viewer = Viewer(ctx, WINDOW, source)

@@ -6,12 +6,10 @@ import argparse
 import sys
 from pathlib import Path
 
-from engine.derive import Deriver
-from engine.errors import LSysError
-from engine.lsys import load_lsystem
-
-ROOT = Path(__file__).resolve().parent.parent
-ASSETS = ROOT / "assets"
+from engine.base.errors import LSysError
+from engine.lsystem.derive import Deriver
+from engine.lsystem.lsys import load_lsystem
+from game.paths import ASSETS
 
 
 def _cmd_derive(args: argparse.Namespace) -> int:
@@ -41,8 +39,8 @@ def _grow(args: argparse.Namespace):
 
 
 def _cmd_render(args: argparse.Namespace) -> int:
-    from engine.tree import build_geometry
-    from game.render import render_image, save_png
+    from engine.geometry.tree import build_geometry
+    from game.render.renderer import render_image, save_png
 
     system, ls = _grow(args)
     geometry = build_geometry(ls, system, lod=args.lod)
@@ -54,8 +52,8 @@ def _cmd_render(args: argparse.Namespace) -> int:
 
 
 def _cmd_export(args: argparse.Namespace) -> int:
-    from engine.export import export_tree
-    from engine.tree import build_geometry
+    from engine.geometry.export import export_tree
+    from engine.geometry.tree import build_geometry
 
     system, ls = _grow(args)
     geometry = build_geometry(ls, system, lod=args.lod)
@@ -69,7 +67,7 @@ def _cmd_lab(args: argparse.Namespace) -> int:
         from game.app import run_lab_window
 
         return run_lab_window(args.experiment)
-    from game.lab import run_headless
+    from game.commands.lab import run_headless
 
     files = run_headless(args.experiment, args.out)
     print("\n".join(str(f) for f in files))
@@ -77,13 +75,13 @@ def _cmd_lab(args: argparse.Namespace) -> int:
 
 
 def _cmd_landscape(args: argparse.Namespace) -> int:
-    from game.landscape import parse_presets, render_landscape
+    from game.commands.landscape import parse_presets, render_landscape
 
     presets = render_landscape(args.trees, args.out, args.size, args.seed or 0, args.lod, parse_presets(args.presets))
     if args.glb:
-        from engine.export import export_garden
-        from engine.landscape import scatter
-        from game.landscape import landscape_size
+        from engine.forest.landscape import scatter
+        from engine.geometry.export import export_garden
+        from game.commands.landscape import landscape_size
 
         instances = scatter(args.trees, len(presets), landscape_size(args.trees), args.seed or 0)
         export_garden(presets, instances, args.glb, ASSETS / "textures")

@@ -5,7 +5,9 @@ from __future__ import annotations
 import tomllib
 from pathlib import Path
 
-STRINGS_DIR = Path(__file__).resolve().parent.parent / "assets" / "strings"
+from game.paths import ASSETS
+
+STRINGS_DIR = ASSETS / "strings"
 _table: dict[str, dict[str, str]] = {}
 _language = ""
 

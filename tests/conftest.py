@@ -22,7 +22,7 @@ def gl_ctx():
     """One headless EGL context for the whole run, with a (dummy-driver) pygame display for events."""
     import pygame
 
-    from game.render import headless_context
+    from game.render.renderer import headless_context
 
     pygame.init()
     pygame.display.set_mode((64, 64))

@@ -1,7 +1,7 @@
 import numpy as np
 import pytest
 
-from engine.chains import (
+from engine.geometry.chains import (
     LEVEL_LIMIT,
     Levels,
     chain_sum,

@@ -3,10 +3,10 @@ import hashlib
 import numpy as np
 import pytest
 
-from engine import brackets
-from engine.derive import Deriver, derive
-from engine.lstring import parse_lstring
-from engine.lsys import load_lsystem, parse_lsystem
+from engine.lsystem import brackets
+from engine.lsystem.derive import Deriver, derive
+from engine.lsystem.lstring import parse_lstring
+from engine.lsystem.lsys import load_lsystem, parse_lsystem
 
 
 def test_koch_island_has_8_to_the_n_edges_per_side(lsys_dir):

@@ -6,10 +6,10 @@ import numpy as np
 import pytest
 import trimesh
 
-from engine.derive import derive
-from engine.export import export_tree
-from engine.lsys import load_lsystem
-from engine.tree import build_geometry
+from engine.geometry.export import export_tree
+from engine.geometry.tree import build_geometry
+from engine.lsystem.derive import derive
+from engine.lsystem.lsys import load_lsystem
 from game.cli import main
 
 TEXTURES = Path(__file__).resolve().parent.parent / "assets" / "textures"

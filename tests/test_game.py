@@ -6,11 +6,11 @@ import numpy as np
 import pygame
 import pytest
 
-from engine.lsys import load_lsystem
-from engine.sim import load_rules
-from engine.world import replay
-from game.game import Game, GameConfig
-from game.gestures import MAX_TILT
+from engine.life.sim import load_rules
+from engine.life.world import replay
+from engine.lsystem.lsys import load_lsystem
+from game.input.gestures import MAX_TILT
+from game.screens.game import Game, GameConfig
 from tests.conftest import FakeClock
 
 SIZE = (1280, 720)

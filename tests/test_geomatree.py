@@ -1,10 +1,10 @@
 import numpy as np
 import pytest
 
-from engine.derive import derive
-from engine.errors import LSysError
-from engine.geomatree import Species, growth_system, load_species, seed_points
-from engine.tree import build_geometry
+from engine.base.errors import LSysError
+from engine.forest.geomatree import Species, growth_system, load_species, seed_points
+from engine.geometry.tree import build_geometry
+from engine.lsystem.derive import derive
 from tests.conftest import ROOT
 
 SOURCE = ROOT / "assets" / "lsystems" / "geomatree.lsys"

@@ -1,10 +1,10 @@
 import numpy as np
 import pytest
 
-from engine.growth import Clocks, GrowingTree
-from engine.lsys import load_lsystem
-from engine.sim import load_rules
-from engine.world import World
+from engine.life.growth import Clocks, GrowingTree
+from engine.life.sim import load_rules
+from engine.life.world import World
+from engine.lsystem.lsys import load_lsystem
 
 FPS = 60
 

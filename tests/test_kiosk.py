@@ -6,11 +6,11 @@ from pathlib import Path
 import pygame
 import pytest
 
-from engine.errors import LSysError
+from engine.base.errors import LSysError
 from game import strings
-from game.game import Game, GameConfig
-from game.input import DOWN, KEY_DOWN, MOVE, QUIT, UP, InputEvent
-from game.kiosk import Kiosk, KioskConfig, load_kiosk_config
+from game.input.events import DOWN, KEY_DOWN, MOVE, QUIT, UP, InputEvent
+from game.screens.game import Game, GameConfig
+from game.screens.kiosk import Kiosk, KioskConfig, load_kiosk_config
 from game.watchdog import watch
 from tests.conftest import FakeClock
 

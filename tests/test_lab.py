@@ -2,10 +2,10 @@ import csv
 
 import pytest
 
-from engine.errors import LSysError
-from engine.lab import Lab, load_experiment
-from engine.sim import load_rules
-from game.lab import run_headless
+from engine.base.errors import LSysError
+from engine.life.lab import Lab, load_experiment
+from engine.life.sim import load_rules
+from game.commands.lab import run_headless
 from tests.conftest import ROOT
 
 LSYS = ROOT / "assets" / "lsystems"
@@ -83,9 +83,9 @@ def test_bad_experiments_are_clear_errors(tmp_path, text, words):
 def test_lab_screen_draws_trees_side_by_side_and_exports(gl_ctx, tmp_path):
     import numpy as np
 
-    from game.input import DOWN, InputEvent
-    from game.lab import new_lab
-    from game.lab_screen import LabScreen
+    from game.commands.lab import new_lab
+    from game.input.events import DOWN, InputEvent
+    from game.screens.lab import LabScreen
 
     lab = new_lab(short(EXPERIMENTS / "drought_vs_watered.toml", tmp_path, 900))
     size = (1280, 720)

@@ -4,15 +4,15 @@ import struct
 import numpy as np
 import pytest
 
-from engine.export import export_garden
-from engine.landscape import lod_levels, scatter, terrain_height, visible
-from game.camera import OrbitCamera
+from engine.forest.landscape import lod_levels, scatter, terrain_height, visible
+from engine.geometry.export import export_garden
+from game.render.camera import OrbitCamera
 from tests.conftest import ROOT
 
 
 @pytest.fixture(scope="module")
 def presets():
-    from game.landscape import build_presets
+    from game.commands.landscape import build_presets
 
     return build_presets()
 
@@ -42,9 +42,9 @@ def test_frustum_culling_and_lod_by_distance():
 
 
 def test_landscape_renders_many_trees(gl_ctx, presets):
-    from game.landscape import landscape_size, overview_camera
-    from game.landscape_render import LandscapeRenderer
-    from game.render import sun_direction
+    from game.commands.landscape import landscape_size, overview_camera
+    from game.render.landscape import LandscapeRenderer
+    from game.render.renderer import sun_direction
 
     side = landscape_size(300)
     renderer = LandscapeRenderer(gl_ctx, presets, side)

@@ -1,16 +1,16 @@
-"""Lobes from closed strokes and growth into them (seed 004, toward issue 6): engine/lobes.py and
-engine/crown.py."""
+"""Lobes from closed strokes and growth into them (seed 004, toward issue 6): engine/modeling/lobes.py and
+engine/modeling/crown.py."""
 
 import numpy as np
 import pytest
 import trimesh
 
-from engine.crown import Skeleton, grow_crown, grow_into_lobes, skeleton_text
-from engine.lobes import LobeEditor, lobe_from_loops, lobe_from_outline
-from engine.lstring import parse_lstring
-from engine.modeler import Modeler
-from engine.strokes import Stroke
-from engine.turtle import TurtleConfig, interpret
+from engine.geometry.turtle import TurtleConfig, interpret
+from engine.lsystem.lstring import parse_lstring
+from engine.modeling.crown import Skeleton, grow_crown, grow_into_lobes, skeleton_text
+from engine.modeling.lobes import LobeEditor, lobe_from_loops, lobe_from_outline
+from engine.modeling.modeler import Modeler
+from engine.modeling.strokes import Stroke
 
 
 def circle(y: float, radius: float, n: int = 60, roll: int = 0, wobble: float = 0.0) -> np.ndarray:

@@ -5,8 +5,8 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from engine.errors import LSysError
-from engine.lstring import LString, parse_lstring
+from engine.base.errors import LSysError
+from engine.lsystem.lstring import LString, parse_lstring
 
 SYMBOLS = "FfAB+-&^/\\|$[]!'%XL"
 floats = st.floats(allow_nan=True, allow_infinity=True, width=64)

@@ -1,11 +1,11 @@
 import numpy as np
 import pytest
 
-from engine.derive import Deriver
-from engine.lstring import parse_lstring
-from engine.lsys import parse_lsystem
-from engine.regions import Sphere, Supertoroid, derive_in_region, fit_supertoroid, prune, seed_in_region
-from engine.turtle import TurtleConfig, interpret, module_positions
+from engine.geometry.turtle import TurtleConfig, interpret, module_positions
+from engine.lsystem.derive import Deriver
+from engine.lsystem.lstring import parse_lstring
+from engine.lsystem.lsys import parse_lsystem
+from engine.modeling.regions import Sphere, Supertoroid, derive_in_region, fit_supertoroid, prune, seed_in_region
 
 
 def test_sphere_inside():
@@ -58,7 +58,7 @@ def test_empty_region_gets_a_new_axis_there():
 
 def test_prune_removes_the_subtree_a_touch_picked():
     ls = parse_lstring("F(1)[+F(1)[-F(1)L]F(1)L]F(1)L")
-    from engine.mesh import wood_mesh
+    from engine.geometry.mesh import wood_mesh
 
     mesh = wood_mesh(interpret(ls, TurtleConfig(leaves_at_tips=0)).segments, n_surf=4)
     touched = int(mesh.face_module[np.flatnonzero(mesh.face_module == 3)[0]])  # a triangle of the branch

@@ -8,12 +8,12 @@ import sys
 import numpy as np
 import pytest
 
-from engine.derive import derive
-from engine.lsys import load_lsystem
-from engine.mesh import Mesh, TreeMesh
-from engine.tree import build_geometry
+from engine.geometry.mesh import Mesh, TreeMesh
+from engine.geometry.tree import build_geometry
+from engine.lsystem.derive import derive
+from engine.lsystem.lsys import load_lsystem
 from game.cli import main
-from game.render import render_image
+from game.render.renderer import render_image
 
 SIZE = (480, 320)
 
@@ -108,12 +108,12 @@ def test_arbor_opens_a_window(tmp_path):
 
 
 def test_wilting_turns_leaves_yellow_brown(ctx):
-    from engine.lstring import parse_lstring
-    from engine.mesh import tree_mesh
-    from engine.turtle import TurtleConfig, interpret
-    from game.camera import OrbitCamera
-    from game.game import HEALTHY_LEAF, WILTED_LEAF
-    from game.render import TreeRenderer, sun_direction
+    from engine.geometry.mesh import tree_mesh
+    from engine.geometry.turtle import TurtleConfig, interpret
+    from engine.lsystem.lstring import parse_lstring
+    from game.render.camera import OrbitCamera
+    from game.render.renderer import TreeRenderer, sun_direction
+    from game.screens.game_view import HEALTHY_LEAF, WILTED_LEAF
 
     ls = parse_lstring("!(0.2)F(3)" + "".join(f"[/({k * 137.5})&(60)L(1.2)]F(0.3)" for k in range(12)))
     renderer = TreeRenderer(ctx)

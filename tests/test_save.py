@@ -7,10 +7,10 @@ import time
 
 import pytest
 
-from engine.lsys import load_lsystem
-from engine.save import SaveError, load_world, save_text, save_world
-from engine.sim import load_rules
-from engine.world import World
+from engine.life.save import SaveError, load_world, save_text, save_world
+from engine.life.sim import load_rules
+from engine.life.world import World
+from engine.lsystem.lsys import load_lsystem
 
 
 @pytest.fixture(scope="module")
@@ -90,10 +90,10 @@ def test_error_in_lstring_points_at_its_line(world, tmp_path):
 
 CHILD = """
 import sys
-from engine.lsys import load_lsystem
-from engine.sim import load_rules
-from engine.world import World
-from engine.save import save_world
+from engine.lsystem.lsys import load_lsystem
+from engine.life.sim import load_rules
+from engine.life.world import World
+from engine.life.save import save_world
 w = World(load_lsystem("assets/lsystems/game_tree.lsys"), load_rules("assets/rules.toml"), seed=1)
 w.sim.state.sun_meter = w.sim.state.water_meter = 0.9
 print("ready", flush=True)

@@ -3,8 +3,8 @@ import math
 import numpy as np
 import pytest
 
-from engine.errors import LSysError
-from engine.sim import GrowthCycle, GrowthRules, Rules, SimState, Simulation, load_rules
+from engine.base.errors import LSysError
+from engine.life.sim import GrowthCycle, GrowthRules, Rules, SimState, Simulation, load_rules
 
 
 def test_rules_file_loads_and_is_strict(tmp_path):

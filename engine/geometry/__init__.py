@@ -1,0 +1,1 @@
+"""Layer 2, geometry: turtle interpretation, meshing and export; imports engine.base and engine.lsystem."""

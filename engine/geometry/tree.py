@@ -1,0 +1,25 @@
+"""From an L-string to the geometry of a tree: the one pipeline the game, render and export share."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from engine.geometry.mesh import LOD_LEVELS, LodLevel, TreeMesh, tree_mesh
+from engine.geometry.turtle import TurtleConfig, TurtleResult, interpret
+from engine.lsystem.lstring import LString
+from engine.lsystem.lsys import LSystem
+
+
+@dataclass
+class TreeGeometry:
+    """A tree's turtle output (for picking and overlays) and its meshes at one LOD level."""
+
+    turtle: TurtleResult
+    mesh: TreeMesh
+
+
+def build_geometry(ls: LString, system: LSystem, lod: int = 0, **turtle_overrides) -> TreeGeometry:
+    """Interpret ``ls`` with the defaults of ``system`` and mesh it at LOD level ``lod``."""
+    level: LodLevel = LOD_LEVELS[max(0, min(lod, len(LOD_LEVELS) - 1))]
+    turtle = interpret(ls, TurtleConfig.from_system(system, **turtle_overrides))
+    return TreeGeometry(turtle, tree_mesh(turtle, level))

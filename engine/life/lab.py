@@ -1,0 +1,239 @@
+"""The educators' lab: several trees from one seed, each under its own regime, grown in lock-step.
+
+An experiment file (TOML) names the trees and their regimes: sun orbit height and speed, a watering
+schedule (keep the water meter between two levels, water on a timetable, or never) and rule
+overrides (any number in rules.toml, e.g. ``"water.drain_rate" = 0.01``). Every tree starts from the
+same seed; the run samples height, trunk girth, module and leaf counts and both meters at fixed
+intervals. Same file -> identical numbers (the worlds are deterministic).
+"""
+
+from __future__ import annotations
+
+import copy
+import csv
+import math
+import tomllib
+from dataclasses import dataclass, field, fields
+from pathlib import Path
+
+import numpy as np
+
+from engine.base.errors import LSysError
+from engine.life.sim import Rules
+from engine.life.world import World
+from engine.lsystem.lsys import LSystem, load_lsystem
+
+METRICS = ("height", "girth", "modules", "leaves", "sun", "water", "wilt")
+MAX_TREES = 4
+
+
+@dataclass
+class Watering:
+    """Keep water between ``below`` (start) and ``until`` (stop); or on a timetable; or never."""
+
+    below: float | None = None
+    until: float = 0.7
+    every: float | None = None  # seconds between waterings on a timetable
+    seconds: float = 5.0  # how long each timetable watering lasts
+
+    def wants_water(self, time: float, meter: float, watering: bool) -> bool:
+        """Whether the can is held at ``time`` given the meter and whether it is held now."""
+        if self.every:
+            return (time % self.every) < self.seconds
+        if self.below is None:
+            return False
+        return meter < self.until if watering else meter < self.below
+
+
+@dataclass
+class Regime:
+    """One tree's conditions."""
+
+    name: str
+    orbit_height: float | None = None
+    sun_speed: float | None = None
+    watering: Watering = field(default_factory=Watering)
+    rules: dict[str, float] = field(default_factory=dict)
+
+
+@dataclass
+class Experiment:
+    """A whole lab experiment."""
+
+    title: str
+    seed: int
+    duration: float
+    sample_every: float
+    regimes: list[Regime]
+    lsystem: Path
+    dt: float = 0.5
+    file: str = "<experiment>"
+
+
+def _number(data: dict, key: str, file: str, default=None, positive: bool = False) -> float:
+    value = data.get(key, default)
+    if value is None or isinstance(value, bool) or not isinstance(value, int | float) or not math.isfinite(value):
+        raise LSysError(f"'{key}' must be a number", file)
+    if positive and value <= 0:
+        raise LSysError(f"'{key}' must be above 0", file)
+    return float(value)
+
+
+def load_experiment(path: str | Path, lsystem_dir: Path) -> Experiment:
+    """Read and check an experiment file; problems are errors naming the file and the key."""
+    path = Path(path)
+    file = str(path)
+    try:
+        data = tomllib.loads(path.read_text(encoding="utf-8"))
+    except (OSError, UnicodeDecodeError) as exc:
+        raise LSysError(f"cannot read: {exc}", file) from None
+    except tomllib.TOMLDecodeError as exc:
+        raise LSysError(f"not valid TOML: {exc}", file) from None
+    trees = data.get("tree", [])
+    if not isinstance(trees, list) or not 1 <= len(trees) <= MAX_TREES:
+        raise LSysError(f"an experiment needs 1 to {MAX_TREES} [[tree]] tables", file)
+    regimes = [_regime(t, i, file) for i, t in enumerate(trees)]
+    duration = _number(data, "duration", file, positive=True)
+    if duration > 7 * 24 * 3600:
+        raise LSysError("'duration' is at most a week of game time", file)
+    lsys_name = str(data.get("lsystem", "game_tree.lsys"))
+    if "/" in lsys_name or "\\" in lsys_name or lsys_name.startswith("."):
+        raise LSysError("'lsystem' must be a file name in assets/lsystems", file)
+    return Experiment(
+        title=str(data.get("title", path.stem)),
+        seed=int(_number(data, "seed", file, 0)),
+        duration=duration,
+        sample_every=_number(data, "sample_every", file, 30.0, positive=True),
+        regimes=regimes,
+        lsystem=lsystem_dir / lsys_name,
+        file=file,
+    )
+
+
+def _regime(t: dict, i: int, file: str) -> Regime:
+    where = f"{file} [[tree]] #{i + 1}"
+    if not isinstance(t, dict) or "name" not in t:
+        raise LSysError("every [[tree]] needs a name", where)
+    water = t.get("watering", "never")
+    if water == "never":
+        watering = Watering()
+    elif isinstance(water, dict):
+        watering = Watering(
+            below=_number(water, "below", where) if "below" in water else None,
+            until=_number(water, "until", where, 0.7),
+            every=_number(water, "every", where, positive=True) if "every" in water else None,
+            seconds=_number(water, "seconds", where, 5.0, positive=True),
+        )
+    else:
+        raise LSysError("'watering' is \"never\" or a table like { below = 0.5, until = 0.7 }", where)
+    rules = t.get("rules", {})
+    if not isinstance(rules, dict):
+        raise LSysError("'rules' must be a table of \"section.key\" = number", where)
+    for key in rules:
+        _rule_target(Rules(), key, where)
+        _number(rules, key, where)
+    return Regime(
+        name=str(t["name"]),
+        orbit_height=_number(t, "orbit_height", where) if "orbit_height" in t else None,
+        sun_speed=_number(t, "sun_speed", where, positive=True) if "sun_speed" in t else None,
+        watering=watering,
+        rules={k: float(v) for k, v in rules.items()},
+    )
+
+
+def _rule_target(rules: Rules, key: str, where: str):
+    section, _, name = key.partition(".")
+    if section not in {f.name for f in fields(Rules)}:
+        raise LSysError(f"unknown rule section in {key!r}", where)
+    target = getattr(rules, section)
+    if name not in {f.name for f in fields(target)}:
+        raise LSysError(f"unknown rule {key!r}", where)
+    return target, name
+
+
+def regime_rules(base: Rules, regime: Regime) -> Rules:
+    """The base rules with the regime's overrides."""
+    rules = copy.deepcopy(base)
+    for key, value in regime.rules.items():
+        target, name = _rule_target(rules, key, regime.name)
+        setattr(target, name, value)
+    return rules
+
+
+@dataclass
+class Series:
+    """One tree's sampled time series."""
+
+    name: str
+    time: list[float] = field(default_factory=list)
+    values: dict[str, list[float]] = field(default_factory=lambda: {m: [] for m in METRICS})
+
+
+class Lab:
+    """Runs the trees of an experiment in lock-step and records their time series."""
+
+    def __init__(self, experiment: Experiment, base_rules: Rules, system: LSystem | None = None) -> None:
+        self.experiment = experiment
+        self.system = system or load_lsystem(experiment.lsystem)
+        self.worlds: list[World] = []
+        for regime in experiment.regimes:
+            world = World(self.system, regime_rules(base_rules, regime), seed=experiment.seed)
+            if regime.orbit_height is not None:
+                world.apply("orbit_height", regime.orbit_height)
+            if regime.sun_speed is not None:
+                world.apply("sun_speed", regime.sun_speed)
+            self.worlds.append(world)
+        self.series = [Series(r.name) for r in experiment.regimes]
+        self.time = 0.0
+        self._next_sample = 0.0
+
+    def step(self) -> None:
+        """Advance every tree by one time step, watering each by its schedule; sample when due."""
+        dt = self.experiment.dt
+        if self.time >= self._next_sample - 1e-9:
+            self.sample()
+            self._next_sample += self.experiment.sample_every
+        for world, regime in zip(self.worlds, self.experiment.regimes, strict=True):
+            s = world.sim.state
+            wanted = regime.watering.wants_water(s.time, s.water_meter, s.watering)
+            if wanted != s.watering:
+                world.apply("water", float(wanted))
+            world.step(dt)
+        self.time += dt
+
+    def run(self, until: float | None = None) -> None:
+        """Step until ``until`` (default: the experiment's duration), then take a last sample."""
+        end = self.experiment.duration if until is None else until
+        while self.time < end - 1e-9:
+            self.step()
+        if self.time >= self._next_sample - 1e-9:
+            self.sample()
+            self._next_sample += self.experiment.sample_every
+
+    def sample(self) -> None:
+        """Record every tree's measurements now."""
+        for world, series in zip(self.worlds, self.series, strict=True):
+            series.time.append(self.time)
+            for key, value in measure(world).items():
+                series.values[key].append(value)
+
+    def write_csv(self, path: str | Path) -> None:
+        """The time series of every tree as one CSV table (long format: one row per tree and time)."""
+        with open(path, "w", newline="", encoding="utf-8") as fh:
+            writer = csv.writer(fh)
+            writer.writerow(["time_s", "tree", *METRICS])
+            for series in self.series:
+                for i, t in enumerate(series.time):
+                    writer.writerow([f"{t:g}", series.name, *(f"{series.values[m][i]:.6g}" for m in METRICS)])
+
+
+def measure(world: World) -> dict[str, float]:
+    """Height, trunk girth (diameter at the base), modules, leaves on the tree, meters and wilt."""
+    geometry = world.tree.geometry(world.clocks())
+    segs, leaves = geometry.turtle.segments, geometry.turtle.leaves
+    height = float(segs.end[:, 1].max()) if len(segs) else 0.0
+    girth = float(2 * segs.radius[0]) if len(segs) else 0.0
+    on_tree = int(np.count_nonzero(leaves.size > 0.05 * leaves.size.max())) if len(leaves) else 0
+    s = world.sim.state
+    return {"height": height, "girth": girth, "modules": float(len(world.tree.lstring)), "leaves": float(on_tree),
+            "sun": s.sun_meter, "water": s.water_meter, "wilt": s.wilt}

@@ -1,0 +1,255 @@
+"""Parallel, vectorised derivation of parametric, stochastic, context-sensitive L-systems.
+
+One step works per production, never per module: the modules a production may rewrite are found
+with one comparison over the symbol array, its parameters are bound as whole columns, its condition
+and successor expressions are evaluated on those columns, and the new string is assembled with
+numpy scatter operations. A module budget bounds the result: when a full rewrite would exceed it,
+only the highest-priority rewrites are applied (the rest of the tree waits), and the step says so.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from engine.lsystem import brackets
+from engine.lsystem.expr import EvalContext, evaluate
+from engine.lsystem.lstring import LString, ragged_arange
+from engine.lsystem.lsys import Alternative, LSystem, Pattern, Production
+
+CUT = ord("%")
+PRIORITIES = ("order", "position", "random")
+
+
+@dataclass
+class StepReport:
+    """What one derivation step did: rewrites applied, rewrites held back by the budget."""
+
+    modules_in: int
+    modules_out: int
+    rewritten: int
+    deferred: int = 0
+
+    @property
+    def budget_hit(self) -> bool:
+        """True when the module budget held back at least one rewrite."""
+        return self.deferred > 0
+
+
+@dataclass
+class _Match:
+    idx: np.ndarray  # modules it rewrites
+    alt: Alternative  # the successor they get
+    values: list[list[np.ndarray]]  # evaluated parameters per successor module
+
+    @property
+    def length(self) -> int:
+        return len(self.alt.symbols)
+
+
+@dataclass
+class Deriver:
+    """Derives an L-system step by step with a seeded RNG and an optional module budget.
+
+    ``priority`` picks which rewrites keep growing when the budget is hit: ``order`` (lowest branch
+    order first: trunk and main limbs keep growing), ``position`` (earliest in the string), or
+    ``random``.
+    """
+
+    system: LSystem
+    seed: int | None = None
+    budget: int | None = None
+    priority: str = "order"
+    rng: np.random.Generator = field(init=False)
+
+    def __post_init__(self) -> None:
+        if self.priority not in PRIORITIES:
+            raise ValueError(f"priority must be one of {PRIORITIES}")
+        seed = self.system.seed if self.seed is None else self.seed
+        self.rng = np.random.Generator(np.random.PCG64(seed))
+        self._extern: dict[str, float] = {}
+        if self.budget is None:
+            self.budget = self.system.budget
+
+    def step(self, ls: LString, extern: dict[str, float] | None = None,
+             only: np.ndarray | None = None) -> tuple[LString, StepReport]:
+        """Rewrite every module of ``ls`` once, in parallel; ``extern`` supplies the #extern values.
+
+        ``only`` (a boolean mask over the modules) limits rewriting to those modules (region edits).
+        """
+        self._extern = self._check_extern(extern or {})
+        with np.errstate(all="ignore"):
+            matches = self._match_all(ls, only)
+            out_len = np.ones(len(ls), dtype=np.int64)
+            for m in matches:
+                out_len[m.idx] = m.length
+            deferred = self._apply_budget(ls, matches, out_len)
+            result = _assemble(ls, matches, out_len)
+        if np.any(result.sym == CUT):
+            result = apply_cut(result)
+        rewritten = sum(len(m.idx) for m in matches)
+        return result, StepReport(len(ls), len(result), rewritten, deferred)
+
+    def _check_extern(self, extern: dict[str, float]) -> dict[str, float]:
+        missing = [name for name in self.system.externs if name not in extern]
+        if missing:
+            raise ValueError(f"{self.system.file}: values needed for #extern {', '.join(missing)}")
+        return {name: float(extern[name]) for name in self.system.externs}
+
+    def derive(
+        self, ls: LString | None = None, steps: int | None = None, extern: dict[str, float] | None = None
+    ) -> tuple[LString, list[StepReport]]:
+        """Apply ``steps`` steps (default: the source's ``n:``) starting from ``ls`` (default: axiom)."""
+        current = self.system.axiom if ls is None else ls
+        reports = []
+        for _ in range(self.system.iterations if steps is None else steps):
+            current, report = self.step(current, extern)
+            reports.append(report)
+        return current, reports
+
+    def _match_all(self, ls: LString, only: np.ndarray | None = None) -> list[_Match]:
+        n = len(ls)
+        taken = np.zeros(n, dtype=bool) if only is None else ~np.asarray(only, dtype=bool)
+        ctx = _ContextIndex(ls, self.system) if self.system.has_context else None
+        matches: list[_Match] = []
+        by_symbol: dict[int, np.ndarray] = {}
+        for prod in self.system.productions:
+            s = prod.pred.symbol
+            if s not in by_symbol:
+                by_symbol[s] = np.flatnonzero(ls.sym == s)
+            cand = by_symbol[s]
+            cand = cand[~taken[cand] & (ls.nparams[cand] == len(prod.pred.formals))]
+            if len(cand):
+                cand, env = _bind(ls, prod, cand, ctx)
+                env.update(self._extern)
+                if len(cand) and prod.condition is not None:
+                    ok = evaluate(prod.condition, EvalContext(env, len(cand), self.rng)) != 0
+                    cand, env = cand[ok], {k: v[ok] if np.ndim(v) else v for k, v in env.items()}
+                if len(cand):
+                    taken[cand] = True
+                    matches.extend(self._expand(prod, cand, env))
+        return matches
+
+    def _expand(self, prod: Production, idx: np.ndarray, env: dict[str, np.ndarray]) -> list[_Match]:
+        alts = prod.alternatives
+        if len(alts) == 1:
+            choice = np.zeros(len(idx), dtype=np.int64)
+        else:
+            weights = np.array([a.weight for a in alts], dtype=np.float64)
+            cum = np.cumsum(weights / weights.sum())
+            choice = np.minimum(np.searchsorted(cum, self.rng.random(len(idx)), side="right"), len(alts) - 1)
+        out = []
+        for a, alt in enumerate(alts):
+            pick = choice == a
+            sub = idx if len(alts) == 1 else idx[pick]
+            if len(sub) == 0:
+                continue
+            sub_env = env if len(alts) == 1 else {k: v[pick] if np.ndim(v) else v for k, v in env.items()}
+            ectx = EvalContext(sub_env, len(sub), self.rng)
+            values = [[evaluate(e, ectx) for e in exprs] for exprs in alt.exprs]
+            out.append(_Match(sub, alt, values))
+        return out
+
+    def _apply_budget(self, ls: LString, matches: list[_Match], out_len: np.ndarray) -> int:
+        total = int(out_len.sum())
+        if self.budget is None or total <= self.budget:
+            return 0
+        growth = out_len - 1
+        growing = np.flatnonzero(growth > 0)
+        room = self.budget - (len(ls) + int(growth[growth < 0].sum()))
+        order = self._priority_order(ls, growing)
+        fits = np.cumsum(growth[growing[order]]) <= max(room, 0)
+        held = growing[order[~fits]]
+        keep = np.ones(len(ls), dtype=bool)
+        keep[held] = False
+        for m in matches:
+            mask = keep[m.idx]
+            if not mask.all():
+                m.idx = m.idx[mask]
+                m.values = [[v[mask] for v in vals] for vals in m.values]
+        matches[:] = [m for m in matches if len(m.idx)]
+        out_len[held] = 1
+        return len(held)
+
+    def _priority_order(self, ls: LString, growing: np.ndarray) -> np.ndarray:
+        if self.priority == "position":
+            return np.arange(len(growing))
+        if self.priority == "random":
+            return self.rng.permutation(len(growing))
+        depth = brackets.depths(ls.sym)[growing]
+        return np.argsort(depth, kind="stable")
+
+
+class _ContextIndex:
+    """Left/right context neighbours of every module, computed once per step when needed."""
+
+    def __init__(self, ls: LString, system: LSystem) -> None:
+        partner = brackets.match(ls.sym)
+        self.left = brackets.left_neighbours(ls.sym, system.ignore, partner)
+        self.right = brackets.right_neighbours(ls.sym, system.ignore, partner)
+
+
+def _bind(
+    ls: LString, prod: Production, cand: np.ndarray, ctx: _ContextIndex | None
+) -> tuple[np.ndarray, dict[str, np.ndarray]]:
+    """Check contexts and bind formal parameters as columns; returns surviving candidates."""
+    ok = np.ones(len(cand), dtype=bool)
+    where: list[tuple[Pattern, np.ndarray]] = [(prod.pred, cand)]
+    if ctx is not None:
+        for patterns, nbr in ((reversed(prod.left), ctx.left), (prod.right, ctx.right)):
+            at = cand
+            for pat in patterns:
+                at = np.where(at >= 0, nbr[np.maximum(at, 0)], -1)
+                safe = np.maximum(at, 0)
+                ok &= (at >= 0) & (ls.sym[safe] == pat.symbol) & (ls.nparams[safe] == len(pat.formals))
+                where.append((pat, at))
+    if not ok.all():
+        cand = cand[ok]
+        where = [(p, at[ok]) for p, at in where]
+    env = {}
+    for pat, at in where:
+        for j, name in enumerate(pat.formals):
+            env[name] = ls.param_column(at, j)
+    return cand, env
+
+
+def _assemble(ls: LString, matches: list[_Match], out_len: np.ndarray) -> LString:
+    """Build the rewritten string from the identity modules and each rule's successors."""
+    starts = np.cumsum(out_len) - out_len
+    total = int(out_len.sum())
+    sym = np.empty(total, dtype=np.uint8)
+    nparams = np.empty(total, dtype=np.uint8)
+    ident = np.ones(len(ls), dtype=bool)
+    for m in matches:
+        ident[m.idx] = False
+    keep = np.flatnonzero(ident)
+    sym[starts[keep]] = ls.sym[keep]
+    nparams[starts[keep]] = ls.nparams[keep]
+    for m in matches:
+        if m.length:
+            pos = starts[m.idx][:, None] + np.arange(m.length)
+            sym[pos] = m.alt.symbols
+            nparams[pos] = m.alt.nparams
+    offsets = np.cumsum(nparams, dtype=np.int64) - nparams
+    params = np.empty(int(nparams.sum(dtype=np.int64)), dtype=np.float64)
+    counts = ls.nparams[keep].astype(np.int64)
+    params[ragged_arange(offsets[starts[keep]], counts)] = ls.params[ragged_arange(ls.offsets[keep], counts)]
+    for m in matches:
+        for j, vals in enumerate(m.values):
+            if vals:
+                base = offsets[starts[m.idx] + j]
+                for t, v in enumerate(vals):
+                    params[base + t] = v
+    return LString(sym, nparams, offsets, params)
+
+
+def apply_cut(ls: LString) -> LString:
+    """Apply the cut symbol '%': remove it and the rest of its branch up to the closing ']'."""
+    return ls.select(~brackets.rest_of_branches(ls.sym, np.flatnonzero(ls.sym == CUT)))
+
+
+def derive(system: LSystem, steps: int | None = None, seed: int | None = None, budget: int | None = None) -> LString:
+    """Convenience: the axiom of ``system`` derived ``steps`` times (default ``n:``)."""
+    result, _ = Deriver(system, seed=seed, budget=budget).derive(steps=steps)
+    return result

@@ -1,0 +1,379 @@
+"""Modeler I: drawn strokes become ordinary L-string modules (seed 000 section 4.1, seed 002).
+
+A stroke is sampled (curvature-adaptive), smoothed into an arc-length spline and cut into pieces of
+even length. Each piece becomes ``F(l, Vx, Vy, Vz, Hx, Hy, Hz, Ux, Uy, Uz, M)``: its length, start
+position V, frame (heading H, up U; L = U x H) and variation M (degrees turned from the previous
+piece). Between pieces, the rotation that takes the turtle's heading onto the next piece is written as
+a turn about U then a pitch about L (the U, L, H order of seed 000 4.1.3; no roll is ever needed),
+so the ordinary turtle redraws the stroke exactly. The width ``!(d)`` is inversely proportional to the
+drawing speed (clamped). Growth points ``A(l, Vx, Vy, Vz, d)`` carry the attributes of the F they sit
+on and are placed along the axis with a density lambda(s) (seed 002 algorithm 2); the active rule set
+grows branches from them (assets/lsystems/game_tree.lsys wakes them like dormant buds).
+
+A stroke that starts near an existing axis snaps to the nearest point on it and is inserted there as
+a bracketed branch (the F it starts on is split in two); one that starts farther away in the air is
+joined to the nearest branch by a connecting piece, and only one starting at the ground begins a new
+trunk. A branch is never drawn thicker than the drawn branch it grows from. A stroke passing through
+an existing trunk is bent around it (seed 000 4.1.5): away from it, or, when the axes nearly meet,
+towards the side of the tree with fewer polygons.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from engine.geometry.turtle import INITIAL_FRAME, Segments, TurtleConfig, interpret, unit
+from engine.lsystem import brackets
+from engine.lsystem.lstring import LString, concat, format_number, parse_lstring
+from engine.modeling.history import Undoable
+from engine.modeling.strokes import ArcLengthSpline, Stroke, adaptive_sample, curvature, speeds_at
+
+DRAWN = ord("F")
+GROWTH_POINT = ord("A")
+F_PARAMS = 11
+
+
+@dataclass
+class ModelerSettings:
+    """How strokes become trunks: piece length, widths, growth-point density, snapping, bypass."""
+
+    piece: float = 0.25  # length of one F piece (at most 1/24 of the stroke)
+    width_speed: float = 0.3  # diameter = width_speed / speed (scene units / second)
+    min_width: float = 0.03
+    max_width: float = 0.5
+    tip_taper: float = 0.6  # the end of a stroke is this much thinner than its start
+    density: float = 1.2  # growth points per unit length on the upper part of an axis
+    bare_fraction: float = 0.3  # no growth points on the lowest part of each axis
+    branch_angle: float = 55.0
+    snap_distance: float = 0.35  # strokes starting this close to an axis join it
+    bypass_margin: float = 0.05
+    near_axes: float = 0.1  # axes closer than this: bypass towards the side with fewer polygons
+    seed: int = 0
+
+
+@dataclass
+class StrokeResult:
+    """What adding a stroke did, for feedback and tests."""
+
+    pieces: int
+    growth_points: int
+    snapped_to: int | None = None  # module index of the F the stroke joined
+    snap_point: np.ndarray | None = None
+    bypassed: int = 0  # samples moved to avoid a collision
+    text: str = ""
+
+
+
+def _fmt(values) -> str:
+    return ",".join(format_number(float(v)) for v in values)
+
+
+def path_modules(path: np.ndarray, frame: np.ndarray, widths: np.ndarray, growth: list[tuple[int, float]],
+                 settings: ModelerSettings, symbol: str = "F") -> tuple[str, np.ndarray]:
+    """L-string text that makes a turtle with frame ``frame`` at ``path[0]`` draw the polyline ``path``.
+
+    ``widths`` has one diameter per piece; ``growth`` lists (piece index, roll angle) for growth points.
+    Returns the text and the turtle's frame at the end (``symbol`` 'f' moves without drawing).
+    """
+    out: list[str] = []
+    frame = frame.copy()
+    growth_at = dict(growth)
+    prev_dir = frame[:, 0]
+    for i in range(len(path) - 1):
+        d = path[i + 1] - path[i]
+        length = float(np.linalg.norm(d))
+        if length <= 1e-12:
+            continue
+        d = d / length
+        h, lft, up = frame[:, 0], frame[:, 1], frame[:, 2]
+        turn = np.degrees(np.arctan2(d @ lft, d @ h))
+        frame = frame @ _rot_z(turn)
+        h, up = frame[:, 0], frame[:, 2]
+        pitch = np.degrees(np.arctan2(-(d @ up), d @ h))
+        frame = frame @ _rot_y(pitch)
+        frame[:, 0] = d  # remove rounding drift: H is exactly the piece direction
+        frame[:, 2] = unit(frame[:, 2] - (frame[:, 2] @ d) * d)
+        frame[:, 1] = np.cross(frame[:, 2], d)
+        if abs(turn) > 1e-9:
+            out.append(f"+({format_number(float(turn))})")
+        if abs(pitch) > 1e-9:
+            out.append(f"&({format_number(float(pitch))})")
+        variation = float(np.degrees(np.arccos(np.clip(prev_dir @ d, -1.0, 1.0))))
+        prev_dir = d
+        w = float(widths[min(i, len(widths) - 1)])
+        width = f"!({format_number(w)})" if symbol == "F" else ""
+        out.append(f"{width}{symbol}({_fmt([length, *path[i], *d, *frame[:, 2], variation])})")
+        if i in growth_at:
+            attrs = _fmt([length, *path[i + 1], w])
+            out.append(f"[/({format_number(growth_at[i])})&({format_number(settings.branch_angle)})A({attrs})]")
+    return "".join(out), frame
+
+
+def _rot_z(deg: float) -> np.ndarray:
+    a = np.radians(deg)
+    c, s = np.cos(a), np.sin(a)
+    return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
+
+
+def _rot_y(deg: float) -> np.ndarray:
+    a = np.radians(deg)
+    c, s = np.cos(a), np.sin(a)
+    return np.array([[c, 0.0, s], [0.0, 1.0, 0.0], [-s, 0.0, c]])
+
+
+def smooth_path(stroke: Stroke, piece: float, tolerance: float = 0.002) -> tuple[np.ndarray, np.ndarray]:
+    """Key points by curvature, an arc-length spline through them, resampled every ``piece`` at most.
+
+    Where the curve bends, pieces get shorter so a chord never strays more than ``tolerance`` x the
+    stroke length from the curve (sagitta l^2 kappa / 8). Returns the path (m, 3) and the arc length
+    of each path point along the spline.
+    """
+    stroke = stroke.deduplicated()
+    if len(stroke.points) < 2:
+        return stroke.points.copy(), np.zeros(len(stroke.points))
+    keys = stroke.points[adaptive_sample(stroke.points)]
+    spline = ArcLengthSpline(keys)
+    shape = spline.at(np.linspace(0.0, spline.length, 49))  # curvature at the drawing's scale, not tremor
+    kappa = float(curvature(shape).max())
+    if kappa > 0:
+        piece = min(piece, float(np.sqrt(8 * tolerance * spline.length / kappa)))
+    path = spline.resample(piece)
+    return path, np.linspace(0.0, spline.length, len(path))
+
+
+def widths_from_speed(stroke: Stroke, s: np.ndarray, settings: ModelerSettings) -> np.ndarray:
+    """Diameter per piece, inversely proportional to drawing speed (seed 000), clamped, and tapering
+    towards the end of the stroke."""
+    mids = 0.5 * (s[1:] + s[:-1]) if len(s) > 1 else s
+    speed = speeds_at(stroke.deduplicated(), mids * stroke.length / max(s[-1], 1e-12), 4 * settings.piece)
+    width = np.clip(settings.width_speed / np.maximum(speed, 1e-9), settings.min_width, settings.max_width)
+    taper = 1.0 - (1.0 - settings.tip_taper) * mids / max(s[-1], 1e-12)
+    return np.maximum(width * taper, settings.min_width)
+
+
+def growth_points(s: np.ndarray, settings: ModelerSettings, rng: np.random.Generator) -> list[tuple[int, float]]:
+    """Seed 002 algorithm 2: accumulate lambda(s) * ds along the axis; a point wherever it passes 1.
+
+    lambda(s) is 0 on the lowest ``bare_fraction`` of the axis and ``density`` above it. Each point
+    is rolled by the golden angle from the previous one.
+    """
+    total = s[-1] if len(s) else 0.0
+    out, acc, roll = [], float(rng.random()), float(rng.random() * 360.0)
+    for i in range(len(s) - 1):
+        mid = 0.5 * (s[i] + s[i + 1]) / max(total, 1e-12)
+        acc += (s[i + 1] - s[i]) * (settings.density if mid > settings.bare_fraction else 0.0)
+        if acc >= 1.0:
+            acc -= 1.0
+            roll = (roll + 137.5) % 360.0
+            out.append((i, roll))
+    return out
+
+
+def nearest_on_segments(point: np.ndarray, segs: Segments) -> tuple[int, float, float]:
+    """(segment index, fraction along it, distance) of the closest point of any segment to ``point``."""
+    a, b = segs.start, segs.end
+    ab = b - a
+    t = np.clip(np.einsum("ij,ij->i", point - a, ab) / np.maximum(np.einsum("ij,ij->i", ab, ab), 1e-300), 0, 1)
+    dist = np.linalg.norm(a + ab * t[:, None] - point, axis=1)
+    k = int(np.argmin(dist))
+    return k, float(t[k]), float(dist[k])
+
+
+def _segment_distances(points: np.ndarray, segs: Segments) -> tuple[np.ndarray, np.ndarray]:
+    """For each point: distance to every segment axis (n, m) and the closest points (n, m, 3)."""
+    a, ab = segs.start[None], (segs.end - segs.start)[None]
+    rel = points[:, None] - a
+    t = np.clip(np.einsum("nmi,nmi->nm", rel, np.broadcast_to(ab, rel.shape))
+                / np.maximum(np.einsum("mi,mi->m", ab[0], ab[0]), 1e-300), 0, 1)
+    closest = a + ab * t[..., None]
+    return np.linalg.norm(points[:, None] - closest, axis=2), closest
+
+
+def _segments_near(segs: Segments, point: np.ndarray, distance: float) -> np.ndarray:
+    """Segments whose axis passes within ``distance`` of ``point``."""
+    dist, _ = _segment_distances(point[None], segs)
+    return dist[0] < distance
+
+
+def bypass(path: np.ndarray, radius: np.ndarray, segs: Segments, skip: np.ndarray,
+           settings: ModelerSettings, free: np.ndarray | None = None) -> tuple[np.ndarray, int]:
+    """Bend ``path`` around existing segments it would pass through (seed 000 4.1.5).
+
+    ``radius`` is the new axis' radius per path point; segments flagged in ``skip`` (the one the stroke
+    starts on) are ignored, and so are path points not flagged in ``free`` (the joint region).
+    Returns the new path and how many points moved.
+    """
+    if len(segs) == 0 or len(path) < 3:
+        return path, 0
+    moved_total = 0
+    out = path.copy()
+    for _ in range(4):  # pushing away from one trunk may touch another: settle in a few passes
+        dist, closest = _segment_distances(out, segs)
+        need = segs.radius[None, :] + radius[:, None] + settings.bypass_margin
+        hit = (dist < need) & ~skip[None, :]
+        hit[0] = False  # the start point stays where it was drawn or snapped
+        if free is not None:
+            hit &= free[:, None]
+        if not hit.any():
+            break
+        offset = np.zeros_like(out)
+        depth = np.where(hit, need - dist, -np.inf)
+        deepest = np.argmax(depth, axis=1)  # each point answers to the segment it enters most
+        owner = np.where(hit.any(axis=1), deepest, -1)
+        for j in np.unique(owner[owner >= 0]):
+            mine = owner == j
+            offset += _push_from(out, closest[:, j], dist[:, j], need[:, j], mine, segs, j, settings)
+        out = out + _spread(offset)
+        moved_total += int(hit.any(axis=1).sum())
+    return out, moved_total
+
+
+def _push_from(path, closest, dist, need, hit, segs: Segments, j: int, settings: ModelerSettings) -> np.ndarray:
+    """Offsets that move the hit points of ``path`` out of segment j's cylinder."""
+    away = path - closest
+    axis = unit(segs.end[j] - segs.start[j])
+    if dist[hit].min() <= settings.near_axes:  # axes (nearly) meet: go to the emptier side
+        crossing = unit(path[-1] - path[0])
+        normal = unit(np.cross(axis, crossing))
+        if np.linalg.norm(normal) < 1e-9:
+            normal = unit(np.cross(axis, np.array([1.0, 0.0, 0.0])))
+        mids = 0.5 * (segs.start + segs.end) - segs.start[j]
+        side = np.sign(np.sum(np.sign(mids @ normal))) or 1.0
+        direction = np.broadcast_to(-side * normal, path.shape)
+    else:
+        direction = unit(away - (away @ axis)[:, None] * axis)
+    push = np.where(hit, need - dist + 1e-6, 0.0)
+    current = np.einsum("ij,ij->i", away, direction)
+    return direction * np.maximum(push, need - current)[:, None] * hit[:, None]
+
+
+def _spread(offset: np.ndarray, weights=(0.35, 0.7, 1.0, 0.7, 0.35)) -> np.ndarray:
+    """Let the neighbours of pushed points follow part of the way, so the axis bends instead of kinking.
+
+    Each point takes the largest of its neighbours' pushes scaled by distance weights (a dilation,
+    not a sum, so overlapping pushes never add up to more than the largest one).
+    """
+    n, half = len(offset), len(weights) // 2
+    best = np.zeros_like(offset)
+    best_norm = np.zeros(n)
+    for k, w in enumerate(weights):
+        shift = k - half
+        cand = np.zeros_like(offset)
+        if shift >= 0:
+            cand[shift:] = offset[: n - shift] * w
+        else:
+            cand[:shift] = offset[-shift:] * w
+        norm = np.linalg.norm(cand, axis=1)
+        better = norm > best_norm
+        best[better], best_norm[better] = cand[better], norm[better]
+    best[0] = 0.0
+    return best
+
+
+@dataclass
+class Modeler(Undoable):
+    """An editable modeled tree: add strokes, undo, redo. The L-string is the only state; strokes,
+    grown crowns and region edits all ``commit`` a new one."""
+
+    HISTORY_OF = "lstring"
+
+    lstring: LString = field(default_factory=LString.empty)
+    settings: ModelerSettings = field(default_factory=ModelerSettings)
+    undo_stack: list[LString] = field(default_factory=list)
+    redo_stack: list[LString] = field(default_factory=list)
+    segments_of: Callable[[LString], Segments] | None = None  # e.g. a growing tree's drawn view
+
+    def __post_init__(self) -> None:
+        self.rng = np.random.default_rng(self.settings.seed)
+
+    def segments(self) -> Segments:
+        """The current tree's segments (for snapping, collisions and picking)."""
+        if self.segments_of is not None:
+            return self.segments_of(self.lstring)
+        return interpret(self.lstring, TurtleConfig(pipe_model=False, leaves_at_tips=0)).segments
+
+    def convert(self, stroke: Stroke) -> tuple[LString, StrokeResult]:
+        """The L-string this stroke would produce, without committing it (live preview)."""
+        cfg = self.settings
+        piece = min(cfg.piece, max(stroke.length / 24, 1e-3))  # short strokes still get enough pieces
+        path, s = smooth_path(stroke, piece)
+        if len(path) < 2:
+            return self.lstring, StrokeResult(0, 0)
+        widths = widths_from_speed(stroke, s, cfg)
+        result = StrokeResult(len(path) - 1, 0)
+        growth = growth_points(s, cfg, np.random.default_rng(self.rng.integers(2**31)))
+        result.growth_points = len(growth)
+        if len(self.lstring) == 0:  # the first stroke is the trunk: the tree's base is where it starts
+            path = path - path[0]
+            body, _ = path_modules(path, INITIAL_FRAME, widths, growth, cfg)
+            result.text = body
+            return parse_lstring(body), result
+        segs = self.segments()
+        k, frac, dist = nearest_on_segments(path[0], segs)
+        skip = np.zeros(len(segs), bool)
+        on_ground = path[0][1] <= cfg.snap_distance and dist > cfg.snap_distance + segs.radius[k]
+        if not on_ground:  # every stroke off the ground belongs to the tree: join the nearest branch
+            if not self._is_drawn(int(segs.module[k])):
+                frac = 1.0  # grown internodes take branches at their joints
+            snap = segs.start[k] + frac * (segs.end[k] - segs.start[k])
+            if dist <= cfg.snap_distance + segs.radius[k]:
+                path = path + np.linspace(1.0, 0.0, len(path))[:, None] * (snap - path[0])  # ease onto the axis
+            else:
+                path = np.concatenate([[snap], path])  # a connecting piece from the branch to the stroke
+                widths = np.concatenate([widths[:1], widths])
+            result.snapped_to, result.snap_point = int(segs.module[k]), snap
+            if self._is_drawn(int(segs.module[k])):  # no thicker than the drawn branch it grows from
+                widths = np.minimum(widths, 2 * segs.radius[k] * 0.9)
+            skip[k] = True
+            skip[segs.parent == k] = True
+        radius = np.append(widths, widths[-1]) / 2
+        if result.snapped_to is not None:  # the joint itself is not a collision
+            near = np.linalg.norm(path - path[0], axis=1) < 2.5 * (segs.radius[k] + radius)
+            skip |= _segments_near(segs, path[0], 2.5 * (segs.radius[k] + radius[0]))
+            path_free = ~near
+        else:
+            path_free = np.ones(len(path), bool)
+        path, result.bypassed = bypass(path, radius, segs, skip, cfg, path_free)
+        if result.snapped_to is not None:
+            body, _ = path_modules(path, segs.frame[k], widths, growth, cfg)
+            result.text = body
+            return _branch_at(self.lstring, result.snapped_to, frac, body), result
+        # a new axis away from the tree: move there from the base without drawing, then draw
+        move, frame = path_modules(np.stack([np.zeros(3), path[0]]), INITIAL_FRAME, widths[:1], [], cfg, "f")
+        body, _ = path_modules(path, frame, widths, growth, cfg)
+        result.text = body
+        # (at the start of the string the turtle is still at the base with its initial frame)
+        return concat(parse_lstring("[" + move + body + "]"), self.lstring), result
+
+    def _is_drawn(self, module: int) -> bool:
+        return bool(self.lstring.sym[module] == DRAWN and self.lstring.nparams[module] == F_PARAMS)
+
+    def add_stroke(self, stroke: Stroke) -> StrokeResult:
+        """Convert a finished stroke and commit it (undoable)."""
+        new, result = self.convert(stroke)
+        if result.pieces:
+            self.commit(new)
+        return result
+
+
+def _branch_at(ls: LString, module: int, frac: float, body: str) -> LString:
+    """Insert ``[body]`` at ``frac`` along module ``module``: drawn pieces are split there; any other
+    module (a grown internode, whose size comes from its age) gets the branch at its end."""
+    sym, params = ls.module(module)
+    index = np.arange(len(ls))
+    if not (sym == "F" and len(params) == F_PARAMS):
+        return concat(ls.select(index <= module), parse_lstring(f"[{body}]"), ls.select(index > module))
+    first, second = list(params), list(params)
+    length = params[0]
+    first[0] = length * frac
+    second[0] = length * (1.0 - frac)
+    if len(params) >= 7:  # a drawn piece: the second half starts further along its heading
+        for c in range(3):
+            second[1 + c] = params[1 + c] + params[4 + c] * length * frac
+    mid = parse_lstring(f"{sym}({_fmt(first)})[{body}]{sym}({_fmt(second)})")
+    out = concat(ls.select(index < module), mid, ls.select(index > module))
+    brackets.check_balanced(out.sym)
+    return out

@@ -1,0 +1,152 @@
+"""Regions of interest for editing a tree (seed 000 section 4.2): a sphere, or a supertoroid fitted
+to two contour strokes; rules applied only inside a region; pruning a subtree.
+
+Eq. 3 (supertoroid, with the slopes b_x, b_z of its axis):
+    x(u, v) = a_x (alpha_x + cos^n u) cos^e v + b_x
+    y(u, v) = a_y sin^n u + alpha_y
+    z(u, v) = a_z (alpha_z + cos^n u) sin^e v + b_z,   -pi <= u <= pi, -pi/2 <= v <= pi/2
+with signed powers (c^n = sign(c) |c|^n). Here b_x and b_z grow linearly with height (b = b0 + slope
+(y - alpha_y)), so the region can lean like the outline that was drawn.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from engine.geometry.turtle import INITIAL_FRAME
+from engine.lsystem import brackets
+from engine.lsystem.derive import Deriver
+from engine.lsystem.lstring import LString, concat, parse_lstring
+
+
+@dataclass(frozen=True)
+class Sphere:
+    """A ball: centre and radius (placed with the pointer)."""
+
+    center: tuple[float, float, float]
+    radius: float
+
+    def contains(self, points: np.ndarray) -> np.ndarray:
+        """Which points lie inside."""
+        return np.linalg.norm(np.asarray(points, float) - np.asarray(self.center), axis=-1) <= self.radius
+
+
+@dataclass(frozen=True)
+class Supertoroid:
+    """Eq. 3's supertoroid; alpha_x = alpha_z = 0 gives a (leaning) superellipsoid crown."""
+
+    a_x: float
+    a_y: float
+    a_z: float
+    alpha_y: float
+    n: float = 1.0
+    e: float = 1.0
+    alpha_x: float = 0.0
+    alpha_z: float = 0.0
+    b_x: float = 0.0
+    b_z: float = 0.0
+    slope_x: float = 0.0
+    slope_z: float = 0.0
+
+    def surface(self, u: np.ndarray, v: np.ndarray) -> np.ndarray:
+        """Points of the surface at parameters (u, v) (for drawing and tests)."""
+        def spow(c, p):
+            return np.sign(c) * np.abs(c) ** p
+
+        y = self.a_y * spow(np.sin(u), self.n) + self.alpha_y
+        ring = spow(np.cos(u), self.n)
+        x = self.a_x * (self.alpha_x + ring) * spow(np.cos(v), self.e) + self.b_x + self.slope_x * (y - self.alpha_y)
+        z = self.a_z * (self.alpha_z + ring) * spow(np.sin(v), self.e) + self.b_z + self.slope_z * (y - self.alpha_y)
+        return np.stack([x, y, z], axis=-1)
+
+    @property
+    def center(self) -> tuple[float, float, float]:
+        """The middle of the region (where an empty region starts a new axis)."""
+        return (self.b_x, self.alpha_y, self.b_z)
+
+    def contains(self, points: np.ndarray) -> np.ndarray:
+        """Inside test: at each height the cross-section is a superellipse (minus the hole, if any)."""
+        p = np.asarray(points, float).reshape(-1, 3)
+        s = (p[:, 1] - self.alpha_y) / self.a_y
+        within = np.abs(s) <= 1.0
+        c = np.clip(1.0 - np.abs(s) ** (2.0 / self.n), 0.0, 1.0) ** (self.n / 2.0)
+        dx = p[:, 0] - self.b_x - self.slope_x * (p[:, 1] - self.alpha_y)
+        dz = p[:, 2] - self.b_z - self.slope_z * (p[:, 1] - self.alpha_y)
+
+        def inside_ellipse(rx, rz):
+            rx, rz = np.maximum(rx, 1e-12), np.maximum(rz, 1e-12)
+            return (np.abs(dx) / rx) ** (2.0 / self.e) + (np.abs(dz) / rz) ** (2.0 / self.e) <= 1.0
+
+        outer = inside_ellipse(self.a_x * (self.alpha_x + c), self.a_z * (self.alpha_z + c))
+        hole_x, hole_z = self.a_x * (self.alpha_x - c), self.a_z * (self.alpha_z - c)
+        hole = (hole_x > 0) & (hole_z > 0) & inside_ellipse(hole_x, hole_z)
+        return within & outer & ~hole
+
+
+def fit_supertoroid(left: np.ndarray, right: np.ndarray) -> Supertoroid:
+    """Fit eq. 3 to two contour strokes drawn as the left and right outline of a crown.
+
+    The axis runs through the midpoints of the two outlines at each height (a straight line: b and
+    slope), the half-widths give a_x (and a_z, a round crown), the outlines' height range gives a_y and
+    alpha_y, and n is the exponent whose profile (1 - |s|^(2/n))^(n/2) fits the half-widths best.
+    """
+    left, right = np.asarray(left, float), np.asarray(right, float)
+    lo = max(left[:, 1].min(), right[:, 1].min())
+    hi = min(left[:, 1].max(), right[:, 1].max())
+    if hi <= lo:
+        raise ValueError("the two outlines must overlap in height")
+    ys = np.linspace(lo, hi, 48)
+    order_l, order_r = np.argsort(left[:, 1]), np.argsort(right[:, 1])
+    xl = np.interp(ys, left[order_l, 1], left[order_l, 0])
+    xr = np.interp(ys, right[order_r, 1], right[order_r, 0])
+    zl = np.interp(ys, left[order_l, 1], left[order_l, 2])
+    zr = np.interp(ys, right[order_r, 1], right[order_r, 2])
+    alpha_y, a_y = (lo + hi) / 2, (hi - lo) / 2
+    mid_x, mid_z, half = (xl + xr) / 2, (zl + zr) / 2, np.abs(xr - xl) / 2
+    slope_x, b_x = np.polyfit(ys - alpha_y, mid_x, 1)
+    slope_z, b_z = np.polyfit(ys - alpha_y, mid_z, 1)
+    a_x = float(half.max())
+    s = (ys - alpha_y) / a_y
+    best, best_err = 1.0, np.inf
+    for n in np.linspace(0.2, 3.0, 57):
+        profile = a_x * np.clip(1.0 - np.abs(s) ** (2.0 / n), 0.0, 1.0) ** (n / 2.0)
+        err = float(np.sum((profile - half) ** 2))
+        if err < best_err:
+            best, best_err = float(n), err
+    return Supertoroid(a_x=a_x, a_y=a_y, a_z=a_x, alpha_y=alpha_y, n=best, b_x=float(b_x), b_z=float(b_z),
+                       slope_x=float(slope_x), slope_z=float(slope_z))
+
+
+def derive_in_region(deriver: Deriver, ls: LString, positions: np.ndarray, region,
+                     extern: dict[str, float] | None = None) -> LString:
+    """One rewrite where only modules whose position lies in ``region`` may change (seed 000 4.2).
+
+    ``positions`` holds every module's turtle position (turtle.module_positions).
+    """
+    inside = region.contains(positions)
+    new, _ = deriver.step(ls, extern, only=inside)
+    return new
+
+
+def prune(ls: LString, module: int) -> LString:
+    """Remove module ``module`` and everything that grows from it (the rest of its branch)."""
+    end = int(brackets.branch_ends(ls.sym, np.array([module]))[0])
+    keep = np.ones(len(ls), bool)
+    keep[module:end] = False
+    return ls.select(keep)
+
+
+def seed_in_region(ls: LString, axiom: str, point) -> LString:
+    """When no module lies in a region: start a new axis there, growing up (seed 000 4.2).
+
+    The new axis is a bracket at the start of the string (where the turtle is at the base): a move to
+    ``point`` without drawing, a turn back to vertical, then ``axiom``.
+    """
+    from engine.modeling.modeler import ModelerSettings, path_modules
+
+    point = np.asarray(point, float)
+    path = np.stack([np.zeros(3), point, point + np.array([0.0, 1e-6, 0.0])])
+    move, _ = path_modules(path, INITIAL_FRAME.copy(), np.ones(2), [], ModelerSettings(), "f")
+    return concat(parse_lstring("[" + move + axiom + "]"), ls)

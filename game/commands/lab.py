@@ -1,0 +1,59 @@
+"""Lab outputs: CSV of the time series, PNG charts, a PNG of the trees side by side, saves."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from engine.life.lab import Lab, load_experiment
+from engine.life.save import save_world
+from engine.life.sim import load_rules
+from game.paths import ASSETS
+from game.render.charts import charts_png
+from game.render.renderer import headless_context, render_image, save_png
+
+
+def new_lab(experiment_path: Path) -> Lab:
+    """A lab for an experiment file, with the game's rules as the base."""
+    experiment = load_experiment(experiment_path, ASSETS / "lsystems")
+    return Lab(experiment, load_rules(ASSETS / "rules.toml"))
+
+
+def scene_png(lab: Lab, path: Path, tile: tuple[int, int] = (640, 720), ctx=None) -> None:
+    """The trees side by side (each framed alike, named), as one PNG."""
+    import pygame
+
+    pygame.font.init()
+    font = pygame.font.Font(None, 40)
+    tiles = []
+    heights = [max(float(w.tree.geometry(w.clocks()).turtle.bounds()[1][1]), 1.0) for w in lab.worlds]
+    for world, series in zip(lab.worlds, lab.series, strict=True):
+        mesh = world.tree.geometry(world.clocks()).mesh
+        img = render_image(mesh, tile, pitch=10.0, ctx=ctx, frame_height=max(heights))
+        surf = pygame.image.frombuffer(np.ascontiguousarray(img).tobytes(), tile, "RGB").copy()
+        label = font.render(series.name, True, (20, 20, 20))
+        surf.blit(label, ((tile[0] - label.get_width()) // 2, tile[1] - 50))
+        tiles.append(pygame.surfarray.array3d(surf).swapaxes(0, 1))
+    save_png(np.concatenate(tiles, axis=1), path)
+
+
+def run_headless(experiment_path: Path, out: Path) -> list[Path]:
+    """Run the experiment without a window; write results.csv, charts.png, scene.png and saves."""
+    lab = new_lab(experiment_path)
+    lab.run()
+    out.mkdir(parents=True, exist_ok=True)
+    files = [out / "results.csv", out / "charts.png", out / "scene.png"]
+    lab.write_csv(files[0])
+    charts_png(lab.series, str(files[1]), title=f"{lab.experiment.title} ({lab.experiment.duration / 60:.0f} min)")
+    ctx = headless_context()
+    try:
+        scene_png(lab, files[2], ctx=ctx)
+    finally:
+        ctx.release()
+    for world, regime in zip(lab.worlds, lab.experiment.regimes, strict=True):
+        name = "".join(c if c.isalnum() else "_" for c in regime.name).strip("_").lower() or "tree"
+        path = out / f"{name}.arbor"
+        save_world(world, path, lab.experiment.lsystem.name)
+        files.append(path)
+    return files

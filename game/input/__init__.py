@@ -1,0 +1,1 @@
+"""Input devices as one event stream: mouse, touch, keys, gestures, HID trackers, TUIO and recordings."""

@@ -1,0 +1,88 @@
+"""TUIO 1.1 touch frames over UDP (OSC), for kiosk touch frames that speak TUIO instead of HID touch.
+
+Off by default (``arbor --tuio``); listens on 127.0.0.1:3333 unless told otherwise. Only /tuio/2Dcur
+(cursors) is read: 'set' messages move a cursor (normalised 0..1 coordinates), 'alive' lists the
+cursors still down (the others went up), 'fseq' ends a frame. Malformed packets are counted and
+skipped, never raised.
+"""
+
+from __future__ import annotations
+
+import socket
+
+from pythonosc.osc_message import OscMessage
+from pythonosc.osc_packet import OscPacket, ParseError
+
+from game.input.events import DEVICE, DOWN, MOVE, UP, InputEvent
+
+DEFAULT_PORT = 3333
+
+
+class TuioParser:
+    """TUIO 2Dcur session state: turns OSC messages into down/move/up pointer events."""
+
+    def __init__(self, size: tuple[int, int], source: str = "tuio") -> None:
+        self.size = size
+        self.source = source
+        self.down: dict[int, tuple[float, float]] = {}
+        self.bad_packets = 0
+
+    def packet(self, data: bytes, now: float) -> list[InputEvent]:
+        """Events for one UDP datagram (a bundle or a message)."""
+        try:
+            packet = OscPacket(data)
+        except (ParseError, ValueError, IndexError, TypeError):
+            self.bad_packets += 1
+            return [InputEvent(DEVICE, now, self.source, text="ignoring a malformed TUIO packet")] \
+                if self.bad_packets == 1 else []
+        out = []
+        for timed in packet.messages:
+            out += self.message(timed.message, now)
+        return out
+
+    def message(self, msg: OscMessage, now: float) -> list[InputEvent]:
+        """Events for one /tuio/2Dcur message."""
+        if msg.address != "/tuio/2Dcur" or not msg.params:
+            return []
+        command, args = msg.params[0], msg.params[1:]
+        w, h = self.size
+        if command == "set" and len(args) >= 3:
+            sid, x, y = int(args[0]), float(args[1]), float(args[2])
+            kind = MOVE if sid in self.down else DOWN
+            self.down[sid] = (x * w, y * h)
+            return [InputEvent(kind, now, self.source, sid, x * w, y * h)]
+        if command == "alive":
+            alive = {int(a) for a in args if isinstance(a, int)}
+            gone = [sid for sid in self.down if sid not in alive]
+            return [InputEvent(UP, now, self.source, sid, *self.down.pop(sid)) for sid in gone]
+        return []
+
+
+class TuioListener:
+    """A non-blocking UDP socket feeding a :class:`TuioParser`; polled once per frame."""
+
+    def __init__(self, size: tuple[int, int], host: str = "127.0.0.1", port: int = DEFAULT_PORT) -> None:
+        self.parser = TuioParser(size, f"tuio:{host}:{port}")
+        self.sock = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
+        self.sock.setblocking(False)
+        self.sock.bind((host, port))
+        self.address = self.sock.getsockname()
+
+    def poll(self, now: float) -> list[InputEvent]:
+        """Every event from the datagrams that arrived since the last poll (at most 256)."""
+        out = []
+        for _ in range(256):
+            try:
+                data = self.sock.recv(65536)
+            except BlockingIOError:
+                break
+            except OSError as exc:
+                out.append(InputEvent(DEVICE, now, self.parser.source, text=f"TUIO stopped: {exc}"))
+                break
+            out += self.parser.packet(data, now)
+        return out
+
+    def close(self) -> None:
+        """Stop listening."""
+        self.sock.close()
+

@@ -1,0 +1,1 @@
+"""Drawing: the moderngl renderer, camera, textures, HUD/menu widgets and charts."""

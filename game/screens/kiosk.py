@@ -1,0 +1,216 @@
+"""Kiosk mode: an unattended touchscreen that never quits, crashes for good, or loses a tree.
+
+* touch only: keys and window-close do nothing; staff hold the top-left corner for a few seconds to
+  get a PIN pad, and the right PIN (assets/kiosk.toml) quits;
+* after a while without touches an attract loop replays recorded gestures; the first real touch ends it;
+* after a longer while the visitor's tree is saved (saves/kiosk/visitor-*.arbor) and a fresh sapling
+  is planted for the next visitor;
+* the app loop hands every frame to :meth:`Kiosk.frame`, which logs any exception and carries on with
+  a freshly loaded garden instead of exiting (a watchdog restarts the process if it dies anyway).
+"""
+
+from __future__ import annotations
+
+import logging
+import time
+import tomllib
+import traceback
+from dataclasses import dataclass
+from pathlib import Path
+
+import pygame
+
+from engine.base.config import fill_dataclass
+from engine.base.errors import LSysError
+from engine.life.save import save_world
+from game.input.events import DOWN, KEY_DOWN, KEY_UP, MOVE, QUIT, UP, InputEvent, Player, load_recording
+from game.paths import ASSETS
+from game.strings import set_language, text
+
+CORNER = 90  # px: the staff corner
+PAD_BUTTON = 96
+
+log = logging.getLogger("arbor.kiosk")
+
+
+@dataclass
+class KioskConfig:
+    """Settings from assets/kiosk.toml."""
+
+    pin: str = "2468"
+    admin_hold: float = 3.0
+    attract_after: float = 90.0
+    reset_after: float = 300.0
+    attract: str = "attract/demo.jsonl"
+    language: str = "en"
+    speed: float = 10.0
+
+
+def load_kiosk_config(path: str | Path) -> KioskConfig:
+    """Read kiosk settings; unknown keys or wrong types are errors naming the file and key."""
+    config = KioskConfig()
+    fill_dataclass(config, tomllib.loads(Path(path).read_text(encoding="utf-8")), str(path), "kiosk setting")
+    if not config.pin.isdigit() or not 4 <= len(config.pin) <= 8:
+        raise LSysError("the kiosk PIN must be 4 to 8 digits", str(path))
+    return config
+
+
+class PinPad:
+    """A big on-screen keypad; returns True from :meth:`tap` when the right PIN was entered."""
+
+    def __init__(self, size: tuple[int, int], pin: str) -> None:
+        self.pin, self.entered, self.wrong = pin, "", False
+        keys = ["1", "2", "3", "4", "5", "6", "7", "8", "9", "cancel", "0", "ok"]
+        left = size[0] // 2 - (3 * PAD_BUTTON + 20) // 2
+        top = size[1] // 2 - (4 * PAD_BUTTON + 30) // 2 + 30
+        self.keys = {k: pygame.Rect(left + (i % 3) * (PAD_BUTTON + 10), top + (i // 3) * (PAD_BUTTON + 10),
+                                    PAD_BUTTON, PAD_BUTTON) for i, k in enumerate(keys)}
+        self.closed = False
+
+    def tap(self, x: float, y: float) -> bool:
+        """Handle a tap; True means: the PIN is right, quit."""
+        key = next((k for k, r in self.keys.items() if r.collidepoint(x, y)), None)
+        if key is None:
+            return False
+        if key == "cancel":
+            self.closed = True
+        elif key == "ok":
+            if self.entered == self.pin:
+                return True
+            self.entered, self.wrong = "", True
+        elif len(self.entered) < 8:
+            self.entered += key
+            self.wrong = False
+        return False
+
+    def draw(self, surface: pygame.Surface, font: pygame.font.Font) -> None:
+        """The keypad over a dimmed screen."""
+        dim = pygame.Surface(surface.get_size(), pygame.SRCALPHA)
+        dim.fill((0, 0, 0, 170))
+        surface.blit(dim, (0, 0))
+        title = text("kiosk.wrong_pin") if self.wrong else text("kiosk.admin") + "  " + "*" * len(self.entered)
+        label = font.render(title, True, (255, 255, 255))
+        first = self.keys["1"]
+        surface.blit(label, (first.left, first.top - 50))
+        for key, rect in self.keys.items():
+            pygame.draw.rect(surface, (60, 80, 60, 255), rect, border_radius=12)
+            name = text(f"kiosk.{key}") if key in ("ok", "cancel") else key
+            glyph = font.render(name, True, (255, 255, 255))
+            surface.blit(glyph, glyph.get_rect(center=rect.center))
+
+
+class Kiosk:
+    """Wraps a game (built by ``make_game``) for an unattended touchscreen; see module docstring."""
+
+    def __init__(self, make_game, config: KioskConfig, saves: Path, clock=time.monotonic) -> None:
+        set_language(config.language)
+        self.make_game, self.config, self.saves, self.clock = make_game, config, saves, clock
+        self.game = make_game()
+        self.game.set_speed(config.speed)
+        self.last_touch = clock()
+        self.corner_down: float | None = None
+        self.pin_pad: PinPad | None = None
+        self.attract: Player | None = None
+        self.quit_requested = False
+        self.recoveries = 0
+        self.visitor_saved = False
+        self.game.overlay_hooks.append(self._draw_extra)
+
+    # ----- input ---------------------------------------------------------------------------------
+    def handle_input(self, e: InputEvent) -> bool:
+        """Visitor input (keys and quit are ignored); returns False only after the staff PIN."""
+        if e.kind in (QUIT, KEY_DOWN, KEY_UP):
+            return True
+        if e.kind in (DOWN, MOVE, UP):
+            self._touched(e)
+            if self.pin_pad is not None:
+                if e.kind == DOWN and self.pin_pad.tap(e.x, e.y):
+                    self.quit_requested = True
+                    return False
+                if self.pin_pad.closed:
+                    self.pin_pad = None
+                return True
+            if e.kind == DOWN and e.x < CORNER and e.y < CORNER:
+                self.corner_down = self.clock()
+            elif e.kind == UP:
+                self.corner_down = None
+        self.game.handle_input(e)
+        return True
+
+    def _touched(self, e: InputEvent) -> None:
+        self.last_touch = self.clock()
+        self.visitor_saved = False
+        if self.attract is not None:  # a visitor: stop the show and give them a clean view
+            self.attract = None
+            self.game.gestures.cancel_all()
+            if self.game.menu.visible:
+                self.game.tap(0, 0)
+
+    # ----- frame ---------------------------------------------------------------------------------
+    def frame(self, events: list[InputEvent], real_seconds: float, fbo) -> bool:
+        """One frame (events, update, draw), never raising; returns False when staff quit."""
+        try:
+            for e in events:
+                if not self.handle_input(e):
+                    return False
+            self.update(real_seconds)
+            self.game.draw(fbo)
+        except Exception:
+            self.recover()
+        return True
+
+    def recover(self) -> None:
+        """Log the exception and continue with a freshly loaded garden (the autosave, else a sapling)."""
+        self.recoveries += 1
+        log.error("frame failed, restarting the garden:\n%s", traceback.format_exc())
+        try:
+            self.game.save()
+        except Exception:
+            log.error("could not save while recovering:\n%s", traceback.format_exc())
+        self.game = self.make_game()
+        self.game.set_speed(self.config.speed)
+        self.game.overlay_hooks.append(self._draw_extra)
+        self.game.say(text("messages.recovered"), 6)
+
+    def update(self, real_seconds: float) -> None:
+        """Idle handling (attract, visitor reset), the staff corner, then the game's own update."""
+        now = self.clock()
+        idle = now - self.last_touch
+        if self.corner_down is not None and now - self.corner_down >= self.config.admin_hold:
+            self.corner_down = None
+            self.pin_pad = PinPad(self.game.size, self.config.pin)
+        if idle >= self.config.reset_after and not self.visitor_saved:
+            self.reset_visitor()
+        if idle >= self.config.attract_after and self.attract is None and self.pin_pad is None:
+            self.start_attract(now)
+        if self.attract is not None:
+            for e in self.attract.poll(now):
+                self.game.handle_input(e)
+        self.game.update(real_seconds)
+
+    def start_attract(self, now: float) -> None:
+        """Begin the attract loop (if its recording can be read; a bad file is logged, not fatal)."""
+        try:
+            self.attract = Player(load_recording(ASSETS / self.config.attract), now, loop=True)
+        except (OSError, ValueError) as exc:
+            log.error("attract recording unusable: %s", exc)
+            self.attract = Player([], now)
+
+    def reset_visitor(self) -> None:
+        """Save the visitor's tree and plant a fresh sapling for the next one."""
+        folder = self.saves / "kiosk"
+        folder.mkdir(parents=True, exist_ok=True)
+        stamp = time.strftime("%Y%m%d-%H%M%S")
+        save_world(self.game.world, folder / f"visitor-{stamp}.arbor")
+        self.game.act("replant", 1.0)
+        self.game.say(text("messages.visitor_reset"), 5)
+        self.visitor_saved = True
+
+    def _draw_extra(self, surface: pygame.Surface) -> None:
+        if self.attract is not None:
+            msg = self.game.font.render(text("kiosk.attract"), True, (255, 255, 255))
+            box = msg.get_rect(center=(surface.get_width() // 2, surface.get_height() // 2)).inflate(40, 24)
+            pygame.draw.rect(surface, (20, 40, 20, 190), box, border_radius=14)
+            surface.blit(msg, msg.get_rect(center=box.center))
+        if self.pin_pad is not None:
+            self.pin_pad.draw(surface, self.game.font)

@@ -1,0 +1,148 @@
+"""The lab screen: 2-4 trees side by side, grown in lock-step, with live charts underneath.
+
+Large touch buttons choose the speed (pause, 1x, 10x, 100x) and export the run (CSV, a PNG of the
+screen and of the charts, and a save of every tree) into results/<experiment>-<time>/.
+"""
+
+from __future__ import annotations
+
+import time
+from pathlib import Path
+
+import moderngl
+import numpy as np
+import pygame
+
+from engine.life.lab import Lab
+from engine.life.save import save_world
+from game.input.events import DOWN, KEY_DOWN, QUIT, InputEvent
+from game.loop import SPEEDS, FixedStepLoop
+from game.render.camera import OrbitCamera
+from game.render.charts import COLORS, charts_png, draw_charts
+from game.render.renderer import Overlay, TreeRenderer, save_png
+
+SCENE_FRACTION = 0.55
+BUTTON_H = 56
+
+
+class LabScreen:
+    """Draws and drives a :class:`Lab` in a window (or headless, in tests)."""
+
+    def __init__(self, ctx: moderngl.Context, size: tuple[int, int], lab: Lab, results: Path = Path("results"),
+                 clock=time.monotonic) -> None:
+        self.ctx, self.size, self.lab, self.results, self.clock = ctx, size, lab, results, clock
+        self.loop = FixedStepLoop(dt=lab.experiment.dt, speed=10.0)
+        self.renderers = [TreeRenderer(ctx) for _ in lab.worlds]
+        self.overlay = Overlay(ctx, size)
+        pygame.font.init()
+        self.font = pygame.font.Font(None, 36)
+        self.surface = pygame.Surface(size, pygame.SRCALPHA)
+        self.buttons = self._layout_buttons()
+        self.message = ""
+        self._shown: list[tuple | None] = [None] * len(lab.worlds)  # what each renderer holds
+
+    def _layout_buttons(self) -> dict[str, pygame.Rect]:
+        labels = ["Pause", "1x", "10x", "100x", "Export"]
+        w = 120
+        y = int(self.size[1] * SCENE_FRACTION) - BUTTON_H - 10
+        return {name: pygame.Rect(self.size[0] - (len(labels) - i) * (w + 10), y, w, BUTTON_H)
+                for i, name in enumerate(labels)}
+
+    def handle_input(self, e: InputEvent) -> bool:
+        """Taps on the buttons, keys 0-3 and E; returns False to quit."""
+        if e.kind == QUIT or (e.kind == KEY_DOWN and e.key == pygame.K_ESCAPE):
+            return False
+        if e.kind == DOWN and e.dims == 2:
+            for name, rect in self.buttons.items():
+                if rect.collidepoint(e.x, e.y):
+                    self.press(name)
+        elif e.kind == KEY_DOWN and pygame.K_0 <= e.key <= pygame.K_3:
+            self.loop.speed = SPEEDS[e.key - pygame.K_0]
+        elif e.kind == KEY_DOWN and e.key == pygame.K_e:
+            self.press("Export")
+        return True
+
+    def press(self, name: str) -> None:
+        """A button: a speed, or export."""
+        speeds = {"Pause": 0.0, "1x": 1.0, "10x": 10.0, "100x": 100.0}
+        if name in speeds:
+            self.loop.speed = speeds[name]
+        elif name == "Export":
+            folder = self.export()
+            self.message = f"Exported to {folder}"
+
+    def update(self, real_seconds: float) -> None:
+        """Advance all trees together (stops at the experiment's duration)."""
+        if self.lab.time >= self.lab.experiment.duration:
+            self.loop.speed = 0.0
+        self.loop.advance(real_seconds, lambda dt: self.lab.step())
+
+    def draw(self, fbo: moderngl.Framebuffer) -> None:
+        """Trees side by side on top, charts and buttons below."""
+        n = len(self.renderers)
+        w, h = self.size
+        scene_h = int(h * SCENE_FRACTION)
+        tile_w = w // n
+        for i, (world, renderer) in enumerate(zip(self.lab.worlds, self.renderers, strict=True)):
+            clocks = world.clocks()
+            key = (id(world.tree.lstring), clocks.length_time, clocks.girth_time, clocks.wilt)
+            if key != self._shown[i]:  # rebuild only trees that changed (nothing, while paused)
+                renderer.set_tree(world.tree.geometry(clocks).mesh)
+                self._shown[i] = key
+        tallest = max(2.0, *(float(r.hi[1]) for r in self.renderers))
+        fbo.use()
+        fbo.clear(0.92, 0.92, 0.89, 1.0)
+        for i, (world, renderer) in enumerate(zip(self.lab.worlds, self.renderers, strict=True)):
+            if renderer.radius < tallest * 0.6:  # one ground and shadow scale for all trees
+                renderer.radius = tallest * 0.6
+                renderer._make_ground()
+            camera = OrbitCamera(yaw=30.0, pitch=10.0)
+            half = tallest * 0.35
+            camera.frame_bounds(np.array([-half, 0.0, -half]), np.array([half, tallest, half]), tile_w / scene_h)
+            viewport = (i * tile_w, h - scene_h, tile_w, scene_h)
+            renderer.render(fbo, camera, world.sim.sun_direction(), (tile_w, scene_h), viewport)
+        self.overlay.draw(self._overlay(scene_h, tile_w))
+
+    def _overlay(self, scene_h: int, tile_w: int) -> bytes:
+        s = self.surface
+        s.fill((0, 0, 0, 0))
+        pygame.draw.rect(s, (235, 235, 228, 255), (0, scene_h, self.size[0], self.size[1] - scene_h))
+        draw_charts(s, pygame.Rect(0, scene_h, self.size[0], self.size[1] - scene_h), self.lab.series)
+        for i, regime in enumerate(self.lab.experiment.regimes):
+            label = self.font.render(regime.name, True, (255, 255, 255))
+            box = pygame.Rect(i * tile_w + 12, 12, label.get_width() + 24, 44)
+            pygame.draw.rect(s, (*COLORS[i % len(COLORS)], 220), box, border_radius=8)
+            s.blit(label, (box.left + 12, box.top + 8))
+        title = f"{self.lab.experiment.title} - {self.lab.time / 60:.1f} of {self.lab.experiment.duration / 60:.0f} min"
+        text = self.font.render(title, True, (255, 255, 255))
+        back = pygame.Rect(12, scene_h - BUTTON_H - 10, text.get_width() + 24, BUTTON_H)
+        pygame.draw.rect(s, (0, 0, 0, 140), back, border_radius=8)
+        s.blit(text, (back.left + 12, back.centery - text.get_height() // 2))
+        speed = {0.0: "Pause", 1.0: "1x", 10.0: "10x", 100.0: "100x"}.get(self.loop.speed)
+        for name, rect in self.buttons.items():
+            pygame.draw.rect(s, (70, 110, 60, 235) if name == speed else (40, 60, 38, 220), rect, border_radius=10)
+            label = self.font.render(name, True, (245, 245, 240))
+            s.blit(label, label.get_rect(center=rect.center))
+        if self.message:
+            msg = self.font.render(self.message, True, (255, 255, 255))
+            pygame.draw.rect(s, (0, 0, 0, 160), msg.get_rect(topleft=(12, 70)).inflate(16, 10))
+            s.blit(msg, (12, 70))
+        return pygame.image.tobytes(s, "RGBA", True)
+
+    def export(self) -> Path:
+        """CSV, a PNG of the screen, a PNG of the charts and a save of every tree."""
+        stamp = time.strftime("%Y%m%d-%H%M%S")
+        name = "".join(c if c.isalnum() else "_" for c in self.lab.experiment.title).strip("_").lower()
+        folder = self.results / f"{name}-{stamp}"
+        folder.mkdir(parents=True, exist_ok=True)
+        self.lab.write_csv(folder / "results.csv")
+        charts_png(self.lab.series, str(folder / "charts.png"), title=self.lab.experiment.title)
+        fbo = self.ctx.simple_framebuffer(self.size)
+        self.draw(fbo)
+        pixels = np.frombuffer(fbo.read(components=3), np.uint8).reshape(self.size[1], self.size[0], 3)[::-1]
+        save_png(pixels, folder / "screen.png")
+        fbo.release()
+        for world, regime in zip(self.lab.worlds, self.lab.experiment.regimes, strict=True):
+            tree = "".join(c if c.isalnum() else "_" for c in regime.name).strip("_").lower() or "tree"
+            save_world(world, folder / f"{tree}.arbor", self.lab.experiment.lsystem.name)
+        return folder

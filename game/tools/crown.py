@@ -1,0 +1,231 @@
+"""The crown tools of the modeler (seed 004): draw lobes, close them with arches, reshape them; the
+crown regrows into the lobes after every change, as one undoable step.
+
+Crown strokes: a closed outline drawn on the screen becomes a lobe (a silhouette); closed flat rings
+drawn around the crown with a 3D tracker are stitched into a lobe that grows with every ring, and an
+open stroke drawn across that lobe's top or bottom ring closes it with a dome instead of a flat cap.
+Shape tool: a drag moves, scales, turns or squeezes the lobe under the pointer, or pulls one stroke
+point (the operation is chosen with the menu's option button). Which lobes a tree's crown grew into
+is kept with its L-string, so undo and redo bring the lobes back too.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field, replace
+
+import numpy as np
+import pygame
+
+from engine.lsystem.lstring import LString, format_number
+from engine.modeling.crown import grow_crown
+from engine.modeling.lobes import Lobe, lobe_from_loops, lobe_from_outline
+from engine.modeling.modeler import Modeler
+from game.render.camera import OrbitCamera, project_points, unproject_to_plane
+from game.render.ui import draw_polyline
+from game.strings import text
+
+MAX_CROWN_MODULES = 24000  # one crown's bound even without a tree budget
+MAX_CROWN_STATES = 32  # crown steps whose lobes undo/redo can bring back
+SHAPE_OPS = ("move", "scale", "turn", "squeeze", "point")
+POINT_PIXELS = 28.0  # how close a drag must start to a stroke point to pull it
+
+
+@dataclass
+class CrownState:
+    """A crown step: the tree before any crown, the lobes, and the 3D rings and arches that make the
+    last lobe while it is still being drawn."""
+
+    base: LString
+    lobes: list[Lobe] = field(default_factory=list)
+    rings: list[np.ndarray] = field(default_factory=list)
+    arches: list[np.ndarray] = field(default_factory=list)
+
+
+@dataclass
+class _Drag:
+    """A shape drag in progress: the lobe it started on and its shape then."""
+
+    index: int
+    lobe: Lobe
+    start: tuple[float, float]
+    point: tuple[int, int] | None = None  # (ring, index) of the pulled stroke point
+    edited: Lobe | None = None
+
+
+class CrownTool:
+    """Crown strokes and lobe shaping for one modeling mode (see module docstring)."""
+
+    def __init__(self, mode) -> None:
+        self.mode = mode
+        self.states: dict[int, tuple[LString, CrownState]] = {}
+        self.op = SHAPE_OPS[0]
+        self.drag: _Drag | None = None
+
+    def clear(self) -> None:
+        """A new modeling session: earlier crown steps cannot be undone into."""
+        self.states.clear()
+        self.drag = None
+
+    def state(self) -> CrownState:
+        """The crown step of the tree as it is now (a fresh one when it has no crown)."""
+        ls = self.mode.modeler.lstring
+        kept = self.states.get(id(ls))
+        if kept is not None and kept[0] is ls:
+            return kept[1]
+        return CrownState(ls)
+
+    def _remember(self, ls: LString, state: CrownState) -> None:
+        self.states[id(ls)] = (ls, state)
+        while len(self.states) > MAX_CROWN_STATES:  # bounded: the oldest crown steps are forgotten
+            del self.states[next(iter(self.states))]
+
+    def stroke(self, points: np.ndarray) -> None:
+        """A finished crown stroke: a silhouette, a ring around the crown or an arch closing it."""
+        if len(points) < 8 or np.ptp(points, axis=0).max() < 1e-3:
+            return
+        state = self.state()
+        span = np.ptp(points, axis=0)
+        closed = np.linalg.norm(points[-1] - points[0]) < 0.25 * span.max()
+        if not closed and len(state.rings) >= 2:  # an arch across the ring lobe's top or bottom
+            state = replace(state, arches=[*state.arches, points])
+            state.lobes = [*state.lobes[:-1], lobe_from_loops(state.rings, open_strokes=state.arches)]
+        elif span[1] < 0.25 * max(span[0], span[2]):  # a ring around the crown (3D trackers)
+            rings = [*state.rings, points]
+            if len(rings) < 2:
+                self._remember(self.mode.modeler.lstring, replace(state, rings=rings))
+                self.mode.game.say(text("messages.crown_ring"))
+                return
+            lobe = lobe_from_loops(rings, open_strokes=state.arches)
+            lobes = [*state.lobes[:-1], lobe] if len(rings) > 2 else [*state.lobes, lobe]
+            state = replace(state, lobes=lobes, rings=rings)
+        else:
+            state = CrownState(state.base, [*state.lobes, lobe_from_outline(points)])
+        self._regrow_into(state, "messages.crown")
+
+    def _regrow_into(self, state: CrownState, key: str, **extra) -> None:
+        """Regrow the crown from the tree before it into ``state``'s lobes; one undoable step."""
+        start = time.perf_counter()
+        grown, added, limited = self.regrow(state.base, state.lobes)
+        ms = (time.perf_counter() - start) * 1e3
+        self.mode.modeler.commit(grown)
+        self._remember(grown, state)
+        self.mode.game.world.tree.lstring = self.mode.modeler.lstring
+        if added == 0:
+            key = "messages.crown_none"
+        elif limited:
+            key = "messages.crown_full"
+        self.mode.game.say(text(key, count=added, ms=ms, lobes=len(state.lobes), **extra))
+
+    def regrow(self, base: LString, lobes: list[Lobe]) -> tuple[LString, int, bool]:
+        """The crown grown from ``base`` into ``lobes`` within the tree's module budget: a try that is
+        too big is grown again with proportionally fewer nodes (at most four tries). Returns the L-string,
+        the branch pieces added and whether the budget limited them."""
+        mode = self.mode
+        budget = mode.game.world.tree.deriver.budget
+        room = MAX_CROWN_MODULES if budget is None else min(MAX_CROWN_MODULES, budget - len(base))
+        nodes, seed = MAX_CROWN_MODULES // 4, int(mode.modeler.rng.integers(2**31))
+        for _ in range(4):
+            if room <= 0 or nodes < 2 or not lobes:
+                break
+            scratch = Modeler(lstring=base, segments_of=mode.segments)
+            added = grow_crown(scratch, lobes, np.random.default_rng(seed), per_lobe=250, step_fraction=0.2,
+                               max_nodes=nodes, tip=f"[&(45)L({format_number(mode.born_visible())})]")
+            extra = len(scratch.lstring) - len(base)
+            if extra <= room:
+                return scratch.lstring, added, added >= nodes - 2 or nodes < MAX_CROWN_MODULES // 4
+            nodes = int(added * room / extra * 0.9)
+        return base, 0, bool(lobes)
+
+    def next_op(self) -> str:
+        """Choose the next shape operation (the menu's option button cycles through them)."""
+        self.op = SHAPE_OPS[(SHAPE_OPS.index(self.op) + 1) % len(SHAPE_OPS)]
+        return self.op
+
+    def begin_shape(self, x: float, y: float, camera: OrbitCamera) -> None:
+        """A drag starts: take the lobe (or, for 'point', the stroke point) under the pointer."""
+        self.drag = None
+        lobes = self.state().lobes
+        if not lobes:
+            self.mode.game.say(text("messages.shape_none"))
+            return
+        size = self.mode.game.size
+        if self.op == "point":
+            best = None
+            for i, lobe in enumerate(lobes):
+                pixels = project_points(camera, size, lobe.stroke_rings.reshape(-1, 3))
+                dist = np.hypot(pixels[:, 0] - x, pixels[:, 1] - y)
+                k = int(np.nanargmin(np.where(np.isnan(dist), np.inf, dist)))
+                if dist[k] <= POINT_PIXELS and (best is None or dist[k] < best[0]):
+                    best = (dist[k], i, divmod(k, lobe.ring_size))
+            if best is not None:
+                self.drag = _Drag(best[1], lobes[best[1]], (x, y), best[2])
+            return
+        centres = project_points(camera, size, np.array([lobe.vertices.mean(axis=0) for lobe in lobes]))
+        for i in np.argsort(np.hypot(centres[:, 0] - x, centres[:, 1] - y)):
+            pixels = project_points(camera, size, lobes[i].vertices)
+            lo, hi = np.nanmin(pixels, axis=0), np.nanmax(pixels, axis=0)
+            if lo[0] <= x <= hi[0] and lo[1] <= y <= hi[1]:
+                self.drag = _Drag(int(i), lobes[i], (x, y))
+                return
+
+    def drag_shape(self, x: float, y: float, camera: OrbitCamera) -> None:
+        """The pointer moved: the picked lobe, edited by the drag so far (shown; not yet grown into)."""
+        d = self.drag
+        if d is None:
+            return
+        dx, dy = x - d.start[0], y - d.start[1]
+        lobe, centre = d.lobe, d.lobe.vertices.mean(axis=0)
+        if self.op == "move":
+            d.edited = lobe.transformed(move=self._on_plane(x, y, centre, camera) - self._on_plane(
+                *d.start, centre, camera))
+        elif self.op == "scale":
+            d.edited = lobe.transformed(scale=float(np.exp(-dy / 200.0)))
+        elif self.op == "turn":
+            d.edited = lobe.transformed(turn_deg=dx * 0.5)
+        elif self.op == "squeeze":
+            at = self._on_plane(*d.start, centre, camera)
+            toward = project_points(camera, self.mode.game.size, centre[None])[0] - d.start
+            amount = float(np.clip(np.dot([dx, dy], toward) / max(np.linalg.norm(toward), 1.0) / 150.0, -0.6, 0.6))
+            d.edited = lobe.squeezed(at, 0.5 * float(np.ptp(lobe.vertices, axis=0).max()), amount)
+        elif d.point is not None:
+            ring, index = d.point
+            to = self._on_plane(x, y, lobe.stroke_rings[ring, index], camera)
+            d.edited = lobe.dragged(ring, index, to)
+
+    def end_shape(self) -> None:
+        """The drag ended: regrow the crown into the edited lobe (one undoable step)."""
+        d, self.drag = self.drag, None
+        if d is None or d.edited is None:
+            return
+        state = self.state()
+        lobes = list(state.lobes)
+        lobes[d.index] = d.edited
+        edited = CrownState(state.base, lobes)  # rings and arches made the old shape: drawing starts anew
+        self._regrow_into(edited, "messages.shaped", op=text(f"shapes.{self.op}"))
+
+    def _on_plane(self, x: float, y: float, through: np.ndarray, camera: OrbitCamera) -> np.ndarray:
+        """The point under pixel (x, y) on the camera-facing plane through ``through``."""
+        normal = camera.target - camera.eye
+        normal = normal / max(float(np.linalg.norm(normal)), 1e-12)
+        hit = unproject_to_plane(camera, self.mode.game.size, x, y, through, normal)
+        return through if hit is None else hit
+
+    def draw(self, surface: pygame.Surface, project, points: list[np.ndarray], shaping: bool) -> None:
+        """The lobes' stroke rings (faint; the one being reshaped bright), pending rings and arches,
+        and the crown stroke being drawn (``project``: 3D points -> the pixels of those in view)."""
+        state = self.state()
+        lobes = list(state.lobes)
+        if self.drag is not None and self.drag.edited is not None:
+            lobes[self.drag.index] = self.drag.edited
+        for i, lobe in enumerate(lobes):
+            bright = shaping and self.drag is not None and i == self.drag.index
+            colour = (255, 240, 150, 230) if bright else (170, 240, 170, 110)
+            for loop in lobe.stroke_rings:
+                draw_polyline(surface, project, loop, colour, True, 3 if bright else 2)
+        for loop in state.rings:
+            draw_polyline(surface, project, loop, (170, 240, 170, 110), True, 2)
+        for arch in state.arches:
+            draw_polyline(surface, project, arch, (170, 240, 170, 110), False, 2)
+        if len(points) >= 2 and not shaping:
+            draw_polyline(surface, project, np.array(points), (120, 230, 120, 230), len(points) >= 8, 4)

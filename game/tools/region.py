@@ -1,0 +1,159 @@
+"""The symbols tool of the modeler (seed 000 sections 4.2, 5.2 and Fig. 7): a region of interest, the
+L-string symbols inside it, and region-limited edits.
+
+A short drag places a sphere that follows the pointer. A tall drag is a contour: the left and right
+outlines of a crown region, and two of them are fitted with eq. 3's supertoroid (leaning with the
+outlines). A tap inside the region applies the edit chosen with the menu's option button, to the
+modules inside only (one undoable step).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pygame
+
+from engine.geometry.turtle import TurtleConfig, module_positions
+from engine.life.growth import render_view
+from engine.lsystem.lstring import LString
+from engine.modeling.edits import apply_edit, prune_region
+from engine.modeling.regions import Sphere, Supertoroid, fit_supertoroid
+from game.render.camera import OrbitCamera, project_ball, project_points
+from game.render.ui import draw_polyline
+from game.strings import text
+from game.tools.symbols import draw_symbols
+
+CONTOUR_PIXELS = 80.0  # a drag at least this tall, and twice as tall as wide, is a contour
+GROUPS = {"grow": "grown", "prune": "pruned_region"}  # edits with their own message
+
+
+class RegionTool:
+    """Region, contours and edits of the symbols tool for one modeling mode."""
+
+    def __init__(self, mode) -> None:
+        self.mode = mode
+        self.region: Sphere | Supertoroid | None = None
+        self.kept: Sphere | Supertoroid | None = None  # the region before the drag being made
+        self.contours: list[np.ndarray] = []  # a left outline waiting for its right one
+        self.pixels: list[tuple[float, float]] = []  # the drag being made, in window pixels
+        self.labels: list[tuple[str, float, float, bool]] = []  # last drawn: symbol, x, y, transformation
+        self._positions: tuple[LString, np.ndarray] | None = None
+
+    def clear(self) -> None:
+        """Forget the region and any half-drawn contours."""
+        self.region, self.contours, self.pixels = None, [], []
+
+    def _is_contour(self) -> bool:
+        if len(self.pixels) < 8:
+            return False
+        span = np.ptp(np.array(self.pixels), axis=0)
+        return span[1] >= CONTOUR_PIXELS and span[1] >= 2 * span[0]
+
+    def _radius(self) -> float:
+        r = self.mode.game.renderer
+        return 0.15 * max(float(np.max(r.hi - r.lo)), 1.0)
+
+    def drag(self, point: np.ndarray, pixel: tuple[float, float] | None) -> None:
+        """The pointer moved to ``point`` (at window ``pixel`` for a 2D pointer; None for a 3D
+        tracker, whose drags always move the sphere): a short drag moves the sphere with it (a tap
+        does not); a tall one is drawn as a contour and leaves the region where it is."""
+        if pixel is None:
+            self.region = Sphere(tuple(point), self._radius())
+            return
+        if not self.pixels:
+            self.kept = self.region
+        self.pixels.append(pixel)
+        moved = abs(pixel[0] - self.pixels[0][0]) + abs(pixel[1] - self.pixels[0][1]) >= 12  # not a tap
+        if moved and not self._is_contour():
+            self.region = Sphere(tuple(point), self._radius())
+
+    def finish(self, points: list[np.ndarray], camera: OrbitCamera) -> None:
+        """The pointer went up: a contour is kept; with two of them the region becomes a supertoroid."""
+        contour = self._is_contour()
+        self.pixels = []
+        if not contour:
+            return
+        self.region = self.kept  # the start of the contour had moved the sphere: put it back
+        self.contours.append(np.array(points))
+        if len(self.contours) < 2:
+            self.mode.game.say(text("messages.contour_one"))
+            return
+        side = camera.view()[0, :3]  # the screen's right, in the world
+        left, right = sorted(self.contours[-2:], key=lambda c: float(c.mean(axis=0) @ side))
+        self.contours = []
+        try:
+            self.region = fit_supertoroid(left, right)
+        except ValueError:
+            self.mode.game.say(text("messages.contour_apart"))
+            return
+        self.mode.game.say(text("messages.contour_region"))
+
+    def _outline(self) -> np.ndarray:
+        """Points on the region's surface, (rings, points, 3): for drawing and for tap tests."""
+        if isinstance(self.region, Sphere):
+            u = np.linspace(-np.pi / 2, np.pi / 2, 9)[1:-1, None]
+            v = np.linspace(0, 2 * np.pi, 33)[None, :]
+            unit = np.stack([np.cos(u) * np.cos(v), np.sin(u) + 0 * v, np.cos(u) * np.sin(v)], axis=-1)
+            return np.asarray(self.region.center) + self.region.radius * unit
+        u = np.linspace(-np.pi / 2, np.pi / 2, 9)[1:-1, None]
+        v = np.linspace(-np.pi, np.pi, 33)[None, :]
+        return self.region.surface(u + 0 * v, v + 0 * u)
+
+    def hit(self, x: float, y: float, camera: OrbitCamera) -> bool:
+        """Whether pixel (x, y) lies on the region as seen (its projected outline's box; a circle
+        for a sphere)."""
+        if self.region is None:
+            return False
+        size = self.mode.game.size
+        if isinstance(self.region, Sphere):
+            c, radius = project_ball(camera, size, self.region.center, self.region.radius)
+            return bool(np.hypot(x - c[0], y - c[1]) <= radius)
+        pixels = project_points(camera, size, self._outline().reshape(-1, 3))
+        lo, hi = np.nanmin(pixels, axis=0), np.nanmax(pixels, axis=0)
+        return bool(lo[0] <= x <= hi[0] and lo[1] <= y <= hi[1])
+
+    def edit_at(self, x: float, y: float, camera: OrbitCamera, edit: str, system) -> bool:
+        """A tap: inside the region, apply ``edit`` (production set ``system``) to the modules inside it
+        (undoable). False when the tap is outside (it then opens the menu as usual)."""
+        mode = self.mode
+        if mode.modeler is None or not self.hit(x, y, camera):
+            return False
+        world = mode.game.world
+        ls, clocks = world.tree.lstring, world.clocks()
+        now, plastochron = clocks.length_time, float(world.tree.system.constants.get("P", 4.0))
+        extern = {"T": mode.born_visible(), "G": clocks.girth_time, "NOW": now, "P": plastochron}
+        axis = f"I({now:g},{clocks.girth_time:g},1)A({now - plastochron:g},1,0)" if edit == "grow" else None
+        if edit == "prune":
+            (new, changed), held = prune_region(ls, self.positions(ls), self.region), 0
+        else:
+            new, changed, held = apply_edit(ls, self.positions(ls), self.region, system, extern, new_axis=axis,
+                                            budget=world.tree.deriver.budget)
+        if changed:
+            mode.modeler.commit(new)
+            world.tree.lstring = new
+        key = "messages.new_axis" if changed < 0 else f"messages.{GROUPS.get(edit, 'edited')}"
+        message = text(key, edit=text(f"edits.{edit}"), count=changed)
+        mode.game.say(message + (" " + text("messages.budget") if held else ""))
+        return True
+
+    def draw(self, surface: pygame.Surface, camera: OrbitCamera, font: pygame.font.Font, project,
+             points: list[np.ndarray]) -> None:
+        """The region's outline, its modules' symbols (see game/tools/symbols.py), pending contours and
+        the contour being drawn."""
+        self.labels = []
+        for contour in [*self.contours, *([np.array(points)] if self._is_contour() else [])]:
+            draw_polyline(surface, project, contour, (255, 255, 255, 200), False, 3)
+        if self.region is None:
+            return
+        if isinstance(self.region, Supertoroid):
+            for ring in self._outline():
+                draw_polyline(surface, project, ring, (255, 255, 255, 170), True, 2)
+        ls = self.mode.game.world.tree.lstring
+        self.labels = draw_symbols(surface, font, camera, self.mode.game.size, ls, self.positions(ls), self.region)
+
+    def positions(self, ls: LString) -> np.ndarray:
+        """Turtle positions of every module of the tree as drawn now (cached per L-string)."""
+        if self._positions is None or self._positions[0] is not ls:
+            tree, clocks = self.mode.game.world.tree, self.mode.game.world.clocks()
+            view = render_view(ls, clocks, tree.geometry_constants)
+            self._positions = (ls, module_positions(view, TurtleConfig(pipe_model=False, leaves_at_tips=0)))
+        return self._positions[1]

@@ -1,0 +1,126 @@
+"""The architecture as a rule: every package imports only its own layer and the layers below it.
+
+The imports are read from the source (every ``import`` and ``from ... import``, also inside
+functions), so an upward import added anywhere fails here.
+"""
+
+from __future__ import annotations
+
+import ast
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parent.parent
+
+# package -> rank; a module may import its own package or a package of a strictly lower rank.
+ENGINE = {"engine.base": 0, "engine.lsystem": 1, "engine.geometry": 2, "engine.forest": 3,
+          "engine.modeling": 3, "engine.life": 4}
+GAME = {"game.paths": 0, "game.strings": 1, "game.loop": 1, "game.watchdog": 1, "game.render": 2, "game.input": 2,
+        "game.tools": 3, "game.screens": 4, "game.commands": 4, "game.app": 5, "game.cli": 6}
+GUI = ("pygame", "moderngl", "glcontext", "OpenGL")
+
+
+def _package(module: str, table: dict[str, int]) -> str | None:
+    """The layer a dotted module name belongs to (its longest matching prefix in ``table``)."""
+    parts = module.split(".")
+    for k in range(len(parts), 0, -1):
+        name = ".".join(parts[:k])
+        if name in table:
+            return name
+    return None
+
+
+def _module_name(path: Path, root: Path = ROOT) -> str:
+    rel = path.relative_to(root).with_suffix("")
+    parts = list(rel.parts)
+    if parts[-1] == "__init__":
+        parts.pop()
+    return ".".join(parts)
+
+
+def imports_of(path: Path) -> list[tuple[str, int]]:
+    """Every module ``path`` imports, with the line of the import."""
+    tree = ast.parse(path.read_text(encoding="utf-8"), str(path))
+    found = []
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Import):
+            found += [(alias.name, node.lineno) for alias in node.names]
+        elif isinstance(node, ast.ImportFrom) and node.module and node.level == 0:
+            found.append((node.module, node.lineno))
+            found += [(f"{node.module}.{alias.name}", node.lineno) for alias in node.names]
+    return found
+
+
+def violations(root: Path, table: dict[str, int], top: str) -> list[str]:
+    """Upward or sideways imports between the layers of ``table`` in the package ``top``."""
+    bad, seen = [], set()
+    for path in sorted((root / top).rglob("*.py")):
+        me = _package(_module_name(path, root), table)
+        if me is None:
+            continue
+        for name, line in imports_of(path):
+            if not name.startswith(top + "."):
+                continue
+            other = _package(name, table)
+            if other is None or other == me:
+                continue
+            if table[other] >= table[me] and (path, line) not in seen:
+                seen.add((path, line))
+                bad.append(f"{path.relative_to(root)}:{line}: {me} (layer {table[me]}) imports {name} "
+                           f"(layer {table[other]})")
+    return bad
+
+
+def test_every_engine_and_game_module_belongs_to_a_layer():
+    for top, table in (("engine", ENGINE), ("game", GAME)):
+        for path in (ROOT / top).rglob("*.py"):
+            name = _module_name(path)
+            assert name == top or _package(name, table), f"{name} is in no layer: add it to tests/test_layers.py"
+
+
+@pytest.mark.parametrize("top,table", [("engine", ENGINE), ("game", GAME)])
+def test_lower_layers_never_import_higher_ones(top, table):
+    assert violations(ROOT, table, top) == []
+
+
+def test_engine_is_pure():
+    for path in (ROOT / "engine").rglob("*.py"):
+        for name, line in imports_of(path):
+            assert not name.startswith(("game", *GUI)), f"{path.relative_to(ROOT)}:{line} imports {name}"
+
+
+def test_every_package_says_what_it_is():
+    for init in list((ROOT / "engine").rglob("__init__.py")) + list((ROOT / "game").rglob("__init__.py")):
+        doc = ast.get_docstring(ast.parse(init.read_text(encoding="utf-8")))
+        assert doc, f"{init.relative_to(ROOT)} has no docstring"
+
+
+def test_the_rule_bites(tmp_path):
+    """An upward import planted in a copy of a low layer is reported."""
+    (tmp_path / "engine" / "base").mkdir(parents=True)
+    (tmp_path / "engine" / "life").mkdir()
+    (tmp_path / "engine" / "base" / "x.py").write_text("def f():\n    from engine.life.sim import Rules\n")
+    (tmp_path / "engine" / "life" / "y.py").write_text("from engine.base import x\n")
+    bad = violations(tmp_path, ENGINE, "engine")
+    assert len(bad) == 1 and "engine/base/x.py:2" in bad[0]
+
+
+def test_no_class_is_over_250_lines():
+    for path in list((ROOT / "engine").rglob("*.py")) + list((ROOT / "game").rglob("*.py")):
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            if isinstance(node, ast.ClassDef):
+                lines = node.end_lineno - node.lineno + 1
+                assert lines <= 250, f"{path.relative_to(ROOT)}: class {node.name} has {lines} lines; split it by job"
+
+
+def test_pyproject_ships_every_package():
+    """`pip install .` (not only -e) must carry every sub-package; assets ship as arbor_assets."""
+    import tomllib
+
+    listed = set(tomllib.loads((ROOT / "pyproject.toml").read_text())["tool"]["setuptools"]["packages"])
+    for top in ("engine", "game", "benchmarks"):
+        for init in (ROOT / top).rglob("__init__.py"):
+            name = ".".join(init.parent.relative_to(ROOT).parts)
+            assert name in listed, f"{name} is missing from [tool.setuptools] packages in pyproject.toml"
+    assert "arbor_assets" in listed
