@@ -7,13 +7,19 @@ import sys
 from pathlib import Path
 
 from engine.base.errors import LSysError
-from engine.lsystem.derive import Deriver
-from engine.lsystem.lsys import load_lsystem
 from game.paths import ASSETS
 
 
+def _source(args: argparse.Namespace):
+    from game.commands.trees import TreeSource
+
+    return TreeSource(args.source, args.steps, args.seed, args.budget, getattr(args, "tree", 0))
+
+
 def _cmd_derive(args: argparse.Namespace) -> int:
-    _, result = _grow(args)
+    from game.commands.trees import derive_source
+
+    _, result = derive_source(_source(args))
     print(result.to_text())
     return 0
 
@@ -28,22 +34,11 @@ def _size(text: str) -> tuple[int, int]:
     return w, h
 
 
-def _grow(args: argparse.Namespace):
-    system = load_lsystem(args.source)
-    deriver = Deriver(system, seed=args.seed, budget=args.budget)
-    result, reports = deriver.derive(steps=args.steps)
-    if any(r.budget_hit for r in reports):
-        held = sum(r.deferred for r in reports)
-        print(f"module budget {deriver.budget:,} reached: {held:,} rewrites held back", file=sys.stderr)
-    return system, result
-
-
 def _cmd_render(args: argparse.Namespace) -> int:
-    from engine.geometry.tree import build_geometry
+    from game.commands.trees import tree_geometry
     from game.render.renderer import render_image, save_png
 
-    system, ls = _grow(args)
-    geometry = build_geometry(ls, system, lod=args.lod)
+    geometry, ls = tree_geometry(_source(args), args.lod)
     pixels = render_image(geometry.mesh, args.size, yaw=args.yaw, pitch=args.pitch)
     save_png(pixels, args.out)
     print(f"{args.out}: {len(ls):,} modules, {len(geometry.turtle.segments):,} segments, "
@@ -53,10 +48,9 @@ def _cmd_render(args: argparse.Namespace) -> int:
 
 def _cmd_export(args: argparse.Namespace) -> int:
     from engine.geometry.export import export_tree
-    from engine.geometry.tree import build_geometry
+    from game.commands.trees import tree_geometry
 
-    system, ls = _grow(args)
-    geometry = build_geometry(ls, system, lod=args.lod)
+    geometry, _ = tree_geometry(_source(args), args.lod)
     files = export_tree(geometry.mesh, args.out, ASSETS / "textures", args.format)
     print(f"{args.out}: {geometry.mesh.n_triangles:,} triangles (lod {args.lod}); wrote {len(files)} file(s)")
     return 0
@@ -89,8 +83,10 @@ def _cmd_landscape(args: argparse.Namespace) -> int:
     return 0
 
 
-def _add_growth_args(p: argparse.ArgumentParser) -> None:
-    p.add_argument("source", type=Path, help=".lsys file")
+def _add_growth_args(p: argparse.ArgumentParser, saves: bool = False) -> None:
+    p.add_argument("source", type=Path, help=".lsys file, or a save (.arbor)" if saves else ".lsys file")
+    if saves:
+        p.add_argument("--tree", type=int, default=0, help="which tree of a garden save (default: the first, 0)")
     p.add_argument("--steps", type=int, default=None, help="derivation steps (default: the file's n:)")
     p.add_argument("--seed", type=int, default=None)
     p.add_argument("--budget", type=int, default=None, help="module budget")
@@ -103,16 +99,16 @@ def build_parser() -> argparse.ArgumentParser:
     derive = sub.add_parser("derive", help="print the L-string an .lsys source derives")
     _add_growth_args(derive)
     derive.set_defaults(run=_cmd_derive)
-    render = sub.add_parser("render", help="render a tree to PNG without a window")
-    _add_growth_args(render)
+    render = sub.add_parser("render", help="render a tree (.lsys or a save) to PNG without a window")
+    _add_growth_args(render, saves=True)
     render.add_argument("--size", type=_size, default=(1280, 720))
     render.add_argument("--yaw", type=float, default=30.0)
     render.add_argument("--pitch", type=float, default=12.0)
     render.add_argument("--lod", type=int, default=0)
     render.add_argument("--out", type=Path, default=Path("tree.png"))
     render.set_defaults(run=_cmd_render)
-    export = sub.add_parser("export", help="export a tree as GLB or OBJ+MTL")
-    _add_growth_args(export)
+    export = sub.add_parser("export", help="export a tree (.lsys or a save) as GLB or OBJ+MTL")
+    _add_growth_args(export, saves=True)
     export.add_argument("--format", choices=("glb", "obj"), default=None, help="default: from --out's suffix")
     export.add_argument("--lod", type=int, default=0)
     export.add_argument("--out", type=Path, default=Path("tree.glb"))

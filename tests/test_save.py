@@ -40,7 +40,7 @@ def test_round_trip_is_exact_and_continues_identically(world, tmp_path):
 def test_save_is_readable_text(world):
     text = save_text(world, "game_tree.lsys")
     assert text.startswith("# Arbor save file")
-    assert "\nlstring = \"\"\"\\\nI(0,0,0)" in text
+    assert "\nlstring = \"\"\"\\\nI(0,0,0,0," in text
     tail = text[text.index("lstring = "):].splitlines()
     assert max(len(line) for line in tail) <= 102  # the L-string is wrapped for text editors
     assert "#extern T G DT R" in text  # the rules that grew it travel with it
@@ -59,7 +59,7 @@ def write(path, text):
         (lambda t: t.replace("format = 1", "format = 0"), "too old"),
         (lambda t: t.replace('seed = ', 'seed = "x"  # ', 1), "wrong type"),
         (lambda t: t.replace("#extern T G DT R", "#extern T G DT Q"), "does not match its hash"),
-        (lambda t: t.replace('lstring = """\\\nI(0,0,0)', 'lstring = """\\\nI(0,0,zz)'), "in the L-string"),
+        (lambda t: t.replace('lstring = """\\\nI(0,0,0,', 'lstring = """\\\nI(0,0,zz,'), "in the L-string"),
         (lambda t: re.sub(r"\nwilt = [^\n]*", "\nwilt = nan", t), "bad [sim]"),
         (lambda t: re.sub(r"PCG64", "MT19937", t), "random state"),
         (lambda t: "\x00\xff garbage", "not"),

@@ -117,6 +117,15 @@ class TurtleResult:
     segments: Segments
     leaves: Leaves
     blossoms: Leaves
+    probes: Leaves | None = None  # the turtle's state going into modules the caller asked about
+    nearest_move: np.ndarray | None = None  # (n,) module index of the move before each module (-1 none)
+
+    def carriers(self, idx: np.ndarray) -> np.ndarray:
+        """The segment each of the modules ``idx`` grows from (the last drawn piece on its path; -1 none)."""
+        segs = self.segments
+        lookup = np.full(len(self.nearest_move) + 1, -1, dtype=np.int64)
+        lookup[segs.module] = np.arange(len(segs))
+        return lookup[self.nearest_move[np.asarray(idx, dtype=np.int64)]]
 
     def bounds(self) -> tuple[np.ndarray, np.ndarray]:
         """Axis-aligned bounds of all segment end points and leaves."""
@@ -194,8 +203,12 @@ def module_positions(ls: LString, cfg: TurtleConfig | None = None) -> np.ndarray
     return states.positions_in(np.arange(len(ls))).T
 
 
-def interpret(ls: LString, cfg: TurtleConfig | None = None) -> TurtleResult:
-    """Interpret an L-string with the 3D turtle; returns segments and leaf/blossom instances."""
+def interpret(ls: LString, cfg: TurtleConfig | None = None, probes: np.ndarray | None = None) -> TurtleResult:
+    """Interpret an L-string with the 3D turtle; returns segments and leaf/blossom instances.
+
+    ``probes`` (module indices) also returns the turtle's position and frame going into those modules
+    (buds and apices, for light and phototropism) and what every module grows from.
+    """
     cfg = cfg or TurtleConfig()
     depth = brackets.check_balanced(ls.sym)
     states = _solve_states(ls, cfg, predecessors(ls.sym, depth))
@@ -207,7 +220,13 @@ def interpret(ls: LString, cfg: TurtleConfig | None = None) -> TurtleResult:
     if tips:
         leaves = _concat_leaves(leaves, _tip_leaves(segs, tips, leaf_size))
     blossoms = _instances(ls, BLOSSOM, states, leaf_size)
-    return TurtleResult(segs, leaves, blossoms)
+    result = TurtleResult(segs, leaves, blossoms)
+    if probes is not None:
+        idx = np.asarray(probes, dtype=np.int64)
+        frames = _world_frames(states.blocks_in(idx)[:4])
+        result.probes = Leaves(states.positions_in(idx).T, frames, np.zeros(len(idx)), idx)
+        result.nearest_move = states.topo.nearest_move
+    return result
 
 
 def _radii(ls: LString, segs: Segments, cfg: TurtleConfig) -> None:

@@ -9,7 +9,7 @@ from __future__ import annotations
 import math
 
 from engine.life.sim import Rules
-from engine.life.world import World
+from engine.life.world import World, sense_light
 from engine.lsystem.lsys import LSystem
 
 MAX_GARDEN = 6  # trees in one garden
@@ -58,6 +58,7 @@ class Garden:
         sun = self.world.sim.state
         world.apply("orbit_height", sun.orbit_height)
         world.apply("sun_speed", sun.sun_speed)
+        world.sim.state.sun_angle = sun.sun_angle  # one sun: the new tree sees it where the others do
         world.position = (radius * math.cos(angle), radius * math.sin(angle))
         self.worlds.append(world)
         self.current = len(self.worlds) - 1
@@ -76,6 +77,12 @@ class Garden:
             world.apply(action, value)
 
     def step(self, dt: float) -> None:
-        """Advance every tree by ``dt``."""
+        """Advance every tree by ``dt``; one light reading for the whole garden when it is due, so
+        neighbours shade each other."""
         for world in self.worlds:
-            world.step(dt)
+            world.advance(dt)
+        due = [w for w in self.worlds if w.light_due()]
+        if due:
+            sense_light(self.worlds)
+        for world in self.worlds:
+            world.grow()

@@ -1,35 +1,56 @@
-"""Smooth, bounded growth of the game tree (fixes seed 003's jumps, cones and twigs).
+"""The living game tree: smooth growth in small steps, steered and pruned by the light it receives.
 
-The L-string stores *birth times*, not sizes: internodes ``I(bT, bG, order)``, leaves ``L(bT)``,
-apices and dormant buds. Sizes are continuous functions of the tree's clocks, evaluated for every frame:
+The L-string stores *birth times and states*, not sizes (module layout in assets/lsystems/game_tree.lsys):
+internodes ``I(bT, bG, order, shade, wood)``, apices ``A(progress, order, nodes, light, yaw, pitch)``,
+buds ``D(birth, order, light)`` and leaves ``L(birth, vigour, falling since)``. Sizes are continuous
+functions of the tree's clocks, evaluated for every frame:
 
-* internode length = IL * IO^order * (1 - exp(-age / TAU)): zero at birth, saturating (no F(l*k) cones);
-* radius from the pipe model: wood area = TIP^2 * (leaves carried above) * (1 + rings), where each
-  internode's leaf counts in proportion to its own growth, so new shoots thicken their parents
-  continuously (never a jump when a tip stops being a tip), and rings = GMAX * (1 - exp(-girth age / GT))
-  is secondary growth driven by the water clock: older wood is thicker, by at most (1 + GMAX) in area;
-* leaf size = LS * (1 - exp(-age / TAU)), shrinking away as the tree wilts (leaf fall), and branches
-  droop with wilt.
+* internode length = IL * IO^order * (1 - exp(-age / TAU)): zero at birth, saturating (no cones);
+* wood: the pipe model (TIP^2 per leaf carried, each leaf counted as far as its internode has grown)
+  or, when larger, the cross-section the internode has built (``wood``, grown with the water clock by
+  :meth:`GrowingTree.sense` and never shrinking: a trunk stays as thick when branches are shed);
+* leaves unfold from zero, wither before they fall (``falling since``), and shrink away as the tree wilts;
+  branches droop with wilt.
 
-New modules are born at zero size, so topology changes (rewrites) never make geometry jump.
+Between rewrites :meth:`GrowingTree.sense` takes a light reading (engine/life/light.py) and writes it into
+the string: buds and apices remember their light (shaded buds stay asleep, shaded apices stop), apices
+turn toward the mean light direction (phototropism), every internode counts the time its leaves spend in
+deep shade, and lateral branches that stayed in deep shade for SHED are shed (cut from the string; the
+pieces are kept in :attr:`GrowingTree.fallen` for a short visible fall).
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
 from engine.geometry.mesh import LOD_LEVELS, tree_mesh
 from engine.geometry.tree import TreeGeometry
-from engine.geometry.turtle import TurtleConfig, interpret, set_radii, subtree_sums
+from engine.geometry.turtle import Leaves, Segments, TurtleConfig, TurtleResult, interpret, set_radii, subtree_sums
+from engine.life.light import memory_weight
+from engine.lsystem import brackets
 from engine.lsystem.derive import Deriver, StepReport
 from engine.lsystem.lstring import LString, replace_modules
 from engine.lsystem.lsys import LSystem
 
-INTERNODE, LEAF, BLOSSOM, PITCH = ord("I"), ord("L"), ord("K"), ord("&")
-GEOMETRY_DEFAULTS = {"IL": 1.0, "IO": 0.72, "LS": 1.2, "TIP": 0.012, "GMAX": 3.0, "GT": 200.0, "TAU": 4.0}
+INTERNODE, LEAF, BLOSSOM, PITCH, APEX, BUD = (ord(c) for c in "ILK&AD")
+CONSTANT_DEFAULTS = {
+    "IL": 1.0, "IO": 0.72, "LS": 1.2, "TIP": 0.012, "GMAX": 3.0, "GT": 200.0, "TAU": 4.0, "LFADE": 3.0,
+    "SHED": 14.0, "SHQ": 0.25, "PHOTO": 7.0, "PHOTOB": 12.0, "UPW": 1.2, "UPB": 0.15, "RING": 0.012,
+    "STRAIGHT": 1.0, "SUNW": 0.35, "LIGHTW": 1.2,
+}
+GEOMETRY_DEFAULTS = CONSTANT_DEFAULTS  # older name, kept for callers outside the engine
 DROOP = 0.6  # branch and leaf angles grow by this fraction at full wilt
+LEAF_ASPECT = 0.5  # leaf quads are half as wide as long (engine/geometry/mesh.py)
+FALL_KEEP = 40.0  # physiological time a shed branch stays in `fallen` for the game to show its fall
+AROUND = np.array([[1.0, 0, 0], [-1, 0, 0], [0, 1, 0], [0, -1, 0], [0, 0, 1], [0, 0, -1]])  # light probes
+GRADIENT_REACH = 1.5  # internode lengths from an apex to its light probes
+CLUSTER_ANGLES = (0.0, 38.0, -38.0)  # degrees the blades of one leaf cluster fan out
+CLUSTER_SIZES = (1.0, 0.8, 0.8)
+CLUSTER_AREA = sum(s * s for s in CLUSTER_SIZES)
+_TURNLIKE = np.zeros(256, bool)
+_TURNLIKE[[ord(c) for c in "+-&^/\\|$!'T%"]] = True
 
 
 @dataclass
@@ -41,27 +62,80 @@ class Clocks:
     wilt: float = 0.0
 
 
-class GrowingTree:
-    """An L-string that grows by rewrites driven by the simulation's clocks, inside a module budget."""
+@dataclass
+class Fallen:
+    """Pieces of a shed branch, as they were when it fell (for the game's falling animation)."""
 
-    def __init__(self, system: LSystem, seed: int | None = None, lstring: LString | None = None,
-                 budget: int | None = None) -> None:
-        self.system = system
-        self.deriver = Deriver(system, seed=seed, budget=budget)
-        self.lstring = system.axiom if lstring is None else lstring
-        self.last_rewrite_T = 0.0
-        self.last_report: StepReport | None = None
-        self.geometry_constants = {k: system.constants.get(k, v) for k, v in GEOMETRY_DEFAULTS.items()}
+    at: float  # length time T of the fall
+    segments: Segments
+    leaves: Leaves
+
+
+@dataclass
+class LightScene:
+    """One tree as the light sees it: leaf areas that cast shade and the points that receive light."""
+
+    turtle: TurtleResult
+    leaf_idx: np.ndarray  # modules of the leaves (occluders and receivers, in this order)
+    leaf_center: np.ndarray  # (k, 3)
+    leaf_area: np.ndarray  # (k,) nominal area (wilt ignored: a wilting leaf still counts as a leaf)
+    probe_idx: np.ndarray  # apices and buds that receive light
+    around: np.ndarray  # (6 a, 3) points around every apex: where is there more light?
+
+    @property
+    def queries(self) -> np.ndarray:
+        """Receiver positions: the leaf centres, the apices and buds, the points around the apices."""
+        return np.concatenate([self.leaf_center, self.turtle.probes.position, self.around])
+
+
+@dataclass
+class SenseReport:
+    """What one light reading changed."""
+
+    shed: int = 0  # branches shed
+    mean_light: float = 1.0  # mean light of the leaves (area-weighted)
+
+
+@dataclass
+class GrowingTree:
+    """An L-string grown by rewrites driven by the simulation's clocks and the light, inside a budget."""
+
+    system: LSystem
+    seed: int | None = None
+    lstring: LString | None = None
+    budget: int | None = None
+    last_rewrite_T: float = 0.0  # noqa: N815 (the save format names it so)
+    last_sense_length: float | None = None
+    last_sense_girth: float | None = None
+    light_dir: np.ndarray = field(default_factory=lambda: np.array([0.0, 1.0, 0.0]))
+    mean_light: float = 1.0
+    shed_total: int = 0
+    fallen: list[Fallen] = field(default_factory=list)
+    last_report: StepReport | None = None
+
+    def __post_init__(self) -> None:
+        self.deriver = Deriver(self.system, seed=self.seed, budget=self.budget)
+        if self.lstring is None:
+            self.lstring = self.system.axiom
+        self.geometry_constants = {k: float(self.system.constants.get(k, v)) for k, v in CONSTANT_DEFAULTS.items()}
 
     @property
     def budget_hit(self) -> bool:
         """True when the last rewrite was held back by the module budget."""
         return bool(self.last_report and self.last_report.budget_hit)
 
-    def rewrite(self, length_time: float, girth_time: float, resources: float) -> StepReport:
-        """One derivation step at the given clocks (new modules are born now)."""
-        extern = {"T": length_time, "G": girth_time, "DT": length_time - self.last_rewrite_T, "R": resources}
-        self.lstring, self.last_report = self.deriver.step(self.lstring, extern)
+    @property
+    def budget_used(self) -> float:
+        """Share of the module budget in use (0..1)."""
+        budget = self.deriver.budget
+        return min(len(self.lstring) / budget, 1.0) if budget else 0.0
+
+    def rewrite(self, length_time: float, girth_time: float, resources: float, leaf_vigour: float = 1.0) -> StepReport:
+        """One derivation step at the given clocks (new modules are born now), then empty brackets go."""
+        extern = {"T": length_time, "G": girth_time, "DT": length_time - self.last_rewrite_T, "R": resources,
+                  "B": self.budget_used, "WL": leaf_vigour}
+        new, self.last_report = self.deriver.step(self.lstring, extern)
+        self.lstring = remove_empty_branches(new)
         self.last_rewrite_T = length_time
         return self.last_report
 
@@ -72,6 +146,198 @@ class GrowingTree:
     def geometry(self, clocks: Clocks, lod: int = 0) -> TreeGeometry:
         """Turtle output and meshes of the tree at these clocks."""
         return grow_geometry(self.lstring, clocks, self.geometry_constants, lod)
+
+    def light_scene(self, clocks: Clocks) -> LightScene:
+        """The tree as the light sees it now (one turtle pass, probing apices and buds)."""
+        ls, const = self.lstring, self.geometry_constants
+        view = render_view(ls, Clocks(clocks.length_time, clocks.girth_time, 0.0), const)
+        probes = np.flatnonzero(((ls.sym == APEX) & (ls.nparams == 6)) | ((ls.sym == BUD) & (ls.nparams == 3)))
+        turtle = interpret(view, _turtle_config(const), probes=probes)
+        leaves = turtle.leaves
+        heading = leaves.frame[:, :, 0] if len(leaves) else np.zeros((0, 3))
+        center = leaves.position + heading * (0.5 * leaves.size)[:, None]
+        apex = turtle.probes.position[ls.sym[probes] == APEX]
+        around = (apex[:, None, :] + AROUND[None] * (GRADIENT_REACH * const["IL"])).reshape(-1, 3)
+        return LightScene(turtle, leaves.module, center, CLUSTER_AREA * LEAF_ASPECT * leaves.size**2, probes,
+                          around)
+
+    def sense(self, scene: LightScene, light: np.ndarray, clocks: Clocks, shine: float, sun: np.ndarray,
+              memory: float, drought: float = 0.0) -> SenseReport:
+        """Write a light reading (``light``: one value per ``scene.queries``) into the string.
+
+        ``shine`` (0..1) is the sun's strength: buds and apices remember light x shine (a low sun feeds
+        less), readings count by it (no sun, no learning); ``sun`` is the direction toward the
+        sun, ``memory`` the physiological time over which light is remembered, ``drought`` (0..1) makes
+        shade kill faster. See the module docstring for what changes.
+        """
+        now, girth = clocks.length_time, clocks.girth_time
+        dt = 0.0 if self.last_sense_length is None else max(now - self.last_sense_length, 0.0)
+        dg = 0.0 if self.last_sense_girth is None else max(girth - self.last_sense_girth, 0.0)
+        self.last_sense_length, self.last_sense_girth = now, girth
+        weight = memory_weight(dt, shine, memory)
+        ls = self.lstring
+        params = ls.params.copy()
+        k, m = len(scene.leaf_idx), len(scene.probe_idx)
+        leaf_light, probe_light, around = light[:k], light[k:k + m], light[k + m:]
+        if weight > 0:  # buds and apices remember the light they really got: a low sun gives less
+            self._remember_light(ls, params, scene, probe_light * min(shine, 1.0), weight)
+            mean = np.asarray(sun, float) / max(float(np.linalg.norm(sun)), 1e-12)
+            self.light_dir = _unit(self.light_dir + weight * (mean - self.light_dir))
+            self._turn_apices(ls, params, scene, around, memory_weight(dt, shine, memory / 4))
+        area = float(scene.leaf_area.sum())
+        if area > 0 and weight > 0:
+            self.mean_light = float((leaf_light * scene.leaf_area).sum() / area)
+        grown = self._grow_wood_and_count_shade(ls, params, scene, leaf_light, dt, dg, drought, count=weight > 0)
+        self.lstring = LString(ls.sym, ls.nparams, ls.offsets, params)
+        shed = self._shed(scene, grown, params, now)
+        return SenseReport(shed, self.mean_light)
+
+    def _remember_light(self, ls: LString, params: np.ndarray, scene: LightScene, light: np.ndarray,
+                        weight: float) -> None:
+        slot = np.where(ls.sym[scene.probe_idx] == APEX, 3, 2)
+        at = ls.offsets[scene.probe_idx] + slot
+        params[at] += weight * (light - params[at])
+
+    def _turn_apices(self, ls: LString, params: np.ndarray, scene: LightScene, around: np.ndarray,
+                     weight: float) -> None:
+        """Yaw and pitch (degrees) that turn each apex's next internode toward its target direction:
+        its own heading, up (negative gravitropism), the mean sun direction and the side where the
+        light around it is brighter (Palubicki's optimal growth direction), at most PHOTO degrees."""
+        const = self.geometry_constants
+        apex = ls.sym[scene.probe_idx] == APEX
+        idx = scene.probe_idx[apex]
+        if len(idx) == 0:
+            return
+        frames = scene.turtle.probes.frame[apex]
+        order = params[ls.offsets[idx] + 1]
+        seen = around.reshape(len(idx), len(AROUND))
+        brighter = seen @ AROUND / np.maximum(seen.sum(axis=1), 1e-9)[:, None]
+        sun = np.broadcast_to(self.light_dir, brighter.shape).copy()
+        branch = order > 0
+        brighter[branch, 1] = sun[branch, 1] = 0.0  # branches seek light sideways: they spread, the
+        up_weight = np.where(branch, const["UPB"], const["UPW"])[:, None]  # up-weight alone lifts them
+        target = (const["STRAIGHT"] * frames[:, :, 0] + up_weight * np.array([0.0, 1.0, 0.0])
+                  + const["SUNW"] * sun + const["LIGHTW"] * brighter)
+        target /= np.maximum(np.linalg.norm(target, axis=1, keepdims=True), 1e-12)
+        local = np.einsum("kij,ki->kj", frames, target)  # target in each apex's (H, L, U)
+        angle = np.degrees(np.arccos(np.clip(local[:, 0], -1.0, 1.0)))
+        limit = np.where(order == 0, const["PHOTO"], const["PHOTOB"])
+        scale = np.minimum(1.0, limit / np.maximum(angle, 1e-9))
+        yaw = np.degrees(np.arctan2(local[:, 1], local[:, 0])) * scale  # "+" turns H toward L
+        pitch = np.degrees(np.arctan2(local[:, 2], np.hypot(local[:, 0], local[:, 1]))) * scale
+        at = ls.offsets[idx]
+        params[at + 4] += weight * (yaw - params[at + 4])
+        params[at + 5] += weight * (pitch - params[at + 5])
+
+    def _grow_wood_and_count_shade(self, ls: LString, params: np.ndarray, scene: LightScene, leaf_light: np.ndarray,
+                                   dt: float, dg: float, drought: float, count: bool) -> np.ndarray:
+        """Secondary growth (wood never shrinks) and each internode's time in deep shade. Returns, per
+        segment, whether it is a grown internode with the full layout."""
+        const = self.geometry_constants
+        segs = scene.turtle.segments
+        if len(segs) == 0:
+            return np.zeros(0, bool)
+        grown = (ls.sym[segs.module] == INTERNODE) & (ls.nparams[segs.module] == 5)
+        off = ls.offsets[segs.module[grown]]
+        pipes = _pipe_area(ls, segs, const)[grown]
+        params[off + 4] = np.maximum(params[off + 4], pipes) + const["RING"] * dg * pipes
+        if count and dt > 0:
+            carrier = scene.turtle.carriers(scene.leaf_idx)
+            ok = carrier >= 0
+            got = np.bincount(carrier[ok], (leaf_light * scene.leaf_area)[ok], minlength=len(segs))
+            has = np.bincount(carrier[ok], scene.leaf_area[ok], minlength=len(segs))
+            got_above = subtree_sums(ls, segs, got)  # the view keeps the string's module positions
+            has_above = subtree_sums(ls, segs, has)
+            # Light income against what the branch must feed: a full leaf cluster's area per internode
+            # it carries. A long branch with a few lit leaves at its tip starves like a shaded one.
+            need = np.where(grown, CLUSTER_AREA * LEAF_ASPECT * const["LS"] ** 2, 0.0)
+            need_above = subtree_sums(ls, segs, need)
+            ratio = (got_above / np.maximum(need_above, 1e-12))[grown]
+            del has_above
+            shade = params[off + 3]
+            deep = ratio < const["SHQ"]
+            params[off + 3] = np.where(deep, shade + dt * (1.0 + 2.0 * drought), np.maximum(shade - dt, 0.0))
+        return grown
+
+    def _shed(self, scene: LightScene, grown: np.ndarray, params: np.ndarray, now: float) -> int:
+        """Cut every lateral branch whose base internode has been in deep shade for longer than SHED."""
+        ls = self.lstring
+        segs = scene.turtle.segments
+        self.fallen = [f for f in self.fallen if now - f.at < FALL_KEEP]
+        if len(segs) == 0:
+            return 0
+        module = segs.module
+        base = grown & ~segs.continues & (segs.parent >= 0)
+        off = ls.offsets[module]
+        dead = base & (params[np.where(grown, off + 3, 0)] > self.geometry_constants["SHED"])
+        dead &= params[np.where(grown, off + 2, 0)] >= 1  # the trunk is never shed
+        if not dead.any():
+            return 0
+        close = brackets.branch_ends(ls.sym, module[dead])
+        close = close[close < len(ls)]
+        opened = brackets.match(ls.sym)[close]
+        delta = np.zeros(len(ls) + 1, dtype=np.int64)
+        np.add.at(delta, opened, 1)
+        np.add.at(delta, close + 1, -1)
+        removed = np.cumsum(delta[:-1]) > 0
+        self._remember_fall(scene, removed, now)
+        self.lstring = ls.select(~removed)
+        self.shed_total += len(opened)
+        return len(opened)
+
+    def _remember_fall(self, scene: LightScene, removed: np.ndarray, now: float) -> None:
+        turtle = scene.turtle
+        segs, leaves = turtle.segments, turtle.leaves
+        s = removed[segs.module]
+        lv = removed[leaves.module]
+        index = np.full(len(segs) + 1, -1, dtype=np.int64)
+        index[np.flatnonzero(s)] = np.arange(int(s.sum()))
+        parent = index[segs.parent[s]]  # -1 (the last entry) for a parent that stays on the tree
+        pieces = Segments(segs.start[s], segs.end[s], segs.radius[s], segs.radius_end[s], segs.frame[s],
+                          segs.order[s], segs.module[s], parent, segs.continues[s] & (parent >= 0), segs.colour[s])
+        self.fallen.append(Fallen(now, pieces, Leaves(leaves.position[lv], leaves.frame[lv], leaves.size[lv],
+                                                      leaves.module[lv])))
+
+
+def leaf_clusters(leaves: Leaves) -> Leaves:
+    """Every leaf module as a small cluster of blades fanned around its stalk (denser, more natural
+    foliage for the same modules), each blade a little different in size and angle."""
+    k = len(leaves)
+    if k == 0:
+        return leaves
+    jitter = np.modf(np.abs(np.sin(leaves.module * 78.233 + 0.5) * 43758.5453))[0] - 0.5  # -0.5..0.5
+    h, lft = leaves.frame[:, :, 0], leaves.frame[:, :, 1]
+    frames, sizes = [], []
+    for angle, scale in zip(CLUSTER_ANGLES, CLUSTER_SIZES, strict=True):
+        a = np.radians(angle * (1.0 + 0.4 * jitter))[:, None]
+        frame = leaves.frame.copy()
+        frame[:, :, 0] = h * np.cos(a) + lft * np.sin(a)
+        frame[:, :, 1] = lft * np.cos(a) - h * np.sin(a)
+        frames.append(frame)
+        sizes.append(leaves.size * scale * (1.0 + 0.25 * jitter))
+    n = len(CLUSTER_ANGLES)
+    return Leaves(np.tile(leaves.position, (n, 1)), np.concatenate(frames), np.concatenate(sizes),
+                  np.tile(leaves.module, n))
+
+
+def new_axis_text(system: LSystem, now: float, girth: float) -> str:
+    """A new first-order shoot (an internode and an apex that is due at once) in the layout of
+    ``system``'s own modules: the living tree's, or the three-parameter one of older saves."""
+    axiom = system.axiom
+    apex = np.flatnonzero(axiom.sym == APEX)
+    plastochron = float(system.constants.get("P", 4.0))
+    if len(apex) and axiom.nparams[apex[0]] == 6:
+        return f"I({now:g},{girth:g},1,0,0)A({plastochron:g},1,0,1,0,0)"
+    return f"I({now:g},{girth:g},1)A({now - plastochron:g},1,0)"
+
+
+def _unit(v: np.ndarray) -> np.ndarray:
+    n = float(np.linalg.norm(v))
+    return v / n if n > 1e-12 else np.array([0.0, 1.0, 0.0])
+
+
+def _turtle_config(const: dict[str, float]) -> TurtleConfig:
+    return TurtleConfig(pipe_model=False, leaves_at_tips=0, leaf_size=const["LS"], width=0.0)
 
 
 def _saturate(age: np.ndarray, tau: float) -> np.ndarray:
@@ -84,41 +350,64 @@ def _leaf_keep(birth: np.ndarray, wilt: float) -> np.ndarray:
     return np.clip((h + 0.1 - 1.1 * wilt) / 0.1, 0.0, 1.0)
 
 
+def _leaf_sizes(ls: LString, idx: np.ndarray, now: float, const: dict[str, float]) -> np.ndarray:
+    """Leaf length without wilt: unfolding from zero, times its vigour, withering once it falls."""
+    off, count = ls.offsets[idx], ls.nparams[idx]
+    birth = ls.params[off]
+    vigour = np.where(count >= 2, ls.params[np.where(count >= 2, off + 1, off)], 1.0)
+    falling = np.where(count >= 3, ls.params[np.where(count >= 3, off + 2, off)], 0.0)
+    wither = np.where(falling > 0, np.clip(1.0 - (now - falling) / const["LFADE"], 0.0, 1.0), 1.0)
+    return const["LS"] * vigour * _saturate(now - birth, const["TAU"]) * wither
+
+
 def render_view(ls: LString, clocks: Clocks, const: dict[str, float]) -> LString:
-    """Map I -> F(length), L(birth) -> L(size) and K(birth) -> K(size) at the given clocks; droop pitch
+    """Map I -> F(length), L(...) -> L(size) and K(birth) -> K(size) at the given clocks; droop pitch
     angles with wilt."""
     now = clocks.length_time
-    idx = np.flatnonzero((ls.sym == INTERNODE) & (ls.nparams == 3))
+    idx = np.flatnonzero((ls.sym == INTERNODE) & (ls.nparams >= 3))
     birth, order = ls.params[ls.offsets[idx]], ls.params[ls.offsets[idx] + 2]
     length = const["IL"] * const["IO"] ** order * _saturate(now - birth, const["TAU"])
     view = replace_modules(ls, idx, ord("F"), length[:, None])
-    leaves = np.flatnonzero((view.sym == LEAF) & (view.nparams == 1))
-    lb = view.params[view.offsets[leaves]]
-    view.params[view.offsets[leaves]] = const["LS"] * _saturate(now - lb, const["TAU"]) * _leaf_keep(lb, clocks.wilt)
+    leaves = np.flatnonzero((ls.sym == LEAF) & (ls.nparams >= 1))
+    size = _leaf_sizes(ls, leaves, now, const) * _leaf_keep(ls.params[ls.offsets[leaves]], clocks.wilt)
+    view = replace_modules(view, leaves, LEAF, size[:, None])
     blossoms = np.flatnonzero((view.sym == BLOSSOM) & (view.nparams == 1))  # K(birth) from region edits
     kb = view.params[view.offsets[blossoms]]
     opened = _saturate(now - kb, const["TAU"]) * _leaf_keep(kb, clocks.wilt)
     view.params[view.offsets[blossoms]] = 0.4 * const["LS"] * opened
     if clocks.wilt > 0:
-        view.params[view.offsets[_droop_angles(ls)]] *= 1.0 + DROOP * clocks.wilt
+        view.params[view.offsets[_droop_angles(view)]] *= 1.0 + DROOP * clocks.wilt
     return view
 
 
-def _radii(ls: LString, view: LString, segs, clocks: Clocks, const: dict[str, float]) -> np.ndarray:
-    """Pipe-model radii for grown internodes; drawn pieces (modeler F) keep at least their drawn width."""
-    grown = (ls.sym[segs.module] == INTERNODE) & (ls.nparams[segs.module] == 3)
+def _pipe_area(ls: LString, segs: Segments, const: dict[str, float]) -> np.ndarray:
+    """Pipe-model cross-section of every segment: TIP^2 per leaf carried, each internode counting one
+    leaf as far as it has grown; a drawn tip (a stroke's or a crown's) feeds one leaf's pipes."""
+    grown = (ls.sym[segs.module] == INTERNODE) & (ls.nparams[segs.module] >= 3)
     offsets = ls.offsets[segs.module]
     seg_len = np.linalg.norm(segs.end - segs.start, axis=1)
     order = np.where(grown, ls.params[np.where(grown, offsets + 2, 0)], 0.0)
-    girth_birth = np.where(grown, ls.params[np.where(grown, offsets + 1, 0)], 0.0)
     full = const["IL"] * const["IO"] ** order
-    weight = np.where(grown, seg_len / full, 0.0)  # each internode feeds one leaf, as far as it has grown
+    weight = np.where(grown, seg_len / full, 0.0)
     drawn = ~grown & (ls.sym[segs.module] == ord("F")) & (ls.nparams[segs.module] == 11)
     drawn_below = np.bincount(segs.parent[drawn & (segs.parent >= 0)], minlength=len(segs)) > 0
-    weight[drawn & ~drawn_below] = 1.0  # a drawn tip (a stroke's or a crown's) feeds one leaf's pipes
-    pipes = const["TIP"] ** 2 * np.maximum(subtree_sums(view, segs, weight), 1e-6)
-    rings = const["GMAX"] * _saturate(clocks.girth_time - girth_birth, const["GT"])
-    radius = np.sqrt(pipes * (1.0 + rings))
+    weight[drawn & ~drawn_below] = 1.0
+    return const["TIP"] ** 2 * np.maximum(subtree_sums(ls, segs, weight), 1e-6)
+
+
+def _radii(ls: LString, segs: Segments, clocks: Clocks, const: dict[str, float]) -> np.ndarray:
+    """Radii: the built wood or the pipe area, whichever is larger; drawn pieces keep at least their
+    drawn width. Internodes from before the living tree (three parameters) thicken with age instead."""
+    module = segs.module
+    count = ls.nparams[module]
+    grown = (ls.sym[module] == INTERNODE) & (count >= 3)
+    pipes = _pipe_area(ls, segs, const)
+    offsets = ls.offsets[module]
+    wood = np.where(grown & (count >= 5), ls.params[np.where(grown & (count >= 5), offsets + 4, 0)], 0.0)
+    girth_birth = np.where(grown, ls.params[np.where(grown, offsets + 1, 0)], 0.0)
+    legacy = grown & (count < 5)
+    rings = np.where(legacy, const["GMAX"] * _saturate(clocks.girth_time - girth_birth, const["GT"]), 0.0)
+    radius = np.sqrt(np.maximum(pipes * (1.0 + rings), wood))
     return np.where(grown, radius, np.maximum(radius, segs.radius))
 
 
@@ -127,16 +416,41 @@ def _droop_angles(ls: LString) -> np.ndarray:
     apex. Drawn (modeler) geometry keeps its shape."""
     pitch = np.flatnonzero((ls.sym[:-1] == PITCH) & (ls.nparams[:-1] == 1))
     nxt = pitch + 1
-    carried = (ls.sym[nxt] == ord("D")) | (ls.sym[nxt] == LEAF) | ((ls.sym[nxt] == ord("A")) & (ls.nparams[nxt] == 3))
+    carried = (ls.sym[nxt] == BUD) | (ls.sym[nxt] == LEAF) | ((ls.sym[nxt] == APEX) & (ls.nparams[nxt] != 5))
     return pitch[carried]
 
 
+def remove_empty_branches(ls: LString) -> LString:
+    """Drop brackets that hold nothing but turns (what erased leaves and buds leave behind)."""
+    sym = ls.sym
+    opens = np.flatnonzero(sym == brackets.OPEN)
+    if len(opens) == 0:
+        return ls
+    content = ~_TURNLIKE[sym] & (sym != brackets.OPEN) & (sym != brackets.CLOSE)
+    cum = np.concatenate([[0], np.cumsum(content)])
+    closes = brackets.match(sym)[opens]
+    empty = cum[closes] - cum[opens] == 0
+    if not empty.any():
+        return ls
+    delta = np.zeros(len(ls) + 1, dtype=np.int64)
+    np.add.at(delta, opens[empty], 1)
+    np.add.at(delta, closes[empty] + 1, -1)
+    return ls.select(np.cumsum(delta[:-1]) == 0)
+
+
 def grow_geometry(ls: LString, clocks: Clocks, const: dict[str, float], lod: int = 0) -> TreeGeometry:
-    """Turtle and meshes of the growing tree, with continuous pipe-model radii (see module docstring)."""
+    """Turtle and meshes of the growing tree, with continuous radii (see module docstring)."""
     view = render_view(ls, clocks, const)
-    turtle = interpret(view, TurtleConfig(pipe_model=False, leaves_at_tips=0, leaf_size=const["LS"], width=0.0))
+    turtle = interpret(view, _turtle_config(const))
     segs = turtle.segments
     if len(segs):
-        set_radii(segs, _radii(ls, view, segs, clocks, const))
+        set_radii(segs, _radii(ls, segs, clocks, const))
+    turtle.leaves = leaf_clusters(turtle.leaves)
     level = LOD_LEVELS[max(0, min(lod, len(LOD_LEVELS) - 1))]
     return TreeGeometry(turtle, tree_mesh(turtle, level))
+
+
+def falling_pieces(tree: GrowingTree, now: float, seconds: float) -> list[tuple[Fallen, float]]:
+    """Shed branches still falling, each with its fall progress 0..1 (``seconds``: physiological time a
+    fall lasts)."""
+    return [(f, min(max((now - f.at) / seconds, 0.0), 1.0)) for f in tree.fallen if now - f.at < seconds]

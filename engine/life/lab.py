@@ -23,8 +23,8 @@ from engine.life.sim import Rules
 from engine.life.world import World
 from engine.lsystem.lsys import LSystem, load_lsystem
 
-METRICS = ("height", "girth", "modules", "leaves", "sun", "water", "wilt")
-MAX_TREES = 4
+METRICS = ("height", "width", "offset", "girth", "modules", "leaves", "shed", "sun", "water", "wilt")
+MAX_TREES = 6
 
 
 @dataclass
@@ -228,12 +228,30 @@ class Lab:
 
 
 def measure(world: World) -> dict[str, float]:
-    """Height, trunk girth (diameter at the base), modules, leaves on the tree, meters and wilt."""
+    """Height, crown width, crown offset toward the sun's side, trunk girth (diameter at the base),
+    modules, leaf clusters on the tree, branches shed, meters and wilt."""
     geometry = world.tree.geometry(world.clocks())
     segs, leaves = geometry.turtle.segments, geometry.turtle.leaves
-    height = float(segs.end[:, 1].max()) if len(segs) else 0.0
+    shape = crown_shape(segs, leaves)
     girth = float(2 * segs.radius[0]) if len(segs) else 0.0
-    on_tree = int(np.count_nonzero(leaves.size > 0.05 * leaves.size.max())) if len(leaves) else 0
+    big = leaves.size > 0.05 * leaves.size.max() if len(leaves) else np.zeros(0, bool)
+    on_tree = len(np.unique(leaves.module[big]))
+    side = np.array([0.0, 0.0, 1.0]) if world.rules.sun.side >= 0 else np.array([0.0, 0.0, -1.0])
     s = world.sim.state
-    return {"height": height, "girth": girth, "modules": float(len(world.tree.lstring)), "leaves": float(on_tree),
-            "sun": s.sun_meter, "water": s.water_meter, "wilt": s.wilt}
+    return {"height": shape["height"], "width": shape["width"], "offset": float(shape["centroid"] @ side),
+            "girth": girth, "modules": float(len(world.tree.lstring)), "leaves": float(on_tree),
+            "shed": float(world.tree.shed_total), "sun": s.sun_meter, "water": s.water_meter, "wilt": s.wilt}
+
+
+def crown_shape(segs, leaves) -> dict:
+    """Height (top of the wood), crown width (largest horizontal extent of the leaves) and the leaves'
+    centroid relative to the trunk's base (x, 0, z)."""
+    height = float(segs.end[:, 1].max()) if len(segs) else 0.0
+    if len(leaves) == 0:
+        return {"height": height, "width": 0.0, "centroid": np.zeros(3)}
+    base = segs.start[0] if len(segs) else np.zeros(3)
+    flat = leaves.position[:, [0, 2]]
+    width = float(np.ptp(flat, axis=0).max())
+    centroid = leaves.position.mean(axis=0) - base
+    centroid[1] = 0.0
+    return {"height": height, "width": width, "centroid": centroid}

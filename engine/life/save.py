@@ -105,6 +105,7 @@ def save_text(world: World, lsystem_name: str, saved_at: float | None = None) ->
         "",
         "[tree]",
         f"last_rewrite_T = {format_number(world.tree.last_rewrite_T)}",
+        *_light_lines(world),
         f"rng_world = {_toml_string(_rng_text(world.rng))}",
         f"rng_tree = {_toml_string(_rng_text(world.tree.deriver.rng))}",
         f"modules = {len(ls)}",
@@ -112,6 +113,46 @@ def save_text(world: World, lsystem_name: str, saved_at: float | None = None) ->
         "",
     ]
     return "\n".join(lines)
+
+
+def _light_lines(world: World) -> list[str]:
+    """The light state that is not in the L-string: when light was last read, the remembered mean
+    light direction and light, and how many branches were shed (for the player's records)."""
+    tree = world.tree
+    lines = [f"light_dir = [{', '.join(format_number(float(v)) for v in tree.light_dir)}]",
+             f"mean_light = {format_number(tree.mean_light)}",
+             f"shed_total = {tree.shed_total}"]
+    if np.isfinite(world.last_light):
+        lines.append(f"last_light = {format_number(world.last_light)}")
+    if tree.last_sense_length is not None and tree.last_sense_girth is not None:
+        lines += [f"last_sense_length = {format_number(tree.last_sense_length)}",
+                  f"last_sense_girth = {format_number(tree.last_sense_girth)}"]
+    return lines
+
+
+def _restore_light(world: World, tree: dict, path: Path, text: str) -> None:
+    """Inverse of :func:`_light_lines`; every key is optional (saves from before the living tree)."""
+    def number(key: str, default: float | None) -> float | None:
+        if key not in tree:
+            return default
+        value = _require(tree, key, int | float, path, text)
+        if not math.isfinite(value):
+            raise SaveError(f"'{key}' must be a finite number", str(path), _line_of(text, key), 1)
+        return float(value)
+
+    direction = tree.get("light_dir", [0.0, 1.0, 0.0])
+    if (not isinstance(direction, list) or len(direction) != 3
+            or not all(isinstance(v, int | float) and not isinstance(v, bool) and math.isfinite(v) for v in direction)
+            or not 0.5 < math.hypot(*direction) < 2.0):
+        raise SaveError("'light_dir' must be a unit vector [x, y, z]", str(path), _line_of(text, "light_dir"), 1)
+    t = world.tree
+    t.light_dir = np.array(direction, float) / math.hypot(*direction)
+    t.mean_light = min(max(number("mean_light", 1.0), 0.0), 1.0)
+    shed = tree.get("shed_total", 0)
+    t.shed_total = shed if isinstance(shed, int) and not isinstance(shed, bool) and shed >= 0 else 0
+    world.last_light = number("last_light", float("-inf"))
+    t.last_sense_length = number("last_sense_length", None)
+    t.last_sense_girth = number("last_sense_girth", None)
 
 
 def save_world(world: World, path: str | Path, lsystem_name: str = "game_tree.lsys",
@@ -218,6 +259,13 @@ def load_world(path: str | Path, rules: Rules | None = None, budget_slack: float
         line = _line_of(text, "lstring") + 1 + pos // WRAP
         raise SaveError(f"in the L-string: {err.message}", str(path), line, pos % WRAP + 1) from None
     world.tree.last_rewrite_T = float(_require(tree, "last_rewrite_T", int | float, path, text))
+    _restore_light(world, tree, path, text)
     _restore_rng(world.rng, _require(tree, "rng_world", str, path, text), "rng_world", path, text)
     _restore_rng(world.tree.deriver.rng, _require(tree, "rng_tree", str, path, text), "rng_tree", path, text)
     return world, float(_require(data, "saved_at", int | float, path, text))
+
+
+def load_trees(path: str | Path, rules: Rules | None = None) -> list[World]:
+    """Every tree in a save, in planting order (a single-tree save gives one)."""
+    world, _ = load_world(path, rules)
+    return [world]

@@ -19,6 +19,7 @@ import numpy as np
 
 from engine.base.config import fill_dataclass
 from engine.base.errors import LSysError
+from engine.life.light import LightRules
 
 
 @dataclass
@@ -47,6 +48,7 @@ class SunRules:
     speed_max: float = 0.5
     fill_rate: float = 0.04
     drain_rate: float = 0.006
+    side: float = 0.45  # how far to one side (+z, "south") the sun's path lies, in orbit radii
 
 
 @dataclass
@@ -58,6 +60,8 @@ class WaterRules:
     fill_rate: float = 0.12
     drown_level: float = 0.95
     drown_time: float = 30.0
+    leaf_min: float = 0.45  # leaf vigour (size, and how long leaves stay) with an empty water meter
+    drought_level: float = 0.35  # below this, drought makes shaded branches die faster
 
 
 @dataclass
@@ -87,6 +91,7 @@ class Rules:
     water: WaterRules = field(default_factory=WaterRules)
     health: HealthRules = field(default_factory=HealthRules)
     replant: ReplantRules = field(default_factory=ReplantRules)
+    light: LightRules = field(default_factory=LightRules)
 
 
 def load_rules(path: str | Path) -> Rules:
@@ -188,7 +193,7 @@ class Simulation:
     def sun_direction(self) -> np.ndarray:
         """Unit vector from the tree towards the sun (for lighting, shadows and drawing the sun)."""
         s = self.state
-        v = np.array([math.cos(s.sun_angle), self.sun_height(), 0.45])
+        v = np.array([math.cos(s.sun_angle), self.sun_height(), self.rules.sun.side])
         return v / np.linalg.norm(v)
 
     def set_orbit_height(self, value: float) -> None:
@@ -214,17 +219,28 @@ class Simulation:
     def growth_speeds(self) -> tuple[float, float]:
         """(length clock, girth clock) speeds right now.
 
-        Sun sets the length-growth rate and water the girth-growth rate (seed 003): each is the rules'
-        rate x the meter's level x what the meter earned (0 before its first 20 s above half, less
-        after late cycles) x health (1 - wilt). Length growth also needs some water.
+        Seed 003: the tree can grow only when BOTH meters have been above half for 20 s; a cycle that
+        takes longer than 40 s earns less. So both clocks run at the rules' rate x what each meter earned
+        (0 before its first 20 s above half, less after late cycles) x health (1 - wilt), and sun sets
+        the length-growth rate (x the sun meter's level), water the girth-growth rate (x its level).
         """
         s, g = self.state, self.rules.growth
         if not s.alive:
             return 0.0, 0.0
-        health = 1.0 - s.wilt
-        thirsty = s.water_meter < self.rules.health.neglect_level
-        length = 0.0 if thirsty else g.length_rate * s.sun_meter * s.sun_cycle.rate * health
-        return length, g.girth_rate * s.water_meter * s.water_cycle.rate * health
+        gate = s.sun_cycle.rate * s.water_cycle.rate * (1.0 - s.wilt)
+        return g.length_rate * s.sun_meter * gate, g.girth_rate * s.water_meter * gate
+
+    def leaf_vigour(self) -> float:
+        """How big new leaves grow and how well they stay (rules' leaf_min with no water, 1 when the
+        water meter is above half)."""
+        w = self.rules.water
+        level = min(max(self.state.water_meter / self.rules.growth.threshold, 0.0), 1.0)
+        return w.leaf_min + (1.0 - w.leaf_min) * level
+
+    def drought(self) -> float:
+        """0 with enough water, rising to 1 as the water meter empties below the drought level."""
+        level = self.rules.water.drought_level
+        return min(max((level - self.state.water_meter) / level, 0.0), 1.0) if level > 0 else 0.0
 
     def resources(self) -> float:
         """0..1: how well the tree is doing; decides how many dormant buds may wake."""
@@ -269,15 +285,19 @@ class Simulation:
             s.alive = False
 
     def status(self) -> str:
-        """A short word for the HUD: what the tree is doing."""
-        s = self.state
+        """A short word for the HUD that says what is true: dead, wilting, drowning, thirsty, needs_light,
+        growing, resting (night) or starting (both meters fine; growth is earned after 20 s)."""
+        s, threshold = self.state, self.rules.growth.threshold
         if not s.alive:
             return "dead"
         if s.wilt > 0.5:
             return "wilting"
         if s.drowning > self.rules.water.drown_time:
             return "drowning"
-        length, girth = self.growth_speeds()
-        if length > 0 or girth > 0:
-            return "growing"
-        return "waiting"
+        if s.water_meter <= threshold:
+            return "thirsty"
+        if s.sun_meter <= threshold:
+            return "needs_light"
+        if self.growth_speeds()[0] > 0:
+            return "growing" if self.sunshine() > 0 else "resting"
+        return "starting"

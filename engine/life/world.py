@@ -11,6 +11,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from engine.life.growth import Clocks, GrowingTree
+from engine.life.light import exposure
 from engine.life.sim import Rules, SimState, Simulation
 from engine.lsystem.lsys import LSystem
 
@@ -30,6 +31,7 @@ class World:
     rng: np.random.Generator = field(init=False)
     steps: int = 0
     position: tuple[float, float] = (0.0, 0.0)  # where the tree stands in a garden (x, z)
+    last_light: float = float("-inf")  # game time of the last light reading
 
     def __post_init__(self) -> None:
         self.sim = Simulation(self.rules)
@@ -47,12 +49,35 @@ class World:
         return tree
 
     def step(self, dt: float) -> None:
-        """Advance the simulation by ``dt``; rewrite the L-string each time T passed one rewrite step."""
+        """Advance the simulation by ``dt``: read the light when due, rewrite the L-string each time T
+        passed one rewrite step."""
+        self.advance(dt)
+        if self.light_due():
+            sense_light([self])
+        self.grow()
+
+    def advance(self, dt: float) -> None:
+        """The simulation's part of a step (meters, clocks, health)."""
         self.sim.step(dt)
         self.steps += 1
+
+    def light_due(self) -> bool:
+        """True when the rules' light interval has passed since the last light reading."""
+        return self.sim.state.time - self.last_light >= self.rules.light.interval
+
+    def grow(self) -> None:
+        """Rewrite the L-string if T has passed one rewrite step since the last rewrite."""
         s = self.sim.state
         if s.length_time - self.tree.last_rewrite_T >= self.rules.growth.rewrite_step:
-            self.tree.rewrite(s.length_time, s.girth_time, self.sim.resources())
+            self.tree.rewrite(s.length_time, s.girth_time, self.sim.resources(), self.sim.leaf_vigour())
+
+    def status(self) -> str:
+        """What the HUD says about this tree (see :meth:`Simulation.status`); a tree that grows but whose
+        leaves get little light says it needs light."""
+        status = self.sim.status()
+        if status == "growing" and self.tree.mean_light < self.tree.geometry_constants["SHQ"]:
+            return "needs_light"
+        return status
 
     def apply(self, action: str, value: float = 0.0) -> None:
         """A player action: 'water' (1 = can held, 0 = released), slider values, or 'replant'."""
@@ -81,6 +106,38 @@ class World:
         lerp = lambda a, b: a + (b - a) * alpha  # noqa: E731
         return Clocks(lerp(previous.length_time, s.length_time), lerp(previous.girth_time, s.girth_time),
                       lerp(previous.wilt, s.wilt))
+
+
+def sense_light(worlds: list[World]) -> None:
+    """One light reading for trees that share a sun (a garden): every tree's leaves shade every tree."""
+    if not worlds:
+        return
+    sim = worlds[0].sim
+    sun, shine = sim.sun_direction(), sim.sunshine()
+    rules = worlds[0].rules.light
+    for world in worlds:
+        world.last_light = world.sim.state.time
+    if shine <= 0:  # night: nothing to read or remember; wood grown meanwhile is added at the next reading
+        for world in worlds:
+            if world.tree.last_sense_length is not None:
+                world.tree.last_sense_length = world.sim.state.length_time
+        return
+    scenes = [world.tree.light_scene(world.clocks()) for world in worlds]
+    offsets = [np.array([world.position[0], 0.0, world.position[1]]) for world in worlds]
+    queries = [scene.queries + offset for scene, offset in zip(scenes, offsets, strict=True)]
+    occluders = np.concatenate([s.leaf_center + o for s, o in zip(scenes, offsets, strict=True)])
+    area = np.concatenate([s.leaf_area for s in scenes])
+    self_index, first = [], 0
+    for scene, q in zip(scenes, queries, strict=True):
+        k = len(scene.leaf_idx)
+        self_index.append(np.concatenate([first + np.arange(k), np.full(len(q) - k, -1)]))
+        first += k
+    light = exposure(occluders, area, np.concatenate(queries), sun, rules, np.concatenate(self_index))
+    start = 0
+    for world, scene, q in zip(worlds, scenes, queries, strict=True):
+        part = light[start:start + len(q)]
+        start += len(q)
+        world.tree.sense(scene, part, world.clocks(), shine, sun, rules.memory, world.sim.drought())
 
 
 def replay(system: LSystem, rules: Rules, seed: int, log: InputLog, steps: int, dt: float) -> World:

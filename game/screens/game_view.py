@@ -11,6 +11,7 @@ import pygame
 from engine.geometry.mesh import merge_trees
 from engine.life.growth import grow_geometry
 from game.render.camera import OrbitCamera, project_points
+from game.render.falling import FALL_SECONDS, falling_mesh
 from game.render.ui import HudInfo, draw_hud, draw_rain_cloud
 from game.strings import text
 
@@ -28,6 +29,7 @@ class GameView:
         self.surface = pygame.Surface(game.size, pygame.SRCALPHA)
         self.built: tuple | None = None
         self.triangles = 0
+        self.fall_started: dict[int, float] = {}  # shed branch -> real time its fall began
 
     def rebuild(self) -> None:
         """Mesh the garden again if anything visible changed since the last frame."""
@@ -35,18 +37,22 @@ class GameView:
         clocks = game.clocks()
         shown = game.modeling.lstring() if game.modeling.active else game.world.tree.lstring
         others = game.others
+        falls = self._falls()
         key = (id(shown), round(clocks.length_time, 6), round(clocks.girth_time, 6), round(clocks.wilt, 4),
-               tuple((id(o.tree.lstring), round(o.sim.state.length_time, 3)) for o in others))
+               tuple((id(o.tree.lstring), round(o.sim.state.length_time, 3)) for o in others),
+               tuple((id(f), round(p, 3)) for f, p, _ in falls))
         if key == self.built:
             return
         mesh = grow_geometry(shown, clocks, game.world.tree.geometry_constants).mesh
-        if others:  # the garden, drawn around the cared-for tree (which stays at the centre)
+        if others or falls:  # the garden, drawn around the cared-for tree (which stays at the centre)
             here = np.array(game.world.position)
             meshes, offsets = [mesh], [np.zeros(3)]
             for other in others:
                 meshes.append(other.tree.geometry(other.clocks()).mesh)
-                dx, dz = np.array(other.position) - here
-                offsets.append(np.array([dx, 0.0, dz]))
+                offsets.append(self._offset(other, here))
+            for fallen, progress, world in falls:
+                meshes.append(falling_mesh(fallen, progress))
+                offsets.append(self._offset(world, here))
             mesh = merge_trees(meshes, offsets)
         renderer = game.renderer
         renderer.set_tree(mesh)
@@ -56,6 +62,23 @@ class GameView:
         renderer.leaf_tint = tuple(HEALTHY_LEAF + (WILTED_LEAF - HEALTHY_LEAF) * wilt)
         renderer.bark_tint = (1.45, 1.35, 1.25) if alive else (1.0, 1.0, 1.0)
         self.built = key
+
+    @staticmethod
+    def _offset(world, here: np.ndarray) -> np.ndarray:
+        dx, dz = np.array(world.position) - here
+        return np.array([dx, 0.0, dz])
+
+    def _falls(self) -> list[tuple]:
+        """Branches shed since they were first seen, with their fall progress (real time)."""
+        now, out, seen = self.game.clock(), [], set()
+        for world in self.game.garden.worlds:
+            for fallen in world.tree.fallen:
+                seen.add(id(fallen))
+                started = self.fall_started.setdefault(id(fallen), now)
+                if now - started < FALL_SECONDS:
+                    out.append((fallen, (now - started) / FALL_SECONDS, world))
+        self.fall_started = {k: v for k, v in self.fall_started.items() if k in seen}
+        return out
 
     def draw(self, fbo: moderngl.Framebuffer) -> None:
         """Render the scene and the HUD/menu overlay into ``fbo``."""
@@ -72,7 +95,7 @@ class GameView:
         message = game.message if game.clock() < game.message_until else ""
         if not message and tree.budget_hit:
             message = text("messages.budget")
-        status = text(f"status.{game.world.sim.status()}")
+        status = text(f"status.{game.world.status()}")
         return HudInfo(s.sun_meter, s.water_meter, status, s.time, game.loop.speed, message, s.watering)
 
     def overlay_pixels(self, camera: OrbitCamera) -> bytes:

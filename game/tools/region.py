@@ -13,7 +13,7 @@ import numpy as np
 import pygame
 
 from engine.geometry.turtle import TurtleConfig, module_positions
-from engine.life.growth import render_view
+from engine.life.growth import new_axis_text, render_view
 from engine.lsystem.lstring import LString
 from engine.modeling.edits import apply_edit, prune_region
 from engine.modeling.regions import Sphere, Supertoroid, fit_supertoroid
@@ -121,7 +121,7 @@ class RegionTool:
         ls, clocks = world.tree.lstring, world.clocks()
         now, plastochron = clocks.length_time, float(world.tree.system.constants.get("P", 4.0))
         extern = {"T": mode.born_visible(), "G": clocks.girth_time, "NOW": now, "P": plastochron}
-        axis = f"I({now:g},{clocks.girth_time:g},1)A({now - plastochron:g},1,0)" if edit == "grow" else None
+        axis = new_axis_text(world.tree.system, now, clocks.girth_time) if edit == "grow" else None
         if edit == "prune":
             (new, changed), held = prune_region(ls, self.positions(ls), self.region), 0
         else:

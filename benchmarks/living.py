@@ -1,0 +1,78 @@
+"""The living tree over 30 simulated days, and what one light reading costs at the module budget.
+
+Run: python -m benchmarks.living [DAYS]
+A scripted careful player keeps the water meter between 0.55 and 0.75 under the default rules; the
+table has one row per simulated day (126 s at the demo pace): height, trunk girth, modules, leaf
+clusters and branches shed that day. It checks that modules never pass the budget and that no day
+passes without growth. Then it times one light reading (turtle + light grid + writing the string)
+on the grown tree, median of 20.
+"""
+
+from __future__ import annotations
+
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+from benchmarks import median_ms
+from engine.life.lab import measure
+from engine.life.light import exposure
+from engine.life.sim import load_rules
+from engine.life.world import World, sense_light
+from engine.lsystem.lsys import load_lsystem
+
+ASSETS = Path(__file__).resolve().parent.parent / "assets"
+
+
+def careful_player(days: float) -> World:
+    """Grow a tree for ``days`` simulated days, printing the daily table."""
+    world = World(load_lsystem(ASSETS / "lsystems" / "game_tree.lsys"), load_rules(ASSETS / "rules.toml"), seed=3)
+    world.sim.state.sun_meter = world.sim.state.water_meter = 0.9
+    day = 2 * np.pi / world.sim.state.sun_speed
+    per_day = round(day / 0.5)
+    budget = world.tree.deriver.budget
+    print(f"{'day':>4} {'height':>7} {'girth':>6} {'modules':>8} {'leaves':>7} {'shed':>5}  status")
+    last = measure(world)
+    peak, flat_days, start = 0, 0, time.perf_counter()
+    for d in range(1, int(days) + 1):
+        for _ in range(per_day):
+            s = world.sim.state
+            world.apply("water", float(s.water_meter < 0.75 if s.watering else s.water_meter < 0.55))
+            world.step(0.5)
+            peak = max(peak, len(world.tree.lstring))
+        now = measure(world)
+        grew = now["height"] > last["height"] + 1e-6 or now["girth"] > last["girth"] + 1e-6
+        flat_days += not grew
+        print(f"{d:4d} {now['height']:7.2f} {now['girth']:6.3f} {int(now['modules']):8,d} {int(now['leaves']):7d} "
+              f"{int(now['shed'] - last['shed']):5d}  {world.status()}")
+        last = now
+    print(f"{days:g} days in {time.perf_counter() - start:.1f} s; peak modules {peak:,} (budget {budget:,}); "
+          f"days without growth: {flat_days}")
+    return world
+
+
+def light_cost(world: World) -> None:
+    """Time the parts of one light reading on ``world``'s tree."""
+    world.sim.state.sun_angle = np.pi / 2  # noon
+    clocks = world.clocks()
+    ms_scene, scene = median_ms(lambda: world.tree.light_scene(clocks), 20)
+    queries = scene.queries
+    self_index = np.concatenate([np.arange(len(scene.leaf_idx)), np.full(len(queries) - len(scene.leaf_idx), -1)])
+    ms_light, _ = median_ms(lambda: exposure(scene.leaf_center, scene.leaf_area, queries, world.sim.sun_direction(),
+                                             world.rules.light, self_index), 20)
+    ms_all, _ = median_ms(lambda: sense_light([world]), 20)
+    print(f"light reading on {len(world.tree.lstring):,} modules ({len(scene.leaf_idx):,} leaf clusters, "
+          f"{len(queries):,} receivers): turtle {ms_scene:.1f} ms + light grid {ms_light:.1f} ms; "
+          f"whole reading (incl. writing the string) {ms_all:.1f} ms")
+
+
+def main() -> None:
+    """Run the 30-day table and the light timing."""
+    days = float(sys.argv[1]) if len(sys.argv) > 1 else 30.0
+    light_cost(careful_player(days))
+
+
+if __name__ == "__main__":
+    main()
