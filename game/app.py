@@ -110,8 +110,9 @@ def run_kiosk(args: argparse.Namespace) -> int:
     saves = getattr(args, "saves", None) or os.environ.get("ARBOR_SAVES")
     if saves:
         config.saves = Path(saves)
-    (config.saves / "kiosk").mkdir(parents=True, exist_ok=True)
-    logging.basicConfig(filename=config.saves / "kiosk" / "kiosk.log", level=logging.INFO,
+    config.saves = config.saves / "kiosk"  # the kiosk keeps its own garden: never the home autosave
+    config.saves.mkdir(parents=True, exist_ok=True)
+    logging.basicConfig(filename=config.saves / "kiosk.log", level=logging.INFO,
                         format="%(asctime)s %(name)s %(levelname)s %(message)s")
     settings = load_kiosk_config(ASSETS / "kiosk.toml")
     ctx = open_window(WINDOW, "Arbor", fullscreen=not args.windowed)

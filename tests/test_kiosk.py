@@ -21,8 +21,9 @@ SIZE = (1280, 720)
 def kiosk(gl_ctx, tmp_path):
     clock = FakeClock(50.0)
     config = KioskConfig(attract_after=10.0, reset_after=30.0, admin_hold=2.0, speed=10.0)
-    k = Kiosk(lambda: Game(gl_ctx, SIZE, GameConfig(saves=tmp_path, seed=2, resume=True), clock=clock), config,
-              tmp_path, clock=clock)
+    folder = tmp_path / "kiosk"  # as run_kiosk does: the kiosk's own folder, never the home saves
+    k = Kiosk(lambda: Game(gl_ctx, SIZE, GameConfig(saves=folder, seed=2, resume=True), clock=clock), config,
+              folder, clock=clock)
     k.fake = clock
     k.fbo = gl_ctx.framebuffer(color_attachments=[gl_ctx.renderbuffer(SIZE)],
                                depth_attachment=gl_ctx.depth_renderbuffer(SIZE))

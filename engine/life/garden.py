@@ -9,7 +9,7 @@ from __future__ import annotations
 import math
 
 from engine.life.sim import Rules
-from engine.life.world import World, sense_light
+from engine.life.world import MAX_CATCH_UP_STEPS, World, catch_up_steps, sense_light
 from engine.lsystem.lsys import LSystem
 
 MAX_GARDEN = 6  # trees in one garden
@@ -86,3 +86,11 @@ class Garden:
             sense_light(self.worlds)
         for world in self.worlds:
             world.grow()
+
+    def catch_up(self, seconds: float, dt: float = 1.0, max_steps: int = MAX_CATCH_UP_STEPS) -> int:
+        """Every tree lives ``seconds`` of game time unattended, under one sun, in at most ``max_steps``
+        steps. Returns the steps taken."""
+        steps, dt = catch_up_steps(seconds, dt, max_steps)
+        for _ in range(steps):
+            self.step(dt)
+        return steps

@@ -1,9 +1,12 @@
-"""Save files: a readable TOML text holding the tree's L-string, its rules, sim and RNG state.
+"""Save files: a readable TOML text holding a garden: every tree's L-string, rules, sim and RNG state.
 
-A player can open a save in any text editor and read the L-string (wrapped at 100 characters).
-Saves are shared between players, so loading treats them as hostile: TOML is parsed by the standard
-library (no eval), the embedded .lsys source by our own parser, the L-string by ``parse_lstring``;
-every problem is a :class:`SaveError` naming the file, line and column. Writes are atomic.
+A player can open a save in any text editor and read the L-strings (wrapped at 100 characters). A
+garden is one file written atomically (temp file, fsync, rename), so a crash never leaves a garden
+of mixed generations. Saves are shared between players, so loading treats them as hostile: only a
+regular file of bounded size is read, TOML is parsed by the standard library (no eval), the embedded
+.lsys source by our own parser, the L-string by ``parse_lstring``, and every field is checked for type,
+range and finiteness (engine/life/save_check.py); every problem is a :class:`SaveError` naming the
+file, line and column. Format 1 (one tree per file) still loads.
 """
 
 from __future__ import annotations
@@ -14,34 +17,42 @@ import math
 import re
 import time
 import tomllib
-from collections.abc import Callable
 from pathlib import Path
 
 import numpy as np
 
 from engine.base.errors import LSysError
 from engine.base.files import atomic_write
-from engine.life.sim import Rules, SimState, Simulation
+from engine.life.save_check import (
+    BIG,
+    SaveError,
+    Where,
+    lstring_sane,
+    restore_rng,
+    sim_values,
+    table,
+    text_value,
+    value,
+    vector,
+)
+from engine.life.sim import GrowthCycle, Rules, SimState, Simulation
 from engine.life.world import World
 from engine.lsystem.lstring import format_number, parse_lstring
 from engine.lsystem.lsys import parse_lsystem
 
-FORMAT = 1
+FORMAT = 2
 WRAP = 100
 MAX_BYTES = 64 * 1024 * 1024
-MIGRATIONS: dict[int, Callable[[dict], dict]] = {}  # format N -> function turning a format-N dict into format N + 1
-
-
-class SaveError(LSysError):
-    """A save file that cannot be loaded; the file itself is left untouched."""
+MAX_TREES = 6
+MAX_SOURCE = 256 * 1024  # characters of an embedded .lsys source
+_CONTROLS = re.compile(r"[\x00-\x08\x0b-\x1f\x7f]")
+_CONTROLS_AND_NEWLINE = re.compile(r"[\x00-\x08\x0a-\x1f\x7f]")
 
 
 def _escape(text: str, keep_newlines: bool = False) -> str:
     out = text.replace("\\", "\\\\").replace('"', '\\"')
-    controls = {c for c in out if ord(c) < 32 or ord(c) == 127} - ({"\n", "\t"} if keep_newlines else {"\t"})
-    for c in controls:
-        out = out.replace(c, f"\\u{ord(c):04x}")
-    return out
+    pattern = _CONTROLS if keep_newlines else _CONTROLS_AND_NEWLINE
+    return pattern.sub(lambda m: f"\\u{ord(m.group()):04x}", out)
 
 
 def _toml_string(text: str) -> str:
@@ -73,11 +84,11 @@ def _toml_value(value) -> str:
 def _table(name: str, data: dict) -> list[str]:
     lines = [f"[{name}]"]
     nested = []
-    for key, value in data.items():
-        if isinstance(value, dict):
-            nested.append((f"{name}.{key}", value))
+    for key, item in data.items():
+        if isinstance(item, dict):
+            nested.append((f"{name}.{key}", item))
         else:
-            lines.append(f"{key} = {_toml_value(value)}")
+            lines.append(f"{key} = {_toml_value(item)}")
     for sub, values in nested:
         lines += ["", *_table(sub, values)]
     return lines
@@ -87,185 +98,211 @@ def _rng_text(rng: np.random.Generator) -> str:
     return json.dumps(rng.bit_generator.state, separators=(",", ":"))
 
 
-def save_text(world: World, lsystem_name: str, saved_at: float | None = None) -> str:
-    """The text of a save file for ``world`` (see module docstring); ``saved_at`` defaults to now."""
-    ls = world.tree.lstring
+def _numbers(values) -> str:
+    return "[" + ", ".join(format_number(float(v)) for v in values) + "]"
+
+
+def _tree_lines(world: World, lsystem_name: str) -> list[str]:
+    """One tree's part of a save: its identity and rules, [trees.sim], then [trees.growth] with the
+    L-string last."""
+    tree, ls = world.tree, world.tree.lstring
     lines = [
-        "# Arbor save file: a tree, its rules and its state. The L-string is at the end.",
-        f"format = {FORMAT}",
-        f"saved_at = {time.time() if saved_at is None else saved_at!r}",
+        "[[trees]]",
         f"seed = {world.seed}",
         f"steps = {world.steps}",
-        f"position = [{format_number(float(world.position[0]))}, {format_number(float(world.position[1]))}]",
+        f"position = {_numbers(world.position)}",
         f"lsystem = {_toml_string(lsystem_name)}",
         f"lsystem_sha256 = {_toml_string(world.system.sha256)}",
         f"lsystem_source = {_toml_text(world.system.source)}",
         "",
-        *_table("sim", world.sim.state.to_dict()),
+        *_table("trees.sim", world.sim.state.to_dict()),
         "",
-        "[tree]",
-        f"last_rewrite_T = {format_number(world.tree.last_rewrite_T)}",
-        *_light_lines(world),
-        f"rng_world = {_toml_string(_rng_text(world.rng))}",
-        f"rng_tree = {_toml_string(_rng_text(world.tree.deriver.rng))}",
-        f"modules = {len(ls)}",
-        f"lstring = {_toml_block(ls.to_text())}",
-        "",
+        "[trees.growth]",
+        f"last_rewrite_T = {format_number(tree.last_rewrite_T)}",
+        f"light_dir = {_numbers(tree.light_dir)}",
+        f"mean_light = {format_number(tree.mean_light)}",
+        f"shed_total = {tree.shed_total}",
     ]
-    return "\n".join(lines)
-
-
-def _light_lines(world: World) -> list[str]:
-    """The light state that is not in the L-string: when light was last read, the remembered mean
-    light direction and light, and how many branches were shed (for the player's records)."""
-    tree = world.tree
-    lines = [f"light_dir = [{', '.join(format_number(float(v)) for v in tree.light_dir)}]",
-             f"mean_light = {format_number(tree.mean_light)}",
-             f"shed_total = {tree.shed_total}"]
     if np.isfinite(world.last_light):
         lines.append(f"last_light = {format_number(world.last_light)}")
     if tree.last_sense_length is not None and tree.last_sense_girth is not None:
         lines += [f"last_sense_length = {format_number(tree.last_sense_length)}",
                   f"last_sense_girth = {format_number(tree.last_sense_girth)}"]
+    lines += [
+        f"rng_world = {_toml_string(_rng_text(world.rng))}",
+        f"rng_tree = {_toml_string(_rng_text(tree.deriver.rng))}",
+        f"modules = {len(ls)}",
+        f"lstring = {_toml_block(ls.to_text())}",
+        "",
+    ]
     return lines
 
 
-def _restore_light(world: World, tree: dict, path: Path, text: str) -> None:
-    """Inverse of :func:`_light_lines`; every key is optional (saves from before the living tree)."""
-    def number(key: str, default: float | None) -> float | None:
-        if key not in tree:
-            return default
-        value = _require(tree, key, int | float, path, text)
-        if not math.isfinite(value):
-            raise SaveError(f"'{key}' must be a finite number", str(path), _line_of(text, key), 1)
-        return float(value)
+def garden_text(worlds: list[World], current: int = 0, lsystem_name: str = "game_tree.lsys",
+                saved_at: float | None = None) -> str:
+    """The text of a save file holding ``worlds`` (a garden; the tree cared for is ``current``)."""
+    if not 1 <= len(worlds) <= MAX_TREES:
+        raise ValueError(f"a save holds 1 to {MAX_TREES} trees")
+    lines = [
+        "# Arbor save file: a garden of trees, their rules and their state. Each tree's L-string ends its part.",
+        f"format = {FORMAT}",
+        f"saved_at = {time.time() if saved_at is None else saved_at!r}",
+        f"current = {min(max(current, 0), len(worlds) - 1)}",
+        "",
+    ]
+    for world in worlds:
+        lines += _tree_lines(world, lsystem_name)
+    return "\n".join(lines)
 
-    direction = tree.get("light_dir", [0.0, 1.0, 0.0])
-    if (not isinstance(direction, list) or len(direction) != 3
-            or not all(isinstance(v, int | float) and not isinstance(v, bool) and math.isfinite(v) for v in direction)
-            or not 0.5 < math.hypot(*direction) < 2.0):
-        raise SaveError("'light_dir' must be a unit vector [x, y, z]", str(path), _line_of(text, "light_dir"), 1)
-    t = world.tree
-    t.light_dir = np.array(direction, float) / math.hypot(*direction)
-    t.mean_light = min(max(number("mean_light", 1.0), 0.0), 1.0)
-    shed = tree.get("shed_total", 0)
-    t.shed_total = shed if isinstance(shed, int) and not isinstance(shed, bool) and shed >= 0 else 0
-    world.last_light = number("last_light", float("-inf"))
-    t.last_sense_length = number("last_sense_length", None)
-    t.last_sense_girth = number("last_sense_girth", None)
+
+def save_text(world: World, lsystem_name: str, saved_at: float | None = None) -> str:
+    """The text of a save file holding the one tree ``world``."""
+    return garden_text([world], 0, lsystem_name, saved_at)
+
+
+def save_garden(worlds: list[World], path: str | Path, current: int = 0, lsystem_name: str = "game_tree.lsys",
+                saved_at: float | None = None) -> None:
+    """Write a whole garden to ``path`` as one atomic unit (temp file, fsync, rename)."""
+    atomic_write(path, garden_text(worlds, current, lsystem_name, saved_at).encode("utf-8"))
 
 
 def save_world(world: World, path: str | Path, lsystem_name: str = "game_tree.lsys",
                saved_at: float | None = None) -> None:
-    """Write ``world`` to ``path`` atomically (temp file, fsync, rename)."""
-    atomic_write(path, save_text(world, lsystem_name, saved_at).encode("utf-8"))
-
-
-def _toml_error_position(message: str) -> tuple[int, int]:
-    m = re.search(r"line (\d+), column (\d+)", message)
-    return (int(m.group(1)), int(m.group(2))) if m else (1, 1)
+    """Write one tree to ``path`` atomically."""
+    save_garden([world], path, 0, lsystem_name, saved_at)
 
 
 def _read(path: Path) -> tuple[dict, str]:
+    """The TOML of a save: only a regular file, at most MAX_BYTES, UTF-8 (a BOM is allowed)."""
     try:
-        raw = path.read_bytes()
+        if not path.is_file():
+            raise SaveError("not a regular file (a save must be a plain file)", str(path))
+        with open(path, "rb") as fh:
+            raw = fh.read(MAX_BYTES + 1)
     except OSError as exc:
         raise SaveError(f"cannot read: {exc.strerror}", str(path)) from None
     if len(raw) > MAX_BYTES:
-        raise SaveError(f"too large ({len(raw):,} bytes; at most {MAX_BYTES:,})", str(path))
+        raise SaveError(f"too large (more than {MAX_BYTES:,} bytes)", str(path))
     try:
-        text = raw.decode("utf-8")
+        text = raw.decode("utf-8-sig")
         return tomllib.loads(text), text
     except UnicodeDecodeError as exc:
         raise SaveError(f"not UTF-8 text (byte {exc.start})", str(path)) from None
     except tomllib.TOMLDecodeError as exc:
-        line, col = _toml_error_position(str(exc))
+        m = re.search(r"line (\d+), column (\d+)", str(exc))
+        line, col = (int(m.group(1)), int(m.group(2))) if m else (1, 1)
         raise SaveError(f"not a valid save: {exc}", str(path), line, col) from None
+    except RecursionError:
+        raise SaveError("not a valid save: nested too deeply", str(path)) from None
 
 
-def _line_of(text: str, key: str) -> int:
-    m = re.search(rf"^\s*{re.escape(key)}\s*=", text, re.MULTILINE)
-    return text.count("\n", 0, m.start()) + 1 if m else 1
-
-
-def _require(data: dict, key: str, kind, path: Path, text: str):
-    if key not in data:
-        raise SaveError(f"missing '{key}'", str(path))
-    value = data[key]
-    if not isinstance(value, kind) or (isinstance(value, bool) and kind is not bool):
-        raise SaveError(f"'{key}' has the wrong type", str(path), _line_of(text, key), 1)
-    return value
-
-
-def _migrate(data: dict, path: Path, text: str) -> dict:
-    version = _require(data, "format", int, path, text)
+def _tree_parts(data: dict, path: Path, text: str) -> list[tuple[dict, Where]]:
+    """Each tree's table with where its text is (format 1: the whole file is one tree)."""
+    where = Where(path, text)
+    version = value(data, "format", "int", 0, 2**31, where)
     if version > FORMAT:
-        raise SaveError(f"saved by a newer Arbor (format {version}); this one reads up to {FORMAT}", str(path),
-                        _line_of(text, "format"), 1)
-    while version < FORMAT:
-        if version not in MIGRATIONS:
-            raise SaveError(f"format {version} is too old to read", str(path), _line_of(text, "format"), 1)
-        data = MIGRATIONS[version](data)
-        version += 1
-    return data
+        raise where.error(f"saved by a newer Arbor (format {version}); this one reads up to {FORMAT}", "format")
+    if version < 1:
+        raise where.error(f"format {version} is too old to read", "format")
+    if version == 1:
+        growth = table(data, "tree", where)
+        return [({**data, "growth": growth}, where)]
+    trees = data.get("trees")
+    if not isinstance(trees, list) or not 1 <= len(trees) <= MAX_TREES:
+        raise where.error(f"a save holds 1 to {MAX_TREES} [[trees]]")
+    starts = [m.start() for m in re.finditer(r"^\s*\[\[trees\]\]", text, re.MULTILINE)] or [0]
+    starts += [len(text)] * (len(trees) + 1 - len(starts))
+    parts = []
+    for k, tree in enumerate(trees):
+        part = Where(path, text, starts[k], starts[k + 1] if k + 1 < len(starts) else None)
+        if not isinstance(tree, dict):
+            raise part.error(f"tree #{k + 1} must be a table")
+        parts.append((tree, part))
+    return parts
 
 
-def _restore_rng(rng: np.random.Generator, state_text: str, key: str, path: Path, text: str) -> None:
+def _system(data: dict, where: Where):
+    source = text_value(data, "lsystem_source", where, MAX_SOURCE)
+    digest = text_value(data, "lsystem_sha256", where, 64)
+    if hashlib.sha256(source.encode("utf-8")).hexdigest() != digest:
+        raise where.error("the embedded .lsys source does not match its hash", "lsystem_sha256")
     try:
-        state = json.loads(state_text)
-        if not isinstance(state, dict) or state.get("bit_generator") != "PCG64":
-            raise ValueError("not a PCG64 state")
-        rng.bit_generator.state = state
-    except (ValueError, TypeError, KeyError) as exc:
-        raise SaveError(f"bad random state in '{key}': {exc}", str(path), _line_of(text, key), 1) from None
+        return parse_lsystem(source, f"{where.path} (embedded .lsys)")
+    except LSysError as err:
+        raise SaveError(err.message, err.file, where.line("lsystem_source") + err.line, err.col) from None
+
+
+def _load_tree(data: dict, where: Where, rules: Rules, budget_slack: float) -> World:
+    """One checked tree (see save_check for the checks)."""
+    system = _system(data, where)
+    world = World(system, rules, seed=value(data, "seed", "int", 0, 2**63 - 1, where))
+    world.steps = value(data, "steps", "int", 0, 2**53, where)
+    world.position = tuple(vector(data, "position", 2, where, [0.0, 0.0], limit=1e4))
+    sim = sim_values(table(data, "sim", where), where)
+    cycles = {k: GrowthCycle(**sim.pop(k)) for k in ("sun_cycle", "water_cycle")}
+    state = SimState(**sim, **cycles)
+    state.sun_angle %= 2 * math.pi
+    state.orbit_height = min(max(state.orbit_height, rules.sun.orbit_height_min), rules.sun.orbit_height_max)
+    state.sun_speed = min(max(state.sun_speed, rules.sun.speed_min), rules.sun.speed_max)
+    world.sim = Simulation(rules, state)
+    growth = table(data, "growth", where)
+    _restore_growth(world, growth, where, budget_slack)
+    return world
+
+
+def _restore_growth(world: World, growth: dict, where: Where, budget_slack: float) -> None:
+    tree = world.tree
+    limit = int((world.system.budget or 10**6) * 2 * budget_slack)
+    modules = value(growth, "modules", "int", 0, 2**31, where)
+    lstring_text = text_value(growth, "lstring", where, 64 * max(limit, 1))
+    if modules > limit:
+        raise where.error(f"the tree is larger than this L-system's budget allows ({limit:,} modules)", "modules")
+    try:
+        tree.lstring = parse_lstring(lstring_text, str(where.path))
+    except LSysError as err:
+        pos = err.col - 1  # the L-string is one line once TOML has joined its wrapped lines
+        line = where.line("lstring") + 1 + pos // WRAP
+        raise SaveError(f"in the L-string: {err.message}", str(where.path), line, pos % WRAP + 1) from None
+    if len(tree.lstring) > limit:
+        raise where.error(f"the tree is larger than this L-system's budget allows ({limit:,} modules)", "lstring")
+    lstring_sane(tree.lstring, where)
+    tree.last_rewrite_T = value(growth, "last_rewrite_T", "float", 0.0, BIG, where)
+    direction = np.array(vector(growth, "light_dir", 3, where, [0.0, 1.0, 0.0], limit=10.0))
+    if not 0.5 < float(np.linalg.norm(direction)) < 2.0:
+        raise where.error("'light_dir' must be a direction (a vector of length 1)", "light_dir")
+    tree.light_dir = direction / np.linalg.norm(direction)
+    tree.mean_light = value(growth, "mean_light", "float", 0.0, 1.0, where, default=1.0)
+    tree.shed_total = value(growth, "shed_total", "int", 0, 2**53, where, default=0)
+    world.last_light = value(growth, "last_light", "float", -BIG, BIG, where, default=float("-inf"))
+    if "last_sense_length" in growth or "last_sense_girth" in growth:
+        tree.last_sense_length = value(growth, "last_sense_length", "float", 0.0, BIG, where)
+        tree.last_sense_girth = value(growth, "last_sense_girth", "float", 0.0, BIG, where)
+    restore_rng(world.rng, text_value(growth, "rng_world", where, 4096), "rng_world", where)
+    restore_rng(tree.deriver.rng, text_value(growth, "rng_tree", where, 4096), "rng_tree", where)
+
+
+def load_garden(path: str | Path, rules: Rules | None = None, budget_slack: float = 1.0
+                ) -> tuple[list[World], int, float]:
+    """Every tree of a save (planting order), which one is cared for, and when it was saved (NaN when
+    the save's clock cannot be read: the caller then counts no time away)."""
+    path = Path(path)
+    data, text = _read(path)
+    where = Where(path, text)
+    parts = _tree_parts(data, path, text)
+    saved_at = data.get("saved_at")  # lenient: a clock that cannot be read only means no time away
+    if isinstance(saved_at, bool) or not isinstance(saved_at, int | float) or not math.isfinite(saved_at):
+        saved_at = float("nan")
+    current = value(data, "current", "int", 0, len(parts) - 1, where, default=0)
+    worlds = [_load_tree(tree, part, rules or Rules(), budget_slack) for tree, part in parts]
+    return worlds, current, saved_at
 
 
 def load_world(path: str | Path, rules: Rules | None = None, budget_slack: float = 1.0) -> tuple[World, float]:
-    """Load a save; returns the world and the wall-clock time it was saved at."""
-    path = Path(path)
-    data, text = _read(path)
-    data = _migrate(data, path, text)
-    source = _require(data, "lsystem_source", str, path, text)
-    digest = _require(data, "lsystem_sha256", str, path, text)
-    if hashlib.sha256(source.encode("utf-8")).hexdigest() != digest:
-        line = _line_of(text, "lsystem_sha256")
-        raise SaveError("the embedded .lsys source does not match its hash", str(path), line)
-    try:
-        system = parse_lsystem(source, f"{path} (embedded .lsys)")
-    except LSysError as err:
-        raise SaveError(err.message, err.file, _line_of(text, "lsystem_source") + err.line, err.col) from None
-    world = World(system, rules or Rules(), seed=int(_require(data, "seed", int, path, text)))
-    world.steps = int(_require(data, "steps", int, path, text))
-    position = data.get("position", [0.0, 0.0])  # optional: saves from before gardens have none
-    if (not isinstance(position, list) or len(position) != 2
-            or not all(isinstance(v, int | float) and not isinstance(v, bool) and math.isfinite(v) for v in position)):
-        raise SaveError("'position' must be [x, z]", str(path), _line_of(text, "position"), 1)
-    world.position = (float(position[0]), float(position[1]))
-    try:
-        world.sim = Simulation(world.rules, SimState.from_dict(_require(data, "sim", dict, path, text)))
-    except (TypeError, ValueError) as exc:
-        line = text.count("\n", 0, max(text.find("[sim]"), 0)) + 1
-        raise SaveError(f"bad [sim] table: {exc}", str(path), line, 1) from None
-    tree = _require(data, "tree", dict, path, text)
-    lstring_text = _require(tree, "lstring", str, path, text)
-    limit = int((system.budget or 10**6) * 2 * budget_slack)
-    if _require(tree, "modules", int, path, text) > limit or len(lstring_text) > 64 * limit:
-        raise SaveError(f"the tree is larger than this L-system's budget allows ({limit:,} modules)", str(path),
-                        _line_of(text, "modules"))
-    try:
-        world.tree.lstring = parse_lstring(lstring_text, str(path))
-    except LSysError as err:
-        pos = err.col - 1  # the L-string is one line once TOML has joined its wrapped lines
-        line = _line_of(text, "lstring") + 1 + pos // WRAP
-        raise SaveError(f"in the L-string: {err.message}", str(path), line, pos % WRAP + 1) from None
-    world.tree.last_rewrite_T = float(_require(tree, "last_rewrite_T", int | float, path, text))
-    _restore_light(world, tree, path, text)
-    _restore_rng(world.rng, _require(tree, "rng_world", str, path, text), "rng_world", path, text)
-    _restore_rng(world.tree.deriver.rng, _require(tree, "rng_tree", str, path, text), "rng_tree", path, text)
-    return world, float(_require(data, "saved_at", int | float, path, text))
+    """The cared-for tree of a save and the wall-clock time it was saved at."""
+    worlds, current, saved_at = load_garden(path, rules, budget_slack)
+    return worlds[current], saved_at
 
 
 def load_trees(path: str | Path, rules: Rules | None = None) -> list[World]:
     """Every tree in a save, in planting order (a single-tree save gives one)."""
-    world, _ = load_world(path, rules)
-    return [world]
+    return load_garden(path, rules)[0]

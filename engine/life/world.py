@@ -16,6 +16,7 @@ from engine.life.sim import Rules, SimState, Simulation
 from engine.lsystem.lsys import LSystem
 
 ACTIONS = ("water", "orbit_height", "sun_speed", "replant")
+MAX_CATCH_UP_STEPS = 20_000  # a catch-up never takes more steps than this, whatever the rules say
 InputLog = list[tuple[int, str, float]]
 
 
@@ -93,10 +94,13 @@ class World:
         else:
             raise ValueError(f"unknown action {action!r}")
 
-    def catch_up(self, seconds: float, dt: float = 1.0) -> None:
-        """Let the tree live ``seconds`` of game time unattended (offline growth), in coarse steps."""
-        for _ in range(int(seconds / dt)):
+    def catch_up(self, seconds: float, dt: float = 1.0, max_steps: int = MAX_CATCH_UP_STEPS) -> int:
+        """Let the tree live ``seconds`` of game time unattended (offline growth), in coarse steps:
+        never more than ``max_steps`` (longer times take longer steps). Returns the steps taken."""
+        steps, dt = catch_up_steps(seconds, dt, max_steps)
+        for _ in range(steps):
             self.step(dt)
+        return steps
 
     def clocks(self, previous: SimState | None = None, alpha: float = 1.0) -> Clocks:
         """The clocks to draw, interpolated between the previous and the current sim state."""
@@ -106,6 +110,16 @@ class World:
         lerp = lambda a, b: a + (b - a) * alpha  # noqa: E731
         return Clocks(lerp(previous.length_time, s.length_time), lerp(previous.girth_time, s.girth_time),
                       lerp(previous.wilt, s.wilt))
+
+
+def catch_up_steps(seconds: float, dt: float, max_steps: int) -> tuple[int, float]:
+    """How many steps of which length live ``seconds`` (0 for a time that is not a positive number)."""
+    if not seconds > 0 or not seconds < float("inf"):
+        return 0, dt
+    wanted = seconds / dt
+    if wanted <= max_steps:
+        return int(wanted), dt
+    return max_steps, seconds / max_steps
 
 
 def sense_light(worlds: list[World]) -> None:

@@ -20,6 +20,8 @@ from engine.lsystem.lsys import Alternative, LSystem, Pattern, Production
 
 CUT = ord("%")
 PRIORITIES = ("order", "position", "random")
+DEFAULT_BUDGET = 2_000_000  # modules, when neither the source (budget:) nor the caller sets one
+MAX_BUDGET = 20_000_000  # modules at most, whatever is asked: about 0.3 GB at rest, 1 GB while rewriting
 
 
 @dataclass
@@ -41,11 +43,23 @@ class StepReport:
 class _Match:
     idx: np.ndarray  # modules it rewrites
     alt: Alternative  # the successor they get
-    values: list[list[np.ndarray]]  # evaluated parameters per successor module
+    env: dict[str, np.ndarray]  # bound parameters (columns over idx)
+    values: list[list[np.ndarray]] = field(default_factory=list)  # successor parameters, once evaluated
 
     @property
     def length(self) -> int:
         return len(self.alt.symbols)
+
+    def keep(self, mask: np.ndarray) -> None:
+        """Only the rewrites where ``mask`` holds stay (the budget held the others back)."""
+        self.idx = self.idx[mask]
+        self.env = {k: v[mask] if np.ndim(v) else v for k, v in self.env.items()}
+
+    def evaluate(self, rng: np.random.Generator) -> None:
+        """Evaluate the successor's parameters: only after the budget check, so memory for them is
+        bounded by the budget too."""
+        ectx = EvalContext(self.env, len(self.idx), rng)
+        self.values = [[evaluate(e, ectx) for e in exprs] for exprs in self.alt.exprs]
 
 
 @dataclass
@@ -70,7 +84,8 @@ class Deriver:
         self.rng = np.random.Generator(np.random.PCG64(seed))
         self._extern: dict[str, float] = {}
         if self.budget is None:
-            self.budget = self.system.budget
+            self.budget = self.system.budget if self.system.budget is not None else DEFAULT_BUDGET
+        self.budget = min(int(self.budget), MAX_BUDGET)
 
     def step(self, ls: LString, extern: dict[str, float] | None = None,
              only: np.ndarray | None = None) -> tuple[LString, StepReport]:
@@ -85,6 +100,8 @@ class Deriver:
             for m in matches:
                 out_len[m.idx] = m.length
             deferred = self._apply_budget(ls, matches, out_len)
+            for m in matches:
+                m.evaluate(self.rng)
             result = _assemble(ls, matches, out_len)
         if np.any(result.sym == CUT):
             result = apply_cut(result)
@@ -146,9 +163,7 @@ class Deriver:
             if len(sub) == 0:
                 continue
             sub_env = env if len(alts) == 1 else {k: v[pick] if np.ndim(v) else v for k, v in env.items()}
-            ectx = EvalContext(sub_env, len(sub), self.rng)
-            values = [[evaluate(e, ectx) for e in exprs] for exprs in alt.exprs]
-            out.append(_Match(sub, alt, values))
+            out.append(_Match(sub, alt, sub_env))
         return out
 
     def _apply_budget(self, ls: LString, matches: list[_Match], out_len: np.ndarray) -> int:
@@ -166,8 +181,7 @@ class Deriver:
         for m in matches:
             mask = keep[m.idx]
             if not mask.all():
-                m.idx = m.idx[mask]
-                m.values = [[v[mask] for v in vals] for vals in m.values]
+                m.keep(mask)
         matches[:] = [m for m in matches if len(m.idx)]
         out_len[held] = 1
         return len(held)

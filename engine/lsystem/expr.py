@@ -99,17 +99,30 @@ _NOT_PREC = 3
 _UNARY_PREC = 7
 
 
+MAX_DEPTH = 48  # nesting of operations in one expression: deeper is refused (a hostile file cannot
+# exhaust the parser's or the evaluator's stack)
+
+
 @dataclass(frozen=True)
 class Expr:
-    """A compiled expression: ``fn(ctx)`` evaluates it; ``const`` is set when it folded to a number."""
+    """A compiled expression: ``fn(ctx)`` evaluates it; ``const`` is set when it folded to a number;
+    ``depth`` is how deeply its compiled calls nest."""
 
     fn: Compiled
     const: float | None
     names: frozenset[str]
+    depth: int = 0
 
 
 def _constant(value: float) -> Expr:
     return Expr(lambda ctx: value, float(value), frozenset())
+
+
+def _deeper(cur: Cursor) -> None:
+    """Count one more level of nesting while parsing; refuse past MAX_DEPTH."""
+    cur.depth = getattr(cur, "depth", 0) + 1
+    if cur.depth > MAX_DEPTH:
+        raise cur.error(f"expression nested too deeply (more than {MAX_DEPTH} levels)")
 
 
 def _peek_binary(cur: Cursor) -> str | None:
@@ -140,18 +153,21 @@ def parse_expression(
     ``constants`` are folded in; names in ``variables`` become column lookups; any other name is an
     error naming its column.
     """
+    _deeper(cur)
     left = _parse_prefix(cur, constants, variables, host)
     while True:
         op = _peek_binary(cur)
-        if op is None:
+        if op is None or _BINARY[op][0] < min_prec:
+            cur.depth -= 1
             return left
         prec, fn = _BINARY[op]
-        if prec < min_prec:
-            return left
+        at = cur.pos
         cur.pos += len(op)
         next_min = prec if op == "^" else prec + 1  # ^ is right-associative
         right = parse_expression(cur, constants, variables, next_min, host)
         left = _combine(fn, [left, right])
+        if left.depth > MAX_DEPTH:
+            raise cur.error(f"expression too long to evaluate (more than {MAX_DEPTH} chained operations)", at)
 
 
 def _parse_prefix(
@@ -214,7 +230,8 @@ def _parse_call(
         _check_arity(cur, name, start, len(args), lo, hi)
         fns = [a.fn for a in args]
         names = frozenset().union(*(a.names for a in args))
-        return Expr(lambda ctx: _rand(ctx, *(f(ctx) for f in fns)), None, names)
+        depth = 1 + max((a.depth for a in args), default=0)
+        return Expr(lambda ctx: _rand(ctx, *(f(ctx) for f in fns)), None, names, depth)
     fn, lo, hi = table[name]
     _check_arity(cur, name, start, len(args), lo, hi)
     return _combine(fn, args)
@@ -233,13 +250,14 @@ def _combine(fn: Callable[..., Value], args: list[Expr]) -> Expr:
             value = float(fn(*(a.const for a in args)))
         return _constant(value)
     fns = [a.fn for a in args]
+    depth = 1 + max(a.depth for a in args)
     if len(fns) == 1:
         f0 = fns[0]
-        return Expr(lambda ctx: fn(f0(ctx)), None, names)
+        return Expr(lambda ctx: fn(f0(ctx)), None, names, depth)
     if len(fns) == 2:
         f0, f1 = fns
-        return Expr(lambda ctx: fn(f0(ctx), f1(ctx)), None, names)
-    return Expr(lambda ctx: fn(*(f(ctx) for f in fns)), None, names)
+        return Expr(lambda ctx: fn(f0(ctx), f1(ctx)), None, names, depth)
+    return Expr(lambda ctx: fn(*(f(ctx) for f in fns)), None, names, depth)
 
 
 def compile_expression(

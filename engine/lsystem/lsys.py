@@ -138,15 +138,27 @@ class LSystem:
         return any(p.left or p.right for p in self.productions)
 
 
+MAX_SOURCE_BYTES = 1024 * 1024  # an .lsys source is text a person writes: a megabyte is plenty
+
+
 def load_lsystem(path: str | Path) -> LSystem:
-    """Read and parse an .lsys file; errors name the file, line and column."""
+    """Read and parse an .lsys file (a regular file of at most a megabyte of UTF-8 text, a BOM allowed);
+    errors name the file, line and column."""
     path = Path(path)
     try:
-        text = path.read_text(encoding="utf-8")
-    except UnicodeDecodeError as exc:
-        raise LSysError(f"not UTF-8 text ({exc.reason})", str(path), 1, 1) from None
+        if not path.is_file():
+            raise LSysError("cannot read: not a plain file (an .lsys source is a text file)" if path.exists()
+                            else "cannot read: no such file", str(path), 1, 1)
+        with open(path, "rb") as fh:
+            raw = fh.read(MAX_SOURCE_BYTES + 1)
     except OSError as exc:
         raise LSysError(f"cannot read: {exc.strerror}", str(path), 1, 1) from None
+    if len(raw) > MAX_SOURCE_BYTES:
+        raise LSysError(f"too large (more than {MAX_SOURCE_BYTES:,} bytes)", str(path), 1, 1)
+    try:
+        text = raw.decode("utf-8-sig")
+    except UnicodeDecodeError as exc:
+        raise LSysError(f"not UTF-8 text ({exc.reason} at byte {exc.start})", str(path), 1, 1) from None
     return parse_lsystem(text, str(path))
 
 
@@ -260,13 +272,20 @@ def _header(system: LSystem, line: str, file: str, number: int) -> bool:
     return False
 
 
+WHOLE_LIMITS = {"iterations": 1000, "seed": 2**63 - 1, "budget": 20_000_000, "leaves_at_tips": 16}
+NUMBER_LIMIT = 1e9  # any other header (angle, step, width, ...) in magnitude
+
+
 def _set_header(system: LSystem, attr: str, value: float, cur: Cursor) -> None:
     if not math.isfinite(value):
         raise cur.error(f"'{attr}' must be a finite number")
-    if attr in ("iterations", "seed", "budget", "leaves_at_tips"):
-        if value != int(value) or value < 0 or value > 2**62:
-            raise cur.error(f"'{attr}' must be a whole number >= 0")
+    if attr in WHOLE_LIMITS:
+        top = WHOLE_LIMITS[attr]
+        if value != int(value) or value < 0 or value > top:
+            raise cur.error(f"'{attr}' must be a whole number from 0 to {top:,}")
         setattr(system, attr, int(value))
+    elif abs(value) > NUMBER_LIMIT:
+        raise cur.error(f"'{attr}' must be between {-NUMBER_LIMIT:g} and {NUMBER_LIMIT:g}")
     else:
         setattr(system, attr, float(value))
 

@@ -72,9 +72,9 @@ class CareActions:
     def _load(self) -> None:
         game = self.game
         path = game.keeper.autosave_path
-        world = game.keeper.load(path) if path.exists() else None
-        if world is not None:
-            game.garden.world, game.previous = world, copy.deepcopy(world.sim.state)
+        garden = game.keeper.load(path) if path.exists() else None
+        if garden is not None:
+            game.garden, game.previous = garden, copy.deepcopy(garden.world.sim.state)
             game.say(text("messages.loaded"))
 
     def plant(self) -> None:

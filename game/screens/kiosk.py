@@ -198,7 +198,7 @@ class Kiosk:
 
     def reset_visitor(self) -> None:
         """Save the visitor's tree and plant a fresh sapling for the next one."""
-        folder = self.saves / "kiosk"
+        folder = self.saves  # the kiosk's own folder (saves/kiosk/)
         folder.mkdir(parents=True, exist_ok=True)
         stamp = time.strftime("%Y%m%d-%H%M%S")
         save_world(self.game.world, folder / f"visitor-{stamp}.arbor")

@@ -1,18 +1,22 @@
 """The game's save policy: resume the garden at start, autosave every minute and on quit, keep broken saves.
 
-A save that cannot be read is renamed to ``*.broken`` (never deleted) and a new tree is planted; time
-the player was away is lived by the tree on load (up to one in-game day).
+The whole garden is one file (``autosave.arbor``), written atomically. A save that cannot be read is
+renamed to ``*.broken`` (never deleted) and a new tree is planted; time the player was away is lived
+by the garden on load, in a bounded number of steps; a clock that went backwards (or cannot be read)
+counts as no time away. Saves from before gardens were one file (``garden-*.arbor`` beside the
+autosave) are read once and folded into the autosave.
 """
 
 from __future__ import annotations
 
 import math
+import os
 from pathlib import Path
 from typing import TYPE_CHECKING
 
 from engine.base.errors import LSysError
-from engine.life.garden import Garden
-from engine.life.save import load_world, save_world
+from engine.life.garden import MAX_GARDEN, Garden
+from engine.life.save import load_garden, save_garden
 from engine.life.world import World
 from game.strings import text
 
@@ -44,45 +48,60 @@ class SaveKeeper:
     def start(self) -> Garden:
         """The garden the game starts with: the saved one when resuming, else a new sapling."""
         game = self.game
+        remove_stale_temp_files(game.config.saves)
         if game.config.resume and self.autosave_path.exists():
-            world = self.load(self.autosave_path)
-            if world is not None:
-                others = [w for w in map(self.load, sorted(game.config.saves.glob("garden-*.arbor"))) if w]
-                return Garden([*others, world], current=len(others))
+            garden = self.load(self.autosave_path)
+            if garden is not None:
+                return garden
         return Garden([self.new_world()])
 
-    def load(self, path: Path) -> World | None:
-        """A saved tree, grown by the time away; None (and the file kept as .broken) if unreadable."""
+    def load(self, path: Path) -> Garden | None:
+        """A saved garden, grown by the time away; None (and the file kept as .broken) if unreadable."""
         game = self.game
         try:
-            world, saved_at = load_world(path, game.rules)
+            worlds, current, saved_at = load_garden(path, game.rules)
+            worlds += self._legacy_trees(path, len(worlds))
         except LSysError as err:
             kept = path.with_name(path.name + ".broken")
             path.replace(kept)
             game.say(text("messages.load_failed", name=path.name, error=err.message, kept=kept.name), 12)
             return None
-        away = max(game.wall_clock() - saved_at, 0.0)
-        day = 2 * math.pi / max(world.sim.state.sun_speed, 1e-6)
+        garden = Garden(worlds, current)
+        now = game.wall_clock()
+        away = now - saved_at if math.isfinite(saved_at) and saved_at <= now else 0.0
+        day = 2 * math.pi / max(garden.world.sim.state.sun_speed, 1e-6)
         grown = min(away, day)
-        world.catch_up(grown)
+        garden.catch_up(grown)
         if grown > 1:
             game.say(text("messages.welcome_back", minutes=grown / 60), 6)
-        return world
+        return garden
+
+    def _legacy_trees(self, path: Path, have: int) -> list[World]:
+        """Trees from garden-*.arbor files of older versions (one tree each), when loading the autosave."""
+        if path != self.autosave_path:
+            return []
+        out = []
+        for legacy in sorted(path.parent.glob("garden-*.arbor"))[: MAX_GARDEN - have]:
+            try:
+                worlds, current, _ = load_garden(legacy, self.game.rules)
+            except LSysError as err:  # one bad neighbour does not lose the garden: keep it aside
+                legacy.replace(legacy.with_name(legacy.name + ".broken"))
+                self.game.say(text("messages.load_failed", name=legacy.name, error=err.message,
+                                   kept=legacy.name + ".broken"), 12)
+                continue
+            out.append(worlds[current])
+        return out
 
     def save(self, path: Path | None = None) -> bool:
-        """Save the cared-for tree (atomically) and, with the autosave, the rest of the garden."""
+        """Save the whole garden as one file (atomically); older garden-*.arbor files are folded in."""
         game = self.game
         path = path or self.autosave_path
-        name = game.config.lsystem.name
         try:
             path.parent.mkdir(parents=True, exist_ok=True)
-            save_world(game.world, path, name, game.wall_clock())
+            save_garden(game.garden.worlds, path, game.garden.current, game.config.lsystem.name, game.wall_clock())
             if path == self.autosave_path:
-                others = game.others
-                for k, other in enumerate(others):
-                    save_world(other, path.parent / f"garden-{k}.arbor", name, game.wall_clock())
-                for stale in sorted(path.parent.glob("garden-*.arbor"))[len(others):]:
-                    stale.unlink()
+                for legacy in path.parent.glob("garden-*.arbor"):
+                    legacy.unlink()
         except OSError as exc:
             game.say(text("messages.save_failed", error=exc.strerror), 6)
             return False
@@ -93,3 +112,33 @@ class SaveKeeper:
         """Autosave when the configured interval has passed since the last save."""
         if self.game.clock() - self.last_autosave >= self.game.config.autosave_seconds:
             self.save()
+
+
+def remove_stale_temp_files(folder: Path) -> int:
+    """Delete temp files that a killed save left behind (``.NAME.PID.tmp`` of a process that is gone)."""
+    removed = 0
+    try:
+        candidates = list(folder.glob(".*.tmp"))
+    except OSError:
+        return 0
+    for tmp in candidates:
+        parts = tmp.name.rsplit(".", 2)
+        pid = int(parts[1]) if len(parts) == 3 and parts[1].isdigit() else None
+        if pid is not None and pid != os.getpid() and _alive(pid):
+            continue
+        try:
+            tmp.unlink()
+            removed += 1
+        except OSError:
+            pass
+    return removed
+
+
+def _alive(pid: int) -> bool:
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except OSError:
+        return True
+    return True
