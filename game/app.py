@@ -3,13 +3,16 @@
 from __future__ import annotations
 
 import argparse
+import contextlib
 import os
 import time
 from pathlib import Path
 
 import numpy as np
 
+from game.errors import NO_DISPLAY, UserError
 from game.render.renderer import save_png
+from game.watchdog import STAFF_EXIT
 
 WINDOW = (1280, 720)
 
@@ -19,14 +22,20 @@ def open_window(size: tuple[int, int], title: str, fullscreen: bool = False):
     import moderngl
     import pygame
 
-    pygame.init()
-    pygame.display.gl_set_attribute(pygame.GL_CONTEXT_MAJOR_VERSION, 3)
-    pygame.display.gl_set_attribute(pygame.GL_CONTEXT_MINOR_VERSION, 3)
-    pygame.display.gl_set_attribute(pygame.GL_CONTEXT_PROFILE_MASK, pygame.GL_CONTEXT_PROFILE_CORE)
-    flags = pygame.OPENGL | pygame.DOUBLEBUF | (pygame.FULLSCREEN if fullscreen else 0)
-    pygame.display.set_mode((0, 0) if fullscreen else size, flags)
-    pygame.display.set_caption(title)
-    ctx = moderngl.create_context()
+    try:
+        pygame.display.init()  # display and fonts only: no audio device is needed (or probed)
+        pygame.font.init()
+        pygame.display.gl_set_attribute(pygame.GL_CONTEXT_MAJOR_VERSION, 3)
+        pygame.display.gl_set_attribute(pygame.GL_CONTEXT_MINOR_VERSION, 3)
+        pygame.display.gl_set_attribute(pygame.GL_CONTEXT_PROFILE_MASK, pygame.GL_CONTEXT_PROFILE_CORE)
+        flags = pygame.OPENGL | pygame.DOUBLEBUF | (pygame.FULLSCREEN if fullscreen else 0)
+        pygame.display.set_mode((0, 0) if fullscreen else size, flags)
+        pygame.display.set_caption(title)
+        ctx = moderngl.create_context(require=330)
+    except Exception as exc:  # pygame.error, moderngl.Error: no display, no GL, too old a GL
+        pygame.quit()
+        raise UserError(NO_DISPLAY.format(detail=str(exc).strip().splitlines()[0] if str(exc).strip()
+                                          else type(exc).__name__)) from None
     ctx.gc_mode = "auto"  # GL objects are freed with their Python objects (a recovered kiosk leaks nothing)
     return ctx
 
@@ -41,16 +50,36 @@ def _save_screen(ctx, size: tuple[int, int], path: str) -> None:
     save_png(pixels[::-1], path)
 
 
-def _main_loop(ctx, size: tuple[int, int], hub, frame) -> None:
+class Heartbeat:
+    """Touches the file named by ARBOR_HEARTBEAT about once a second: the watchdog's sign of life."""
+
+    def __init__(self) -> None:
+        path = os.environ.get("ARBOR_HEARTBEAT")
+        self.path = Path(path) if path else None
+        self.last = 0.0
+
+    def beat(self, now: float) -> None:
+        """Touch the file if a second has passed (never raises: a full disk must not stop the app)."""
+        if self.path is None or now - self.last < 1.0:
+            return
+        self.last = now
+        with contextlib.suppress(OSError):
+            self.path.touch()
+
+
+def _main_loop(ctx, size: tuple[int, int], poll, frame) -> None:
     """Run ``frame(events, seconds)`` at up to 60 fps until it returns False, or until ARBOR_MAX_FRAMES
-    frames have run (then save ARBOR_SCREENSHOT if set: used by tests and bug reports)."""
+    frames have run (then save ARBOR_SCREENSHOT if set: used by tests and bug reports). ``poll(events,
+    now)`` turns the window's events into input events."""
     import pygame
 
     clock = pygame.time.Clock()
+    heart = Heartbeat()
     frames, limit, last = 0, _frames_limit(), time.perf_counter()
     while True:
         now = time.perf_counter()
-        if not frame(hub.poll(pygame.event.get(), now), now - last):
+        heart.beat(now)
+        if not frame(poll(pygame.event.get(), now), now - last):
             return
         last = now
         frames += 1
@@ -89,7 +118,7 @@ def run_app(args: argparse.Namespace | None = None) -> int:
         config.saves = Path(saves)
     game = Game(ctx, WINDOW, config, clock=time.perf_counter)
     hub = make_input_hub(args, WINDOW, time.perf_counter())
-    _main_loop(ctx, WINDOW, hub, _screen_frame(game, ctx.screen))
+    _main_loop(ctx, WINDOW, hub.poll, _screen_frame(game, ctx.screen))
     game.quit()
     hub.close()
     pygame.quit()
@@ -121,11 +150,11 @@ def run_kiosk(args: argparse.Namespace) -> int:
     kiosk = Kiosk(lambda: Game(ctx, size, config, clock=time.perf_counter), settings, config.saves,
                   clock=time.perf_counter)
     hub = make_input_hub(args, size, time.perf_counter())
-    _main_loop(ctx, size, hub, lambda events, seconds: kiosk.frame(events, seconds, ctx.screen))
+    _main_loop(ctx, size, kiosk.guarded(hub.poll), lambda events, seconds: kiosk.frame(events, seconds, ctx.screen))
     kiosk.game.quit()
     hub.close()
     pygame.quit()
-    return 0
+    return STAFF_EXIT if kiosk.quit_requested else 0
 
 
 def make_input_hub(args: argparse.Namespace | None, size: tuple[int, int], now: float):
@@ -140,7 +169,10 @@ def make_input_hub(args: argparse.Namespace | None, size: tuple[int, int], now: 
 
         sources.append(TuioListener(size, args.tuio_host, args.tuio_port))
     if getattr(args, "replay", None):
-        sources.append(Player(load_recording(args.replay), now))
+        try:
+            sources.append(Player(load_recording(args.replay), now))
+        except (OSError, ValueError, UnicodeDecodeError) as exc:
+            raise UserError(f"cannot replay {args.replay}: {getattr(exc, 'strerror', None) or exc}") from None
     recorder = Recorder(args.record) if getattr(args, "record", None) else None
     return InputHub(size, sources, recorder)
 
@@ -156,7 +188,7 @@ def run_lab_window(experiment: Path) -> int:
     lab = new_lab(experiment)
     ctx = open_window(WINDOW, f"Arbor lab - {lab.experiment.title}")
     screen = LabScreen(ctx, WINDOW, lab)
-    _main_loop(ctx, WINDOW, InputHub(WINDOW), _screen_frame(screen, ctx.screen))
+    _main_loop(ctx, WINDOW, InputHub(WINDOW).poll, _screen_frame(screen, ctx.screen))
     pygame.quit()
     return 0
 
@@ -170,6 +202,6 @@ def run_viewer(source: Path) -> int:
 
     ctx = open_window(WINDOW, f"Arbor - {source.name}")
     viewer = Viewer(ctx, WINDOW, source)
-    _main_loop(ctx, WINDOW, InputHub(WINDOW), _screen_frame(viewer, ctx.screen))
+    _main_loop(ctx, WINDOW, InputHub(WINDOW).poll, _screen_frame(viewer, ctx.screen))
     pygame.quit()
     return 0

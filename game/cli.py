@@ -7,6 +7,8 @@ import sys
 from pathlib import Path
 
 from engine.base.errors import LSysError
+from engine.lsystem.derive import DEFAULT_BUDGET, MAX_BUDGET
+from game.errors import UserError
 from game.paths import ASSETS
 
 
@@ -22,6 +24,25 @@ def _cmd_derive(args: argparse.Namespace) -> int:
     _, result = derive_source(_source(args))
     print(result.to_text())
     return 0
+
+
+MAX_STEPS = 1000  # derivation steps (the module budget stops growth long before)
+MAX_TREES = 20_000  # trees in a landscape
+MAX_LOD = 3
+
+
+def _bounded(low: int, high: int, what: str):
+    """An argparse type: a whole number in [low, high], with a message that says the limit."""
+    def parse(text: str) -> int:
+        try:
+            value = int(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"{what} must be a whole number") from None
+        if not low <= value <= high:
+            raise argparse.ArgumentTypeError(f"{what} must be from {low:,} to {high:,} (got {value:,})")
+        return value
+
+    return parse
 
 
 def _size(text: str) -> tuple[int, int]:
@@ -50,6 +71,11 @@ def _cmd_export(args: argparse.Namespace) -> int:
     from engine.geometry.export import export_tree
     from game.commands.trees import tree_geometry
 
+    fmt = (args.format or args.out.suffix.lstrip(".")).lower()
+    if fmt not in ("glb", "obj"):
+        raise UserError(f"cannot export as {fmt or 'a file without a suffix'!r}: use --out NAME.glb or NAME.obj "
+                        "(or --format glb|obj)")
+    args.format = fmt
     geometry, _ = tree_geometry(_source(args), args.lod)
     files = export_tree(geometry.mesh, args.out, ASSETS / "textures", args.format)
     print(f"{args.out}: {geometry.mesh.n_triangles:,} triangles (lod {args.lod}); wrote {len(files)} file(s)")
@@ -87,9 +113,11 @@ def _add_growth_args(p: argparse.ArgumentParser, saves: bool = False) -> None:
     p.add_argument("source", type=Path, help=".lsys file, or a save (.arbor)" if saves else ".lsys file")
     if saves:
         p.add_argument("--tree", type=int, default=0, help="which tree of a garden save (default: the first, 0)")
-    p.add_argument("--steps", type=int, default=None, help="derivation steps (default: the file's n:)")
-    p.add_argument("--seed", type=int, default=None)
-    p.add_argument("--budget", type=int, default=None, help="module budget")
+    p.add_argument("--steps", type=_bounded(0, MAX_STEPS, "--steps"), default=None,
+                   help=f"derivation steps, 0-{MAX_STEPS} (default: the file's n:)")
+    p.add_argument("--seed", type=_bounded(0, 2**63 - 1, "--seed"), default=None)
+    p.add_argument("--budget", type=_bounded(1, MAX_BUDGET, "--budget"), default=None,
+                   help=f"module budget, at most {MAX_BUDGET:,} (default: the file's budget:, else {DEFAULT_BUDGET:,})")
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -104,13 +132,13 @@ def build_parser() -> argparse.ArgumentParser:
     render.add_argument("--size", type=_size, default=(1280, 720))
     render.add_argument("--yaw", type=float, default=30.0)
     render.add_argument("--pitch", type=float, default=12.0)
-    render.add_argument("--lod", type=int, default=0)
+    render.add_argument("--lod", type=_bounded(0, MAX_LOD, "--lod"), default=0, help="level of detail 0-3")
     render.add_argument("--out", type=Path, default=Path("tree.png"))
     render.set_defaults(run=_cmd_render)
     export = sub.add_parser("export", help="export a tree (.lsys or a save) as GLB or OBJ+MTL")
     _add_growth_args(export, saves=True)
     export.add_argument("--format", choices=("glb", "obj"), default=None, help="default: from --out's suffix")
-    export.add_argument("--lod", type=int, default=0)
+    export.add_argument("--lod", type=_bounded(0, MAX_LOD, "--lod"), default=0, help="level of detail 0-3")
     export.add_argument("--out", type=Path, default=Path("tree.glb"))
     export.set_defaults(run=_cmd_export)
     lab = sub.add_parser("lab", help="educators' lab: run an experiment (window, or --out DIR headless)")
@@ -118,10 +146,12 @@ def build_parser() -> argparse.ArgumentParser:
     lab.add_argument("--out", type=Path, default=None, help="write CSV, PNG charts and saves here, no window")
     lab.set_defaults(run=_cmd_lab)
     land = sub.add_parser("landscape", help="render a landscape of many trees (instancing, LOD, culling)")
-    land.add_argument("trees", type=int, help="number of trees")
+    land.add_argument("trees", type=_bounded(1, MAX_TREES, "the number of trees"),
+                      help=f"number of trees, 1-{MAX_TREES:,}")
     land.add_argument("--size", type=_size, default=(1280, 720))
-    land.add_argument("--seed", type=int, default=0)
-    land.add_argument("--lod", type=int, default=None, help="force one level (default: by distance)")
+    land.add_argument("--seed", type=_bounded(0, 2**63 - 1, "--seed"), default=0)
+    land.add_argument("--lod", type=_bounded(0, MAX_LOD, "--lod"), default=None,
+                      help="force one level 0-3 (default: by distance)")
     land.add_argument("--out", type=Path, default=Path("landscape.png"))
     land.add_argument("--glb", type=Path, default=None, help="also export the trees as one GLB (shared meshes)")
     land.add_argument("--presets", default="abop_2_8_tree:4,abop_2_6_monopodial:7,broadleaf,weeping",
@@ -130,10 +160,12 @@ def build_parser() -> argparse.ArgumentParser:
     view = sub.add_parser("view", help="open a window showing an .lsys tree (drag, wheel, space)")
     view.add_argument("source", type=Path)
     view.set_defaults(run=lambda a: __import__("game.app", fromlist=["run_viewer"]).run_viewer(a.source))
+    sub.add_parser("watchdog", help="arbor watchdog ARGS...: keep `arbor ARGS...` running (restarts it when it "
+                   "crashes or hangs; for kiosks: arbor watchdog --kiosk)")
     parser.add_argument("--saves", type=Path, default=None, help="folder for save files (default: saves/)")
     parser.add_argument("--tuio", action="store_true", help="accept TUIO 1.1 touch over UDP")
     parser.add_argument("--tuio-host", default="127.0.0.1", help="address to listen on for TUIO")
-    parser.add_argument("--tuio-port", type=int, default=3333)
+    parser.add_argument("--tuio-port", type=_bounded(1, 65535, "--tuio-port"), default=3333)
     parser.add_argument("--record", type=Path, default=None, help="record this session's input to a file")
     parser.add_argument("--replay", type=Path, default=None, help="replay recorded input")
     parser.add_argument("--kiosk", action="store_true", help="unattended touchscreen mode (see assets/kiosk.toml)")
@@ -142,7 +174,7 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def main(argv: list[str] | None = None) -> int:
-    """Entry point of the `arbor` console script."""
+    """Entry point of the `arbor` console script: user errors end in one line naming what to fix."""
     argv = sys.argv[1:] if argv is None else argv
     if argv[:1] == ["watchdog"]:  # everything after it belongs to the watched app
         from game.watchdog import main as watchdog
@@ -150,17 +182,24 @@ def main(argv: list[str] | None = None) -> int:
         return watchdog(argv[1:])
     parser = build_parser()
     args = parser.parse_args(argv)
-    if args.command is None:
-        from game.app import run_app, run_kiosk
-
-        return run_kiosk(args) if args.kiosk else run_app(args)
     try:
+        if args.command is None:
+            from game.app import run_app, run_kiosk
+
+            return run_kiosk(args) if args.kiosk else run_app(args)
         return args.run(args)
     except LSysError as err:
         print(f"arbor: {err}", file=sys.stderr)
         return 2
     except OSError as err:  # e.g. an output folder that cannot be written
         print(f"arbor: {err.filename or ''}: {err.strerror}", file=sys.stderr)
+        return 2
+    except UserError as err:
+        print(f"arbor: {err}", file=sys.stderr)
+        return 2
+    except MemoryError:
+        print("arbor: not enough memory for that: ask for fewer steps, a smaller budget or fewer trees",
+              file=sys.stderr)
         return 2
 
 

@@ -1,39 +1,106 @@
-"""A watchdog for kiosks: run Arbor in a child process and start it again whenever it dies.
+"""A watchdog for kiosks: run Arbor in a child process and start it again whenever it dies or hangs.
 
-`arbor watchdog --kiosk` keeps `arbor --kiosk` running. A clean exit (status 0: staff quit with the
-PIN) ends the watchdog; anything else restarts the app after a short pause that grows while crashes
-come quickly (1 s, 2 s, 4 s, ... at most 30 s) and shrinks back after a good long run.
+`arbor watchdog --kiosk` keeps `arbor --kiosk` running:
+
+* the child exits with STAFF_EXIT only when staff entered the PIN: then the watchdog stops too; any
+  other end (a crash, a kill, even status 0) is restarted after a pause that grows while crashes come
+  quickly (1 s, 2 s, 4 s, ... at most 30 s) and shrinks back after a good long run;
+* the child touches a heartbeat file (``ARBOR_HEARTBEAT``) every second; if it stays silent for
+  HANG_SECONDS it is killed and restarted (a hung app is never left on screen);
+* when the child dies young CRASH_LOOP times in a row, the kiosk's saved garden is moved aside
+  (``*.crashed``): a save that crashes the start must not keep the kiosk in a restart loop.
 """
 
 from __future__ import annotations
 
 import logging
+import os
 import subprocess
 import sys
+import tempfile
 import time
 from collections.abc import Callable
+from pathlib import Path
 
 log = logging.getLogger("arbor.watchdog")
+STAFF_EXIT = 3  # the only status that stops the watchdog: staff quit with the PIN
+HANG_SECONDS = 30.0  # no heartbeat for this long (after the start-up grace) = hung
+START_GRACE = 60.0  # seconds a starting app may take before its first heartbeat
+YOUNG = 20.0  # a run shorter than this counts as a crash at start
+CRASH_LOOP = 3  # young crashes in a row before the saved garden is moved aside
+
+
+def _saves_folder(args: list[str]) -> Path:
+    """The kiosk's save folder the child will use (``--saves DIR``, ARBOR_SAVES, else the default)."""
+    from game.paths import default_saves
+
+    saves = os.environ.get("ARBOR_SAVES")
+    for i, arg in enumerate(args):
+        if arg == "--saves" and i + 1 < len(args):
+            saves = args[i + 1]
+        elif arg.startswith("--saves="):
+            saves = arg.split("=", 1)[1]
+    return (Path(saves) if saves else default_saves()) / "kiosk"
+
+
+def _run_once(command: list[str], heartbeat: Path, clock, poll: float, hang: float, grace: float) -> int:
+    """Run the child until it exits or its heartbeat stops for ``hang`` seconds (``grace`` seconds are
+    allowed before the first beat); returns its status (-9 when killed as hung)."""
+    heartbeat.unlink(missing_ok=True)
+    started = clock()
+    child = subprocess.Popen(command, env=dict(os.environ, ARBOR_HEARTBEAT=str(heartbeat)))
+    while True:
+        try:
+            return child.wait(timeout=poll)
+        except subprocess.TimeoutExpired:
+            pass
+        beat = heartbeat.stat().st_mtime if heartbeat.exists() else None
+        silent = time.time() - beat if beat is not None else clock() - started - grace + hang
+        if silent > hang:
+            log.error("arbor stopped answering (no heartbeat for %.0f s): killing it", silent)
+            child.kill()
+            child.wait()
+            return -9
 
 
 def watch(command: list[str], sleep: Callable[[float], None] = time.sleep, clock=time.monotonic,
-          max_restarts: int | None = None) -> int:
-    """Run ``command`` until it exits with status 0; restart it otherwise. Returns the last status."""
-    delay, restarts = 1.0, 0
-    while True:
-        started = clock()
-        status = subprocess.call(command)
-        if status == 0:
-            return 0
-        restarts += 1
-        log.error("arbor exited with status %s; restart #%d in %.0f s", status, restarts, delay)
-        if max_restarts is not None and restarts > max_restarts:
-            return status
-        sleep(delay)
-        delay = 1.0 if clock() - started > 60 else min(delay * 2, 30.0)
+          max_restarts: int | None = None, saves: Path | None = None, poll: float = 1.0,
+          hang: float = HANG_SECONDS, grace: float = START_GRACE) -> int:
+    """Run ``command`` until it exits with STAFF_EXIT; restart it otherwise (also when it hangs).
+    ``saves``: the kiosk's folder, whose garden is moved aside after a crash loop. Returns the last
+    status."""
+    delay, restarts, young = 1.0, 0, 0
+    with tempfile.TemporaryDirectory(prefix="arbor-watchdog-") as tmp:
+        heartbeat = Path(tmp) / "heartbeat"
+        while True:
+            started = clock()
+            status = _run_once(command, heartbeat, clock, poll, hang, grace)
+            if status == STAFF_EXIT:
+                log.info("staff quit the kiosk: the watchdog stops")
+                return status
+            lived = clock() - started
+            young = young + 1 if lived < YOUNG else 0
+            if young >= CRASH_LOOP and saves is not None:
+                _move_garden_aside(saves)
+                young = 0
+            restarts += 1
+            log.error("arbor exited with status %s after %.0f s; restart #%d in %.0f s", status, lived, restarts, delay)
+            if max_restarts is not None and restarts > max_restarts:
+                return status
+            sleep(delay)
+            delay = 1.0 if lived > 60 else min(delay * 2, 30.0)
+
+
+def _move_garden_aside(folder: Path) -> None:
+    """Keep the kiosk's saved garden as *.crashed so the next start plants a fresh one."""
+    save = folder / "autosave.arbor"
+    if save.exists():
+        kept = save.with_name(f"autosave.{int(time.time())}.crashed")
+        save.replace(kept)
+        log.error("arbor keeps crashing at start: moved %s aside as %s", save.name, kept.name)
 
 
 def main(args: list[str]) -> int:
     """`arbor watchdog ARGS...`: keep `arbor ARGS...` alive."""
     logging.basicConfig(level=logging.INFO)
-    return watch([sys.executable, "-m", "game.cli", *args])
+    return watch([sys.executable, "-m", "game.cli", *args], saves=_saves_folder(args))

@@ -1,6 +1,7 @@
 """Kiosk mode: touch only, staff PIN, attract loop, visitor reset, fault recovery, watchdog, strings."""
 
 import sys
+import time
 from pathlib import Path
 
 import pygame
@@ -11,7 +12,7 @@ from game import strings
 from game.input.events import DOWN, KEY_DOWN, MOVE, QUIT, UP, InputEvent
 from game.screens.game import Game, GameConfig
 from game.screens.kiosk import Kiosk, KioskConfig, load_kiosk_config
-from game.watchdog import watch
+from game.watchdog import STAFF_EXIT, watch
 from tests.conftest import FakeClock
 
 SIZE = (1280, 720)
@@ -69,6 +70,27 @@ def test_staff_pin_quits_only_when_right(kiosk):
     assert not kiosk.frame([ok], 0.0, kiosk.fbo) and kiosk.quit_requested
 
 
+def test_wrong_pins_lock_the_pad_longer_each_time(kiosk):
+    kiosk.frame([InputEvent(DOWN, kiosk.fake.t, "touch:1", 1, 20, 20)], 0.0, kiosk.fbo)
+    kiosk.fake.t += 2.5
+    kiosk.frame([], 0.0, kiosk.fbo)
+    pad = kiosk.pin_pad
+
+    def enter(code):
+        for digit in code:
+            tap(kiosk, *pad.keys[digit].center)
+        return kiosk.frame([InputEvent(DOWN, kiosk.fake.t, "touch:1", 5, *pad.keys["ok"].center)], 0.0, kiosk.fbo)
+
+    for _ in range(3):
+        assert enter("0000")
+    assert kiosk.pin_lock.locked_for(kiosk.fake.t) == 30.0
+    assert enter(kiosk.config.pin) and not kiosk.quit_requested  # the right PIN is refused while locked
+    kiosk.fake.t += 31.0
+    assert enter("0000") and kiosk.pin_lock.locked_for(kiosk.fake.t) == 60.0  # then the delay doubles
+    kiosk.fake.t += 61.0
+    assert not enter(kiosk.config.pin) and kiosk.quit_requested
+
+
 def test_attract_loop_after_idle_and_visitor_touch_ends_it(kiosk):
     yaw = kiosk.game.control.yaw
     kiosk.fake.t += 11.0
@@ -107,13 +129,29 @@ def test_a_failing_frame_is_logged_and_the_garden_restarts(kiosk, caplog, monkey
     assert kiosk.frame([InputEvent(MOVE, 0.0, "touch:1", 0, 10, 10)], 1 / 60, kiosk.fbo)
 
 
-def test_watchdog_restarts_until_a_clean_exit(tmp_path):
+def test_watchdog_restarts_until_staff_quit(tmp_path):
     counter = tmp_path / "runs"
     script = (f"import pathlib, sys; p = pathlib.Path({str(counter)!r}); n = int(p.read_text()) if p.exists() else 0; "
-              "p.write_text(str(n + 1)); sys.exit(0 if n >= 2 else 3)")
+              f"p.write_text(str(n + 1)); sys.exit([0, 1, {STAFF_EXIT}][n])")
     pauses = []
-    assert watch([sys.executable, "-c", script], sleep=pauses.append) == 0
-    assert counter.read_text() == "3" and pauses == [1.0, 2.0]
+    assert watch([sys.executable, "-c", script], sleep=pauses.append, poll=0.05) == STAFF_EXIT
+    assert counter.read_text() == "3" and pauses == [1.0, 2.0]  # status 0 is restarted too: only staff stop it
+
+
+def test_watchdog_kills_a_hung_app_and_moves_a_crashing_save_aside(tmp_path):
+    folder = tmp_path / "kiosk"
+    folder.mkdir()
+    (folder / "autosave.arbor").write_text("poison")
+    counter = tmp_path / "runs"
+    script = (f"import os, pathlib, sys, time; p = pathlib.Path({str(counter)!r}); n = int(p.read_text()) "
+              "if p.exists() else 0; p.write_text(str(n + 1))\n"
+              "if n == 0: time.sleep(60)\n"  # hangs, never beats
+              f"sys.exit({STAFF_EXIT} if n >= 3 else 1)")
+    started = time.monotonic()
+    status = watch([sys.executable, "-c", script], sleep=lambda s: None, saves=folder, poll=0.05, hang=0.5,
+                   grace=0.5)
+    assert status == STAFF_EXIT and time.monotonic() - started < 20  # the hang was killed in about a second
+    assert not (folder / "autosave.arbor").exists() and list(folder.glob("autosave.*.crashed"))
 
 
 def test_strings_come_from_one_file(tmp_path, gl_ctx):

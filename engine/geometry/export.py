@@ -68,16 +68,39 @@ def export_tree(tree: TreeMesh, path: str | Path, textures: Path, file_format: s
         atomic_write(path, data)
         return [path]
     if fmt == "obj":
-        text, extras = trimesh.exchange.obj.export_obj(
-            scene, include_normals=True, include_texture=True, return_texture=True, mtl_name=path.stem + ".mtl"
-        )
-        written = []
-        for name, blob in extras.items():
-            atomic_write(path.parent / name, blob)
-            written.append(path.parent / name)
-        atomic_write(path, text.encode("utf-8"))
-        return [path, *written]
+        return _export_obj(tree, path, textures)
     raise ValueError(f"unknown export format {fmt!r}: use glb or obj")
+
+
+def _rows(line: str, values: np.ndarray) -> str:
+    """Numbers as OBJ lines, ``line`` formatting one row (one format call for all rows)."""
+    return (line * len(values)) % tuple(values.ravel().tolist()) if len(values) else ""
+
+
+def _export_obj(tree: TreeMesh, path: Path, textures: Path) -> list[Path]:
+    """OBJ + MTL with our own normals and UVs, one object per part; the MTL keeps leaf and blossom
+    transparency (``map_d``). Written here rather than through trimesh, whose OBJ writer drops stored
+    normals and recomputes them (minutes for a big tree without scipy)."""
+    mtl_name = path.stem + ".mtl"
+    chunks, mtl, written, base = [f"mtllib {mtl_name}\n"], [], [], 0
+    for attr, tex, masked in PARTS:
+        mesh: Mesh = getattr(tree, attr)
+        if not mesh.n_triangles:
+            continue
+        image = f"{tex}.png"
+        atomic_write(path.parent / image, (textures / image).read_bytes())
+        written.append(path.parent / image)
+        mtl.append(f"newmtl {tex}\nKa 1 1 1\nKd 1 1 1\nKs 0 0 0\nillum 1\nmap_Kd {image}\n"
+                   + (f"map_d {image}\nd 1.0\n" if masked else "d 1.0\n"))
+        faces = mesh.indices.astype(np.int64) + base + 1
+        triples = np.repeat(faces, 3, axis=1)  # v/vt/vn share one index per vertex
+        chunks += [f"o {attr}\n", _rows("v %.6g %.6g %.6g\n", mesh.positions), _rows("vt %.6g %.6g\n", mesh.uvs),
+                   _rows("vn %.4g %.4g %.4g\n", mesh.normals), f"usemtl {tex}\n",
+                   _rows("f %d/%d/%d %d/%d/%d %d/%d/%d\n", triples)]
+        base += len(mesh.positions)
+    atomic_write(path.parent / mtl_name, "\n".join(mtl).encode("utf-8"))
+    atomic_write(path, "".join(chunks).encode("utf-8"))
+    return [path, path.parent / mtl_name, *written]
 
 
 def export_garden(presets, instances, path: str | Path, textures: Path, lod: int = 1) -> Path:

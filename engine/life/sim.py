@@ -106,7 +106,43 @@ def load_rules(path: str | Path) -> Rules:
         if table not in {f.name for f in fields(Rules)} or not isinstance(values, dict):
             raise LSysError(f"unknown table [{table}]", str(path))
         fill_dataclass(getattr(rules, table), values, str(path), f"key in [{table}]")
+    check_rules(rules, str(path))
     return rules
+
+
+# Physical limits of every rule (section.key -> low, high); anything else is a typo or a misunderstanding.
+RULE_RANGES = {
+    "growth.threshold": (0.01, 0.99), "growth.hold_time": (0.0, 1e7), "growth.deadline": (0.0, 1e7),
+    "growth.penalty_time": (1e-3, 1e7), "growth.length_rate": (0.0, 100.0), "growth.girth_rate": (0.0, 100.0),
+    "growth.rewrite_step": (0.01, 100.0), "growth.sapling_age": (0.0, 1000.0),
+    "sun.orbit_height": (-1.0, 1.0), "sun.orbit_height_min": (-1.0, 1.0), "sun.orbit_height_max": (-1.0, 1.0),
+    "sun.speed": (1e-7, 10.0), "sun.speed_min": (1e-7, 10.0), "sun.speed_max": (1e-7, 10.0),
+    "sun.fill_rate": (0.0, 100.0), "sun.drain_rate": (0.0, 100.0), "sun.side": (-10.0, 10.0),
+    "water.drain_rate": (0.0, 100.0), "water.sun_drain_rate": (0.0, 100.0), "water.fill_rate": (0.0, 100.0),
+    "water.drown_level": (0.0, 1.0), "water.drown_time": (0.0, 1e7), "water.leaf_min": (0.0, 1.0),
+    "water.drought_level": (0.0, 1.0),
+    "health.neglect_level": (0.0, 1.0), "health.wilt_rate": (0.0, 100.0), "health.recover_rate": (0.0, 100.0),
+    "health.death_time": (0.0, 1e8),
+    "replant.meter_min": (0.0, 1.0), "replant.meter_max": (0.0, 1.0),
+    "light.cell": (0.05, 100.0), "light.extinction": (0.0, 100.0), "light.sky": (0.0, 1.0),
+    "light.interval": (0.01, 1e6), "light.memory": (0.01, 1e6),
+}
+
+
+def check_rules(rules: Rules, file: str) -> None:
+    """Every rule within its physical limits, and every slider range the right way round."""
+    for key, (low, high) in RULE_RANGES.items():
+        section, name = key.split(".")
+        value = getattr(getattr(rules, section), name)
+        if not low <= value <= high:
+            raise LSysError(f"'{name}' in [{section}] must be from {low:g} to {high:g} (it is {value:g})", file)
+    sun = rules.sun
+    if not sun.orbit_height_min <= sun.orbit_height <= sun.orbit_height_max:
+        raise LSysError("[sun] orbit_height must lie between orbit_height_min and orbit_height_max", file)
+    if not sun.speed_min <= sun.speed <= sun.speed_max:
+        raise LSysError("[sun] speed must lie between speed_min and speed_max", file)
+    if rules.replant.meter_min > rules.replant.meter_max:
+        raise LSysError("[replant] meter_min must not be above meter_max", file)
 
 
 @dataclass

@@ -34,6 +34,8 @@ from engine.modeling.strokes import ArcLengthSpline, Stroke, adaptive_sample, cu
 DRAWN = ord("F")
 GROWTH_POINT = ord("A")
 F_PARAMS = 11
+MAX_PIECES = 400  # pieces of one stroke at most (a longer stroke gets longer pieces)
+CHUNK_PAIRS = 250_000  # point x segment pairs held at once while bending a stroke around trunks
 
 
 @dataclass
@@ -208,27 +210,58 @@ def bypass(path: np.ndarray, radius: np.ndarray, segs: Segments, skip: np.ndarra
     """
     if len(segs) == 0 or len(path) < 3:
         return path, 0
+    reach = float(radius.max()) + float(segs.radius.max()) + settings.bypass_margin + 1e-9
+    lo, hi = path.min(axis=0) - 2 * reach, path.max(axis=0) + 2 * reach
+    seg_lo, seg_hi = np.minimum(segs.start, segs.end), np.maximum(segs.start, segs.end)
+    near = np.flatnonzero(np.all(seg_hi >= lo, axis=1) & np.all(seg_lo <= hi, axis=1) & ~skip)
+    if len(near) == 0:
+        return path, 0
+    segs = _subset(segs, near)  # only pieces near the stroke: memory grows with the stroke, not the tree
+    skip = np.zeros(len(near), bool)
     moved_total = 0
     out = path.copy()
     for _ in range(4):  # pushing away from one trunk may touch another: settle in a few passes
-        dist, closest = _segment_distances(out, segs)
-        need = segs.radius[None, :] + radius[:, None] + settings.bypass_margin
-        hit = (dist < need) & ~skip[None, :]
-        hit[0] = False  # the start point stays where it was drawn or snapped
+        owner, closest, dist, need = _owners(out, radius, segs, settings.bypass_margin)
+        owner[0] = -1  # the start point stays where it was drawn or snapped
         if free is not None:
-            hit &= free[:, None]
-        if not hit.any():
+            owner[~free] = -1
+        if not (owner >= 0).any():
             break
         offset = np.zeros_like(out)
-        depth = np.where(hit, need - dist, -np.inf)
-        deepest = np.argmax(depth, axis=1)  # each point answers to the segment it enters most
-        owner = np.where(hit.any(axis=1), deepest, -1)
         for j in np.unique(owner[owner >= 0]):
-            mine = owner == j
-            offset += _push_from(out, closest[:, j], dist[:, j], need[:, j], mine, segs, j, settings)
+            offset += _push_from(out, closest, dist, need, owner == j, segs, j, settings)
         out = out + _spread(offset)
-        moved_total += int(hit.any(axis=1).sum())
+        moved_total += int((owner >= 0).sum())
     return out, moved_total
+
+
+def _owners(points: np.ndarray, radius: np.ndarray, segs: Segments, margin: float):
+    """For each point: the segment whose cylinder it enters most (-1: none), with the closest point on
+    that segment's axis, the distance to it and the clearance needed. Works in chunks of points so the
+    (points x segments) temporaries stay below about CHUNK_PAIRS pairs."""
+    n = len(points)
+    owner = np.full(n, -1, dtype=np.int64)
+    closest, dist, need = np.zeros((n, 3)), np.zeros(n), np.zeros(n)
+    step = max(1, CHUNK_PAIRS // max(len(segs), 1))
+    for s in range(0, n, step):
+        e = min(n, s + step)
+        d, c = _segment_distances(points[s:e], segs)
+        nd = segs.radius[None, :] + radius[s:e, None] + margin
+        depth = np.where(d < nd, nd - d, -np.inf)
+        deepest = np.argmax(depth, axis=1)  # each point answers to the segment it enters most
+        rows = np.arange(e - s)
+        owner[s:e] = np.where(np.isfinite(depth[rows, deepest]), deepest, -1)
+        closest[s:e], dist[s:e], need[s:e] = c[rows, deepest], d[rows, deepest], nd[rows, deepest]
+    return owner, closest, dist, need
+
+
+def _subset(segs: Segments, idx: np.ndarray) -> Segments:
+    """The segments ``idx`` (parents renumbered; a parent outside the subset becomes -1)."""
+    index = np.full(len(segs) + 1, -1, dtype=np.int64)
+    index[idx] = np.arange(len(idx))
+    return Segments(segs.start[idx], segs.end[idx], segs.radius[idx], segs.radius_end[idx], segs.frame[idx],
+                    segs.order[idx], segs.module[idx], index[segs.parent[idx]], segs.continues[idx],
+                    segs.colour[idx])
 
 
 def _push_from(path, closest, dist, need, hit, segs: Segments, j: int, settings: ModelerSettings) -> np.ndarray:
@@ -299,6 +332,7 @@ class Modeler(Undoable):
         """The L-string this stroke would produce, without committing it (live preview)."""
         cfg = self.settings
         piece = min(cfg.piece, max(stroke.length / 24, 1e-3))  # short strokes still get enough pieces
+        piece = max(piece, stroke.length / MAX_PIECES)  # a huge stroke gets longer pieces, not more
         path, s = smooth_path(stroke, piece)
         if len(path) < 2:
             return self.lstring, StrokeResult(0, 0)

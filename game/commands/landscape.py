@@ -12,6 +12,7 @@ from engine.geometry.mesh import LOD_LEVELS
 from engine.geometry.tree import build_geometry
 from engine.lsystem.derive import derive
 from engine.lsystem.lsys import load_lsystem
+from game.errors import UserError
 from game.paths import ASSETS
 from game.render.camera import OrbitCamera
 from game.render.renderer import headless_context, save_png, sun_direction
@@ -19,11 +20,23 @@ from game.render.renderer import headless_context, save_png, sun_direction
 DEFAULT_PRESETS = (("abop_2_8_tree", 4), ("abop_2_6_monopodial", 7), ("abop_1_24e", 5))
 
 
+MAX_PRESET_STEPS = 10  # derivation steps of a landscape preset
+PRESET_BUDGET = 400_000  # modules of one preset tree (it is meshed at every level of detail)
+
+
 def parse_presets(text: str) -> list[tuple[str, int | None]]:
-    """'abop_2_8_tree:4,broadleaf' -> [('abop_2_8_tree', 4), ('broadleaf', None)]."""
+    """'abop_2_8_tree:4,broadleaf' -> [('abop_2_8_tree', 4), ('broadleaf', None)]; bad entries are
+    errors that say what is allowed."""
     out = []
-    for item in filter(None, (part.strip() for part in text.split(","))):
+    items = [part.strip() for part in text.split(",") if part.strip()]
+    if not 1 <= len(items) <= 8:
+        raise UserError("--presets takes 1 to 8 comma-separated names")
+    for item in items:
         name, _, steps = item.partition(":")
+        if not name.replace("_", "").isalnum():
+            raise UserError(f"--presets: {name!r} is not a preset name (letters, digits and _)")
+        if steps and (not steps.isdigit() or int(steps) > MAX_PRESET_STEPS):
+            raise UserError(f"--presets {item}: steps must be a whole number from 0 to {MAX_PRESET_STEPS}")
         out.append((name, int(steps) if steps else None))
     return out
 
@@ -36,8 +49,16 @@ def _grow_preset(name: str, steps: int | None):
 
         system = growth_system(load_species(species), ASSETS / "lsystems" / "geomatree.lsys", seed=1)
     else:
-        system = load_lsystem(ASSETS / "lsystems" / f"{name}.lsys")
-    return system, derive(system, steps)
+        source = ASSETS / "lsystems" / f"{name}.lsys"
+        if not source.is_file():
+            known = sorted(p.stem for p in (ASSETS / "presets").glob("*.toml"))
+            raise UserError(f"--presets: no preset or L-system called {name!r} (species: {', '.join(known)}; "
+                            "or any file name in assets/lsystems)")
+        system = load_lsystem(source)
+    if system.externs:
+        raise UserError(f"--presets: {name} grows only inside the game (it needs #extern values); pick another")
+    steps = min(steps if steps is not None else system.iterations, MAX_PRESET_STEPS)
+    return system, derive(system, steps, budget=PRESET_BUDGET)
 
 
 def build_presets(specs=DEFAULT_PRESETS) -> list[Preset]:

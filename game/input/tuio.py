@@ -8,7 +8,10 @@ skipped, never raised.
 
 from __future__ import annotations
 
+import logging
+import math
 import socket
+import struct
 
 from pythonosc.osc_message import OscMessage
 from pythonosc.osc_packet import OscPacket, ParseError
@@ -16,6 +19,9 @@ from pythonosc.osc_packet import OscPacket, ParseError
 from game.input.events import DEVICE, DOWN, MOVE, UP, InputEvent
 
 DEFAULT_PORT = 3333
+MAX_MESSAGES = 64  # messages used from one bundle
+MAX_CURSORS = 20  # fingers down at once; more is a hostile or broken sender
+log = logging.getLogger("arbor.tuio")
 
 
 class TuioParser:
@@ -31,31 +37,52 @@ class TuioParser:
         """Events for one UDP datagram (a bundle or a message)."""
         try:
             packet = OscPacket(data)
-        except (ParseError, ValueError, IndexError, TypeError):
+        except (ParseError, ValueError, IndexError, TypeError, OverflowError, struct.error):
             self.bad_packets += 1
             return [InputEvent(DEVICE, now, self.source, text="ignoring a malformed TUIO packet")] \
                 if self.bad_packets == 1 else []
         out = []
-        for timed in packet.messages:
+        for timed in packet.messages[:MAX_MESSAGES]:
             out += self.message(timed.message, now)
         return out
 
     def message(self, msg: OscMessage, now: float) -> list[InputEvent]:
-        """Events for one /tuio/2Dcur message."""
+        """Events for one /tuio/2Dcur message; a message whose arguments have the wrong type or range
+        is dropped (with one log line the first time), never raised."""
         if msg.address != "/tuio/2Dcur" or not msg.params:
             return []
         command, args = msg.params[0], msg.params[1:]
         w, h = self.size
         if command == "set" and len(args) >= 3:
-            sid, x, y = int(args[0]), float(args[1]), float(args[2])
+            sid, x, y = args[0], args[1], args[2]
+            if not (_session(sid) and _unit(x) and _unit(y)):
+                return self._bad(now)
+            if sid not in self.down and len(self.down) >= MAX_CURSORS:
+                return self._bad(now)
             kind = MOVE if sid in self.down else DOWN
             self.down[sid] = (x * w, y * h)
             return [InputEvent(kind, now, self.source, sid, x * w, y * h)]
         if command == "alive":
-            alive = {int(a) for a in args if isinstance(a, int)}
+            alive = {a for a in args if _session(a)}
             gone = [sid for sid in self.down if sid not in alive]
             return [InputEvent(UP, now, self.source, sid, *self.down.pop(sid)) for sid in gone]
         return []
+
+    def _bad(self, now: float) -> list[InputEvent]:
+        self.bad_packets += 1
+        log.warning("dropped a TUIO message with bad arguments (%d so far)", self.bad_packets)
+        return [InputEvent(DEVICE, now, self.source, text="ignoring a malformed TUIO message")] \
+            if self.bad_packets == 1 else []
+
+
+def _session(value) -> bool:
+    """A TUIO session id: a non-negative 32-bit integer."""
+    return isinstance(value, int) and not isinstance(value, bool) and 0 <= value < 2**32
+
+
+def _unit(value) -> bool:
+    """A normalised coordinate: a finite number in [0, 1]."""
+    return isinstance(value, int | float) and not isinstance(value, bool) and math.isfinite(value) and 0 <= value <= 1
 
 
 class TuioListener:

@@ -55,11 +55,37 @@ def load_kiosk_config(path: str | Path) -> KioskConfig:
     return config
 
 
+class PinLock:
+    """Wrong PINs lock the pad for a while, longer after every further miss (so a PIN cannot be found
+    by trying them all): FREE_TRIES misses are free, then 30 s, 60 s, 120 s, ... at most an hour."""
+
+    FREE_TRIES = 3
+
+    def __init__(self) -> None:
+        self.misses = 0
+        self.until = float("-inf")
+
+    def locked_for(self, now: float) -> float:
+        """Seconds left before the pad takes a PIN again (0 when it does)."""
+        return max(self.until - now, 0.0)
+
+    def missed(self, now: float) -> None:
+        """A wrong PIN was entered at ``now``."""
+        self.misses += 1
+        if self.misses >= self.FREE_TRIES:
+            self.until = now + min(30.0 * 2 ** (self.misses - self.FREE_TRIES), 3600.0)
+
+    def reset(self) -> None:
+        """The right PIN: forget the misses."""
+        self.misses, self.until = 0, float("-inf")
+
+
 class PinPad:
     """A big on-screen keypad; returns True from :meth:`tap` when the right PIN was entered."""
 
-    def __init__(self, size: tuple[int, int], pin: str) -> None:
+    def __init__(self, size: tuple[int, int], pin: str, lock: PinLock | None = None, clock=time.monotonic) -> None:
         self.pin, self.entered, self.wrong = pin, "", False
+        self.lock, self.clock = lock or PinLock(), clock
         keys = ["1", "2", "3", "4", "5", "6", "7", "8", "9", "cancel", "0", "ok"]
         left = size[0] // 2 - (3 * PAD_BUTTON + 20) // 2
         top = size[1] // 2 - (4 * PAD_BUTTON + 30) // 2 + 30
@@ -68,15 +94,20 @@ class PinPad:
         self.closed = False
 
     def tap(self, x: float, y: float) -> bool:
-        """Handle a tap; True means: the PIN is right, quit."""
+        """Handle a tap; True means: the PIN is right, quit. While locked, only Cancel works."""
         key = next((k for k, r in self.keys.items() if r.collidepoint(x, y)), None)
         if key is None:
             return False
+        now = self.clock()
         if key == "cancel":
             self.closed = True
+        elif self.lock.locked_for(now) > 0:
+            self.entered = ""
         elif key == "ok":
             if self.entered == self.pin:
+                self.lock.reset()
                 return True
+            self.lock.missed(now)
             self.entered, self.wrong = "", True
         elif len(self.entered) < 8:
             self.entered += key
@@ -88,7 +119,11 @@ class PinPad:
         dim = pygame.Surface(surface.get_size(), pygame.SRCALPHA)
         dim.fill((0, 0, 0, 170))
         surface.blit(dim, (0, 0))
-        title = text("kiosk.wrong_pin") if self.wrong else text("kiosk.admin") + "  " + "*" * len(self.entered)
+        wait = self.lock.locked_for(self.clock())
+        if wait > 0:
+            title = text("kiosk.locked", seconds=wait)
+        else:
+            title = text("kiosk.wrong_pin") if self.wrong else text("kiosk.admin") + "  " + "*" * len(self.entered)
         label = font.render(title, True, (255, 255, 255))
         first = self.keys["1"]
         surface.blit(label, (first.left, first.top - 50))
@@ -114,6 +149,7 @@ class Kiosk:
         self.quit_requested = False
         self.recoveries = 0
         self.visitor_saved = False
+        self.pin_lock = PinLock()  # kept across pad openings: closing the pad does not reset the delay
         self.game.overlay_hooks.append(self._draw_extra)
 
     # ----- input ---------------------------------------------------------------------------------
@@ -145,6 +181,18 @@ class Kiosk:
             self.game.gestures.cancel_all()
             if self.game.menu.visible:
                 self.game.tap(0, 0)
+
+    def guarded(self, poll):
+        """``poll`` (the input layer) inside the kiosk's guard: a device or packet that makes it raise is
+        logged and its events dropped, never fatal."""
+        def safe(events, now: float) -> list[InputEvent]:
+            try:
+                return poll(events, now)
+            except Exception:
+                log.error("input failed, events dropped:\n%s", traceback.format_exc())
+                return []
+
+        return safe
 
     # ----- frame ---------------------------------------------------------------------------------
     def frame(self, events: list[InputEvent], real_seconds: float, fbo) -> bool:
@@ -178,7 +226,7 @@ class Kiosk:
         idle = now - self.last_touch
         if self.corner_down is not None and now - self.corner_down >= self.config.admin_hold:
             self.corner_down = None
-            self.pin_pad = PinPad(self.game.size, self.config.pin)
+            self.pin_pad = PinPad(self.game.size, self.config.pin, self.pin_lock, self.clock)
         if idle >= self.config.reset_after and not self.visitor_saved:
             self.reset_visitor()
         if idle >= self.config.attract_after and self.attract is None and self.pin_pad is None:

@@ -25,6 +25,9 @@ from game.tools.crown import CrownTool
 from game.tools.region import RegionTool
 
 PICK_PIXELS = 18.0  # how close a tap must be to a branch to cut it
+WORK_SIZE = 150.0  # scene units: strokes and the modeler's view stay inside +-this (a runaway view cannot grow)
+MAX_STROKE_POINTS = 5000  # points of one stroke
+PREVIEW_SECONDS = 0.05  # live preview at most 20 times per second of drawing
 
 
 class ModelingMode:
@@ -50,11 +53,17 @@ class ModelingMode:
         self.crown_tool = CrownTool(self)
         self.edit = EDIT_SETS[0]
         self.edit_sets = load_edit_sets(ASSETS / "edits")
+        self._segments: tuple | None = None
+        self._preview_at = float("-inf")  # stroke time of the last live preview
 
     def segments(self, ls: LString):
-        """The tree's segments as drawn now (the modeler's view of the geometry)."""
+        """The tree's segments as drawn now (the modeler's view of the geometry), cached per L-string:
+        a stroke's every pointer move asks for them."""
         world = self.game.world
-        return grow_geometry(ls, world.clocks(), world.tree.geometry_constants).turtle.segments
+        key = (id(ls), len(ls), world.clocks().length_time)
+        if self._segments is None or self._segments[0] != key:
+            self._segments = (key, grow_geometry(ls, world.clocks(), world.tree.geometry_constants).turtle.segments)
+        return self._segments[1]
 
     def toggle(self) -> None:
         """Enter or leave the modeler (pausing the simulation while in it)."""
@@ -66,7 +75,8 @@ class ModelingMode:
             return
         self.active = True
         r = self.game.renderer
-        center, half = (r.lo + r.hi) / 2, np.maximum((r.hi - r.lo) / 2, 1.0) * 1.6
+        center = np.clip((r.lo + r.hi) / 2, -WORK_SIZE, WORK_SIZE)
+        half = np.clip((r.hi - r.lo) / 2 * 1.6, 1.6, WORK_SIZE)  # the view never grows past the work volume
         self.bounds = (np.array([center[0] - half[0], 0.0, center[2] - half[2]]), center + half)
         self.resume_speed = self.game.loop.speed or 1.0
         self.game.set_speed(0.0)
@@ -151,6 +161,7 @@ class ModelingMode:
         """Forget the points of the stroke being drawn (the drawing plane stays) and any shape or
         region drag in progress."""
         self.points, self.times, self.preview = [], [], None
+        self._preview_at = float("-inf")
         self.crown_tool.drag = None
         self.region_tool.pixels = []
 
@@ -167,13 +178,27 @@ class ModelingMode:
 
     def add3d(self, point, t: float, pixel: tuple[float, float] | None = None) -> None:
         """Extend the stroke with a 3D point (a tracker's cursor; ``pixel``: where a 2D pointer is) and
-        refresh the preview."""
-        self.points.append(np.asarray(point, dtype=np.float64))
+        refresh the preview. Points are kept inside the work volume; a stroke holds at most
+        MAX_STROKE_POINTS points and the preview is redrawn at most every PREVIEW_SECONDS of stroke
+        time, so no pointer move costs more than one bounded conversion."""
+        if len(self.points) >= MAX_STROKE_POINTS:
+            return
+        point = np.clip(np.asarray(point, dtype=np.float64), [-WORK_SIZE, 0.0, -WORK_SIZE],
+                        [WORK_SIZE, 2 * WORK_SIZE, WORK_SIZE])
+        if not np.all(np.isfinite(point)):
+            return
+        self.points.append(point)
         self.times.append(t)
         if self.symbols:
             self.region_tool.drag(self.points[-1], pixel)
-        elif len(self.points) >= 3 and self.modeler is not None and not (self.crown or self.pruning):
+        elif self._preview_due(t):
+            self._preview_at = t
             self.preview, _ = self.modeler.convert(Stroke(np.array(self.points), np.array(self.times)))
+
+    def _preview_due(self, t: float) -> bool:
+        """A branch stroke of 3+ points whose last preview is PREVIEW_SECONDS old (or from another stroke)."""
+        drawing = len(self.points) >= 3 and self.modeler is not None and not (self.crown or self.pruning)
+        return drawing and (t - self._preview_at >= PREVIEW_SECONDS or t < self._preview_at)
 
     def finish(self) -> None:
         """The pointer went up: commit the stroke to the tree (undoable)."""

@@ -10,11 +10,13 @@ import pygame
 from engine.geometry.tree import build_geometry
 from engine.lsystem.derive import Deriver
 from engine.lsystem.lsys import load_lsystem
+from game.errors import UserError
 from game.input.events import DOWN, KEY_DOWN, MOVE, QUIT, WHEEL
 from game.render.camera import OrbitCamera
 from game.render.renderer import TreeRenderer, sun_direction
 
 MAX_VIEW_STEPS = 9
+VIEW_BUDGET = 300_000  # modules: the viewer stays interactive (a few hundred MB at most)
 
 
 class Viewer:
@@ -23,7 +25,10 @@ class Viewer:
     def __init__(self, ctx, size: tuple[int, int], source: Path) -> None:
         self.size = size
         self.system = load_lsystem(source)
-        self.deriver = Deriver(self.system, budget=2_000_000)
+        if self.system.externs:
+            raise UserError(f"{source.name} needs values from the game at every step (#extern); "
+                            "the viewer grows L-systems that run on their own")
+        self.deriver = Deriver(self.system, budget=min(self.system.budget or VIEW_BUDGET, VIEW_BUDGET))
         self.lstring = self.system.axiom
         self.steps = 0
         self.renderer = TreeRenderer(ctx)
@@ -39,7 +44,8 @@ class Viewer:
         while self.steps < steps:
             self.lstring, _ = self.deriver.step(self.lstring)
             self.steps += 1
-        self.renderer.set_tree(build_geometry(self.lstring, self.system).mesh)
+        lod = 0 if len(self.lstring) < 60_000 else 1 if len(self.lstring) < 150_000 else 2  # big trees: coarser
+        self.renderer.set_tree(build_geometry(self.lstring, self.system, lod=lod).mesh)
         self.camera.frame_bounds(self.renderer.lo, self.renderer.hi, self.size[0] / self.size[1])
 
     def update(self, seconds: float) -> None:
