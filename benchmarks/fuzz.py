@@ -1,0 +1,188 @@
+"""Fuzz campaign: hostile saves, .lsys sources and TUIO packets through the real load paths.
+
+Run: python -m benchmarks.fuzz [SAVES] [LSYS] [OSC] [--seed N]   (defaults 10000 10000 2000)
+Every case goes through what the game does with such input (a save: load, then geometry and a little
+catch-up; an .lsys: parse, derive under the budget, geometry; a packet: the TUIO parser). A case
+passes when it works or ends in the error meant for users (SaveError / LSysError, nothing for OSC).
+Prints cases, uncaught exceptions (with the first few), cases slower than 5 s and peak RSS. The
+suite runs the same mutators on fewer cases (tests/test_fuzz.py).
+"""
+
+from __future__ import annotations
+
+import random
+import re
+import resource
+import sys
+import time
+import traceback
+from pathlib import Path
+from tempfile import TemporaryDirectory
+
+import numpy as np
+
+from engine.base.errors import LSysError
+from engine.geometry.tree import build_geometry
+from engine.life.save import garden_text, load_garden
+from engine.life.sim import load_rules
+from engine.life.world import World
+from engine.lsystem.derive import Deriver
+from engine.lsystem.lsys import load_lsystem, parse_lsystem
+
+ROOT = Path(__file__).resolve().parent.parent
+LSYSTEMS = ROOT / "assets" / "lsystems"
+NASTY_NUMBERS = ["1e400", "-1e400", "nan", "inf", "-1", "0", "1e308", "-1e308", "10000000000000000000000000",
+                 "2.5", '"x"', "true", "[]", "{}", "-0.0", "1e-320", "99999999999", "-99999999999"]
+NASTY_TEXT = ["[", "]", "(", ")", ",", "\\", '"', "'''", "\x00", "é", "\ufeff", "((((((((", "--------", "%", "ε",
+              "->", ":", "#define", "F(", "1e999", "nan", "A(1,2,3,4,5,6,7,8,9)", "[[[[", "]]]]"]
+
+
+def mutate_text(text: str, rng: random.Random) -> str:
+    """One to three random edits: swap a number for a nasty one, insert nasty text, drop or duplicate a
+    line, flip a byte, truncate."""
+    for _ in range(rng.randint(1, 3)):
+        op = rng.randrange(6)
+        if op == 0:
+            numbers = list(re.finditer(r"-?\d+(\.\d+)?(e[-+]?\d+)?", text))
+            if numbers:
+                m = rng.choice(numbers)
+                text = text[:m.start()] + rng.choice(NASTY_NUMBERS) + text[m.end():]
+        elif op == 1:
+            at = rng.randrange(len(text) + 1)
+            text = text[:at] + rng.choice(NASTY_TEXT) * rng.choice([1, 1, 3, 200]) + text[at:]
+        elif op in (2, 3):
+            lines = text.split("\n")
+            k = rng.randrange(len(lines))
+            lines[k:k + 1] = [] if op == 2 else [lines[k], lines[k]]
+            text = "\n".join(lines)
+        elif op == 4 and text:
+            at = rng.randrange(len(text))
+            text = text[:at] + chr(rng.randrange(1, 0x250)) + text[at + 1:]
+        elif text:
+            text = text[: rng.randrange(len(text))]
+    return text
+
+
+def sample_garden_text(trees: int = 2) -> str:
+    """A real save of a small garden (the starting point of save mutations)."""
+    system = load_lsystem(LSYSTEMS / "game_tree.lsys")
+    rules = load_rules(ROOT / "assets" / "rules.toml")
+    worlds = []
+    for k in range(trees):
+        world = World(system, rules, seed=k + 1)
+        world.sim.state.sun_meter = world.sim.state.water_meter = 0.9
+        for _ in range(400):
+            world.apply("water", float(world.sim.state.water_meter < 0.6))
+            world.step(0.5)
+        world.position = (7.0 * k, 0.0)
+        worlds.append(world)
+    return garden_text(worlds, 0, "game_tree.lsys", 1.7e9)
+
+
+def try_save(text: str, folder: Path) -> None:
+    """What the game does with a save file: load it, then grow it a little and build its geometry.
+    Raises only if that path has a bug (SaveError is the expected answer to a bad file)."""
+    path = folder / "fuzz.arbor"
+    path.write_text(text, encoding="utf-8", errors="surrogatepass")
+    try:
+        worlds, _, _ = load_garden(path, load_rules(ROOT / "assets" / "rules.toml"))
+    except LSysError:
+        return
+    for world in worlds:
+        world.catch_up(30.0)
+        world.tree.geometry(world.clocks())
+
+
+def sample_sources() -> list[str]:
+    """Every .lsys file we ship (the starting points of source mutations)."""
+    return [p.read_text(encoding="utf-8") for p in sorted(LSYSTEMS.glob("*.lsys"))]
+
+
+def try_source(text: str) -> None:
+    """Parse, derive a few steps under a small budget, build geometry (if it can run alone)."""
+    try:
+        system = parse_lsystem(text, "fuzz.lsys")
+    except LSysError:
+        return
+    if system.externs or system.host:
+        return
+    deriver = Deriver(system, budget=20_000)
+    ls, _ = deriver.derive(steps=min(system.iterations, 6))
+    build_geometry(ls, system, lod=2)
+
+
+def random_packet(rng: random.Random) -> bytes:
+    """A TUIO-like OSC datagram: valid messages with wrong argument types and ranges, or garbage."""
+    from pythonosc.osc_bundle_builder import IMMEDIATELY, OscBundleBuilder
+    from pythonosc.osc_message_builder import OscMessageBuilder
+
+    if rng.random() < 0.3:
+        return bytes(rng.randrange(256) for _ in range(rng.choice([0, 1, 7, 16, 64, 300])))
+    bundle = OscBundleBuilder(IMMEDIATELY)
+    for _ in range(rng.randint(1, 4)):
+        msg = OscMessageBuilder(address=rng.choice(["/tuio/2Dcur", "/tuio/2Dobj", "/x"]))
+        msg.add_arg(rng.choice(["set", "alive", "fseq", "source", 5]))
+        for _ in range(rng.randint(0, 7)):
+            msg.add_arg(rng.choice([rng.randint(-2**31, 2**31 - 1), rng.random(), float("nan"), float("inf"),
+                                    -1.0, 2.5, "sid", True, b"\x00\x01", 0, 1]))
+        bundle.add_content(msg.build())
+    data = bundle.build().dgram
+    if rng.random() < 0.3:  # truncated or bit-flipped
+        data = bytearray(data[: rng.randrange(1, len(data) + 1)])
+        if data:
+            data[rng.randrange(len(data))] ^= 1 << rng.randrange(8)
+        data = bytes(data)
+    return data
+
+
+def try_packet(parser, data: bytes) -> None:
+    """Feed one datagram to the TUIO parser (it must never raise)."""
+    parser.packet(data, 0.0)
+
+
+def campaign(n_saves: int, n_lsys: int, n_osc: int, seed: int = 0) -> int:
+    """Run the whole campaign; prints the figures and returns the number of uncaught exceptions."""
+    from game.input.tuio import TuioParser
+
+    rng = random.Random(seed)
+    failures, slow = [], 0
+    base_save, sources, parser = sample_garden_text(), sample_sources(), TuioParser((1280, 720))
+    with TemporaryDirectory() as tmp:
+        cases = [("save", n_saves), ("lsys", n_lsys), ("osc", n_osc)]
+        start = time.perf_counter()
+        for kind, count in cases:
+            for _ in range(count):
+                if kind == "save":
+                    case, run = mutate_text(base_save, rng), lambda c: try_save(c, Path(tmp))
+                elif kind == "lsys":
+                    case, run = mutate_text(rng.choice(sources), rng), try_source
+                else:
+                    case, run = random_packet(rng), lambda c: try_packet(parser, c)
+                t0 = time.perf_counter()
+                try:
+                    run(case)
+                except Exception:
+                    failures.append((kind, traceback.format_exc(limit=4), case))
+                slow += time.perf_counter() - t0 > 5.0
+    peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
+    print(f"cases: {n_saves:,} saves, {n_lsys:,} .lsys, {n_osc:,} OSC packets in {time.perf_counter() - start:.0f} s")
+    print(f"uncaught: {len(failures)}; slower than 5 s: {slow}; peak RSS {peak:.0f} MiB")
+    for kind, text, case in failures[:5]:
+        print(f"--- {kind}: {case[:300]!r}\n{text}")
+    return len(failures)
+
+
+def main() -> None:
+    """Command line: counts, optional --seed."""
+    args = [a for a in sys.argv[1:] if not a.startswith("--")]
+    seed = int(sys.argv[sys.argv.index("--seed") + 1]) if "--seed" in sys.argv else 0
+    counts = [int(a) for a in args[:3]] + [10_000, 10_000, 2_000][len(args[:3]):]
+    sys.exit(1 if campaign(*counts, seed=seed) else 0)
+
+
+if __name__ == "__main__":
+    import logging
+
+    logging.disable(logging.WARNING)  # dropped packets are logged one per line: not for this run
+    np.seterr(all="ignore")
+    main()

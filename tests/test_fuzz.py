@@ -1,0 +1,115 @@
+"""Hostile input, generated: saves, .lsys sources and TUIO packets never escape as anything but the error
+meant for users; and whatever state the game can be in, it can save it and load it back.
+
+A short version of `python -m benchmarks.fuzz` (same mutators, a few hundred cases, well under a minute).
+"""
+
+import logging
+import random
+
+import numpy as np
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+from benchmarks.fuzz import (
+    mutate_text,
+    random_packet,
+    sample_garden_text,
+    sample_sources,
+    try_packet,
+    try_save,
+    try_source,
+)
+from engine.life.save import load_garden, save_garden
+from engine.life.save_check import SIM_FIELDS
+from engine.life.sim import load_rules
+from engine.life.world import World
+from engine.lsystem.lsys import load_lsystem
+from game.input.tuio import TuioParser
+
+FAST = settings(max_examples=120, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
+
+
+@pytest.fixture(scope="module")
+def base_save():
+    return sample_garden_text()
+
+
+@FAST
+@given(seed=st.integers(0, 2**32 - 1))
+def test_mutated_saves_load_or_say_why(base_save, tmp_path, seed):
+    try_save(mutate_text(base_save, random.Random(seed)), tmp_path)
+
+
+@FAST
+@given(seed=st.integers(0, 2**32 - 1))
+def test_mutated_sources_parse_or_say_why(seed):
+    rng = random.Random(seed)
+    with np.errstate(all="ignore"):
+        try_source(mutate_text(rng.choice(SOURCES), rng))
+
+
+SOURCES = sample_sources()
+
+
+@settings(max_examples=400, deadline=None)
+@given(seed=st.integers(0, 2**32 - 1))
+def test_tuio_packets_never_raise(seed):
+    logging.disable(logging.WARNING)
+    try:
+        parser = TuioParser((1280, 720))
+        rng = random.Random(seed)
+        for _ in range(3):
+            try_packet(parser, random_packet(rng))
+    finally:
+        logging.disable(logging.NOTSET)
+
+
+def test_a_hostile_nesting_is_refused_not_a_crash():
+    from engine.base.errors import LSysError
+    from engine.lsystem.lsys import parse_lsystem
+
+    for text in ("w: F(" + "-" * 495 + "1)", "w: F(" + "(" * 600 + "1" + ")" * 600 + ")",
+                 "#extern x\nw: A(1)\np1: A(a) -> A(" + "+".join(["a"] * 3000) + ")"):
+        with pytest.raises(LSysError) as info:
+            parse_lsystem(text, "hostile.lsys")
+        assert "nested too deeply" in info.value.message or "too long" in info.value.message
+
+
+@pytest.fixture(scope="module")
+def system(lsys_dir):
+    return load_lsystem(lsys_dir / "game_tree.lsys")
+
+
+def _bounded(name):
+    kind, low, high = SIM_FIELDS[name]
+    if kind == "bool":
+        return st.booleans()
+    return st.floats(max(low, -1e9), min(high, 1e9), allow_nan=False, allow_infinity=False)
+
+
+SIM_STATES = st.fixed_dictionaries({name: _bounded(name) for name in SIM_FIELDS})
+
+
+@settings(max_examples=30, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
+@given(values=SIM_STATES, trees=st.integers(1, 6), position=st.tuples(st.floats(-1e4, 1e4), st.floats(-1e4, 1e4)))
+def test_whatever_the_game_saves_it_loads(system, tmp_path, values, trees, position):
+    rules = load_rules("assets/rules.toml")
+    worlds = []
+    for k in range(trees):
+        world = World(system, rules, seed=k)
+        for name, value in values.items():
+            setattr(world.sim.state, name, value)
+        world.position = position
+        worlds.append(world)
+    path = tmp_path / "garden.arbor"
+    save_garden(worlds, path, trees - 1)
+    back, current, _ = load_garden(path, rules)
+    assert current == trees - 1 and len(back) == trees
+    for a, b in zip(worlds, back, strict=True):
+        for name in ("sun_meter", "water_meter", "wilt", "length_time", "girth_time", "time", "alive"):
+            assert getattr(a.sim.state, name) == getattr(b.sim.state, name)
+        assert b.tree.lstring.equals(a.tree.lstring) and b.position == a.position
+    save_garden(back, path, current)  # and what was loaded saves again
+    load_garden(path, rules)
