@@ -111,11 +111,21 @@ def prune_thin(segs: Segments, min_radius: float) -> Segments:
     return Segments(**fields)
 
 
-def wood_mesh(segs: Segments, n_surf: int = 8, n_div: int = 1, tip_taper: float = 0.35) -> Mesh:
-    """Generalized-cylinder mesh of all segments (see module docstring)."""
+@dataclass
+class WoodRings:
+    """Every joint ring of the wood, shared by the segments that meet there: ring j (< m) is segment j's
+    end ring; ``start_ring[j]`` is its start ring (its parent's end ring when it continues that axis)."""
+
+    rings: _Rings
+    start_ring: np.ndarray  # (m,)
+    tips: np.ndarray  # segments whose end is a branch tip (they get a cone)
+    direction: np.ndarray  # (m, 3) unit direction of each segment
+
+
+def wood_rings(segs: Segments, tip_taper: float = 0.35) -> WoodRings:
+    """Joint rings with twist-free reference directions (see module docstring); the mesher and the
+    game's instanced tubes both build on them."""
     m = len(segs)
-    if m == 0:
-        return Mesh.empty()
     d = _directions(segs)
     cont = segs.continues
     child = np.full(m, -1, dtype=np.int64)
@@ -138,12 +148,21 @@ def wood_mesh(segs: Segments, n_surf: int = 8, n_div: int = 1, tip_taper: float 
     start_ring = np.empty(m, dtype=np.int64)
     start_ring[cont] = segs.parent[cont]
     start_ring[starts] = m + np.arange(len(starts))
-    rings = _Rings(centers, tangents, xs, radii, vs)
+    return WoodRings(_Rings(centers, tangents, xs, radii, vs), start_ring, np.flatnonzero(~has_child), d)
+
+
+def wood_mesh(segs: Segments, n_surf: int = 8, n_div: int = 1, tip_taper: float = 0.35) -> Mesh:
+    """Generalized-cylinder mesh of all segments (see module docstring)."""
+    m = len(segs)
+    if m == 0:
+        return Mesh.empty()
+    wood = wood_rings(segs, tip_taper)
+    rings, start_ring, d = wood.rings, wood.start_ring, wood.direction
     if n_div > 1:
         ring_seq = _bezier_rings(rings, start_ring, np.arange(m), n_div)
     else:
         ring_seq = np.stack([start_ring, np.arange(m)], axis=1)
-    return _tube_mesh(rings, ring_seq, segs.module, n_surf, tips=np.flatnonzero(~has_child), tip_dir=d)
+    return _tube_mesh(rings, ring_seq, segs.module, n_surf, tips=wood.tips, tip_dir=d)
 
 
 @dataclass

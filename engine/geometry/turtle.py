@@ -220,12 +220,11 @@ def interpret(ls: LString, cfg: TurtleConfig | None = None, probes: np.ndarray |
     if tips:
         leaves = _concat_leaves(leaves, _tip_leaves(segs, tips, leaf_size))
     blossoms = _instances(ls, BLOSSOM, states, leaf_size)
-    result = TurtleResult(segs, leaves, blossoms)
+    result = TurtleResult(segs, leaves, blossoms, nearest_move=states.topo.nearest_move)
     if probes is not None:
         idx = np.asarray(probes, dtype=np.int64)
         frames = _world_frames(states.blocks_in(idx)[:4])
         result.probes = Leaves(states.positions_in(idx).T, frames, np.zeros(len(idx)), idx)
-        result.nearest_move = states.topo.nearest_move
     return result
 
 

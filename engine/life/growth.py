@@ -305,19 +305,28 @@ def leaf_clusters(leaves: Leaves) -> Leaves:
     k = len(leaves)
     if k == 0:
         return leaves
-    jitter = np.modf(np.abs(np.sin(leaves.module * 78.233 + 0.5) * 43758.5453))[0] - 0.5  # -0.5..0.5
+    jitter = _cluster_jitter(leaves.module)
     h, lft = leaves.frame[:, :, 0], leaves.frame[:, :, 1]
-    frames, sizes = [], []
-    for angle, scale in zip(CLUSTER_ANGLES, CLUSTER_SIZES, strict=True):
+    frames = []
+    for angle in CLUSTER_ANGLES:
         a = np.radians(angle * (1.0 + 0.4 * jitter))[:, None]
         frame = leaves.frame.copy()
         frame[:, :, 0] = h * np.cos(a) + lft * np.sin(a)
         frame[:, :, 1] = lft * np.cos(a) - h * np.sin(a)
         frames.append(frame)
-        sizes.append(leaves.size * scale * (1.0 + 0.25 * jitter))
     n = len(CLUSTER_ANGLES)
-    return Leaves(np.tile(leaves.position, (n, 1)), np.concatenate(frames), np.concatenate(sizes),
-                  np.tile(leaves.module, n))
+    return Leaves(np.tile(leaves.position, (n, 1)), np.concatenate(frames),
+                  np.tile(leaves.size, n) * cluster_scales(leaves.module), np.tile(leaves.module, n))
+
+
+def cluster_scales(modules: np.ndarray) -> np.ndarray:
+    """Size factor of every blade :func:`leaf_clusters` makes from leaves ``modules`` (same order)."""
+    jitter = _cluster_jitter(modules)
+    return np.concatenate([scale * (1.0 + 0.25 * jitter) for scale in CLUSTER_SIZES])
+
+
+def _cluster_jitter(modules: np.ndarray) -> np.ndarray:
+    return np.modf(np.abs(np.sin(modules * 78.233 + 0.5) * 43758.5453))[0] - 0.5  # -0.5..0.5
 
 
 def new_axis_text(system: LSystem, now: float, girth: float) -> str:

@@ -2,11 +2,15 @@
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
 
+from engine.geometry.instances import LeafInstances, TubeInstances, leaf_instances, tube_instances
 from engine.geometry.mesh import TreeMesh, tree_mesh
 from engine.geometry.turtle import Leaves, Segments, TurtleResult
 from engine.life.growth import Fallen
+from engine.life.growth import leaf_clusters as leaves_clustered
 
 FALL_SECONDS = 2.5  # real seconds a shed branch takes to fall
 
@@ -18,12 +22,48 @@ def _rotation(axis: np.ndarray, angle: float) -> np.ndarray:
     return np.eye(3) + np.sin(angle) * k + (1 - np.cos(angle)) * (k @ k)
 
 
+@dataclass
+class StaticView:
+    """Records of a tree part that does not grow (the shape a renderer needs from a view)."""
+
+    tubes: TubeInstances
+    leaves: LeafInstances
+    blossoms: LeafInstances
+    lo: np.ndarray
+    hi: np.ndarray
+
+    @property
+    def young_row(self) -> int:
+        """Nothing here grows: no young block."""
+        return len(self.tubes)
+
+    @property
+    def young_leaf_row(self) -> int:
+        """Nothing here grows: no young block."""
+        return len(self.leaves)
+
+
+def falling_view(fallen: Fallen, progress: float) -> StaticView:
+    """Instance records of a shed branch at ``progress`` of its fall (see :func:`falling_pieces`)."""
+    segs, leaves = falling_pieces(fallen, progress)
+    tubes = tube_instances(segs)
+    points = np.concatenate([segs.start, segs.end, leaves.position]) if len(segs) else np.zeros((1, 3))
+    return StaticView(tubes, leaf_instances(leaves_clustered(leaves), np.ones(3 * len(leaves))),
+                      LeafInstances.empty(), points.min(axis=0), points.max(axis=0))
+
+
 def falling_mesh(fallen: Fallen, progress: float) -> TreeMesh:
+    """The branch ``fallen`` at ``progress`` as a mesh (for pictures and tests)."""
+    segs, leaves = falling_pieces(fallen, progress)
+    return tree_mesh(TurtleResult(segs, leaves, _no_leaves()))
+
+
+def falling_pieces(fallen: Fallen, progress: float) -> tuple[Segments, Leaves]:
     """The branch ``fallen`` at ``progress`` (0 = where it broke off, 1 = on the ground): it tips over
     outward about its base while it drops, leaves first shrinking away."""
     segs, leaves = fallen.segments, fallen.leaves
     if len(segs) == 0:
-        return tree_mesh(TurtleResult(segs, leaves, _no_leaves()))
+        return segs, leaves
     pivot = segs.start[0]
     outward = segs.end.mean(axis=0) - pivot
     outward[1] = 0.0
@@ -40,7 +80,7 @@ def falling_mesh(fallen: Fallen, progress: float) -> TreeMesh:
     leaf_frames = np.einsum("ij,kjl->kil", turn, leaves.frame) if len(leaves) else leaves.frame
     moved_leaves = Leaves(move(leaves.position) if len(leaves) else leaves.position, leaf_frames,
                           leaves.size * keep, leaves.module)
-    return tree_mesh(TurtleResult(moved, moved_leaves, _no_leaves()))
+    return moved, moved_leaves
 
 
 def _no_leaves() -> Leaves:

@@ -211,7 +211,8 @@ class TreeRenderer:
         prog["u_mvp"].write(_gl(vp))
         prog["u_light_mvp"].write(_gl(light))
         prog["u_shadow"].value = 1
-        prog["u_shadow_texel"].value = 1.0 / SHADOW_SIZE
+        if "u_shadow_texel" in prog:
+            prog["u_shadow_texel"].value = 1.0 / SHADOW_SIZE
         prog["u_sun_dir"].value = tuple(sun)
 
     def _draw_ground(self, vp: np.ndarray, light: np.ndarray, sun: np.ndarray) -> None:
@@ -246,7 +247,14 @@ class TreeRenderer:
 
 
 class Overlay:
-    """A full-screen RGBA texture drawn over the scene with alpha blending (HUD, menu, rain cloud)."""
+    """The HUD/menu layer: an RGBA texture blended over the scene.
+
+    :meth:`draw_surface` is the cheap path for a pygame surface that changes now and then: only tiles
+    with something in them are drawn, and the texture is uploaded only when the caller says it changed
+    (on a software GL, blending a full-screen texture every frame costs as much as the whole scene).
+    """
+
+    TILE = 64
 
     def __init__(self, ctx: moderngl.Context, size: tuple[int, int]) -> None:
         self.ctx = ctx
@@ -254,20 +262,57 @@ class Overlay:
         shaders = ASSETS / "shaders"
         self.prog = ctx.program(vertex_shader=(shaders / "overlay.vert").read_text(),
                                 fragment_shader=(shaders / "overlay.frag").read_text())
+        self.tile_prog = ctx.program(vertex_shader=(shaders / "overlay_tiles.vert").read_text(),
+                                     fragment_shader=(shaders / "overlay.frag").read_text())
         self.texture = ctx.texture(size, 4)
         quad = ctx.buffer(np.array([-1, -1, 3, -1, -1, 3], dtype="f4").tobytes())
         self.vao = ctx.vertex_array(self.prog, [(quad, "2f", "in_pos")])
+        self.tiles = ctx.buffer(reserve=4)
+        self.tile_vao = ctx.vertex_array(self.tile_prog, [(self.tiles, "2f", "in_pos")])
+        self.tile_vertices = 0
 
     def draw(self, rgba_bottom_up: bytes) -> None:
         """Upload the overlay pixels (RGBA rows bottom to top) and blend them over the framebuffer."""
         self.ctx.viewport = (0, 0, *self.size)
         self.texture.write(rgba_bottom_up)
+        self._blend(self.vao)
+
+    def draw_surface(self, surface, changed: bool) -> None:
+        """Blend a pygame surface's non-empty tiles over the framebuffer; re-upload only if ``changed``."""
+        import pygame
+
+        if changed:
+            self.texture.write(pygame.image.tobytes(surface, "RGBA", True))
+            self._layout_tiles(surface)
+        if self.tile_vertices:
+            self.ctx.viewport = (0, 0, *self.size)
+            self._blend(self.tile_vao, self.tile_vertices)
+
+    def _layout_tiles(self, surface) -> None:
+        w, h = self.size
+        quads = []
+        for y in range(0, h, self.TILE):
+            for x in range(0, w, self.TILE):
+                rect = (x, y, min(self.TILE, w - x), min(self.TILE, h - y))
+                if surface.subsurface(rect).get_bounding_rect().width:
+                    x0, x1 = 2 * x / w - 1, 2 * (x + rect[2]) / w - 1
+                    y0, y1 = 1 - 2 * (y + rect[3]) / h, 1 - 2 * y / h
+                    quads.append([x0, y0, x1, y0, x1, y1, x0, y0, x1, y1, x0, y1])
+        data = np.array(quads, "f4").ravel()
+        if len(data):
+            self.tiles.orphan(data.nbytes)
+            self.tiles.write(data.tobytes())
+        self.tile_vertices = len(data) // 2
+
+    def _blend(self, vao, vertices: int = -1) -> None:
         self.texture.use(location=0)
         self.prog["u_tex"].value = 0
+        if "u_tex" in self.tile_prog:
+            self.tile_prog["u_tex"].value = 0
         self.ctx.disable(moderngl.DEPTH_TEST)
         self.ctx.enable(moderngl.BLEND)
         self.ctx.blend_func = moderngl.SRC_ALPHA, moderngl.ONE_MINUS_SRC_ALPHA
-        self.vao.render()
+        vao.render(vertices=vertices)
         self.ctx.disable(moderngl.BLEND)
 
 

@@ -27,7 +27,8 @@ from game.input.gestures import CameraControl, Gestures
 from game.loop import FixedStepLoop
 from game.paths import ASSETS, default_saves
 from game.render.camera import OrbitCamera
-from game.render.renderer import Overlay, TreeRenderer
+from game.render.garden import GardenRenderer
+from game.render.renderer import Overlay
 from game.render.ui import HudInfo, Menu
 from game.screens.care import CareActions
 from game.screens.game_input import GameInput
@@ -64,7 +65,7 @@ class Game:
         self.control = CameraControl(distance=1.0, min_distance=0.25, max_distance=6.0)
         self.gestures = Gestures(self.control)
         self.menu = Menu(size)
-        self.renderer = TreeRenderer(ctx)
+        self.renderer = GardenRenderer(ctx)
         self.overlay = Overlay(ctx, size)
         pygame.font.init()
         self.font = pygame.font.Font(None, 32)

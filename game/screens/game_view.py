@@ -8,10 +8,11 @@ import moderngl
 import numpy as np
 import pygame
 
-from engine.geometry.mesh import merge_trees
-from engine.life.growth import grow_geometry
+from engine.life.growth_view import GrowthView
 from game.render.camera import OrbitCamera, project_points
-from game.render.falling import FALL_SECONDS, falling_mesh
+from game.render.falling import FALL_SECONDS, falling_view
+from game.render.garden import BARK, GardenRenderer, Placed
+from game.render.instanced import LEAF_KEPT, SIDES, TreeBuffers
 from game.render.ui import HudInfo, draw_hud, draw_rain_cloud
 from game.strings import text
 
@@ -19,64 +20,93 @@ if TYPE_CHECKING:
     from game.screens.game import Game
 
 HEALTHY_LEAF, WILTED_LEAF = np.array([1.0, 1.0, 1.0]), np.array([2.6, 0.85, 0.45])  # green -> yellow-brown
+WILT_STEP = 0.02  # a change of wilt this large rebuilds the tree (drooping angles change its shape)
+FALL_FRESH = 2.0  # physiological time: a branch shed earlier than this before it is first seen does not fall
+
+
+def _triangles(buffers: TreeBuffers, lod: int) -> int:
+    """Triangles one tree's buffers draw at level ``lod``."""
+    parts = buffers.parts
+    tubes = parts["tube"].count * 3 * SIDES[lod] if "tube" in parts else 0
+    leaves = int(parts["leaf"].count * LEAF_KEPT[lod]) * 2 if "leaf" in parts else 0
+    blossoms = parts["blossom"].count * 2 if "blossom" in parts else 0
+    return tubes + leaves + blossoms
 
 
 class GameView:
-    """Builds the scene's meshes and draws the frame (3D scene, then the HUD overlay)."""
+    """Keeps every tree's instance records current and draws the frame (3D scene, then the HUD)."""
 
     def __init__(self, game: Game) -> None:
         self.game = game
         self.surface = pygame.Surface(game.size, pygame.SRCALPHA)
-        self.built: tuple | None = None
+        self.views: dict[int, tuple[tuple, GrowthView, TreeBuffers, int]] = {}  # world id -> key, view, GPU, ver
         self.triangles = 0
         self.fall_started: dict[int, float] = {}  # shed branch -> real time its fall began
+        self.falls: list[TreeBuffers] = []
+        self._hud_key: tuple | None = None
 
     def rebuild(self) -> None:
-        """Mesh the garden again if anything visible changed since the last frame."""
+        """Bring every tree's records up to date: a full build when its L-string (or wilt) changed,
+        else only its growing parts move (engine/life/growth_view.py)."""
         game = self.game
-        clocks = game.clocks()
-        shown = game.modeling.lstring() if game.modeling.active else game.world.tree.lstring
-        others = game.others
-        falls = self._falls()
-        key = (id(shown), round(clocks.length_time, 6), round(clocks.girth_time, 6), round(clocks.wilt, 4),
-               tuple((id(o.tree.lstring), round(o.sim.state.length_time, 3)) for o in others),
-               tuple((id(f), round(p, 3)) for f, p, _ in falls))
-        if key == self.built:
-            return
-        mesh = grow_geometry(shown, clocks, game.world.tree.geometry_constants).mesh
-        if others or falls:  # the garden, drawn around the cared-for tree (which stays at the centre)
-            here = np.array(game.world.position)
-            meshes, offsets = [mesh], [np.zeros(3)]
-            for other in others:
-                meshes.append(other.tree.geometry(other.clocks()).mesh)
-                offsets.append(self._offset(other, here))
-            for fallen, progress, world in falls:
-                meshes.append(falling_mesh(fallen, progress))
-                offsets.append(self._offset(world, here))
-            mesh = merge_trees(meshes, offsets)
-        renderer = game.renderer
-        renderer.set_tree(mesh)
-        self.triangles = mesh.n_triangles
+        renderer: GardenRenderer = game.renderer
+        here = np.array([game.world.position[0], 0.0, game.world.position[1]])
+        placed, seen = [], set()
+        for world in game.garden.worlds:
+            cared = world is game.world
+            shown = game.modeling.lstring() if cared and game.modeling.active else world.tree.lstring
+            clocks = game.clocks() if cared else world.clocks()
+            alive = world.sim.state.alive
+            key = (id(shown), len(shown), round(clocks.wilt / WILT_STEP), alive)
+            entry = self.views.get(id(world))
+            if entry is None or entry[0] != key:
+                view = GrowthView(shown, clocks, world.tree.geometry_constants)
+                buffers = entry[2] if entry else TreeBuffers()
+                entry = (key, view, buffers, (entry[3] + 1) if entry else 0)
+                self.views[id(world)] = entry
+            else:
+                entry[1].update(clocks)
+            _, view, buffers, version = entry
+            renderer.trees.sync(buffers, view)
+            offset = np.array([world.position[0], 0.0, world.position[1]]) - here
+            placed.append(Placed(buffers, offset, version))
+            seen.add(id(world))
+        for gone in set(self.views) - seen:
+            self.views.pop(gone)[2].release()
+        placed += self._falling(here)
+        current = self.views[id(game.world)][1]
+        renderer.place(placed, current.lo, current.hi)
+        self._tints()
+        self.triangles = sum(_triangles(p.buffers, lod) for p, lod in zip(placed, self._lods(placed), strict=True))
+
+    def _lods(self, placed: list[Placed]) -> list[int]:
+        lods = self.game.renderer.last_lods
+        return lods if len(lods) == len(placed) else [0] * len(placed)
+
+    def _tints(self) -> None:
+        game, renderer = self.game, self.game.renderer
         alive = game.world.sim.state.alive
-        wilt = clocks.wilt if alive else 1.0
+        wilt = game.clocks().wilt if alive else 1.0
         renderer.leaf_tint = tuple(HEALTHY_LEAF + (WILTED_LEAF - HEALTHY_LEAF) * wilt)
-        renderer.bark_tint = (1.45, 1.35, 1.25) if alive else (1.0, 1.0, 1.0)
-        self.built = key
+        renderer.bark_tint = BARK if alive else (1.0, 1.0, 1.0)
 
-    @staticmethod
-    def _offset(world, here: np.ndarray) -> np.ndarray:
-        dx, dz = np.array(world.position) - here
-        return np.array([dx, 0.0, dz])
-
-    def _falls(self) -> list[tuple]:
-        """Branches shed since they were first seen, with their fall progress (real time)."""
+    def _falling(self, here: np.ndarray) -> list[Placed]:
+        """Branches shed since they were first seen, falling (for FALL_SECONDS of real time)."""
+        for old in self.falls:
+            old.release()
+        self.falls = []
         now, out, seen = self.game.clock(), [], set()
         for world in self.game.garden.worlds:
+            offset = np.array([world.position[0], 0.0, world.position[1]]) - here
+            recent = world.tree.last_rewrite_T - FALL_FRESH  # a branch shed long ago (while away) just lies there
             for fallen in world.tree.fallen:
                 seen.add(id(fallen))
-                started = self.fall_started.setdefault(id(fallen), now)
+                started = self.fall_started.setdefault(id(fallen), now if fallen.at >= recent else -FALL_SECONDS)
                 if now - started < FALL_SECONDS:
-                    out.append((fallen, (now - started) / FALL_SECONDS, world))
+                    buffers = TreeBuffers()
+                    self.game.renderer.trees.sync(buffers, falling_view(fallen, (now - started) / FALL_SECONDS))
+                    self.falls.append(buffers)
+                    out.append(Placed(buffers, offset, -1))
         self.fall_started = {k: v for k, v in self.fall_started.items() if k in seen}
         return out
 
@@ -85,8 +115,28 @@ class GameView:
         game = self.game
         self.rebuild()
         camera = game.camera()
+        game.renderer.time = game.clock()
         game.renderer.render(fbo, camera, game.world.sim.sun_direction(), game.size)
-        game.overlay.draw(self.overlay_pixels(camera))
+        key = self._overlay_key(camera)
+        changed = key != self._hud_key
+        if changed:
+            self.paint(camera)
+            self._hud_key = key
+        game.overlay.draw_surface(self.surface, changed)
+
+    def _overlay_key(self, camera: OrbitCamera) -> tuple:
+        """Everything the HUD layer shows: it is repainted (and uploaded) only when this changes, and
+        at least 4 times a second for what animates (rain cloud, cursor, messages timing out)."""
+        game = self.game
+        info = self.hud_info()
+        menu = game.menu
+        widgets = tuple((w.value, w.pressed, w.label) for w in menu.widgets) if menu.visible else ()
+        modeling = game.modeling
+        view = (round(camera.yaw, 2), round(camera.pitch, 2), round(camera.distance, 3), len(modeling.points),
+                id(modeling.preview)) if modeling.active or game.cursor3d is not None else ()
+        return (round(info.sun * 200), round(info.water * 200), info.status, int(info.age_seconds // 60),
+                info.speed, info.message, info.watering, menu.visible, widgets, view, game.cursor3d,
+                len(game.overlay_hooks), int(game.clock() * 4))
 
     def hud_info(self) -> HudInfo:
         """What the HUD shows now."""
@@ -100,6 +150,11 @@ class GameView:
 
     def overlay_pixels(self, camera: OrbitCamera) -> bytes:
         """The HUD, menu, rain cloud, cursor and tool outlines as RGBA rows, bottom row first."""
+        self.paint(camera)
+        return pygame.image.tobytes(self.surface, "RGBA", True)
+
+    def paint(self, camera: OrbitCamera) -> None:
+        """Draw the HUD, menu, rain cloud, cursor and tool outlines into the overlay surface."""
         game = self.game
         self.surface.fill((0, 0, 0, 0))
         info = self.hud_info()
@@ -114,7 +169,6 @@ class GameView:
         game.menu.draw(self.surface, game.font)
         for hook in game.overlay_hooks:
             hook(self.surface)
-        return pygame.image.tobytes(self.surface, "RGBA", True)
 
     def project(self, camera: OrbitCamera, point) -> tuple[float, float] | None:
         """The window pixel of one 3D point, or None when it is behind the camera."""

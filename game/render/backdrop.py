@@ -1,0 +1,197 @@
+"""What surrounds the trees: a sky dome with the sun's disc, and the ground that receives their shadow.
+
+Cheap on purpose (a software GL like llvmpipe shades every pixel on the CPU): the sky gradient is per
+vertex of a dome on the far plane, so it only fills pixels nothing else covers; the sun is a small
+additive square; the ground shadow uses four filtered taps.
+"""
+
+from __future__ import annotations
+
+import math
+
+import moderngl
+import numpy as np
+
+from game.paths import ASSETS
+
+SKY_ZENITH = (0.30, 0.52, 0.86)
+SKY_HORIZON = (0.78, 0.87, 0.95)
+NIGHT_ZENITH = (0.05, 0.08, 0.22)  # nights are dark blue, never black
+NIGHT_HORIZON = (0.16, 0.20, 0.36)
+GRASS = (0.33, 0.50, 0.22)
+
+
+def program(ctx: moderngl.Context, vertex: str, fragment: str, include: tuple[str, ...] = ()) -> moderngl.Program:
+    """A shader program from assets/shaders, with shared snippets (e.g. wind.glsl) after #version."""
+    shaders = ASSETS / "shaders"
+
+    def source(name: str) -> str:
+        text = (shaders / name).read_text()
+        if not include or not text.startswith("#version"):
+            return text
+        head, _, rest = text.partition("\n")
+        return "\n".join([head, *((shaders / inc).read_text() for inc in include), rest])
+
+    return ctx.program(vertex_shader=source(vertex), fragment_shader=source(fragment))
+
+
+def set_uniforms(prog: moderngl.Program, values: dict) -> None:
+    """Set the uniforms ``prog`` has (a GLSL compiler drops the ones a shader does not use)."""
+    for key, value in values.items():
+        if key in prog:
+            if isinstance(value, bytes):
+                prog[key].write(value)
+            else:
+                prog[key].value = value
+
+
+def convex_hull(points: np.ndarray) -> np.ndarray:
+    """Convex hull of 2D points, counter-clockwise (Andrew's monotone chain; a few dozen points)."""
+    pts = np.unique(np.round(points, 6), axis=0)
+    if len(pts) < 3:
+        return pts
+
+    def half(seq) -> list:
+        out: list = []
+        for x, y in seq:
+            while len(out) >= 2 and ((out[-1][0] - out[-2][0]) * (y - out[-2][1])
+                                     - (out[-1][1] - out[-2][1]) * (x - out[-2][0])) <= 0:
+                out.pop()
+            out.append((x, y))
+        return out
+
+    rows = pts.tolist()
+    lower, upper = half(rows), half(rows[::-1])
+    return np.array(lower[:-1] + upper[:-1])
+
+
+def sky_colors(sun: np.ndarray) -> tuple[tuple, tuple, float]:
+    """Zenith and horizon colours and the daylight factor (0 night .. 1 day) for a sun direction."""
+    day = float(np.clip((sun[1] + 0.15) / 0.35, 0.0, 1.0))
+    zenith = tuple(n + (d - n) * day for n, d in zip(NIGHT_ZENITH, SKY_ZENITH, strict=True))
+    horizon = tuple(n + (d - n) * day for n, d in zip(NIGHT_HORIZON, SKY_HORIZON, strict=True))
+    return zenith, horizon, day
+
+
+def _dome(rings: int = 14, sectors: int = 48) -> tuple[np.ndarray, np.ndarray]:
+    """Unit directions of a dome from a little below the horizon to the zenith, and its triangles."""
+    elev = np.concatenate([[-0.15], np.linspace(0.0, math.pi / 2, rings)])
+    az = np.linspace(0.0, 2 * math.pi, sectors, endpoint=False)
+    e, a = np.meshgrid(elev, az, indexing="ij")
+    dirs = np.stack([np.cos(e) * np.cos(a), np.sin(e), np.cos(e) * np.sin(a)], axis=-1).reshape(-1, 3)
+    idx = []
+    for r in range(len(elev) - 1):
+        for s in range(sectors):
+            a0, a1 = r * sectors + s, r * sectors + (s + 1) % sectors
+            b0, b1 = a0 + sectors, a1 + sectors
+            idx += [(a0, a1, b1), (a0, b1, b0)]
+    return dirs.astype("f4"), np.array(idx, "u4")
+
+
+class Backdrop:
+    """Sky dome, sun disc and ground for one scene (see module docstring)."""
+
+    def __init__(self, ctx: moderngl.Context) -> None:
+        self.ctx = ctx
+        self.dome_prog = program(ctx, "dome.vert", "dome.frag")
+        self.sun_prog = program(ctx, "sun.vert", "sun.frag")
+        self.ground_prog = program(ctx, "ground.vert", "ground_plain.frag")
+        self.shade_prog = program(ctx, "ground.vert", "shade.frag")
+        self.shade_buffer = ctx.buffer(reserve=64 * 12)
+        self.shade = ctx.vertex_array(self.shade_prog, [(self.shade_buffer, "3f", "in_pos")])
+        dirs, idx = _dome()
+        self.dome = ctx.vertex_array(self.dome_prog, [(ctx.buffer(dirs.tobytes()), "3f", "in_dir")],
+                                     ctx.buffer(idx.tobytes()))
+        corners = np.array([[-1, -1], [1, -1], [1, 1], [-1, 1]], "f4")
+        self.sun = ctx.vertex_array(self.sun_prog, [(ctx.buffer(corners.tobytes()), "2f", "in_corner")],
+                                    ctx.buffer(np.array([0, 1, 2, 0, 2, 3], "u4").tobytes()))
+        self.ground = None
+        self.ground_radius = 0.0
+
+    def set_ground(self, radius: float) -> None:
+        """A ground disc of ``radius`` around the origin (rebuilt only when it must grow or shrink a lot)."""
+        if self.ground is not None and 0.8 * self.ground_radius <= radius <= 1.25 * self.ground_radius:
+            return
+        self.ground_radius = radius
+        ang = np.linspace(0, 2 * np.pi, 97)
+        ring = np.stack([np.cos(ang) * radius, np.zeros_like(ang), np.sin(ang) * radius], axis=1)
+        fan = np.concatenate([[[0.0, 0.0, 0.0]], ring]).astype("f4")
+        idx = np.stack([np.zeros(96), np.arange(1, 97), np.arange(2, 98)], axis=1).astype("u4")
+        self.ground = self.ctx.vertex_array(self.ground_prog, [(self.ctx.buffer(fan.tobytes()), "3f", "in_pos")],
+                                            self.ctx.buffer(idx.tobytes()))
+
+    def draw_ground(self, mvp: bytes, light: bytes, sun: np.ndarray, fade: tuple[float, float],
+                    shadow_texel: float) -> None:
+        """The ground with the shadow map bound at texture unit 1."""
+        _, horizon, day = sky_colors(sun)
+        set_uniforms(self.ground_prog, {
+            "u_mvp": mvp, "u_light_mvp": light, "u_shadow": 1, "u_shadow_texel": shadow_texel,
+            "u_sun_dir": tuple(sun), "u_grass": tuple(c * (0.45 + 0.55 * day) for c in GRASS), "u_horizon": horizon,
+            "u_fade_start": fade[0], "u_fade_end": fade[1]})
+        if self.ground is not None:
+            self.ground.render()
+
+    def draw_shadows(self, mvp: bytes, light: bytes, sun: np.ndarray, boxes: list[tuple[np.ndarray, np.ndarray]]
+                     ) -> None:
+        """Darken the ground where the trees' shadows can fall: the ground under and behind their
+        bounding boxes (along the sun), not the whole ground (the shadow test per pixel is the costly
+        part on a software GL). Call right after :meth:`draw_ground`, before the trees."""
+        if sun[1] < 0.02 or not boxes:
+            return
+        points = []
+        for lo, hi in boxes:
+            corners = np.array([[x, y, z] for x in (lo[0], hi[0]) for y in (max(lo[1], 0.0), hi[1])
+                                for z in (lo[2], hi[2])])
+            reach = corners - np.outer(corners[:, 1] / max(sun[1], 0.05), sun)  # along the sun onto y = 0
+            points.append(np.concatenate([corners, reach])[:, [0, 2]])
+        hull = convex_hull(np.concatenate(points))
+        if len(hull) < 3 or len(hull) > 60:
+            return
+        centre = hull.mean(axis=0)
+        pad = (hull - centre) * 0.08 + np.sign(hull - centre) * 0.3  # soft shadow edges stay inside
+        ring = hull + pad
+        fan = np.concatenate([[centre], ring, ring[:1]])
+        tris = np.stack([np.repeat(fan[:1], len(ring), 0), fan[1:-1], fan[2:]], axis=1).reshape(-1, 2)
+        vertices = np.column_stack([tris[:, 0], np.zeros(len(tris)), tris[:, 1]]).astype("f4")
+        self.shade_buffer.orphan(vertices.nbytes)
+        self.shade_buffer.write(vertices.tobytes())
+        set_uniforms(self.shade_prog, {"u_mvp": mvp, "u_light_mvp": light, "u_shadow": 1, "u_sun_dir": tuple(sun)})
+        ctx = self.ctx
+        ctx.disable(moderngl.DEPTH_TEST)
+        ctx.enable(moderngl.BLEND)
+        ctx.blend_func = moderngl.DST_COLOR, moderngl.ZERO
+        self.shade.render(moderngl.TRIANGLES, vertices=len(vertices))
+        ctx.disable(moderngl.BLEND)
+        ctx.enable(moderngl.DEPTH_TEST)
+
+    def draw_sky(self, vp: np.ndarray, eye: np.ndarray, far: float, sun: np.ndarray) -> None:
+        """Sky dome then the sun's disc (when it is above the horizon), both on the far plane."""
+        ctx = self.ctx
+        zenith, horizon, day = sky_colors(sun)
+        vp_bytes = np.ascontiguousarray(vp.T, dtype="f4").tobytes()
+        radius = far * 0.9
+        prog = self.dome_prog
+        prog["u_vp"].write(vp_bytes)
+        prog["u_eye"].value = tuple(eye)
+        prog["u_radius"].value = radius
+        prog["u_zenith"].value, prog["u_horizon"].value = zenith, horizon
+        prog["u_sun_dir"].value = tuple(sun)
+        prog["u_glow"].value = tuple(c * day for c in (1.0, 0.85, 0.55))
+        ctx.depth_func = "<="
+        self.dome.render()
+        if sun[1] > -0.05:
+            right = np.cross(sun, [0.0, 1.0, 0.0])
+            right = right / max(float(np.linalg.norm(right)), 1e-6)
+            up = np.cross(right, sun)
+            sp = self.sun_prog
+            sp["u_vp"].write(vp_bytes)
+            sp["u_eye"].value, sp["u_sun_dir"].value = tuple(eye), tuple(sun)
+            sp["u_right"].value, sp["u_up"].value = tuple(right), tuple(up)
+            sp["u_radius"].value, sp["u_size"].value = radius * 0.95, 0.06
+            low = float(np.clip(sun[1] * 3.0, 0.0, 1.0))  # redder near the horizon
+            sp["u_color"].value = (1.0, 0.75 + 0.2 * low, 0.45 + 0.4 * low)
+            ctx.enable(moderngl.BLEND)
+            ctx.blend_func = moderngl.ONE, moderngl.ONE
+            self.sun.render()
+            ctx.disable(moderngl.BLEND)
+        ctx.depth_func = "<"

@@ -1,0 +1,189 @@
+"""The game's scene: the garden's trees (instanced, each at its own level of detail), the ground with
+their shadows, the sky with the sun, antialiased.
+
+Costs are kept where they must be: the shadow map (1024 texels) is redrawn only when the sun moved or a
+tree changed enough; trees far away or small on screen use fewer sides per ring and fewer, larger
+leaves; the sky is a dome of vertices. Multisampling (4x) is resolved into the target framebuffer.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import moderngl
+import numpy as np
+
+from game.render.backdrop import Backdrop, sky_colors
+from game.render.camera import OrbitCamera, look_at, orthographic
+from game.render.instanced import SIDES, InstancedTrees, TreeBuffers
+from game.render.renderer import _gl, _load_texture
+
+SHADOW_SIZE = 1024
+SHADOW_TURN = math.cos(math.radians(0.75))  # redraw shadows when the sun turned more than this
+SHADOW_FRAMES = 30  # ... or at least every this many frames while trees grow
+LOD_PIXELS = (520, 260, 120)  # on-screen height (px) above which a tree gets level 0, 1, 2 (else 3)
+BARK = (1.45, 1.35, 1.25)
+BLOSSOM = (1.2, 0.9, 1.0)
+
+
+def software_gl(ctx: moderngl.Context) -> bool:
+    """True on a CPU renderer (Mesa llvmpipe/softpipe, SwiftShader), where multisampling costs a frame."""
+    name = str(ctx.info.get("GL_RENDERER", "")).lower()
+    return any(word in name for word in ("llvmpipe", "softpipe", "swiftshader", "software"))
+
+
+@dataclass
+class Placed:
+    """A tree in the scene: its buffers and where it stands (x, 0, z)."""
+
+    buffers: TreeBuffers
+    offset: np.ndarray
+    version: int = 0  # changes when the tree changed enough to need new shadows
+
+
+class GardenRenderer:
+    """Draws placed trees with backdrop and shadows (see module docstring)."""
+
+    def __init__(self, ctx: moderngl.Context, samples: int | None = None) -> None:
+        self.ctx = ctx
+        self.backdrop = Backdrop(ctx)
+        self.trees = InstancedTrees(ctx)
+        self.textures = {name: _load_texture(ctx, name, name == "bark") for name in ("bark", "leaf", "blossom")}
+        self.shadow_map = ctx.depth_texture((SHADOW_SIZE, SHADOW_SIZE))
+        self.shadow_map.compare_func = "<="
+        self.shadow_map.filter = (moderngl.LINEAR, moderngl.LINEAR)
+        self.shadow_fbo = ctx.framebuffer(depth_attachment=self.shadow_map)
+        self.samples = samples if samples is not None else (1 if software_gl(ctx) else 4)
+        self._msaa: tuple | None = None
+        self._shadow_key: tuple | None = None
+        self._shadow_age = 0
+        self.placed: list[Placed] = []
+        self.lo, self.hi = -np.ones(3), np.ones(3)
+        self.leaf_tint, self.bark_tint, self.blossom_tint = (1.0, 1.0, 1.0), BARK, BLOSSOM
+        self.wind = np.zeros(3)  # direction x strength (scene units at the outermost twigs)
+        self.time = 0.0
+        self.last_lods: list[int] = []
+
+    def place(self, placed: list[Placed], lo: np.ndarray, hi: np.ndarray) -> None:
+        """The trees to draw this frame and the bounds of the one in the middle (for framing)."""
+        self.placed = placed
+        self.lo, self.hi = np.asarray(lo, float), np.asarray(hi, float)
+
+    def _scene_bounds(self) -> tuple[np.ndarray, float]:
+        centres, radius = [], 1.0
+        for p in self.placed:
+            view = p.buffers.view
+            if view is None:
+                continue
+            lo, hi = np.asarray(view.lo) + p.offset, np.asarray(view.hi) + p.offset
+            centres.append((lo + hi) / 2)
+            radius = max(radius, float(np.linalg.norm(hi - lo)) / 2)
+        if not centres:
+            return np.zeros(3), radius
+        centre = np.mean(centres, axis=0)
+        spread = max(float(np.linalg.norm(c - centre)) for c in centres)
+        return centre, radius + spread
+
+    def light_matrix(self, sun: np.ndarray) -> np.ndarray:
+        """Orthographic sun view covering every tree and the shadows it casts."""
+        centre, radius = self._scene_bounds()
+        reach = radius * (1.2 + 1.0 / max(float(sun[1]), 0.35))
+        focus = np.array([centre[0], centre[1] * 0.5, centre[2]])
+        return orthographic(reach, 0.01, reach * 4) @ look_at(focus + sun * reach * 2, focus)
+
+    def _lod(self, view, offset: np.ndarray, camera: OrbitCamera, height_px: int) -> int:
+        lo, hi = np.asarray(view.lo) + offset, np.asarray(view.hi) + offset
+        size = float(np.linalg.norm(hi - lo))
+        distance = max(float(np.linalg.norm((lo + hi) / 2 - camera.eye)), 1e-3)
+        pixels = size / (2 * distance * math.tan(math.radians(camera.fov_y) / 2)) * height_px
+        return next((k for k, limit in enumerate(LOD_PIXELS) if pixels >= limit), len(SIDES) - 1)
+
+    def render(self, fbo: moderngl.Framebuffer, camera: OrbitCamera, sun_dir: np.ndarray,
+               size: tuple[int, int]) -> None:
+        """Draw the scene into ``fbo`` (``size`` pixels)."""
+        ctx = self.ctx
+        sun = np.asarray(sun_dir, float) / np.linalg.norm(sun_dir)
+        light = self.light_matrix(sun)
+        vp = camera.projection(size[0] / size[1]) @ camera.view()
+        lods = [self._lod(p.buffers.view, p.offset, camera, size[1]) if p.buffers.view else 3 for p in self.placed]
+        self.last_lods = lods
+        self._shadows(light, sun, lods)
+        target = self._target(fbo, size)
+        target.use()
+        ctx.viewport = (0, 0, *size)
+        _, horizon, day = sky_colors(sun)
+        target.clear(*horizon, 1.0)
+        ctx.enable(moderngl.DEPTH_TEST)
+        ctx.disable(moderngl.CULL_FACE)
+        self.shadow_map.use(location=1)
+        mvp, light_bytes = _gl(vp), _gl(light)
+        pixel = 2.0 * math.tan(math.radians(camera.fov_y) / 2) / size[1]
+        radius = self._scene_bounds()[1]
+        self.backdrop.set_ground(max(radius, 1.0) * 12)
+        self.backdrop.draw_ground(mvp, light_bytes, sun, (radius * 3, radius * 11), 1.0 / SHADOW_SIZE)
+        pad = np.array([1.5, 0.0, 1.5])  # leaves reach past the points the bounds were taken from
+        boxes = [(np.asarray(p.buffers.view.lo) + p.offset - pad, np.asarray(p.buffers.view.hi) + p.offset + pad)
+                 for p in self.placed if p.buffers.view is not None]
+        self.backdrop.draw_shadows(mvp, light_bytes, sun, boxes)
+        uniforms = self._lit_uniforms(mvp, light_bytes, sun, day)
+        uniforms.update(u_eye=tuple(camera.eye), u_pixel=pixel)
+        for placed, lod in zip(self.placed, lods, strict=True):
+            uniforms["u_offset"] = tuple(placed.offset)
+            self.trees.draw(placed.buffers, "lit", lod, uniforms, self.textures)
+        self.backdrop.draw_sky(vp, camera.eye, camera.distance * 20.0, sun)
+        if target is not fbo:
+            ctx.copy_framebuffer(fbo, target)
+
+    def _target(self, fbo: moderngl.Framebuffer, size: tuple[int, int]) -> moderngl.Framebuffer:
+        """The multisampled framebuffer the scene is drawn into (resolved into ``fbo``)."""
+        if self.samples <= 1:
+            return fbo
+        if self._msaa is None or self._msaa[0] != size:
+            if self._msaa is not None:
+                self._msaa[1].release()
+            color = self.ctx.renderbuffer(size, samples=self.samples)
+            depth = self.ctx.depth_renderbuffer(size, samples=self.samples)
+            self._msaa = (size, self.ctx.framebuffer(color_attachments=[color], depth_attachment=depth))
+        return self._msaa[1]
+
+    def _lit_uniforms(self, mvp: bytes, light: bytes, sun: np.ndarray, day: float) -> dict:
+        zenith, _, _ = sky_colors(sun)
+        elevation = max(float(sun[1]), 0.0)
+        strength = min(elevation * 4.0, 1.0)
+        sun_color = (1.05 * (0.4 + 0.6 * elevation) * strength, 0.98 * (0.4 + 0.6 * elevation) * strength,
+                     0.85 * strength)
+        centre, radius = self._scene_bounds()
+        return {"u_mvp": mvp, "u_light_mvp": light, "u_shadow": 1, "u_shadow_texel": 1.0 / SHADOW_SIZE,
+                "u_sun_dir": tuple(sun), "u_sun_color": sun_color,
+                "u_sky_color": tuple(max(c, 0.18) for c in zenith),  # nights: the tree stays visible
+                "u_ground_color": tuple(c * max(day, 0.35) for c in (0.30, 0.28, 0.18)),
+                "u_crown_center": tuple(centre + np.array([0.0, radius * 0.25, 0.0])), "u_crown_radius": radius,
+                "u_wind": (*self.wind, self.time),
+                "tints": (self.bark_tint, self.leaf_tint, self.blossom_tint)}
+
+    def _shadows(self, light: np.ndarray, sun: np.ndarray, lods: list[int]) -> None:
+        """Redraw the shadow map if the sun turned, a tree changed, or it is simply old."""
+        versions = tuple((id(p.buffers.view), p.version) for p in self.placed)
+        old = self._shadow_key
+        self._shadow_age += 1
+        if (old is not None and old[1] == versions and float(np.dot(old[0], sun)) > SHADOW_TURN
+                and self._shadow_age < SHADOW_FRAMES):
+            return
+        self._shadow_key, self._shadow_age = (sun, versions), 0
+        ctx = self.ctx
+        self.shadow_fbo.use()
+        ctx.viewport = (0, 0, SHADOW_SIZE, SHADOW_SIZE)
+        self.shadow_fbo.clear(depth=1.0)
+        ctx.enable(moderngl.DEPTH_TEST)
+        uniforms = {"u_mvp": _gl(light), "u_light_mvp": _gl(light), "u_wind": (*self.wind, self.time),
+                    "u_eye": (0.0, 0.0, 0.0), "u_pixel": 0.0}
+        for placed, lod in zip(self.placed, lods, strict=True):
+            uniforms["u_offset"] = tuple(placed.offset)
+            self.trees.draw(placed.buffers, "shadow", min(lod + 1, len(SIDES) - 1), uniforms, self.textures)
+
+    def release(self) -> None:
+        """Free the trees' buffers (GL objects of the renderer itself live with the context)."""
+        for placed in self.placed:
+            placed.buffers.release()
+        self.placed = []
