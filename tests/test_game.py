@@ -269,7 +269,7 @@ def test_a_garden_of_several_trees(ctx, tmp_path):
     positions = {game.world.position, *(o.position for o in game.others)}
     assert len(positions) == 3  # three places in the garden
     game.draw(fbo)
-    assert game.triangles > 2.5 * alone  # all three are drawn in one scene
+    assert len(game.renderer.placed) == 3 and game.triangles > 1.3 * alone  # all three drawn (far ones coarser)
     game.act("orbit_height", 0.9)
     assert {round(o.sim.state.orbit_height, 6) for o in [game.world, *game.others]} == {
         round(game.world.sim.state.orbit_height, 6)}  # one sun for the whole garden

@@ -16,8 +16,8 @@ ROOT = Path(__file__).resolve().parent.parent
 # package -> rank; a module may import its own package or a package of a strictly lower rank.
 ENGINE = {"engine.base": 0, "engine.lsystem": 1, "engine.geometry": 2, "engine.forest": 3,
           "engine.modeling": 3, "engine.life": 4}
-GAME = {"game.paths": 0, "game.errors": 0, "game.strings": 1, "game.loop": 1, "game.watchdog": 1, "game.render": 2, "game.input": 2,
-        "game.tools": 3, "game.screens": 4, "game.commands": 4, "game.app": 5, "game.cli": 6}
+GAME = {"game.paths": 0, "game.errors": 0, "game.strings": 1, "game.loop": 1, "game.watchdog": 1, "game.render": 2,
+        "game.input": 2, "game.tools": 3, "game.screens": 4, "game.commands": 4, "game.app": 5, "game.cli": 6}
 GUI = ("pygame", "moderngl", "glcontext", "OpenGL")
 
 

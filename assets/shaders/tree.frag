@@ -13,6 +13,7 @@ uniform vec2 u_uv_scale;
 uniform vec3 u_crown_center;
 uniform float u_crown_radius;
 uniform float u_shadow_texel;
+uniform float u_shadowed = 1.0;  // 0: skip the shadow lookup (far leaves; the crown's AO shades them)
 in vec3 v_pos;
 in vec3 v_normal;
 in vec2 v_uv;
@@ -39,6 +40,6 @@ void main() {
     float depth = length(v_pos - u_crown_center) / max(u_crown_radius, 1e-4);
     float ao = u_kind == 0 ? 1.0 : mix(0.5, 1.0, smoothstep(0.2, 1.0, depth));
     vec3 albedo = tex.rgb * u_tint;
-    vec3 color = albedo * (hemi * ao * 0.8 + u_sun_color * diffuse * sun_visibility());
-    f_color = vec4(color * (1.12 - 0.12 * color), 1.0);  // a gentle lift of the darks (no pow per pixel)
+    vec3 color = albedo * (hemi * ao * (u_kind == 0 ? 1.1 : 0.95) + u_sun_color * diffuse * (u_shadowed > 0.5 ? sun_visibility() : 0.8));
+    f_color = vec4(color * (1.3 - 0.3 * min(color, vec3(1.0))), 1.0);  // lifts the darks like a gamma of 1.15, no pow
 }

@@ -30,7 +30,7 @@ from engine.life.growth import (
 )
 from engine.lsystem.lstring import LString
 
-YOUNG = 6.0  # elongation time constants: a younger internode still visibly grows
+YOUNG = 3.5  # elongation time constants: a younger internode still visibly grows (97 % grown by then)
 
 
 class GrowthView:
@@ -50,6 +50,9 @@ class GrowthView:
         self.leaves = self._leaf_records(turtle, leaves, flex)
         self.blossoms = self._leaf_records(turtle, turtle.blossoms, flex, aspect=1.0)
         self.lo, self.hi = turtle.bounds()
+        if len(self.leaves.data):  # the leaves' tips too: what is drawn, not just where leaves start
+            tips = self.leaves.data[:, 0:3] + self.leaves.data[:, 3:6] * self.leaves.data[:, 9:10]
+            self.lo, self.hi = np.minimum(self.lo, tips.min(axis=0)), np.maximum(self.hi, tips.max(axis=0))
         self._young_setup(ls, segs, clocks)
         self._leaf_setup(ls, turtle, leaves, segs)
         self._young_last()

@@ -83,6 +83,15 @@ class ReplantRules:
 
 
 @dataclass
+class WindRules:
+    """The wind that sways the tree (it never changes the L-string): strength 0 is still air."""
+
+    strength: float = 0.35  # sway at the outermost twigs, as a share of the tree's height x 0.1
+    direction: float = 60.0  # degrees from +x toward +z the wind blows to
+    gusts: float = 0.5  # how much the strength rises and falls (0 steady .. 1 from calm to twice)
+
+
+@dataclass
 class Rules:
     """All game rules, one section per table of rules.toml."""
 
@@ -92,6 +101,7 @@ class Rules:
     health: HealthRules = field(default_factory=HealthRules)
     replant: ReplantRules = field(default_factory=ReplantRules)
     light: LightRules = field(default_factory=LightRules)
+    wind: WindRules = field(default_factory=WindRules)
 
 
 def load_rules(path: str | Path) -> Rules:
@@ -126,6 +136,7 @@ RULE_RANGES = {
     "replant.meter_min": (0.0, 1.0), "replant.meter_max": (0.0, 1.0),
     "light.cell": (0.05, 100.0), "light.extinction": (0.0, 100.0), "light.sky": (0.0, 1.0),
     "light.interval": (0.01, 1e6), "light.memory": (0.01, 1e6),
+    "wind.strength": (0.0, 5.0), "wind.direction": (-360.0, 360.0), "wind.gusts": (0.0, 1.0),
 }
 
 

@@ -27,7 +27,7 @@ STILL_PX = 6.0  # a finger that moved less than this during a two-finger gesture
 class CameraControl:
     """What the gestures change: yaw (deg), tilt (deg, 0..MAX_TILT) and zoom distance."""
 
-    yaw: float = 30.0
+    yaw: float = 255.0  # facing a little north of east: the rising sun is in view, the day's sun lights the side
     tilt: float = 0.0
     distance: float = 10.0
     min_distance: float = 0.5

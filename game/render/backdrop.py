@@ -16,8 +16,8 @@ from game.paths import ASSETS
 
 SKY_ZENITH = (0.30, 0.52, 0.86)
 SKY_HORIZON = (0.78, 0.87, 0.95)
-NIGHT_ZENITH = (0.05, 0.08, 0.22)  # nights are dark blue, never black
-NIGHT_HORIZON = (0.16, 0.20, 0.36)
+NIGHT_ZENITH = (0.09, 0.13, 0.32)  # nights are dark blue, never black
+NIGHT_HORIZON = (0.22, 0.27, 0.46)
 GRASS = (0.33, 0.50, 0.22)
 
 
@@ -95,7 +95,11 @@ class Backdrop:
         self.ctx = ctx
         self.dome_prog = program(ctx, "dome.vert", "dome.frag")
         self.sun_prog = program(ctx, "sun.vert", "sun.frag")
-        self.ground_prog = program(ctx, "ground.vert", "ground_plain.frag")
+        self.ground_prog = program(ctx, "ground_plain.vert", "ground_plain.frag")
+        noise = (np.random.default_rng(7).random((64, 64)) * 255).astype("u1")
+        self.noise = ctx.texture((64, 64), 1, noise.tobytes())
+        self.noise.filter = (moderngl.NEAREST, moderngl.NEAREST)
+        self.noise.repeat_x = self.noise.repeat_y = True
         self.shade_prog = program(ctx, "ground.vert", "shade.frag")
         self.shade_buffer = ctx.buffer(reserve=64 * 12)
         self.shade = ctx.vertex_array(self.shade_prog, [(self.shade_buffer, "3f", "in_pos")])
@@ -109,24 +113,31 @@ class Backdrop:
         self.ground_radius = 0.0
 
     def set_ground(self, radius: float) -> None:
-        """A ground disc of ``radius`` around the origin (rebuilt only when it must grow or shrink a lot)."""
+        """A ground disc of ``radius`` around the origin, in rings (rebuilt only when it must grow or
+        shrink a lot)."""
         if self.ground is not None and 0.8 * self.ground_radius <= radius <= 1.25 * self.ground_radius:
             return
         self.ground_radius = radius
-        ang = np.linspace(0, 2 * np.pi, 97)
-        ring = np.stack([np.cos(ang) * radius, np.zeros_like(ang), np.sin(ang) * radius], axis=1)
-        fan = np.concatenate([[[0.0, 0.0, 0.0]], ring]).astype("f4")
-        idx = np.stack([np.zeros(96), np.arange(1, 97), np.arange(2, 98)], axis=1).astype("u4")
-        self.ground = self.ctx.vertex_array(self.ground_prog, [(self.ctx.buffer(fan.tobytes()), "3f", "in_pos")],
-                                            self.ctx.buffer(idx.tobytes()))
+        sectors, radii = 64, radius * (np.geomspace(1.0, 101.0, 24) - 1.0) / 100.0
+        ang = np.linspace(0, 2 * np.pi, sectors, endpoint=False)
+        rings = np.stack([np.outer(radii, np.cos(ang)), np.zeros((len(radii), sectors)),
+                          np.outer(radii, np.sin(ang))], axis=-1).reshape(-1, 3).astype("f4")
+        idx = []
+        for r in range(len(radii) - 1):
+            for s in range(sectors):
+                a0, a1 = r * sectors + s, r * sectors + (s + 1) % sectors
+                idx += [(a0, a1, a1 + sectors), (a0, a1 + sectors, a0 + sectors)]
+        self.ground = self.ctx.vertex_array(self.ground_prog, [(self.ctx.buffer(rings.tobytes()), "3f", "in_pos")],
+                                            self.ctx.buffer(np.array(idx, "u4").tobytes()))
 
     def draw_ground(self, mvp: bytes, light: bytes, sun: np.ndarray, fade: tuple[float, float],
                     shadow_texel: float) -> None:
         """The ground with the shadow map bound at texture unit 1."""
         _, horizon, day = sky_colors(sun)
+        light_level = (0.45 + 0.55 * max(float(sun[1]), 0.0)) * (0.7 + 0.3 * day)
+        self.noise.use(location=2)
         set_uniforms(self.ground_prog, {
-            "u_mvp": mvp, "u_light_mvp": light, "u_shadow": 1, "u_shadow_texel": shadow_texel,
-            "u_sun_dir": tuple(sun), "u_grass": tuple(c * (0.45 + 0.55 * day) for c in GRASS), "u_horizon": horizon,
+            "u_mvp": mvp, "u_noise": 2, "u_grass": tuple(c * light_level for c in GRASS), "u_horizon": horizon,
             "u_fade_start": fade[0], "u_fade_end": fade[1]})
         if self.ground is not None:
             self.ground.render()
@@ -135,7 +146,7 @@ class Backdrop:
                      ) -> None:
         """Darken the ground where the trees' shadows can fall: the ground under and behind their
         bounding boxes (along the sun), not the whole ground (the shadow test per pixel is the costly
-        part on a software GL). Call right after :meth:`draw_ground`, before the trees."""
+        part on a software GL). Call right after :meth:`draw_ground`, before the trees, without depth."""
         if sun[1] < 0.02 or not boxes:
             return
         points = []
@@ -157,15 +168,13 @@ class Backdrop:
         self.shade_buffer.write(vertices.tobytes())
         set_uniforms(self.shade_prog, {"u_mvp": mvp, "u_light_mvp": light, "u_shadow": 1, "u_sun_dir": tuple(sun)})
         ctx = self.ctx
-        ctx.disable(moderngl.DEPTH_TEST)
         ctx.enable(moderngl.BLEND)
         ctx.blend_func = moderngl.DST_COLOR, moderngl.ZERO
         self.shade.render(moderngl.TRIANGLES, vertices=len(vertices))
         ctx.disable(moderngl.BLEND)
-        ctx.enable(moderngl.DEPTH_TEST)
 
     def draw_sky(self, vp: np.ndarray, eye: np.ndarray, far: float, sun: np.ndarray) -> None:
-        """Sky dome then the sun's disc (when it is above the horizon), both on the far plane."""
+        """Sky dome then the sun's disc (when it is above the horizon); drawn first, without depth."""
         ctx = self.ctx
         zenith, horizon, day = sky_colors(sun)
         vp_bytes = np.ascontiguousarray(vp.T, dtype="f4").tobytes()
@@ -177,7 +186,6 @@ class Backdrop:
         prog["u_zenith"].value, prog["u_horizon"].value = zenith, horizon
         prog["u_sun_dir"].value = tuple(sun)
         prog["u_glow"].value = tuple(c * day for c in (1.0, 0.85, 0.55))
-        ctx.depth_func = "<="
         self.dome.render()
         if sun[1] > -0.05:
             right = np.cross(sun, [0.0, 1.0, 0.0])
@@ -194,4 +202,3 @@ class Backdrop:
             ctx.blend_func = moderngl.ONE, moderngl.ONE
             self.sun.render()
             ctx.disable(moderngl.BLEND)
-        ctx.depth_func = "<"

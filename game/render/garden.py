@@ -16,7 +16,7 @@ import numpy as np
 
 from game.render.backdrop import Backdrop, sky_colors
 from game.render.camera import OrbitCamera, look_at, orthographic
-from game.render.instanced import SIDES, InstancedTrees, TreeBuffers
+from game.render.instanced import LEAF_KEPT, SIDES, InstancedTrees, TreeBuffers
 from game.render.renderer import _gl, _load_texture
 
 SHADOW_SIZE = 1024
@@ -55,6 +55,7 @@ class GardenRenderer:
         self.shadow_map.filter = (moderngl.LINEAR, moderngl.LINEAR)
         self.shadow_fbo = ctx.framebuffer(depth_attachment=self.shadow_map)
         self.samples = samples if samples is not None else (1 if software_gl(ctx) else 4)
+        self.triangle_budget = 150_000 if software_gl(ctx) else 3_000_000  # per tree and frame
         self._msaa: tuple | None = None
         self._shadow_key: tuple | None = None
         self._shadow_age = 0
@@ -93,11 +94,18 @@ class GardenRenderer:
         return orthographic(reach, 0.01, reach * 4) @ look_at(focus + sun * reach * 2, focus)
 
     def _lod(self, view, offset: np.ndarray, camera: OrbitCamera, height_px: int) -> int:
+        """The level of detail by the tree's size on screen, coarser still while the triangles it would
+        draw exceed the renderer's budget."""
         lo, hi = np.asarray(view.lo) + offset, np.asarray(view.hi) + offset
         size = float(np.linalg.norm(hi - lo))
         distance = max(float(np.linalg.norm((lo + hi) / 2 - camera.eye)), 1e-3)
         pixels = size / (2 * distance * math.tan(math.radians(camera.fov_y) / 2)) * height_px
-        return next((k for k, limit in enumerate(LOD_PIXELS) if pixels >= limit), len(SIDES) - 1)
+        lod = next((k for k, limit in enumerate(LOD_PIXELS) if pixels >= limit), len(SIDES) - 1)
+        tubes, leaves, blossoms = len(view.tubes.data), len(view.leaves.data), len(view.blossoms.data)
+        while lod < len(SIDES) - 1 and (3 * SIDES[lod] * tubes + 2 * LEAF_KEPT[lod] * leaves + 2 * blossoms
+                                        ) > self.triangle_budget:
+            lod += 1
+        return lod
 
     def render(self, fbo: moderngl.Framebuffer, camera: OrbitCamera, sun_dir: np.ndarray,
                size: tuple[int, int]) -> None:
@@ -112,26 +120,32 @@ class GardenRenderer:
         target = self._target(fbo, size)
         target.use()
         ctx.viewport = (0, 0, *size)
-        _, horizon, day = sky_colors(sun)
-        target.clear(*horizon, 1.0)
-        ctx.enable(moderngl.DEPTH_TEST)
-        ctx.disable(moderngl.CULL_FACE)
+        day = sky_colors(sun)[2]
+        # The sky dome and the ground cover every pixel, behind everything: drawn first without any
+        # depth test (only the trees need depth), after a depth-only clear. On a software GL the depth
+        # test and write of a full-screen background cost as much as shading it.
+        target.color_mask = (False, False, False, False)
+        target.clear(depth=1.0)
+        target.color_mask = (True, True, True, True)
+        target.use()  # (the mask takes effect when the framebuffer is bound)
+        ctx.disable(moderngl.DEPTH_TEST | moderngl.CULL_FACE)
         self.shadow_map.use(location=1)
         mvp, light_bytes = _gl(vp), _gl(light)
         pixel = 2.0 * math.tan(math.radians(camera.fov_y) / 2) / size[1]
         radius = self._scene_bounds()[1]
+        self.backdrop.draw_sky(vp, camera.eye, camera.distance * 20.0, sun)
         self.backdrop.set_ground(max(radius, 1.0) * 12)
         self.backdrop.draw_ground(mvp, light_bytes, sun, (radius * 3, radius * 11), 1.0 / SHADOW_SIZE)
         pad = np.array([1.5, 0.0, 1.5])  # leaves reach past the points the bounds were taken from
         boxes = [(np.asarray(p.buffers.view.lo) + p.offset - pad, np.asarray(p.buffers.view.hi) + p.offset + pad)
                  for p in self.placed if p.buffers.view is not None]
         self.backdrop.draw_shadows(mvp, light_bytes, sun, boxes)
+        ctx.enable(moderngl.DEPTH_TEST)
         uniforms = self._lit_uniforms(mvp, light_bytes, sun, day)
         uniforms.update(u_eye=tuple(camera.eye), u_pixel=pixel)
         for placed, lod in zip(self.placed, lods, strict=True):
             uniforms["u_offset"] = tuple(placed.offset)
             self.trees.draw(placed.buffers, "lit", lod, uniforms, self.textures)
-        self.backdrop.draw_sky(vp, camera.eye, camera.distance * 20.0, sun)
         if target is not fbo:
             ctx.copy_framebuffer(fbo, target)
 
@@ -156,7 +170,7 @@ class GardenRenderer:
         centre, radius = self._scene_bounds()
         return {"u_mvp": mvp, "u_light_mvp": light, "u_shadow": 1, "u_shadow_texel": 1.0 / SHADOW_SIZE,
                 "u_sun_dir": tuple(sun), "u_sun_color": sun_color,
-                "u_sky_color": tuple(max(c, 0.18) for c in zenith),  # nights: the tree stays visible
+                "u_sky_color": tuple(c * (1.0 + 1.2 * (1.0 - day)) for c in zenith),  # moonlit: always visible
                 "u_ground_color": tuple(c * max(day, 0.35) for c in (0.30, 0.28, 0.18)),
                 "u_crown_center": tuple(centre + np.array([0.0, radius * 0.25, 0.0])), "u_crown_radius": radius,
                 "u_wind": (*self.wind, self.time),

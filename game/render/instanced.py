@@ -148,4 +148,6 @@ class InstancedTrees:
                 prog["u_alpha_test"].value = int(kind != 0)
             if "u_fraction" in prog:
                 prog["u_fraction"].value = LEAF_KEPT[lod] if kind == 1 else 1.0
+            if "u_shadowed" in prog:  # far away, leaves skip the shadow lookup (their shade is the AO)
+                prog["u_shadowed"].value = float(pass_ != "lit" or kind == 0 or lod < 2)
             self._vao(part, "tube" if kind == 0 else "leaf", pass_, lod).render(instances=part.count)

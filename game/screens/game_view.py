@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import math
+from concurrent.futures import ThreadPoolExecutor
 from typing import TYPE_CHECKING
 
 import moderngl
@@ -21,6 +23,7 @@ if TYPE_CHECKING:
 
 HEALTHY_LEAF, WILTED_LEAF = np.array([1.0, 1.0, 1.0]), np.array([2.6, 0.85, 0.45])  # green -> yellow-brown
 WILT_STEP = 0.02  # a change of wilt this large rebuilds the tree (drooping angles change its shape)
+ASYNC_MODULES = 60_000  # trees with more modules are rebuilt on a worker thread
 FALL_FRESH = 2.0  # physiological time: a branch shed earlier than this before it is first seen does not fall
 
 
@@ -44,6 +47,8 @@ class GameView:
         self.fall_started: dict[int, float] = {}  # shed branch -> real time its fall began
         self.falls: list[TreeBuffers] = []
         self._hud_key: tuple | None = None
+        self.pending: dict[int, tuple] = {}  # world id -> (key, future) of a rebuild on the worker
+        self.worker = ThreadPoolExecutor(max_workers=1, thread_name_prefix="arbor-rebuild")
 
     def rebuild(self) -> None:
         """Bring every tree's records up to date: a full build when its L-string (or wilt) changed,
@@ -58,14 +63,7 @@ class GameView:
             clocks = game.clocks() if cared else world.clocks()
             alive = world.sim.state.alive
             key = (id(shown), len(shown), round(clocks.wilt / WILT_STEP), alive)
-            entry = self.views.get(id(world))
-            if entry is None or entry[0] != key:
-                view = GrowthView(shown, clocks, world.tree.geometry_constants)
-                buffers = entry[2] if entry else TreeBuffers()
-                entry = (key, view, buffers, (entry[3] + 1) if entry else 0)
-                self.views[id(world)] = entry
-            else:
-                entry[1].update(clocks)
+            entry = self._view(world, shown, clocks, key)
             _, view, buffers, version = entry
             renderer.trees.sync(buffers, view)
             offset = np.array([world.position[0], 0.0, world.position[1]]) - here
@@ -77,6 +75,33 @@ class GameView:
         current = self.views[id(game.world)][1]
         renderer.place(placed, current.lo, current.hi)
         self._tints()
+        self._count_triangles()
+
+    def _view(self, world, shown, clocks, key: tuple) -> tuple:
+        """The records for ``world``'s tree: rebuilt when ``key`` changed, else moved to ``clocks``. A
+        big tree is rebuilt on a worker thread while frames keep drawing the old records, still growing
+        (new parts are born at zero size, so the few frames' delay is invisible)."""
+        entry = self.views.get(id(world))
+        pending = self.pending.get(id(world))
+        if pending is not None and pending[1].done():
+            self.pending.pop(id(world))
+            entry = self._adopt(world, entry, pending[0], pending[1].result())
+        const = world.tree.geometry_constants
+        if entry is None or (entry[0] != key and len(shown) < ASYNC_MODULES):
+            entry = self._adopt(world, entry, key, GrowthView(shown, clocks, const))
+        elif entry[0] != key and id(world) not in self.pending:  # one rebuild at a time: never a backlog
+            self.pending[id(world)] = (key, self.worker.submit(GrowthView, shown, clocks, const))
+        entry[1].update(clocks)  # (a stale view keeps growing until its successor is ready)
+        return entry
+
+    def _adopt(self, world, entry, key: tuple, view: GrowthView) -> tuple:
+        buffers = entry[2] if entry else TreeBuffers()
+        entry = (key, view, buffers, (entry[3] + 1) if entry else 0)
+        self.views[id(world)] = entry
+        return entry
+
+    def _count_triangles(self) -> None:
+        placed = self.game.renderer.placed
         self.triangles = sum(_triangles(p.buffers, lod) for p, lod in zip(placed, self._lods(placed), strict=True))
 
     def _lods(self, placed: list[Placed]) -> list[int]:
@@ -116,13 +141,25 @@ class GameView:
         self.rebuild()
         camera = game.camera()
         game.renderer.time = game.clock()
+        game.renderer.wind = self.wind()
         game.renderer.render(fbo, camera, game.world.sim.sun_direction(), game.size)
+        self._count_triangles()  # (again: the levels of detail of this very frame)
         key = self._overlay_key(camera)
         changed = key != self._hud_key
         if changed:
             self.paint(camera)
             self._hud_key = key
         game.overlay.draw_surface(self.surface, changed)
+
+    def wind(self) -> np.ndarray:
+        """The wind vector for the shaders: the rules' direction x strength, scaled to the tree's size,
+        with slow gusts (in real time: the air moves the same at every game speed)."""
+        rules = self.game.rules.wind
+        height = max(float(self.game.renderer.hi[1]), 1.0)
+        t = self.game.clock()
+        gust = 1.0 + rules.gusts * (0.6 * math.sin(t * 0.23) + 0.4 * math.sin(t * 0.61 + 1.3))
+        a = math.radians(rules.direction)
+        return np.array([math.cos(a), 0.0, math.sin(a)]) * rules.strength * 0.1 * height * max(gust, 0.0)
 
     def _overlay_key(self, camera: OrbitCamera) -> tuple:
         """Everything the HUD layer shows: it is repainted (and uploaded) only when this changes, and

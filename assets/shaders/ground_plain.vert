@@ -1,0 +1,14 @@
+#version 330
+// Ground rings: the fade into the horizon and the sun's light are per vertex, so a pixel only mixes
+// two colours and reads one small noise texel (a software GL shades every pixel on the CPU).
+uniform mat4 u_mvp;
+uniform float u_fade_start;
+uniform float u_fade_end;
+in vec3 in_pos;
+out vec2 v_noise;
+out float v_fade;
+void main() {
+    v_noise = in_pos.xz * (40.0 / u_fade_start) / 64.0;
+    v_fade = smoothstep(u_fade_start, u_fade_end, length(in_pos.xz));
+    gl_Position = u_mvp * vec4(in_pos, 1.0);
+}

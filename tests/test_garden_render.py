@@ -1,0 +1,153 @@
+"""The game's renderer: instanced records that join without steps, growth that updates only what grows,
+wind that moves twigs and not the trunk, a sun that shows, nights that are blue, blossoms that are pink."""
+
+import copy
+
+import numpy as np
+import pytest
+
+from engine.life.growth import Clocks
+from engine.life.growth_view import GrowthView
+from engine.life.sim import load_rules
+from engine.life.world import World
+from engine.lsystem.lsys import load_lsystem
+from game.render.camera import project_points
+from game.screens.game import Game, GameConfig
+
+SIZE = (640, 360)
+
+
+@pytest.fixture(scope="module")
+def grown(lsys_dir):
+    world = World(load_lsystem(lsys_dir / "game_tree.lsys"), load_rules("assets/rules.toml"), seed=3)
+    world.sim.state.sun_meter = world.sim.state.water_meter = 0.9
+    for _ in range(2000):  # about 8 simulated days
+        world.apply("water", float(world.sim.state.water_meter < 0.6))
+        world.step(0.5)
+    return world
+
+
+def test_joint_rings_are_shared_so_branches_taper_without_steps(grown):
+    view = GrowthView(grown.tree.lstring, grown.clocks(), grown.tree.geometry_constants)
+    data, module = view.tubes.data, view.tubes.module
+    row = {int(m): i for i, m in enumerate(module)}
+    segs = grown.tree.geometry(grown.clocks()).turtle.segments
+    cont = np.flatnonzero(segs.continues)
+    child = np.array([row[int(segs.module[c])] for c in cont])
+    parent = np.array([row[int(segs.module[segs.parent[c]])] for c in cont])
+    assert len(cont) > 50
+    np.testing.assert_allclose(data[child, 0:9], data[parent, 9:18], atol=1e-6)  # centre, tangent, reference
+    np.testing.assert_allclose(data[child, 18], data[parent, 19], atol=1e-7)  # radius: no width step
+    tips = data[:, 24] > 0.5
+    assert 0 < tips.sum() < len(data)  # cones only where a branch ends
+
+
+def test_growing_parts_move_as_a_fresh_build_would(grown):
+    clocks = grown.clocks()
+    view = GrowthView(grown.tree.lstring, clocks, grown.tree.geometry_constants)
+    later = Clocks(clocks.length_time + 0.8, clocks.girth_time, 0.0)
+    view.update(later)
+    fresh = GrowthView(grown.tree.lstring, later, grown.tree.geometry_constants)
+    a, b = view.tubes.data[np.argsort(view.tubes.module)], fresh.tubes.data[np.argsort(fresh.tubes.module)]
+    assert np.abs(a[:, 9:12] - b[:, 9:12]).max() < 0.01  # (parts 97 % grown catch up at the next build)
+    assert view.young_row < len(view.tubes)  # only a block of rows moved
+    old = np.argsort(view.tubes.module)[: view.young_row]
+    assert len(old) > 0
+
+
+@pytest.fixture
+def game(gl_ctx, tmp_path, grown):
+    clock = [100.0]
+    g = Game(gl_ctx, SIZE, GameConfig(saves=tmp_path, seed=5, resume=False), clock=lambda: clock[0])
+    g.garden.worlds[0] = copy.deepcopy(grown)  # tests change the tree: each gets its own
+    g.fake = clock
+    g.fbo = gl_ctx.framebuffer(color_attachments=[gl_ctx.renderbuffer(SIZE)],
+                               depth_attachment=gl_ctx.depth_renderbuffer(SIZE))
+    return g
+
+
+def frame(game) -> np.ndarray:
+    game.draw(game.fbo)
+    return np.frombuffer(game.fbo.read(components=3), np.uint8).reshape(SIZE[1], SIZE[0], 3)[::-1].astype(int)
+
+
+def test_wind_sways_twigs_not_the_trunk_and_zero_is_still(game):
+    game.rules.wind.strength = 0.0
+    a = frame(game)
+    game.fake[0] += 1.7
+    b = frame(game)
+    assert np.abs(a - b).max() == 0  # still air: nothing moves
+    game.rules.wind.strength = 2.0
+    a = frame(game)
+    game.fake[0] += 1.7
+    b = frame(game)
+    moved = np.abs(a - b).sum(axis=2) > 40
+    assert moved.sum() > 500
+    base = project_points(game.camera(), SIZE, np.array([[0.0, 0.3, 0.0]]))[0].astype(int)
+    x, y = base
+    assert not moved[y - 3:y + 3, x - 3:x + 3].any()  # the foot of the trunk stays put
+
+
+def test_nights_are_blue_not_black_and_the_tree_stays_visible(game):
+    game.world.sim.state.sun_angle = 4.7
+    night = frame(game)
+    sky = night[5:40, SIZE[0] // 2 - 40:SIZE[0] // 2 + 40].reshape(-1, 3).mean(axis=0)
+    assert sky[2] > 60 and sky[2] > sky[0] + 20  # dark blue
+    centre = project_points(game.camera(), SIZE, np.array([[0.0, float(game.renderer.hi[1]) * 0.6, 0.0]]))[0]
+    x, y = centre.astype(int)
+    crown = night[y - 30:y + 30, x - 30:x + 30].reshape(-1, 3)
+    assert crown.mean() > 15  # not a black hole
+
+
+def test_the_rising_sun_shows_in_the_default_view(game):
+    game.world.sim.state.sun_angle = -0.25  # just after sunrise
+    shot = frame(game)
+    sun = game.world.sim.sun_direction()
+    camera = game.camera()
+    px = project_points(camera, SIZE, (camera.eye + sun * camera.distance * 15)[None])[0]
+    assert np.all(np.isfinite(px)) and 0 <= px[0] < SIZE[0] and 0 <= px[1] < SIZE[1]
+    x, y = px.astype(int)
+    assert shot[max(y - 2, 0):y + 3, max(x - 2, 0):x + 3].min(axis=(0, 1)).sum() > 600  # a bright disc
+
+
+def test_blossoms_are_pink(game):
+    import re
+
+    from engine.lsystem.lstring import parse_lstring
+
+    text = game.world.tree.lstring.to_text().replace("L(", "K(")  # every leaf becomes a blossom, K(birth)
+    game.world.tree.lstring = parse_lstring(re.sub(r"K\(([-0-9.e]+),[-0-9.e]+,[-0-9.e]+\)", r"K(\1)", text))
+    shot = frame(game)
+    pink = (shot[:, :, 0] > 110) & (shot[:, :, 0] > shot[:, :, 1] + 20) & (shot[:, :, 2] > shot[:, :, 1] + 5)
+    assert pink.sum() > 100  # pink petals, not grey-blue ones
+
+
+def test_coarser_levels_draw_fewer_triangles_within_budget(game, monkeypatch):
+    counts = []
+    for lod in range(4):
+        monkeypatch.setattr(game.renderer, "_lod", lambda *a, lod=lod: lod)
+        frame(game)
+        counts.append(game.triangles)
+    assert counts == sorted(counts, reverse=True) and counts[3] < 0.6 * counts[0] and counts[1] < counts[0]
+    monkeypatch.undo()
+    game.renderer.triangle_budget = counts[2] - 1
+    frame(game)
+    assert game.renderer.last_lods[0] == 3  # too many triangles: a coarser level, whatever the size
+
+
+def test_a_frame_updates_records_without_rebuilding(game, monkeypatch):
+    frame(game)
+    builds = []
+    original = GrowthView.__init__
+
+    def counting(self, *args, **kwargs):
+        builds.append(1)
+        original(self, *args, **kwargs)
+
+    monkeypatch.setattr(GrowthView, "__init__", counting)
+    game.world.last_light = float("inf")
+    for _ in range(5):
+        game.fake[0] += 0.05
+        game.update(0.05)  # time passes, the tree grows, no rewrite in these steps
+        frame(game)
+    assert len(builds) <= 1  # at most one rewrite in a quarter second: every other frame only moved records
