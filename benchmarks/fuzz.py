@@ -23,8 +23,8 @@ import numpy as np
 
 from engine.base.errors import LSysError
 from engine.geometry.tree import build_geometry
+from engine.life.rules import load_rules
 from engine.life.save import garden_text, load_garden
-from engine.life.sim import load_rules
 from engine.life.world import World
 from engine.lsystem.derive import Deriver
 from engine.lsystem.lsys import load_lsystem, parse_lsystem
@@ -66,7 +66,7 @@ def mutate_text(text: str, rng: random.Random) -> str:
 def sample_garden_text(trees: int = 2) -> str:
     """A real save of a small garden (the starting point of save mutations)."""
     system = load_lsystem(LSYSTEMS / "game_tree.lsys")
-    rules = load_rules(ROOT / "assets" / "rules.toml")
+    rules = load_rules(ROOT / "assets" / "rules.toml", pace="demo")
     worlds = []
     for k in range(trees):
         world = World(system, rules, seed=k + 1)
@@ -85,7 +85,7 @@ def try_save(text: str, folder: Path) -> None:
     path = folder / "fuzz.arbor"
     path.write_text(text, encoding="utf-8", errors="surrogatepass")
     try:
-        worlds, _, _ = load_garden(path, load_rules(ROOT / "assets" / "rules.toml"))
+        worlds, _, _ = load_garden(path, load_rules(ROOT / "assets" / "rules.toml", pace="demo"))
     except LSysError:
         return
     for world in worlds:

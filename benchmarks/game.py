@@ -46,12 +46,13 @@ def _report(name: str, ms: np.ndarray) -> None:
 
 def grown_tree(days: float):
     """A world grown ``days`` simulated days by a careful player (the living model)."""
-    from engine.life.sim import load_rules
+    from engine.life.rules import load_rules
     from engine.life.world import World
     from engine.lsystem.lsys import load_lsystem
     from game.paths import ASSETS
 
-    world = World(load_lsystem(ASSETS / "lsystems" / "game_tree.lsys"), load_rules(ASSETS / "rules.toml"), seed=3)
+    rules = load_rules(ASSETS / "rules.toml", pace="demo")
+    world = World(load_lsystem(ASSETS / "lsystems" / "game_tree.lsys"), rules, seed=3)
     world.sim.state.sun_meter = world.sim.state.water_meter = 0.9
     for _ in range(round(days * 2 * np.pi / 0.05 / 0.5)):
         world.apply("water", float(world.sim.state.water_meter < 0.6))

@@ -26,11 +26,11 @@ ROOT = Path(__file__).resolve().parent.parent
 CHILD = """
 import sys
 from engine.life.save import save_garden
-from engine.life.sim import load_rules
+from engine.life.rules import load_rules
 from engine.life.world import World
 from engine.lsystem.lsys import load_lsystem
 system = load_lsystem("assets/lsystems/game_tree.lsys")
-rules = load_rules("assets/rules.toml")
+rules = load_rules("assets/rules.toml", pace="demo")
 worlds = [World(system, rules, seed=k) for k in range(int(sys.argv[2]))]
 for w in worlds:
     w.sim.state.sun_meter = w.sim.state.water_meter = 0.9

@@ -19,16 +19,19 @@ import numpy as np
 from benchmarks import median_ms
 from engine.life.lab import measure
 from engine.life.light import exposure
-from engine.life.sim import load_rules
+from engine.life.rules import load_rules
 from engine.life.world import World, sense_light
 from engine.lsystem.lsys import load_lsystem
 
 ASSETS = Path(__file__).resolve().parent.parent / "assets"
 
 
-def careful_player(days: float) -> World:
-    """Grow a tree for ``days`` simulated days, printing the daily table."""
-    world = World(load_lsystem(ASSETS / "lsystems" / "game_tree.lsys"), load_rules(ASSETS / "rules.toml"), seed=3)
+def careful_player(days: float, seasons: bool = False) -> World:
+    """Grow a tree for ``days`` simulated days, printing the daily table (an endless summer unless
+    ``seasons``)."""
+    rules = load_rules(ASSETS / "rules.toml", pace="demo")
+    rules.seasons.enabled = seasons
+    world = World(load_lsystem(ASSETS / "lsystems" / "game_tree.lsys"), rules, seed=3)
     world.sim.state.sun_meter = world.sim.state.water_meter = 0.9
     day = 2 * np.pi / world.sim.state.sun_speed
     per_day = round(day / 0.5)

@@ -116,6 +116,8 @@ def run_app(args: argparse.Namespace | None = None) -> int:
     saves = getattr(args, "saves", None) or os.environ.get("ARBOR_SAVES")
     if saves:
         config.saves = Path(saves)
+    if getattr(args, "pace", None):
+        config.pace = args.pace
     game = Game(ctx, WINDOW, config, clock=time.perf_counter)
     hub = make_input_hub(args, WINDOW, time.perf_counter())
     _main_loop(ctx, WINDOW, hub.poll, _screen_frame(game, ctx.screen))
@@ -144,6 +146,7 @@ def run_kiosk(args: argparse.Namespace) -> int:
     logging.basicConfig(filename=config.saves / "kiosk.log", level=logging.INFO,
                         format="%(asctime)s %(name)s %(levelname)s %(message)s")
     settings = load_kiosk_config(ASSETS / "kiosk.toml")
+    config.pace = settings.pace
     ctx = open_window(WINDOW, "Arbor", fullscreen=not args.windowed)
     size = pygame.display.get_surface().get_size()
     pygame.mouse.set_visible(False)

@@ -21,9 +21,9 @@ from benchmarks.fuzz import (
     try_save,
     try_source,
 )
+from engine.life.rules import load_rules
 from engine.life.save import load_garden, save_garden
 from engine.life.save_check import SIM_FIELDS
-from engine.life.sim import load_rules
 from engine.life.world import World
 from engine.lsystem.lsys import load_lsystem
 from game.input.tuio import TuioParser
@@ -86,6 +86,8 @@ def _bounded(name):
     kind, low, high = SIM_FIELDS[name]
     if kind == "bool":
         return st.booleans()
+    if kind == "int":
+        return st.integers(int(low), int(min(high, 2**62)))
     return st.floats(max(low, -1e9), min(high, 1e9), allow_nan=False, allow_infinity=False)
 
 
@@ -95,7 +97,7 @@ SIM_STATES = st.fixed_dictionaries({name: _bounded(name) for name in SIM_FIELDS}
 @settings(max_examples=30, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
 @given(values=SIM_STATES, trees=st.integers(1, 6), position=st.tuples(st.floats(-1e4, 1e4), st.floats(-1e4, 1e4)))
 def test_whatever_the_game_saves_it_loads(system, tmp_path, values, trees, position):
-    rules = load_rules("assets/rules.toml")
+    rules = load_rules("assets/rules.toml", pace="demo")
     worlds = []
     for k in range(trees):
         world = World(system, rules, seed=k)

@@ -6,7 +6,7 @@ import numpy as np
 import pygame
 import pytest
 
-from engine.life.sim import load_rules
+from engine.life.rules import load_rules
 from engine.life.world import replay
 from engine.lsystem.lsys import load_lsystem
 from game.input.gestures import MAX_TILT
@@ -113,7 +113,7 @@ def test_pinch_zooms_faster_when_farther(game):
 def test_tap_shows_menu_at_tap_point_and_blocks_camera(game):
     tap(game, 400, 100)
     assert game.menu.visible and game.menu.rect.topleft == (400, 100)
-    assert all(w.rect.height >= 48 for w in game.menu.widgets)
+    assert all(w.rect.height >= 48 for w in game.menu.shown())
     yaw = game.control.yaw
     drag(game, 0, [(900, 650), (1000, 650), (1100, 650)])
     assert game.control.yaw == yaw  # camera gestures are off while the menu is shown
@@ -123,7 +123,7 @@ def test_tap_shows_menu_at_tap_point_and_blocks_camera(game):
 
 def test_menu_water_button_waters_while_held(game):
     tap(game, 300, 200)
-    button = game.menu.widget("water").rect.center
+    button = game.menu.reveal("water").rect.center
     finger(pygame.FINGERDOWN, 3, *button)
     pump(game)
     assert game.world.sim.state.watering
@@ -138,14 +138,14 @@ def test_menu_water_button_waters_while_held(game):
 
 def test_menu_sliders_and_sapling(game):
     tap(game, 300, 200)
-    slider = game.menu.widget("orbit_height").rect
+    slider = game.menu.reveal("orbit_height").rect
     drag(game, 4, [(slider.left + 20, slider.centery), (slider.right - 5, slider.centery)])
     assert game.world.sim.state.orbit_height == pytest.approx(game.rules.sun.orbit_height_max, abs=0.05)
-    speed = game.menu.widget("sun_speed").rect
+    speed = game.menu.reveal("sun_speed").rect
     drag(game, 4, [(speed.centerx, speed.centery), (speed.left + 10, speed.centery)])
     assert game.world.sim.state.sun_speed < 0.01
     game.world.sim.state.wilt = 0.7
-    sapling = game.menu.widget("replant").rect.center
+    sapling = game.menu.reveal("replant").rect.center
     tap(game, *sapling)
     assert game.world.sim.state.wilt == 0.0
     assert 0.25 <= game.world.sim.state.sun_meter <= 1.0
@@ -214,7 +214,8 @@ def test_input_log_replays_identically(game):
         if i == 70:
             game.act("orbit_height", 0.9)
         game.update(1 / 30)
-    again = replay(load_lsystem(game.config.lsystem), load_rules(game.config.rules), game.world.seed,
+    rules = load_rules(game.config.rules, pace=game.rules.pace)
+    again = replay(load_lsystem(game.config.lsystem), rules, game.world.seed,
                    game.input_log, game.world.steps, game.loop.dt)
     assert again.sim.state == game.world.sim.state
     assert again.tree.lstring.to_text() == game.world.tree.lstring.to_text()

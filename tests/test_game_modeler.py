@@ -26,7 +26,7 @@ def touch(game, kind, fid, x, y):
 
 def press_menu(game, name):
     game.tap(100, 100)
-    center = game.menu.widget(name).rect.center
+    center = game.menu.reveal(name).rect.center
     touch(game, DOWN, 8, *center)
     touch(game, UP, 8, *center)
     game.tap(1200, 700)  # close the menu again

@@ -2,13 +2,14 @@
 wind that moves twigs and not the trunk, a sun that shows, nights that are blue, blossoms that are pink."""
 
 import copy
+import math
 
 import numpy as np
 import pytest
 
 from engine.life.growth import Clocks
 from engine.life.growth_view import GrowthView
-from engine.life.sim import load_rules
+from engine.life.rules import load_rules
 from engine.life.world import World
 from engine.lsystem.lsys import load_lsystem
 from game.render.camera import project_points
@@ -19,7 +20,7 @@ SIZE = (640, 360)
 
 @pytest.fixture(scope="module")
 def grown(lsys_dir):
-    world = World(load_lsystem(lsys_dir / "game_tree.lsys"), load_rules("assets/rules.toml"), seed=3)
+    world = World(load_lsystem(lsys_dir / "game_tree.lsys"), load_rules("assets/rules.toml", pace="demo"), seed=3)
     world.sim.state.sun_meter = world.sim.state.water_meter = 0.9
     for _ in range(2000):  # about 8 simulated days
         world.apply("water", float(world.sim.state.water_meter < 0.6))
@@ -60,6 +61,7 @@ def game(gl_ctx, tmp_path, grown):
     clock = [100.0]
     g = Game(gl_ctx, SIZE, GameConfig(saves=tmp_path, seed=5, resume=False), clock=lambda: clock[0])
     g.garden.worlds[0] = copy.deepcopy(grown)  # tests change the tree: each gets its own
+    g.world.tree.fallen.clear()  # (a branch shed just before would fall through the first frames)
     g.fake = clock
     g.fbo = gl_ctx.framebuffer(color_attachments=[gl_ctx.renderbuffer(SIZE)],
                                depth_attachment=gl_ctx.depth_renderbuffer(SIZE))
@@ -100,7 +102,9 @@ def test_nights_are_blue_not_black_and_the_tree_stays_visible(game):
 
 
 def test_the_rising_sun_shows_in_the_default_view(game):
-    game.world.sim.state.sun_angle = -0.25  # just after sunrise
+    sim = game.world.sim
+    orbit = sim.sun_height() - math.sin(sim.state.sun_angle)  # (the season raises or lowers the orbit)
+    sim.state.sun_angle = math.asin(0.1 - orbit)  # just after sunrise
     shot = frame(game)
     sun = game.world.sim.sun_direction()
     camera = game.camera()

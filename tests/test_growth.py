@@ -2,7 +2,7 @@ import numpy as np
 import pytest
 
 from engine.life.growth import Clocks, GrowingTree
-from engine.life.sim import load_rules
+from engine.life.rules import load_rules
 from engine.life.world import World
 from engine.lsystem.lsys import load_lsystem
 
@@ -15,7 +15,9 @@ def system(lsys_dir):
 
 
 def grown_world(system, seconds, seed=3, dt=0.5):
-    world = World(system, load_rules("assets/rules.toml"), seed=seed)
+    rules = load_rules("assets/rules.toml", pace="demo")
+    rules.seasons.enabled = False
+    world = World(system, rules, seed=seed)
     world.sim.state.sun_meter = world.sim.state.water_meter = 0.9
     for _ in range(round(seconds / dt)):
         world.apply("water", float(world.sim.state.water_meter < 0.6))
@@ -77,7 +79,9 @@ def test_buds_wait_for_resources(system):
 
 def test_stays_in_budget_forever_and_never_freezes(system):
     sizes, heights = [], []
-    world = World(system, load_rules("assets/rules.toml"), seed=3)
+    rules = load_rules("assets/rules.toml", pace="demo")
+    rules.seasons.enabled = False  # (winter rest would pause the height it checks)
+    world = World(system, rules, seed=3)
     world.sim.state.sun_meter = world.sim.state.water_meter = 0.9
     for i in range(round(2 * 3600 / 2.0)):  # two hours: 57 simulated days
         world.apply("water", float(world.sim.state.water_meter < 0.6))
@@ -92,7 +96,7 @@ def test_stays_in_budget_forever_and_never_freezes(system):
 
 def test_world_is_deterministic(system):
     def run():
-        world = World(system, load_rules("assets/rules.toml"), seed=11)
+        world = World(system, load_rules("assets/rules.toml", pace="demo"), seed=11)
         for i in range(3000):
             if i % 500 == 0:
                 world.apply("water", 1.0)

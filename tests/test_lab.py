@@ -4,7 +4,7 @@ import pytest
 
 from engine.base.errors import LSysError
 from engine.life.lab import Lab, load_experiment
-from engine.life.sim import load_rules
+from engine.life.rules import load_rules
 from game.commands.lab import run_headless
 from tests.conftest import ROOT
 
@@ -21,7 +21,7 @@ def short(path, tmp_path, duration=600):
 
 
 def run(path):
-    lab = Lab(load_experiment(path, LSYS), load_rules(ROOT / "assets" / "rules.toml"))
+    lab = Lab(load_experiment(path, LSYS), load_rules(ROOT / "assets" / "rules.toml", pace="demo"))
     lab.run()
     return lab
 

@@ -7,15 +7,15 @@ import time
 
 import pytest
 
+from engine.life.rules import load_rules
 from engine.life.save import SaveError, load_world, save_text, save_world
-from engine.life.sim import load_rules
 from engine.life.world import World
 from engine.lsystem.lsys import load_lsystem
 
 
 @pytest.fixture(scope="module")
 def world(lsys_dir):
-    w = World(load_lsystem(lsys_dir / "game_tree.lsys"), load_rules("assets/rules.toml"), seed=5)
+    w = World(load_lsystem(lsys_dir / "game_tree.lsys"), load_rules("assets/rules.toml", pace="demo"), seed=5)
     w.sim.state.sun_meter = w.sim.state.water_meter = 0.9
     for _ in range(2400):
         w.apply("water", float(w.sim.state.water_meter < 0.6))
@@ -96,10 +96,10 @@ def test_error_in_lstring_points_at_its_line(world, tmp_path):
 CHILD = """
 import sys
 from engine.lsystem.lsys import load_lsystem
-from engine.life.sim import load_rules
+from engine.life.rules import load_rules
 from engine.life.world import World
 from engine.life.save import save_world
-w = World(load_lsystem("assets/lsystems/game_tree.lsys"), load_rules("assets/rules.toml"), seed=1)
+w = World(load_lsystem("assets/lsystems/game_tree.lsys"), load_rules("assets/rules.toml", pace="demo"), seed=1)
 w.sim.state.sun_meter = w.sim.state.water_meter = 0.9
 print("ready", flush=True)
 while True:

@@ -4,11 +4,12 @@ import numpy as np
 import pytest
 
 from engine.base.errors import LSysError
-from engine.life.sim import GrowthCycle, GrowthRules, Rules, SimState, Simulation, load_rules
+from engine.life.rules import GrowthRules, Rules, load_rules
+from engine.life.sim import GrowthCycle, SimState, Simulation
 
 
 def test_rules_file_loads_and_is_strict(tmp_path):
-    rules = load_rules("assets/rules.toml")
+    rules = load_rules("assets/rules.toml", pace="demo")
     assert rules.growth.hold_time == 20.0 and rules.growth.deadline == 40.0  # seed 003's numbers
     bad = tmp_path / "rules.toml"
     bad.write_text("[growth]\nhold_tme = 3\n")

@@ -45,7 +45,7 @@ _AXIS_OF = np.full(256, -1)
 _SIGN_OF = np.zeros(256)
 for _code, (_axis, _sign) in _ROT_AXIS.items():
     _AXIS_OF[_code], _SIGN_OF[_code] = _axis, _sign
-LEAF, BLOSSOM = ord("L"), ord("K")
+LEAF, BLOSSOM, FRUIT = ord("L"), ord("K"), ord("O")
 ROLL_LEVEL = ord("$")
 TROPISM = ord("T")
 _TURNLIKE = np.zeros(256, bool)
@@ -117,6 +117,7 @@ class TurtleResult:
     segments: Segments
     leaves: Leaves
     blossoms: Leaves
+    fruits: Leaves | None = None  # 'O' modules: position and size of each fruit
     probes: Leaves | None = None  # the turtle's state going into modules the caller asked about
     nearest_move: np.ndarray | None = None  # (n,) module index of the move before each module (-1 none)
 
@@ -220,7 +221,8 @@ def interpret(ls: LString, cfg: TurtleConfig | None = None, probes: np.ndarray |
     if tips:
         leaves = _concat_leaves(leaves, _tip_leaves(segs, tips, leaf_size))
     blossoms = _instances(ls, BLOSSOM, states, leaf_size)
-    result = TurtleResult(segs, leaves, blossoms, nearest_move=states.topo.nearest_move)
+    fruits = _instances(ls, FRUIT, states, leaf_size)
+    result = TurtleResult(segs, leaves, blossoms, fruits, nearest_move=states.topo.nearest_move)
     if probes is not None:
         idx = np.asarray(probes, dtype=np.int64)
         frames = _world_frames(states.blocks_in(idx)[:4])

@@ -7,24 +7,38 @@ time step; sun sliders act on every tree (there is one sun).
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 
-from engine.life.sim import Rules
+import numpy as np
+
+from engine.life.rules import Rules
 from engine.life.world import MAX_CATCH_UP_STEPS, World, catch_up_steps, sense_light
 from engine.lsystem.lsys import LSystem
 
 MAX_GARDEN = 6  # trees in one garden
+MAX_SEEDS = 50  # seeds kept in the seed bag
 GARDEN_SPACING = 7.0  # scene units between neighbouring trees
 SUN_ACTIONS = ("orbit_height", "sun_speed")
+
+
+@dataclass(frozen=True)
+class Seed:
+    """A harvested seed: which tree it came from (its seed and its L-system's hash) and its own number."""
+
+    parent_seed: int
+    parent_sha: str
+    number: int
 
 
 class Garden:
     """The trees of one garden and which one is cared for."""
 
-    def __init__(self, worlds: list[World], current: int = 0) -> None:
+    def __init__(self, worlds: list[World], current: int = 0, seeds: list[Seed] | None = None) -> None:
         if not worlds:
             raise ValueError("a garden has at least one tree")
         self.worlds = list(worlds)
         self.current = min(max(current, 0), len(self.worlds) - 1)
+        self.seeds: list[Seed] = list(seeds or [])  # harvested, waiting to be planted
 
     @property
     def world(self) -> World:
@@ -45,14 +59,14 @@ class Garden:
         """True when no more trees fit."""
         return len(self.worlds) >= MAX_GARDEN
 
-    def plant(self, system: LSystem, rules: Rules) -> World:
+    def plant(self, system: LSystem, rules: Rules, seed: int | None = None) -> World:
         """A new sapling beside the others, under the same sun; it becomes the cared-for tree."""
         if self.full:
             raise ValueError(f"a garden holds at most {MAX_GARDEN} trees")
         k = len(self.worlds)
         angle = k * 2.39996  # golden angle: the garden spirals outwards without crowding
         radius = GARDEN_SPACING * math.sqrt(k)
-        seed = (self.world.seed * 7919 + k * 104729) % 2**31
+        seed = (self.world.seed * 7919 + k * 104729) % 2**31 if seed is None else seed
         world = World(system, rules, seed=seed)
         world.apply("replant", 1.0)
         sun = self.world.sim.state
@@ -60,9 +74,40 @@ class Garden:
         world.apply("sun_speed", sun.sun_speed)
         world.sim.state.sun_angle = sun.sun_angle  # one sun: the new tree sees it where the others do
         world.position = (radius * math.cos(angle), radius * math.sin(angle))
+        world.sim.state.sun_turns = sun.sun_turns  # the same calendar (and the same weather) for all
+        world.sim.state.weather_seed = sun.weather_seed
+        world.journal.write(world.sim.state.time, "planted", float(world.seed))
         self.worlds.append(world)
         self.current = len(self.worlds) - 1
         return world
+
+    def harvest(self, world: World, fruit_module: int) -> Seed | None:
+        """Pick the fruit that is module ``fruit_module`` of ``world``'s tree: it leaves the tree and its
+        seed (which knows its parent) goes into the seed bag. None when that is not a ripe fruit."""
+        ls = world.tree.lstring
+        if not 0 <= fruit_module < len(ls) or ls.sym[fruit_module] != ord("O") or ls.nparams[fruit_module] < 1:
+            return None
+        born = float(ls.params[ls.offsets[fruit_module]])
+        if world.sim.state.length_time - born < world.tree.geometry_constants["RIPEN"]:
+            return None
+        keep = np.ones(len(ls), bool)
+        keep[fruit_module] = False
+        world.tree.lstring = ls.select(keep)
+        seed = Seed(parent_seed=world.seed, parent_sha=world.system.sha256, number=int(born * 1000) % 2**31)
+        if len(self.seeds) < MAX_SEEDS:
+            self.seeds.append(seed)
+        world.journal.write(world.sim.state.time, "harvest", float(len([e for e in world.journal.entries
+                                                                        if e[1] == "harvest"]) + 1))
+        return seed
+
+    def plant_seed(self, rules: Rules, fallback: LSystem) -> World | None:
+        """Plant the oldest seed from the bag: a sapling with its parent's L-system (its DNA)."""
+        if not self.seeds or self.full:
+            return None
+        seed = self.seeds.pop(0)
+        parent = next((w for w in self.worlds if w.system.sha256 == seed.parent_sha), None)
+        system = parent.system if parent is not None else fallback
+        return self.plant(system, rules, seed=(seed.parent_seed * 31 + seed.number) % 2**31)
 
     def next(self) -> World:
         """Care for the next tree (round the garden in planting order)."""

@@ -34,11 +34,12 @@ from engine.lsystem.derive import Deriver, StepReport
 from engine.lsystem.lstring import LString, replace_modules
 from engine.lsystem.lsys import LSystem
 
-INTERNODE, LEAF, BLOSSOM, PITCH, APEX, BUD = (ord(c) for c in "ILK&AD")
+INTERNODE, LEAF, BLOSSOM, PITCH, APEX, BUD, FRUIT, LEAF_BUD = (ord(c) for c in "ILK&ADOV")
+FRUIT_SIZE = 0.55  # a ripe fruit's diameter, in leaf lengths
 CONSTANT_DEFAULTS = {
     "IL": 1.0, "IO": 0.72, "LS": 1.2, "TIP": 0.012, "GMAX": 3.0, "GT": 200.0, "TAU": 4.0, "LFADE": 3.0,
     "SHED": 14.0, "SHQ": 0.25, "PHOTO": 7.0, "PHOTOB": 12.0, "UPW": 1.2, "UPB": 0.15, "RING": 0.012,
-    "STRAIGHT": 1.0, "SUNW": 0.35, "LIGHTW": 1.2,
+    "STRAIGHT": 1.0, "SUNW": 0.35, "LIGHTW": 1.2, "RIPEN": 12.0,
 }
 GEOMETRY_DEFAULTS = CONSTANT_DEFAULTS  # older name, kept for callers outside the engine
 DROOP = 0.6  # branch and leaf angles grow by this fraction at full wilt
@@ -109,6 +110,7 @@ class GrowingTree:
     last_sense_girth: float | None = None
     light_dir: np.ndarray = field(default_factory=lambda: np.array([0.0, 1.0, 0.0]))
     mean_light: float = 1.0
+    height: float = 0.0  # top of the wood at the last light reading (scene units)
     shed_total: int = 0
     fallen: list[Fallen] = field(default_factory=list)
     last_report: StepReport | None = None
@@ -130,14 +132,28 @@ class GrowingTree:
         budget = self.deriver.budget
         return min(len(self.lstring) / budget, 1.0) if budget else 0.0
 
-    def rewrite(self, length_time: float, girth_time: float, resources: float, leaf_vigour: float = 1.0) -> StepReport:
-        """One derivation step at the given clocks (new modules are born now), then empty brackets go."""
+    def rewrite(self, length_time: float, girth_time: float, resources: float, leaf_vigour: float = 1.0,
+                season: dict[str, float] | None = None) -> StepReport:
+        """One derivation step at the given clocks (new modules are born now), then empty brackets go.
+        ``season``: the season's externs (SF, AF, SP; see Simulation.season_externs)."""
         extern = {"T": length_time, "G": girth_time, "DT": length_time - self.last_rewrite_T, "R": resources,
-                  "B": self.budget_used, "WL": leaf_vigour}
+                  "B": self.budget_used, "WL": leaf_vigour, "SF": 1.0, "AF": 0.0, "SP": 0.0, **(season or {})}
         new, self.last_report = self.deriver.step(self.lstring, extern)
         self.lstring = remove_empty_branches(new)
         self.last_rewrite_T = length_time
         return self.last_report
+
+    def drop_leaves(self) -> int:
+        """Winter: every leaf still on the tree falls (the renderer has faded them out through autumn)
+        and leaves a leaf bud V where it was, which the spring flush opens again. Returns how many fell."""
+        ls = self.lstring
+        leaves = ls.sym == LEAF
+        count = int(leaves.sum())
+        if count:
+            sym = np.where(leaves, LEAF_BUD, ls.sym).astype(ls.sym.dtype)
+            self.lstring = LString.from_arrays(sym, np.where(leaves, 0, ls.nparams), ls.params[~np.repeat(leaves,
+                                                                                                         ls.nparams)])
+        return count
 
     def render_view(self, clocks: Clocks) -> LString:
         """The L-string the turtle draws at these clocks: ages turned into lengths and leaf sizes."""
@@ -153,6 +169,8 @@ class GrowingTree:
         view = render_view(ls, Clocks(clocks.length_time, clocks.girth_time, 0.0), const)
         probes = np.flatnonzero(((ls.sym == APEX) & (ls.nparams == 6)) | ((ls.sym == BUD) & (ls.nparams == 3)))
         turtle = interpret(view, _turtle_config(const), probes=probes)
+        ends = turtle.segments.end
+        self.height = float(ends[:, 1].max()) if len(ends) else 0.0
         leaves = turtle.leaves
         heading = leaves.frame[:, :, 0] if len(leaves) else np.zeros((0, 3))
         center = leaves.position + heading * (0.5 * leaves.size)[:, None]
@@ -370,8 +388,8 @@ def _leaf_sizes(ls: LString, idx: np.ndarray, now: float, const: dict[str, float
 
 
 def render_view(ls: LString, clocks: Clocks, const: dict[str, float]) -> LString:
-    """Map I -> F(length), L(...) -> L(size) and K(birth) -> K(size) at the given clocks; droop pitch
-    angles with wilt."""
+    """Map I -> F(length), L(...) -> L(size), K(birth) -> K(size) and O(birth) -> O(size) at the given
+    clocks; droop pitch angles with wilt."""
     now = clocks.length_time
     idx = np.flatnonzero((ls.sym == INTERNODE) & (ls.nparams >= 3))
     birth, order = ls.params[ls.offsets[idx]], ls.params[ls.offsets[idx] + 2]
@@ -384,6 +402,9 @@ def render_view(ls: LString, clocks: Clocks, const: dict[str, float]) -> LString
     kb = view.params[view.offsets[blossoms]]
     opened = _saturate(now - kb, const["TAU"]) * _leaf_keep(kb, clocks.wilt)
     view.params[view.offsets[blossoms]] = 0.4 * const["LS"] * opened
+    fruits = np.flatnonzero((view.sym == FRUIT) & (view.nparams == 1))  # O(birth): swelling to full size
+    view.params[view.offsets[fruits]] = FRUIT_SIZE * const["LS"] * _saturate(now - view.params[view.offsets[fruits]],
+                                                                              const["RIPEN"] / 3)
     if clocks.wilt > 0:
         view.params[view.offsets[_droop_angles(view)]] *= 1.0 + DROOP * clocks.wilt
     return view

@@ -19,7 +19,7 @@ from pathlib import Path
 import numpy as np
 
 from engine.base.errors import LSysError
-from engine.life.sim import Rules
+from engine.life.rules import SECTIONS, Rules
 from engine.life.world import World
 from engine.lsystem.lsys import LSystem, load_lsystem
 
@@ -68,6 +68,8 @@ class Experiment:
     lsystem: Path
     dt: float = 0.5
     file: str = "<experiment>"
+    pace: str = "demo"  # experiments keep seed 003's numbers unless they ask for another pace
+    seasons: bool = True  # false: an endless summer, to study light or water alone
 
 
 def _number(data: dict, key: str, file: str, default=None, positive: bool = False) -> float:
@@ -107,7 +109,23 @@ def load_experiment(path: str | Path, lsystem_dir: Path) -> Experiment:
         regimes=regimes,
         lsystem=lsystem_dir / lsys_name,
         file=file,
+        pace=_pace(data, file),
+        seasons=_flag(data, "seasons", file),
     )
+
+
+def _flag(data: dict, key: str, file: str) -> bool:
+    value = data.get(key, True)
+    if not isinstance(value, bool):
+        raise LSysError(f"'{key}' must be true or false", file)
+    return value
+
+
+def _pace(data: dict, file: str) -> str:
+    pace = data.get("pace", "demo")
+    if not isinstance(pace, str) or not pace.isidentifier():
+        raise LSysError("'pace' must be the name of a pace in rules.toml (demo or home)", file)
+    return pace
 
 
 def _regime(t: dict, i: int, file: str) -> Regime:
@@ -143,7 +161,7 @@ def _regime(t: dict, i: int, file: str) -> Regime:
 
 def _rule_target(rules: Rules, key: str, where: str):
     section, _, name = key.partition(".")
-    if section not in {f.name for f in fields(Rules)}:
+    if section not in SECTIONS:
         raise LSysError(f"unknown rule section in {key!r}", where)
     target = getattr(rules, section)
     if name not in {f.name for f in fields(target)}:
@@ -174,6 +192,8 @@ class Lab:
 
     def __init__(self, experiment: Experiment, base_rules: Rules, system: LSystem | None = None) -> None:
         self.experiment = experiment
+        base_rules = copy.deepcopy(base_rules)
+        base_rules.seasons.enabled = experiment.seasons
         self.system = system or load_lsystem(experiment.lsystem)
         self.worlds: list[World] = []
         for regime in experiment.regimes:

@@ -23,6 +23,8 @@ import numpy as np
 
 from engine.base.errors import LSysError
 from engine.base.files import atomic_write
+from engine.life.garden import MAX_SEEDS, Seed
+from engine.life.journal import Journal
 from engine.life.save_check import (
     BIG,
     SaveError,
@@ -117,6 +119,10 @@ def _tree_lines(world: World, lsystem_name: str) -> list[str]:
         "",
         *_table("trees.sim", world.sim.state.to_dict()),
         "",
+        "[trees.journal]",
+        "entries = [" + ", ".join(f"[{format_number(tm)}, {_toml_string(k)}, {format_number(v)}]"
+                                  for tm, k, v in world.journal.entries) + "]",
+        "",
         "[trees.growth]",
         f"last_rewrite_T = {format_number(tree.last_rewrite_T)}",
         f"light_dir = {_numbers(tree.light_dir)}",
@@ -139,8 +145,9 @@ def _tree_lines(world: World, lsystem_name: str) -> list[str]:
 
 
 def garden_text(worlds: list[World], current: int = 0, lsystem_name: str = "game_tree.lsys",
-                saved_at: float | None = None) -> str:
-    """The text of a save file holding ``worlds`` (a garden; the tree cared for is ``current``)."""
+                saved_at: float | None = None, seeds: list[Seed] = ()) -> str:
+    """The text of a save file holding ``worlds`` (a garden; the tree cared for is ``current``) and the
+    seed bag."""
     if not 1 <= len(worlds) <= MAX_TREES:
         raise ValueError(f"a save holds 1 to {MAX_TREES} trees")
     lines = [
@@ -148,6 +155,7 @@ def garden_text(worlds: list[World], current: int = 0, lsystem_name: str = "game
         f"format = {FORMAT}",
         f"saved_at = {time.time() if saved_at is None else saved_at!r}",
         f"current = {min(max(current, 0), len(worlds) - 1)}",
+        "seeds = [" + ", ".join(f"[{s.parent_seed}, {_toml_string(s.parent_sha)}, {s.number}]" for s in seeds) + "]",
         "",
     ]
     for world in worlds:
@@ -161,9 +169,9 @@ def save_text(world: World, lsystem_name: str, saved_at: float | None = None) ->
 
 
 def save_garden(worlds: list[World], path: str | Path, current: int = 0, lsystem_name: str = "game_tree.lsys",
-                saved_at: float | None = None) -> None:
+                saved_at: float | None = None, seeds: list[Seed] = ()) -> None:
     """Write a whole garden to ``path`` as one atomic unit (temp file, fsync, rename)."""
-    atomic_write(path, garden_text(worlds, current, lsystem_name, saved_at).encode("utf-8"))
+    atomic_write(path, garden_text(worlds, current, lsystem_name, saved_at, seeds).encode("utf-8"))
 
 
 def save_world(world: World, path: str | Path, lsystem_name: str = "game_tree.lsys",
@@ -247,6 +255,7 @@ def _load_tree(data: dict, where: Where, rules: Rules, budget_slack: float) -> W
     world.sim = Simulation(rules, state)
     growth = table(data, "growth", where)
     _restore_growth(world, growth, where, budget_slack)
+    world.journal, _ = Journal.from_rows(table(data, "journal", where, required=False).get("entries", []))
     return world
 
 
@@ -295,6 +304,18 @@ def load_garden(path: str | Path, rules: Rules | None = None, budget_slack: floa
     current = value(data, "current", "int", 0, len(parts) - 1, where, default=0)
     worlds = [_load_tree(tree, part, rules or Rules(), budget_slack) for tree, part in parts]
     return worlds, current, saved_at
+
+
+def load_seeds(path: str | Path) -> list[Seed]:
+    """The seed bag of a save; entries that are not [parent seed, parent hash, number] are dropped."""
+    data, _ = _read(Path(path))
+    out = []
+    for row in data.get("seeds", []) if isinstance(data.get("seeds", []), list) else []:
+        if (isinstance(row, list) and len(row) == 3 and isinstance(row[0], int) and isinstance(row[2], int)
+                and not isinstance(row[0], bool) and isinstance(row[1], str) and len(row[1]) == 64
+                and 0 <= row[0] < 2**63 and 0 <= row[2] < 2**31 and len(out) < MAX_SEEDS):
+            out.append(Seed(row[0], row[1], row[2]))
+    return out
 
 
 def load_world(path: str | Path, rules: Rules | None = None, budget_slack: float = 1.0) -> tuple[World, float]:

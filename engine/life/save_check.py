@@ -31,8 +31,9 @@ SIM_FIELDS = {
     "sun_speed": ("float", 1e-9, 100.0), "sun_meter": ("float", 0.0, 1.0), "water_meter": ("float", 0.0, 1.0),
     "watering": ("bool", 0, 1), "length_time": ("float", 0.0, BIG), "girth_time": ("float", 0.0, BIG),
     "wilt": ("float", 0.0, 1.0), "drowning": ("float", 0.0, BIG), "dead_for": ("float", 0.0, BIG),
-    "alive": ("bool", 0, 1),
+    "alive": ("bool", 0, 1), "sun_turns": ("float", 0.0, BIG), "weather_seed": ("int", 0, 2**63 - 1),
 }
+OPTIONAL_SIM = {"sun_turns": 0.0, "weather_seed": 0}  # saves from before the seasons have none
 CYCLE_FIELDS = {"cycle": ("float", 0.0, BIG), "above": ("float", 0.0, BIG), "rate": ("float", 0.0, 1.0),
                 "earned": ("int", 0, 2**53)}
 
@@ -125,7 +126,7 @@ def sim_values(data: dict, where: Where) -> dict:
     unknown = set(data) - set(SIM_FIELDS) - {"sun_cycle", "water_cycle"}
     if unknown:
         raise where.error(f"unknown field '{sorted(unknown)[0]}' in [sim]", sorted(unknown)[0])
-    out = {k: value(data, k, *spec, where) for k, spec in SIM_FIELDS.items()}
+    out = {k: value(data, k, *spec, where, default=OPTIONAL_SIM.get(k)) for k, spec in SIM_FIELDS.items()}
     for name in ("sun_cycle", "water_cycle"):
         cycle = table(data, name, where)
         bad = set(cycle) - set(CYCLE_FIELDS)

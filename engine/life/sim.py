@@ -11,149 +11,15 @@ All constants come from assets/rules.toml (see :func:`load_rules`).
 from __future__ import annotations
 
 import math
-import tomllib
 from dataclasses import asdict, dataclass, field, fields
-from pathlib import Path
 
 import numpy as np
 
-from engine.base.config import fill_dataclass
-from engine.base.errors import LSysError
-from engine.life.light import LightRules
+from engine.life import seasons
+from engine.life.rules import GrowthRules, Rules, load_rules
+from engine.life.seasons import Season, raining, season_at
 
-
-@dataclass
-class GrowthRules:
-    """When a meter earns growth, and how fast the tree's two clocks run."""
-
-    threshold: float = 0.5
-    hold_time: float = 20.0
-    deadline: float = 40.0
-    penalty_time: float = 40.0
-    length_rate: float = 0.06
-    girth_rate: float = 0.1
-    rewrite_step: float = 1.0
-    sapling_age: float = 12.0
-
-
-@dataclass
-class SunRules:
-    """The sun's orbit (slider defaults and ranges) and how it fills the sun meter."""
-
-    orbit_height: float = 0.35
-    orbit_height_min: float = -1.0
-    orbit_height_max: float = 1.0
-    speed: float = 0.05
-    speed_min: float = 0.005
-    speed_max: float = 0.5
-    fill_rate: float = 0.04
-    drain_rate: float = 0.006
-    side: float = 0.45  # how far to one side (+z, "south") the sun's path lies, in orbit radii
-
-
-@dataclass
-class WaterRules:
-    """How the water meter drains, fills and drowns the roots."""
-
-    drain_rate: float = 0.004
-    sun_drain_rate: float = 0.008
-    fill_rate: float = 0.12
-    drown_level: float = 0.95
-    drown_time: float = 30.0
-    leaf_min: float = 0.45  # leaf vigour (size, and how long leaves stay) with an empty water meter
-    drought_level: float = 0.35  # below this, drought makes shaded branches die faster
-
-
-@dataclass
-class HealthRules:
-    """Neglect, wilting and death."""
-
-    neglect_level: float = 0.15
-    wilt_rate: float = 0.02
-    recover_rate: float = 0.01
-    death_time: float = 120.0
-
-
-@dataclass
-class ReplantRules:
-    """The sapling button's meter refill range."""
-
-    meter_min: float = 0.25
-    meter_max: float = 1.0
-
-
-@dataclass
-class WindRules:
-    """The wind that sways the tree (it never changes the L-string): strength 0 is still air."""
-
-    strength: float = 0.35  # sway at the outermost twigs, as a share of the tree's height x 0.1
-    direction: float = 60.0  # degrees from +x toward +z the wind blows to
-    gusts: float = 0.5  # how much the strength rises and falls (0 steady .. 1 from calm to twice)
-
-
-@dataclass
-class Rules:
-    """All game rules, one section per table of rules.toml."""
-
-    growth: GrowthRules = field(default_factory=GrowthRules)
-    sun: SunRules = field(default_factory=SunRules)
-    water: WaterRules = field(default_factory=WaterRules)
-    health: HealthRules = field(default_factory=HealthRules)
-    replant: ReplantRules = field(default_factory=ReplantRules)
-    light: LightRules = field(default_factory=LightRules)
-    wind: WindRules = field(default_factory=WindRules)
-
-
-def load_rules(path: str | Path) -> Rules:
-    """Read rules.toml; unknown tables/keys or non-numbers are errors naming the file and key."""
-    path = Path(path)
-    try:
-        data = tomllib.loads(path.read_text(encoding="utf-8"))
-    except tomllib.TOMLDecodeError as exc:
-        raise LSysError(f"not valid TOML: {exc}", str(path)) from None
-    rules = Rules()
-    for table, values in data.items():
-        if table not in {f.name for f in fields(Rules)} or not isinstance(values, dict):
-            raise LSysError(f"unknown table [{table}]", str(path))
-        fill_dataclass(getattr(rules, table), values, str(path), f"key in [{table}]")
-    check_rules(rules, str(path))
-    return rules
-
-
-# Physical limits of every rule (section.key -> low, high); anything else is a typo or a misunderstanding.
-RULE_RANGES = {
-    "growth.threshold": (0.01, 0.99), "growth.hold_time": (0.0, 1e7), "growth.deadline": (0.0, 1e7),
-    "growth.penalty_time": (1e-3, 1e7), "growth.length_rate": (0.0, 100.0), "growth.girth_rate": (0.0, 100.0),
-    "growth.rewrite_step": (0.01, 100.0), "growth.sapling_age": (0.0, 1000.0),
-    "sun.orbit_height": (-1.0, 1.0), "sun.orbit_height_min": (-1.0, 1.0), "sun.orbit_height_max": (-1.0, 1.0),
-    "sun.speed": (1e-7, 10.0), "sun.speed_min": (1e-7, 10.0), "sun.speed_max": (1e-7, 10.0),
-    "sun.fill_rate": (0.0, 100.0), "sun.drain_rate": (0.0, 100.0), "sun.side": (-10.0, 10.0),
-    "water.drain_rate": (0.0, 100.0), "water.sun_drain_rate": (0.0, 100.0), "water.fill_rate": (0.0, 100.0),
-    "water.drown_level": (0.0, 1.0), "water.drown_time": (0.0, 1e7), "water.leaf_min": (0.0, 1.0),
-    "water.drought_level": (0.0, 1.0),
-    "health.neglect_level": (0.0, 1.0), "health.wilt_rate": (0.0, 100.0), "health.recover_rate": (0.0, 100.0),
-    "health.death_time": (0.0, 1e8),
-    "replant.meter_min": (0.0, 1.0), "replant.meter_max": (0.0, 1.0),
-    "light.cell": (0.05, 100.0), "light.extinction": (0.0, 100.0), "light.sky": (0.0, 1.0),
-    "light.interval": (0.01, 1e6), "light.memory": (0.01, 1e6),
-    "wind.strength": (0.0, 5.0), "wind.direction": (-360.0, 360.0), "wind.gusts": (0.0, 1.0),
-}
-
-
-def check_rules(rules: Rules, file: str) -> None:
-    """Every rule within its physical limits, and every slider range the right way round."""
-    for key, (low, high) in RULE_RANGES.items():
-        section, name = key.split(".")
-        value = getattr(getattr(rules, section), name)
-        if not low <= value <= high:
-            raise LSysError(f"'{name}' in [{section}] must be from {low:g} to {high:g} (it is {value:g})", file)
-    sun = rules.sun
-    if not sun.orbit_height_min <= sun.orbit_height <= sun.orbit_height_max:
-        raise LSysError("[sun] orbit_height must lie between orbit_height_min and orbit_height_max", file)
-    if not sun.speed_min <= sun.speed <= sun.speed_max:
-        raise LSysError("[sun] speed must lie between speed_min and speed_max", file)
-    if rules.replant.meter_min > rules.replant.meter_max:
-        raise LSysError("[replant] meter_min must not be above meter_max", file)
+__all__ = ["GrowthCycle", "Rules", "SimState", "Simulation", "load_rules"]
 
 
 @dataclass
@@ -197,6 +63,8 @@ class SimState:
     drowning: float = 0.0
     dead_for: float = 0.0
     alive: bool = True
+    sun_turns: float = 0.0  # days of the sun so far (turns of its orbit): the calendar of the seasons
+    weather_seed: int = 0  # which days it rains (see engine/life/seasons.py)
     sun_cycle: GrowthCycle = field(default_factory=GrowthCycle)
     water_cycle: GrowthCycle = field(default_factory=GrowthCycle)
 
@@ -220,6 +88,12 @@ class SimState:
         return state
 
 
+def sun_angle_at(seconds_after_midnight: float) -> float:
+    """The sun's angle on its orbit at this time of a day (noon at noon): at the home pace, a day of
+    the sun lasts a day, so a garden started with it keeps the player's day and night."""
+    return (-math.pi / 2 + 2 * math.pi * seconds_after_midnight / 86400.0) % (2 * math.pi)
+
+
 class Simulation:
     """Steps the meters, the growth clocks and the tree's health with a fixed time step."""
 
@@ -229,9 +103,28 @@ class Simulation:
             state = SimState(orbit_height=self.rules.sun.orbit_height, sun_speed=self.rules.sun.speed)
         self.state = state
 
+    def season(self) -> Season:
+        """The season now (spring, summer, autumn, winter)."""
+        return season_at(self.state.sun_turns, self.rules)
+
+    def raining(self) -> bool:
+        """Whether a rain shower is falling now."""
+        return raining(self.state.sun_turns, self.state.weather_seed, self.rules)
+
+    def season_externs(self, tree_age: float) -> dict[str, float]:
+        """What the L-system hears of the season: SF (bud flush), AF (autumn leaf fall per unit of T),
+        SP (1 while a mature, healthy tree may blossom in spring)."""
+        turns, rules = self.state.sun_turns, self.rules
+        season = self.season()
+        bloom = season.index == 0 and season.progress < 0.6 and tree_age >= rules.seasons.mature_age
+        healthy = self.resources() > 0.5
+        return {"SF": seasons.flush(turns, rules), "AF": seasons.leaf_fall(turns, rules),
+                "SP": 1.0 if bloom and healthy else 0.0}
+
     def sun_height(self) -> float:
-        """Height of the sun above the horizon in orbit radii (negative at night)."""
-        return self.state.orbit_height + math.sin(self.state.sun_angle)
+        """Height of the sun above the horizon in orbit radii (negative at night): higher in summer."""
+        offset = seasons.sun_offset(self.state.sun_turns, self.rules)
+        return self.state.orbit_height + offset + math.sin(self.state.sun_angle)
 
     def sunshine(self) -> float:
         """How strongly the sun shines on the tree, 0 (night) to 1 (high noon)."""
@@ -261,6 +154,7 @@ class Simulation:
             sun_angle=old.sun_angle, orbit_height=old.orbit_height, sun_speed=old.sun_speed,
             sun_meter=float(rng.uniform(r.meter_min, r.meter_max)),
             water_meter=float(rng.uniform(r.meter_min, r.meter_max)),
+            sun_turns=old.sun_turns, weather_seed=old.weather_seed,  # the calendar and weather go on
         )
 
     def growth_speeds(self) -> tuple[float, float]:
@@ -274,7 +168,7 @@ class Simulation:
         s, g = self.state, self.rules.growth
         if not s.alive:
             return 0.0, 0.0
-        gate = s.sun_cycle.rate * s.water_cycle.rate * (1.0 - s.wilt)
+        gate = s.sun_cycle.rate * s.water_cycle.rate * (1.0 - s.wilt) * seasons.growth_factor(s.sun_turns, self.rules)
         return g.length_rate * s.sun_meter * gate, g.girth_rate * s.water_meter * gate
 
     def leaf_vigour(self) -> float:
@@ -299,15 +193,19 @@ class Simulation:
         s, rules = self.state, self.rules
         s.time += dt
         s.sun_angle = (s.sun_angle + s.sun_speed * dt) % (2 * math.pi)
+        s.sun_turns += s.sun_speed * dt / (2 * math.pi)
         shine = self.sunshine()
         if shine > 0:
             s.sun_meter += rules.sun.fill_rate * shine * dt
         else:
             s.sun_meter -= rules.sun.drain_rate * dt
         w = rules.water
-        s.water_meter -= (w.drain_rate + w.sun_drain_rate * shine) * dt
+        need = seasons.water_factor(s.sun_turns, rules)
+        s.water_meter -= (w.drain_rate + w.sun_drain_rate * shine) * need * dt
         if s.watering:
             s.water_meter += w.fill_rate * dt
+        if self.raining():
+            s.water_meter += rules.weather.rain_fill * dt
         s.sun_meter = min(max(s.sun_meter, 0.0), 1.0)
         s.water_meter = min(max(s.water_meter, 0.0), 1.0)
         s.sun_cycle.update(s.sun_meter, dt, rules.growth)
@@ -333,7 +231,8 @@ class Simulation:
 
     def status(self) -> str:
         """A short word for the HUD that says what is true: dead, wilting, drowning, thirsty, needs_light,
-        growing, resting (night) or starting (both meters fine; growth is earned after 20 s)."""
+        growing, resting (night), winter (resting for the winter) or starting (both meters fine; growth is
+        earned after 20 s)."""
         s, threshold = self.state, self.rules.growth.threshold
         if not s.alive:
             return "dead"
@@ -345,6 +244,8 @@ class Simulation:
             return "thirsty"
         if s.sun_meter <= threshold:
             return "needs_light"
+        if self.season().index == 3 and seasons.growth_factor(s.sun_turns, self.rules) == 0:
+            return "winter"
         if self.growth_speeds()[0] > 0:
             return "growing" if self.sunshine() > 0 else "resting"
         return "starting"

@@ -11,6 +11,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from engine.life.growth import Clocks, GrowingTree
+from engine.life.journal import Journal
 from engine.life.light import exposure
 from engine.life.sim import Rules, SimState, Simulation
 from engine.lsystem.lsys import LSystem
@@ -33,9 +34,12 @@ class World:
     steps: int = 0
     position: tuple[float, float] = (0.0, 0.0)  # where the tree stands in a garden (x, z)
     last_light: float = float("-inf")  # game time of the last light reading
+    journal: Journal = field(default_factory=Journal)
+    bare_at: float = -1.0  # the day of the sun winter last stripped the leaves
 
     def __post_init__(self) -> None:
         self.sim = Simulation(self.rules)
+        self.sim.state.weather_seed = self.seed
         self.rng = np.random.Generator(np.random.PCG64(self.seed))
         self.tree = self._plant(self.seed)
 
@@ -69,8 +73,12 @@ class World:
     def grow(self) -> None:
         """Rewrite the L-string if T has passed one rewrite step since the last rewrite."""
         s = self.sim.state
+        if self.sim.season().index == 3 and self.bare_at != s.sun_turns // 1:
+            self.bare_at = s.sun_turns // 1  # (looked at once a day of the sun)
+            self.tree.drop_leaves()
         if s.length_time - self.tree.last_rewrite_T >= self.rules.growth.rewrite_step:
-            self.tree.rewrite(s.length_time, s.girth_time, self.sim.resources(), self.sim.leaf_vigour())
+            self.tree.rewrite(s.length_time, s.girth_time, self.sim.resources(), self.sim.leaf_vigour(),
+                              self.sim.season_externs(s.length_time))
 
     def status(self) -> str:
         """What the HUD says about this tree (see :meth:`Simulation.status`); a tree that grows but whose
@@ -152,6 +160,7 @@ def sense_light(worlds: list[World]) -> None:
         part = light[start:start + len(q)]
         start += len(q)
         world.tree.sense(scene, part, world.clocks(), shine, sun, rules.memory, world.sim.drought())
+        world.journal.observe(world, world.tree.height)
 
 
 def replay(system: LSystem, rules: Rules, seed: int, log: InputLog, steps: int, dt: float) -> World:

@@ -7,8 +7,8 @@ from pathlib import Path
 import numpy as np
 
 from engine.life.lab import Lab, load_experiment
+from engine.life.rules import load_rules
 from engine.life.save import save_world
-from engine.life.sim import load_rules
 from game.paths import ASSETS
 from game.render.charts import charts_png
 from game.render.renderer import headless_context, render_image, save_png
@@ -17,7 +17,7 @@ from game.render.renderer import headless_context, render_image, save_png
 def new_lab(experiment_path: Path) -> Lab:
     """A lab for an experiment file, with the game's rules as the base."""
     experiment = load_experiment(experiment_path, ASSETS / "lsystems")
-    return Lab(experiment, load_rules(ASSETS / "rules.toml"))
+    return Lab(experiment, load_rules(ASSETS / "rules.toml", experiment.pace))
 
 
 def scene_png(lab: Lab, path: Path, tile: tuple[int, int] = (640, 720), ctx=None) -> None:

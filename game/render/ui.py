@@ -13,6 +13,7 @@ from dataclasses import dataclass, field
 
 import pygame
 
+from game.render.icons import draw_icon
 from game.strings import text
 
 SUN_YELLOW = (250, 204, 40)
@@ -21,61 +22,98 @@ PANEL = (20, 30, 24, 200)
 TEXT = (245, 245, 240)
 ACCENT = (120, 190, 90)
 ROW_H = 64  # touch targets: >= 48 px
+JOURNAL_LINE = 26
 MENU_W = 420
 PAD = 10
 
 
 @dataclass
 class Widget:
-    """A slider (value 0..1) or a button; ``hold`` buttons act while pressed."""
+    """A slider (value 0..1) or a button on one page of the menu; ``hold`` buttons act while pressed."""
 
     name: str
     label: str
     kind: str  # "slider" or "button"
+    page: str = "care"
+    icon: str = ""
     rect: pygame.Rect = field(default_factory=lambda: pygame.Rect(0, 0, 0, 0))
     value: float = 0.0
     hold: bool = False
     pressed: bool = False
 
 
+# Pages of the menu, row by row. The first page is for caring (big targets with icons); the garden,
+# the modeler's tools, settings and the journal are one tap further.
+PAGES = {
+    "care": [["orbit_height"], ["sun_speed"], ["water", "speed"], ["garden", "tools", "settings", "journal"]],
+    "garden": [["plant", "sow"], ["next", "replant"], ["back"]],
+    "tools": [["modeler", "crown", "shape"], ["prune", "symbols", "edit"], ["undo", "redo", "back"]],
+    "settings": [["save", "load"], ["devices", "back"]],
+    "journal": [["back"]],
+}
+ICONS = {"orbit_height": "sun", "sun_speed": "clock", "water": "can", "speed": "clock", "garden": "sapling",
+         "tools": "pencil", "settings": "gear", "journal": "book", "plant": "sapling", "sow": "seed",
+         "replant": "sapling", "back": "back", "modeler": "pencil"}
+NAV = {"garden", "tools", "settings", "journal", "back"}  # buttons that only change the page
+
+
 class Menu:
-    """The tap menu: layout at a point, hit testing, drag/press handling, drawing."""
+    """The tap menu: pages of widgets laid out at a point, hit testing, drag/press handling, drawing."""
 
     def __init__(self, screen: tuple[int, int]) -> None:
         self.screen = screen
         self.visible = False
+        self.page = "care"
+        self.journal_lines: list[str] = []
+        names = {name for rows in PAGES.values() for row in rows for name in row}
+        page_of = {name: page for page, rows in PAGES.items() for row in rows for name in row if name != "back"}
         self.widgets = [
-            Widget("orbit_height", text("menu.orbit_height"), "slider"),
-            Widget("sun_speed", text("menu.sun_speed"), "slider"),
-            Widget("water", text("menu.water"), "button", hold=True),
-            Widget("replant", text("menu.replant"), "button"),
-            Widget("speed", text("menu.speed", speed="1"), "button"),
-            *(Widget(name, text(f"menu.{name}"), "button") for name in ("save", "load", "devices", "modeler",
-                                                                         "crown", "shape", "prune", "symbols", "undo",
-                                                                         "redo",
-                                                                         "plant", "next")),
-            Widget("edit", text("menu.edit", name=text("edits.add_leaves")), "button"),
+            Widget("orbit_height", text("menu.orbit_height"), "slider", icon="sun"),
+            Widget("sun_speed", text("menu.sun_speed"), "slider", icon="clock"),
+            Widget("water", text("menu.water"), "button", hold=True, icon="can"),
+            Widget("speed", text("menu.speed", speed="1"), "button", icon="clock"),
+            *(Widget(name, text(f"menu.{name}"), "button", page_of.get(name, "care"), ICONS.get(name, ""))
+              for name in sorted(names - {"orbit_height", "sun_speed", "water", "speed", "edit", "sow"})),
+            Widget("sow", text("menu.sow", count=0), "button", "garden", "seed"),
+            Widget("edit", text("menu.edit", name=text("edits.add_leaves")), "button", "tools"),
         ]
         self.active: Widget | None = None
         self.rect = pygame.Rect(0, 0, MENU_W, 0)
+        self._at = (0.0, 0.0)
 
     def widget(self, name: str) -> Widget:
         """The widget called ``name``."""
         return next(w for w in self.widgets if w.name == name)
 
-    def show_at(self, x: float, y: float) -> None:
-        """Open the menu with its corner at the tap point, kept inside the screen."""
-        rows = [["orbit_height"], ["sun_speed"], ["water", "replant"], ["speed", "save", "load", "devices"],
-                ["modeler", "crown", "shape"], ["prune", "symbols", "undo", "redo"], ["edit"], ["plant", "next"]]
-        height = len(rows) * (ROW_H + PAD) + PAD
+    def shown(self) -> list[Widget]:
+        """The widgets on the page being shown."""
+        names = {n for row in PAGES[self.page] for n in row}
+        return [w for w in self.widgets if w.name in names]
+
+    def reveal(self, name: str) -> Widget:
+        """Open the page that holds widget ``name`` (where the menu is) and return the widget."""
+        page = next(p for p, rows in PAGES.items() if any(name in row for row in rows))
+        self.show_at(*self._at, page)
+        return self.widget(name)
+
+    def show_at(self, x: float, y: float, page: str | None = None) -> None:
+        """Open the menu (on ``page``, else the care page) with its corner at the tap point, kept inside
+        the screen."""
+        self.page = page or "care"
+        self._at = (x, y)
+        rows = PAGES[self.page]
+        extra = (len(self.journal_lines) * JOURNAL_LINE + PAD) if self.page == "journal" else 0
+        height = len(rows) * (ROW_H + PAD) + PAD + extra
         left = int(min(max(x, PAD), self.screen[0] - MENU_W - PAD))
         top = int(min(max(y, PAD), self.screen[1] - height - PAD))
         self.rect = pygame.Rect(left, top, MENU_W, height)
+        for w in self.widgets:
+            w.rect = pygame.Rect(0, 0, 0, 0)
         for r, names in enumerate(rows):
             width = (MENU_W - PAD * (len(names) + 1)) // len(names)
             for c, name in enumerate(names):
-                self.widget(name).rect = pygame.Rect(left + PAD + c * (width + PAD), top + PAD + r * (ROW_H + PAD),
-                                                     width, ROW_H)
+                self.widget(name).rect = pygame.Rect(left + PAD + c * (width + PAD),
+                                                     top + PAD + extra + r * (ROW_H + PAD), width, ROW_H)
         self.visible = True
 
     def hide(self) -> list[tuple[str, float]]:
@@ -87,19 +125,21 @@ class Menu:
         """The widget under (x, y), if the menu is visible."""
         if not self.visible:
             return None
-        return next((w for w in self.widgets if w.rect.collidepoint(x, y)), None)
+        return next((w for w in self.shown() if w.rect.collidepoint(x, y)), None)
 
     def press(self, x: float, y: float) -> list[tuple[str, float]]:
-        """Pointer down at (x, y): start dragging a slider or press a button."""
+        """Pointer down at (x, y): start dragging a slider, press a button or turn the page."""
         w = self.hit(x, y)
         self.active = w
         if w is None:
             return []
+        if w.name in NAV:
+            self.active = None
+            self.show_at(*self._at, "care" if w.name == "back" else w.name)
+            return []
         w.pressed = True
         if w.kind == "slider":
             return self.drag(x, y)
-        if w.hold:
-            return [(w.name, 1.0)]
         return [(w.name, 1.0)]
 
     def drag(self, x: float, y: float) -> list[tuple[str, float]]:
@@ -120,30 +160,44 @@ class Menu:
         return [(w.name, 0.0)] if w.hold else []
 
     def draw(self, surface: pygame.Surface, font: pygame.font.Font) -> None:
-        """Draw the menu panel and its widgets."""
+        """Draw the menu panel and the widgets of its page (icons beside the labels)."""
         if not self.visible:
             return
         panel = pygame.Surface(self.rect.size, pygame.SRCALPHA)
         panel.fill(PANEL)
         surface.blit(panel, self.rect.topleft)
-        for w in self.widgets:
+        if self.page == "journal":
+            y = self.rect.top + PAD
+            for line in self.journal_lines:
+                surface.blit(font.render(line, True, TEXT), (self.rect.left + PAD, y))
+                y += JOURNAL_LINE
+        for w in self.shown():
             if w.kind == "slider":
                 _draw_slider(surface, font, w)
-            else:
-                color = (70, 110, 60) if w.pressed else (45, 70, 42)
-                pygame.draw.rect(surface, color, w.rect, border_radius=10)
-                pygame.draw.rect(surface, ACCENT, w.rect, width=2, border_radius=10)
-                label = font.render(w.label, True, TEXT)
-                if label.get_width() > w.rect.width - 8:  # shrink long labels to fit their button
-                    scale = (w.rect.width - 8) / label.get_width()
-                    label = pygame.transform.smoothscale_by(label, scale)
-                surface.blit(label, label.get_rect(center=w.rect.center))
+                continue
+            color = (70, 110, 60) if w.pressed else (45, 70, 42)
+            pygame.draw.rect(surface, color, w.rect, border_radius=10)
+            pygame.draw.rect(surface, ACCENT, w.rect, width=2, border_radius=10)
+            room = w.rect.inflate(-8, -8)
+            if w.icon:
+                box = pygame.Rect(room.left, room.top, room.height, room.height)
+                draw_icon(surface, w.icon, box)
+                room.width -= room.height
+                room.left = box.right
+            label = font.render(w.label, True, TEXT)
+            if label.get_width() > room.width:  # shrink long labels to fit their button
+                label = pygame.transform.smoothscale_by(label, room.width / label.get_width())
+            surface.blit(label, label.get_rect(center=room.center))
 
 
 def _draw_slider(surface: pygame.Surface, font: pygame.font.Font, w: Widget) -> None:
     pygame.draw.rect(surface, (35, 50, 35), w.rect, border_radius=10)
+    left = w.rect.left + PAD
+    if w.icon:
+        draw_icon(surface, w.icon, pygame.Rect(left, w.rect.top + 4, 30, 30))
+        left += 36
     label = font.render(w.label, True, TEXT)
-    surface.blit(label, (w.rect.left + PAD, w.rect.top + 4))
+    surface.blit(label, (left, w.rect.top + 4))
     inner = w.rect.inflate(-2 * PAD, 0)
     track_y = w.rect.bottom - 16
     pygame.draw.line(surface, (120, 120, 110), (inner.left, track_y), (inner.right, track_y), 4)

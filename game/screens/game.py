@@ -10,6 +10,7 @@ live in their own classes: :class:`~game.screens.game_input.GameInput` (routing)
 from __future__ import annotations
 
 import copy
+import os
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -19,7 +20,7 @@ import numpy as np
 import pygame
 
 from engine.life.growth import Clocks
-from engine.life.sim import load_rules
+from engine.life.rules import load_rules
 from engine.life.world import World
 from engine.lsystem.lsys import load_lsystem
 from game.input.events import InputEvent, PygameTranslator
@@ -49,6 +50,7 @@ class GameConfig:
     autosave_seconds: float = 60.0  # real seconds between autosaves
     resume: bool = True
     seed: int | None = None
+    pace: str | None = field(default_factory=lambda: os.environ.get("ARBOR_PACE") or None)  # None: rules.toml's
 
 
 class Game:
@@ -59,7 +61,7 @@ class Game:
         self.config = config or GameConfig()
         self.size = size
         self.clock, self.wall_clock = clock, wall_clock
-        self.rules = load_rules(self.config.rules)
+        self.rules = load_rules(self.config.rules, self.config.pace)
         self.system = load_lsystem(self.config.lsystem)
         self.loop = FixedStepLoop(dt=0.1)
         self.control = CameraControl(distance=1.0, min_distance=0.25, max_distance=6.0)

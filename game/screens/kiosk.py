@@ -44,6 +44,7 @@ class KioskConfig:
     attract: str = "attract/demo.jsonl"
     language: str = "en"
     speed: float = 10.0
+    pace: str = "demo"  # visitors stay minutes: seed 003's fast pace
 
 
 def load_kiosk_config(path: str | Path) -> KioskConfig:

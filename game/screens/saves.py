@@ -9,14 +9,14 @@ autosave) are read once and folded into the autosave.
 
 from __future__ import annotations
 
-import math
 import os
 from pathlib import Path
 from typing import TYPE_CHECKING
 
 from engine.base.errors import LSysError
+from engine.life.away import AwaySummary, away_seconds, live_away
 from engine.life.garden import MAX_GARDEN, Garden
-from engine.life.save import load_garden, save_garden
+from engine.life.save import load_garden, load_seeds, save_garden
 from engine.life.world import World
 from game.strings import text
 
@@ -30,6 +30,7 @@ class SaveKeeper:
     def __init__(self, game: Game) -> None:
         self.game = game
         self.last_autosave = game.clock()
+        self.last_summary: AwaySummary | None = None
 
     @property
     def autosave_path(self) -> Path:
@@ -60,20 +61,19 @@ class SaveKeeper:
         game = self.game
         try:
             worlds, current, saved_at = load_garden(path, game.rules)
+            seeds = load_seeds(path)
             worlds += self._legacy_trees(path, len(worlds))
         except LSysError as err:
             kept = path.with_name(path.name + ".broken")
             path.replace(kept)
             game.say(text("messages.load_failed", name=path.name, error=err.message, kept=kept.name), 12)
             return None
-        garden = Garden(worlds, current)
-        now = game.wall_clock()
-        away = now - saved_at if math.isfinite(saved_at) and saved_at <= now else 0.0
-        day = 2 * math.pi / max(garden.world.sim.state.sun_speed, 1e-6)
-        grown = min(away, day)
-        garden.catch_up(grown)
-        if grown > 1:
-            game.say(text("messages.welcome_back", minutes=grown / 60), 6)
+        garden = Garden(worlds, current, seeds)
+        seconds = away_seconds(game.wall_clock(), saved_at, game.rules.away.cap_days)
+        summary = live_away(garden, seconds)
+        self.last_summary = summary
+        if summary.anything:
+            game.say(away_message(summary), 10)
         return garden
 
     def _legacy_trees(self, path: Path, have: int) -> list[World]:
@@ -98,7 +98,8 @@ class SaveKeeper:
         path = path or self.autosave_path
         try:
             path.parent.mkdir(parents=True, exist_ok=True)
-            save_garden(game.garden.worlds, path, game.garden.current, game.config.lsystem.name, game.wall_clock())
+            save_garden(game.garden.worlds, path, game.garden.current, game.config.lsystem.name, game.wall_clock(),
+                        game.garden.seeds)
             if path == self.autosave_path:
                 for legacy in path.parent.glob("garden-*.arbor"):
                     legacy.unlink()
@@ -142,3 +143,27 @@ def _alive(pid: int) -> bool:
     except OSError:
         return True
     return True
+
+
+def away_message(summary: AwaySummary) -> str:
+    """One line for the player: how long they were away and what their tree did meanwhile."""
+    hours = summary.seconds / 3600
+    when = text("away.days", days=hours / 24) if hours >= 36 else text("away.hours", hours=hours) if hours >= 1.5 \
+        else text("away.minutes", minutes=summary.seconds / 60)
+    parts = []
+    if summary.died:
+        parts.append(text("away.died"))
+    else:
+        if summary.grown >= 0.005:
+            parts.append(text("away.grew", metres=summary.grown))
+        if summary.shed:
+            parts.append(text("away.shed", count=summary.shed))
+        if summary.blossoms:
+            parts.append(text("away.flowered"))
+        if summary.fruit:
+            parts.append(text("away.fruit", count=summary.fruit))
+        if summary.wilted:
+            parts.append(text("away.wilted"))
+        elif summary.thirsty:
+            parts.append(text("away.thirsty"))
+    return text("away.line", when=when, what=", ".join(parts) or text("away.rested"))

@@ -1,0 +1,98 @@
+"""Time away: the garden lives on while the player is gone, quickly, and tells what happened.
+
+On load the real time since the save (at most ``away.cap_days``; none when the clock went backwards or
+the save's clock cannot be read) is lived with the same rules, in at most MAX_CATCH_UP_STEPS coarse steps
+and with a few light readings a day (``away.fast_light``) instead of the dozens of play: fourteen days
+take well under a second for a tree at its budget. The summary says what a player wants to know:
+how much the tree grew, what it shed, whether it flowered or fruited, whether it went thirsty or died.
+"""
+
+from __future__ import annotations
+
+import copy
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from engine.life.garden import Garden
+from engine.life.journal import METRE
+from engine.life.world import MAX_CATCH_UP_STEPS, catch_up_steps
+
+SAMPLES = 40  # times the garden is looked at while it catches up (for blossoms, fruit, thirst)
+
+
+@dataclass
+class AwaySummary:
+    """What happened to the cared-for tree while the player was away."""
+
+    seconds: float = 0.0
+    days: float = 0.0  # days of the sun that passed
+    grown: float = 0.0  # metres of height gained
+    shed: int = 0
+    blossoms: int = 0  # most blossoms seen at once
+    fruit: int = 0  # most fruit seen at once
+    thirsty: bool = False  # the water meter fell below the neglect level at some point
+    wilted: bool = False
+    died: bool = False
+    seasons: list[str] = field(default_factory=list)  # seasons passed through, in order
+
+    @property
+    def anything(self) -> bool:
+        """True when the absence was long enough to tell about."""
+        return self.seconds >= 60.0
+
+
+def away_seconds(now: float, saved_at: float, cap_days: float) -> float:
+    """Real seconds to live: 0 for a clock that went backwards or cannot be read, at most the cap."""
+    if not (math.isfinite(now) and math.isfinite(saved_at)) or saved_at > now:
+        return 0.0
+    return min(now - saved_at, cap_days * 86400.0)
+
+
+def tree_height(world) -> float:
+    """Height of the top of a world's wood (scene units)."""
+    segs = world.tree.geometry(world.clocks(), lod=3).turtle.segments
+    return float(segs.end[:, 1].max()) if len(segs) else 0.0
+
+
+def live_away(garden: Garden, seconds: float) -> AwaySummary:
+    """Let ``garden`` live ``seconds`` of game time unattended (see module docstring)."""
+    summary = AwaySummary(seconds=seconds)
+    if seconds <= 0:
+        return summary
+    world = garden.world
+    rules = world.rules
+    light = copy.copy(rules.light)
+    day = 2 * math.pi / max(world.sim.state.sun_speed, 1e-9)
+    for w in garden.worlds:  # fewer light readings while catching up (restored below)
+        w.rules.light.interval = max(light.interval, day / rules.away.fast_light)
+    turns0, height0, shed0 = world.sim.state.sun_turns, tree_height(world), world.tree.shed_total
+    steps, dt = catch_up_steps(seconds, 1.0, MAX_CATCH_UP_STEPS)
+    marks = set(np.linspace(0, steps - 1, min(SAMPLES, steps)).astype(int).tolist()) if steps else set()
+    try:
+        for i in range(steps):
+            garden.step(dt)
+            if i in marks:
+                _look(world, summary)
+    finally:
+        for w in garden.worlds:
+            w.rules.light.interval = light.interval
+    summary.days = world.sim.state.sun_turns - turns0
+    summary.grown = (tree_height(world) - height0) / METRE
+    summary.shed = world.tree.shed_total - shed0
+    summary.died = not world.sim.state.alive
+    return summary
+
+
+def _look(world, summary: AwaySummary) -> None:
+    """Note what the tree shows right now."""
+    s = world.sim.state
+    ls = world.tree.lstring
+    summary.blossoms = max(summary.blossoms, ls.count("K"))
+    summary.fruit = max(summary.fruit, ls.count("O"))
+    summary.thirsty |= s.water_meter < world.rules.health.neglect_level
+    summary.wilted |= s.wilt > 0.5
+    season = world.sim.season().name
+    if not summary.seasons or summary.seasons[-1] != season:
+        summary.seasons.append(season)

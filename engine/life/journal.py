@@ -1,0 +1,67 @@
+"""A tree's journal: the milestones of its life, kept in its save and shown in the game's menu.
+
+First branch, first flower, first fruit, every new metre of height, every season survived, fruit picked.
+Entries are (game time, what, number); a shared save is untrusted, so only known kinds with sane
+numbers are read back (the rest is dropped and counted, never trusted).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+KINDS = ("planted", "branch", "flower", "fruit", "height", "season", "harvest")
+MAX_ENTRIES = 400
+METRE = 10.0  # scene units per metre of the tree's height
+
+
+@dataclass
+class Journal:
+    """Milestones in the order they happened."""
+
+    entries: list[tuple[float, str, float]] = field(default_factory=list)
+
+    def has(self, kind: str, value: float | None = None) -> bool:
+        """True when a milestone of ``kind`` (with ``value``, if given) is written already."""
+        return any(k == kind and (value is None or v == value) for _, k, v in self.entries)
+
+    def write(self, time: float, kind: str, value: float = 0.0) -> bool:
+        """Add a milestone (once per kind and value); False when it was there already or the journal is full."""
+        if self.has(kind, value) or len(self.entries) >= MAX_ENTRIES:
+            return False
+        self.entries.append((float(time), kind, float(value)))
+        return True
+
+    def observe(self, world, height: float) -> list[tuple[str, float]]:
+        """Write whatever the tree has newly reached (``height`` in scene units); returns the new ones."""
+        s, ls = world.sim.state, world.tree.lstring
+        new = []
+        checks = [("branch", 0.0, ls.count("A") >= 2), ("flower", 0.0, ls.count("K") > 0),
+                  ("fruit", 0.0, ls.count("O") > 0)]
+        metres = math.floor(height / METRE)
+        checks += [("height", float(m), True) for m in range(1, metres + 1)]
+        season = world.sim.season()
+        if season.index == 0 and season.year >= 1 and s.alive:
+            checks.append(("season", float(season.year), True))  # a spring after a winter: a year survived
+        for kind, value, reached in checks:
+            if reached and s.alive and self.write(s.time, kind, value):
+                new.append((kind, value))
+        return new
+
+    def to_rows(self) -> list[list]:
+        """Plain data for the save file."""
+        return [[t, k, v] for t, k, v in self.entries]
+
+    @classmethod
+    def from_rows(cls, rows) -> tuple[Journal, int]:
+        """Read saved rows; returns the journal and how many rows were dropped as unknown or malformed."""
+        journal, dropped = cls(), 0
+        for row in rows if isinstance(rows, list) else []:
+            ok = (isinstance(row, list) and len(row) == 3 and row[1] in KINDS
+                  and all(isinstance(x, int | float) and not isinstance(x, bool) and math.isfinite(x) and abs(x) < 1e12
+                          for x in (row[0], row[2])))
+            if ok and len(journal.entries) < MAX_ENTRIES:
+                journal.entries.append((float(row[0]), row[1], float(row[2])))
+            else:
+                dropped += 1
+        return journal, dropped
