@@ -33,3 +33,14 @@ def text(key: str, **values) -> str:
         return template.format(**values)
     except (KeyError, IndexError, ValueError):
         return template
+
+
+def duration(seconds: float) -> str:
+    """A span of time the way a player reads it: seconds, minutes, hours or days."""
+    if seconds < 90:
+        return text("hud.seconds", seconds=seconds)
+    if seconds < 5400:
+        return text("hud.minutes", minutes=seconds / 60)
+    if seconds < 172800:
+        return text("hud.hours", hours=seconds / 3600)
+    return text("hud.days", days=seconds / 86400)

@@ -45,7 +45,7 @@ def draw(game, points, fid=0, dt=0.02, check=None):
 
 
 def base_pixel(game):
-    return game.view.project(game.camera(), (0.0, 0.5, 0.0))
+    return game.hud.project(game.camera(), (0.0, 0.5, 0.0))
 
 
 def test_one_finger_draws_a_branch_that_becomes_modules(game, gl_ctx):
@@ -150,7 +150,7 @@ def test_crown_outline_grows_the_tree_into_it(game):
     for p in outline[1:24]:
         game.clock_box[0] += 0.02
         touch(game, MOVE, 0, *p)
-    pixels = np.frombuffer(game.view.overlay_pixels(game.camera()), np.uint8).reshape(SIZE[1], SIZE[0], 4)
+    pixels = np.frombuffer(game.hud.overlay_pixels(game.camera()), np.uint8).reshape(SIZE[1], SIZE[0], 4)
     green_line = (pixels[..., 1] > 200) & (pixels[..., 0] < 150) & (pixels[..., 3] > 200)
     assert green_line.sum() > 300  # the outline is drawn over the scene as it is traced
     for p in outline[24:]:
@@ -197,7 +197,7 @@ def test_symbols_tool_writes_the_lstring_where_it_is(game):
     touch(game, DOWN, 0, x0 + 40, y0 - 60)
     game.clock_box[0] += 0.5
     touch(game, MOVE, 0, x0, y0 - 150)  # onto the trunk
-    pixels = np.frombuffer(game.view.overlay_pixels(game.camera()), np.uint8).reshape(SIZE[1], SIZE[0], 4)[::-1]
+    pixels = np.frombuffer(game.hud.overlay_pixels(game.camera()), np.uint8).reshape(SIZE[1], SIZE[0], 4)[::-1]
     labels = game.modeling.region_tool.labels
     ls = game.world.tree.lstring
     assert any(turn for *_, turn in labels) and any(not turn for *_, turn in labels)
@@ -286,7 +286,7 @@ def test_shape_tool_moves_scales_and_pulls_lobes_and_the_crown_follows(game):
     lobe = game.modeling.crown_tool.state().lobes[0]
     press_menu(game, "shape")
     assert game.modeling.shaping and game.menu.widget("edit").label == "Lobe: move"
-    centre = game.view.project(game.camera(), lobe.vertices.mean(axis=0))
+    centre = game.hud.project(game.camera(), lobe.vertices.mean(axis=0))
     draw(game, [(centre[0] + 12 * i, centre[1]) for i in range(16)])  # drag the lobe 180 px right
     moved = game.modeling.crown_tool.state().lobes[0]
     shift = moved.vertices.mean(axis=0) - lobe.vertices.mean(axis=0)
@@ -297,7 +297,7 @@ def test_shape_tool_moves_scales_and_pulls_lobes_and_the_crown_follows(game):
     assert moved.contains(tips[-50:]).mean() > 0.8  # the regrown crown fills the moved lobe
     press_menu(game, "edit")
     assert game.menu.widget("edit").label == "Lobe: scale"
-    centre = game.view.project(game.camera(), moved.vertices.mean(axis=0))
+    centre = game.hud.project(game.camera(), moved.vertices.mean(axis=0))
     draw(game, [(centre[0], centre[1] - 10 * i) for i in range(15)])  # drag up: bigger
     scaled = game.modeling.crown_tool.state().lobes[0]
     assert np.ptp(scaled.vertices[:, 1]) / np.ptp(moved.vertices[:, 1]) == pytest.approx(np.exp(140 / 200), rel=0.02)
@@ -305,7 +305,7 @@ def test_shape_tool_moves_scales_and_pulls_lobes_and_the_crown_follows(game):
         press_menu(game, "edit")  # turn, squeeze, point
     assert game.menu.widget("edit").label == "Lobe: point"
     ring, index = 3, 0
-    grab = game.view.project(game.camera(), scaled.stroke_rings[ring, index])
+    grab = game.hud.project(game.camera(), scaled.stroke_rings[ring, index])
     draw(game, [(grab[0], grab[1] - 6 * i) for i in range(12)])
     pulled = game.modeling.crown_tool.state().lobes[0]
     assert pulled.stroke_rings[ring, index][1] > scaled.stroke_rings[ring, index][1] + 0.2
@@ -365,7 +365,7 @@ def test_grow_edit_wakes_buds_in_the_region_and_starts_an_axis_in_an_empty_one(g
         press_menu(game, "edit")
     assert game.modeling.edit == "grow" and game.menu.widget("edit").label == "Grow"
     x0, y0 = base_pixel(game)
-    bx, by = game.view.project(game.camera(), (0.0, 2.0, 0.0))  # where the sapling has buds
+    bx, by = game.hud.project(game.camera(), (0.0, 2.0, 0.0))  # where the sapling has buds
     touch(game, DOWN, 0, bx, by + 40)
     game.clock_box[0] += 0.5
     touch(game, MOVE, 0, bx, by)  # the sphere over the buds

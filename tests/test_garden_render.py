@@ -93,7 +93,7 @@ def test_wind_sways_twigs_not_the_trunk_and_zero_is_still(game):
 def test_nights_are_blue_not_black_and_the_tree_stays_visible(game):
     game.world.sim.state.sun_angle = 4.7
     night = frame(game)
-    sky = night[5:40, SIZE[0] // 2 - 40:SIZE[0] // 2 + 40].reshape(-1, 3).mean(axis=0)
+    sky = night[5:40, SIZE[0] - 100:SIZE[0] - 20].reshape(-1, 3).mean(axis=0)  # (the hint sits top centre)
     assert sky[2] > 60 and sky[2] > sky[0] + 20  # dark blue
     centre = project_points(game.camera(), SIZE, np.array([[0.0, float(game.renderer.hi[1]) * 0.6, 0.0]]))[0]
     x, y = centre.astype(int)
@@ -105,6 +105,7 @@ def test_the_rising_sun_shows_in_the_default_view(game):
     sim = game.world.sim
     orbit = sim.sun_height() - math.sin(sim.state.sun_angle)  # (the season raises or lowers the orbit)
     sim.state.sun_angle = math.asin(0.1 - orbit)  # just after sunrise
+    game.hud.draw = lambda camera: None  # the scene alone (the sun may rise behind the meters)
     shot = frame(game)
     sun = game.world.sim.sun_direction()
     camera = game.camera()
@@ -155,3 +156,16 @@ def test_a_frame_updates_records_without_rebuilding(game, monkeypatch):
         game.update(0.05)  # time passes, the tree grows, no rewrite in these steps
         frame(game)
     assert len(builds) <= 1  # at most one rewrite in a quarter second: every other frame only moved records
+
+
+def test_a_branch_shed_just_now_falls_then_is_gone(game, grown):
+    from game.render.falling import FALL_SECONDS
+
+    game.world.tree.fallen = copy.deepcopy(grown.tree.fallen)
+    assert game.world.tree.fallen, "the grown tree has shed a branch lately"
+    game.world.tree.last_rewrite_T = max(f.at for f in game.world.tree.fallen)  # shed at the last rewrite
+    frame(game)
+    assert len(game.view.falls) >= 1 and any(p.version == -1 for p in game.renderer.placed)
+    game.fake[0] += FALL_SECONDS + 0.5
+    frame(game)
+    assert not game.view.falls

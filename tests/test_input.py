@@ -256,7 +256,7 @@ def test_tracker_cursor_is_drawn_where_it_is(ctx, tmp_path):
     game.handle_input(InputEvent(MOVE, 0.0, "hid:SpaceMouse", 0, 0.5, 2.0, 0.0, dims=3))
     fbo = ctx.framebuffer(color_attachments=[ctx.renderbuffer(SIZE)], depth_attachment=ctx.depth_renderbuffer(SIZE))
     game.draw(fbo)
-    x, y = game.view.project(game.camera(), (0.5, 2.0, 0.0))
-    overlay = pygame.image.frombytes(pygame.image.tobytes(game.view.surface, "RGBA"), SIZE, "RGBA")
+    x, y = game.hud.project(game.camera(), (0.5, 2.0, 0.0))
+    overlay = pygame.image.frombytes(pygame.image.tobytes(game.hud.surface, "RGBA"), SIZE, "RGBA")
     ring = [overlay.get_at((int(x) + dx, int(y))) for dx in (-10, -9, 9, 10)]
     assert any(p.a > 150 and p.r > 200 and p.g > 180 for p in ring)

@@ -1,11 +1,16 @@
 #version 330
-// Instanced leaves and blossoms: one textured quad per record (base, axis, normal, length, width,
-// flex, hash). Leaves flutter in the wind on top of their twig's sway; at coarse levels of detail a
-// share of them (by hash) is dropped and the rest grow to cover the same area.
+// Instanced leaves, blossoms and fruit: one quad per record (base, axis, normal, length, width, flex,
+// hash). Leaves flutter in the wind on top of their twig's sway; at coarse levels of detail a share of
+// them (by hash) is dropped and the rest grow to cover the same area; in autumn a share (by another
+// hash) has fallen (u_keep). Fruit (u_ball = 1) is a ball: a quad turned to the eye, its width slot
+// holding its ripeness.
 uniform mat4 u_mvp;
 uniform mat4 u_light_mvp;
 uniform vec3 u_offset;
+uniform vec3 u_eye;
 uniform float u_fraction;
+uniform float u_keep = 1.0;
+uniform int u_ball = 0;
 in vec2 in_corner;
 in vec3 i_base;
 in vec3 i_axis;
@@ -16,19 +21,32 @@ out vec3 v_pos;
 out vec3 v_normal;
 out vec2 v_uv;
 out vec4 v_light;
+out float v_extra;  // leaves: their hash (which autumn colour, and when); fruit: ripeness
 void main() {
-    if (i_hash > u_fraction || i_size.x <= 0.0) {
+    if (i_hash > u_fraction || i_size.x <= 0.0 || fract(i_hash * 7.31) >= u_keep) {
         gl_Position = vec4(2.0, 2.0, 2.0, 1.0);  // outside the clip volume: not drawn
-        v_pos = vec3(0.0); v_normal = vec3(0.0, 1.0, 0.0); v_uv = vec2(0.0); v_light = vec4(0.0);
+        v_pos = vec3(0.0); v_normal = vec3(0.0, 1.0, 0.0); v_uv = vec2(0.0); v_light = vec4(0.0); v_extra = 0.0;
         return;
     }
-    float grow = inversesqrt(max(u_fraction, 0.05));
-    vec3 side = cross(i_normal, i_axis);
-    vec3 p = i_base + i_axis * (i_size.x * grow * in_corner.y) + side * (i_size.y * grow * (in_corner.x - 0.5));
-    float flutter = sin(u_wind.w * 7.0 + i_hash * 40.0) * length(u_wind.xyz) * 0.06 * in_corner.y;
-    p += sway(i_base + u_offset, i_size.z) + i_normal * flutter * i_size.x + u_offset;
+    vec3 p;
+    if (u_ball == 1) {
+        vec3 centre = i_base + sway(i_base + u_offset, i_size.z) + u_offset;
+        vec3 to_eye = normalize(u_eye - centre);
+        vec3 right = normalize(cross(vec3(0.0, 1.0, 0.0), to_eye));
+        vec3 up = cross(to_eye, right);
+        p = centre + (right * (in_corner.x - 0.5) + up * (in_corner.y - 0.5)) * i_size.x;
+        v_normal = to_eye;
+        v_extra = i_size.y;
+    } else {
+        float grow = inversesqrt(max(u_fraction, 0.05));
+        vec3 side = cross(i_normal, i_axis);
+        p = i_base + i_axis * (i_size.x * grow * in_corner.y) + side * (i_size.y * grow * (in_corner.x - 0.5));
+        float flutter = sin(u_wind.w * 7.0 + i_hash * 40.0) * length(u_wind.xyz) * 0.06 * in_corner.y;
+        p += sway(i_base + u_offset, i_size.z) + i_normal * flutter * i_size.x + u_offset;
+        v_normal = i_normal;
+        v_extra = i_hash;
+    }
     v_pos = p;
-    v_normal = i_normal;
     v_uv = in_corner;
     v_light = u_light_mvp * vec4(p, 1.0);
     gl_Position = u_mvp * vec4(p, 1.0);

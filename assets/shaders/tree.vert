@@ -8,10 +8,12 @@ out vec3 v_pos;
 out vec3 v_normal;
 out vec2 v_uv;
 out vec4 v_light;
+out float v_extra;
 void main() {
     v_pos = in_pos;
     v_normal = in_normal;
     v_uv = in_uv;
+    v_extra = 0.0;
     v_light = u_light_mvp * vec4(in_pos, 1.0);
     gl_Position = u_mvp * vec4(in_pos, 1.0);
 }

@@ -23,6 +23,7 @@ out vec3 v_pos;
 out vec3 v_normal;
 out vec2 v_uv;
 out vec4 v_light;
+out float v_extra;
 void main() {
     float s = min(in_ring.z, 1.0);
     vec3 t = normalize(mix(i_t0, i_t1, s));
@@ -51,5 +52,6 @@ void main() {
     v_normal = n;
     v_uv = vec2(in_ring.w, v);
     v_light = u_light_mvp * vec4(p, 1.0);
+    v_extra = 0.0;
     gl_Position = u_mvp * vec4(p, 1.0);
 }

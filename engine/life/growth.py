@@ -180,13 +180,16 @@ class GrowingTree:
                           around)
 
     def sense(self, scene: LightScene, light: np.ndarray, clocks: Clocks, shine: float, sun: np.ndarray,
-              memory: float, drought: float = 0.0) -> SenseReport:
+              memory: float, drought: float = 0.0, leafy: bool = True) -> SenseReport:
         """Write a light reading (``light``: one value per ``scene.queries``) into the string.
 
         ``shine`` (0..1) is the sun's strength: buds and apices remember light x shine (a low sun feeds
         less), readings count by it (no sun, no learning); ``sun`` is the direction toward the
         sun, ``memory`` the physiological time over which light is remembered, ``drought`` (0..1) makes
         shade kill faster. See the module docstring for what changes.
+        ``leafy`` is False while a deciduous crown is bare or
+        half bare (leaf fall, winter, the first days of spring): shade is not counted then, or every
+        branch would starve for want of leaves it does not grow yet.
         """
         now, girth = clocks.length_time, clocks.girth_time
         dt = 0.0 if self.last_sense_length is None else max(now - self.last_sense_length, 0.0)
@@ -205,7 +208,8 @@ class GrowingTree:
         area = float(scene.leaf_area.sum())
         if area > 0 and weight > 0:
             self.mean_light = float((leaf_light * scene.leaf_area).sum() / area)
-        grown = self._grow_wood_and_count_shade(ls, params, scene, leaf_light, dt, dg, drought, count=weight > 0)
+        grown = self._grow_wood_and_count_shade(ls, params, scene, leaf_light, dt, dg, drought,
+                                                count=weight > 0 and leafy)
         self.lstring = LString(ls.sym, ls.nparams, ls.offsets, params)
         shed = self._shed(scene, grown, params, now)
         return SenseReport(shed, self.mean_light)

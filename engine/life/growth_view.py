@@ -15,6 +15,7 @@ import numpy as np
 from engine.geometry.instances import LeafInstances, TubeInstances, leaf_instances, tube_instances
 from engine.geometry.turtle import Leaves, interpret, set_radii
 from engine.life.growth import (
+    FRUIT,
     INTERNODE,
     LEAF,
     LEAF_ASPECT,
@@ -34,7 +35,8 @@ YOUNG = 3.5  # elongation time constants: a younger internode still visibly grow
 
 
 class GrowthView:
-    """Instance records of one tree (see module docstring): ``tubes``, ``leaves``, ``blossoms``."""
+    """Instance records of one tree (see module docstring): ``tubes``, ``leaves``, ``blossoms``, ``fruits``
+    (a fruit's record keeps its ripeness 0..1 where a leaf keeps its width; ``fruit_module`` names it)."""
 
     def __init__(self, ls: LString, clocks: Clocks, const: dict[str, float]) -> None:
         self.lstring, self.const, self.wilt = ls, const, clocks.wilt
@@ -49,6 +51,7 @@ class GrowthView:
         leaves = leaf_clusters(turtle.leaves)
         self.leaves = self._leaf_records(turtle, leaves, flex)
         self.blossoms = self._leaf_records(turtle, turtle.blossoms, flex, aspect=1.0)
+        self.fruits, self.fruit_module = self._fruit_records(ls, turtle, flex, clocks.length_time)
         self.lo, self.hi = turtle.bounds()
         if len(self.leaves.data):  # the leaves' tips too: what is drawn, not just where leaves start
             tips = self.leaves.data[:, 0:3] + self.leaves.data[:, 3:6] * self.leaves.data[:, 9:10]
@@ -62,6 +65,18 @@ class GrowthView:
         carrier = turtle.carriers(leaves.module) if len(leaves) else np.zeros(0, np.int64)
         leaf_flex = np.where(carrier >= 0, flex[np.maximum(carrier, 0)], 0.0) if len(flex) else np.zeros(len(leaves))
         return leaf_instances(leaves, leaf_flex, aspect)
+
+    def _fruit_records(self, ls: LString, turtle, flex: np.ndarray, now: float) -> tuple[LeafInstances, np.ndarray]:
+        """Fruit hanging below the node that bears it, sized by the view, with its ripeness."""
+        fruits = turtle.fruits
+        if fruits is None or len(fruits) == 0:
+            return LeafInstances.empty(), np.zeros(0, np.int64)
+        records = self._leaf_records(turtle, fruits, flex, aspect=1.0)
+        module = fruits.module
+        born = np.where((ls.sym[module] == FRUIT) & (ls.nparams[module] >= 1), ls.params[ls.offsets[module]], now)
+        records.data[:, 10] = np.clip((now - born) / self.const["RIPEN"], 0.0, 1.0)
+        records.data[:, 1] -= 0.5 * records.data[:, 9]  # it hangs
+        return records, module
 
     def _young_setup(self, ls: LString, segs, clocks: Clocks) -> None:
         """Which segments still grow, in levels (parents first), with what they need to move."""

@@ -101,7 +101,7 @@ class SeasonRules:
     winter_growth: float = 0.0  # ... winter rest: no growth
     winter_water: float = 0.3  # the water meter drains this much as fast in winter (no leaves)
     flush: float = 3.0  # buds wake this many times as eagerly in spring
-    leaf_fall: float = 0.15  # per unit of physiological time in autumn: chance a leaf starts to fall
+    leaf_fall: float = 0.08  # per unit of physiological time in autumn: chance a leaf starts to fall
     mature_age: float = 80.0  # physiological age from which a healthy tree blossoms in spring
 
 

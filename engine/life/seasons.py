@@ -79,7 +79,7 @@ def leaf_fall(turns: float, rules: Rules) -> float:
 
 
 def leaf_keep(turns: float, rules: Rules) -> float:
-    """Share of the leaves still on the tree (0..1): all of them until mid-autumn, then fewer and fewer,
+    """Share of the leaves still on the tree (0..1): all of them until mid-autumn (colours first), then fewer and fewer,
     none in winter. The renderer hides leaves by their hash so the crown thins smoothly; the L-string
     drops what is left when winter comes (GrowingTree.drop_leaves)."""
     s = season_at(turns, rules)
@@ -87,8 +87,15 @@ def leaf_keep(turns: float, rules: Rules) -> float:
         return 1.0
     if s.index == 3:
         return 0.0
-    t = min(max((s.progress - 0.35) / 0.6, 0.0), 1.0)
+    t = min(max((s.progress - 0.5) / 0.45, 0.0), 1.0)
     return 1.0 - t * t * (3.0 - 2.0 * t)
+
+
+def leafy(turns: float, rules: Rules) -> bool:
+    """True while the crown is in full leaf: from a little into spring until the leaves start to fall."""
+    s = season_at(turns, rules)
+    return not rules.seasons.enabled or (s.index == 0 and s.progress >= 0.25) or s.index == 1 or (
+        s.index == 2 and leaf_keep(turns, rules) >= 0.999)
 
 
 def autumn_colour(turns: float, rules: Rules) -> float:

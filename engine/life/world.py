@@ -10,6 +10,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from engine.life import seasons
 from engine.life.growth import Clocks, GrowingTree
 from engine.life.journal import Journal
 from engine.life.light import exposure
@@ -71,9 +72,11 @@ class World:
         return self.sim.state.time - self.last_light >= self.rules.light.interval
 
     def grow(self) -> None:
-        """Rewrite the L-string if T has passed one rewrite step since the last rewrite."""
+        """Rewrite the L-string if T has passed one rewrite step since the last rewrite; in the first half
+        of winter the leaves still on the tree fall (looked at once a day)."""
         s = self.sim.state
-        if self.sim.season().index == 3 and self.bare_at != s.sun_turns // 1:
+        season = self.sim.season()
+        if season.index == 3 and season.progress < 0.5 and self.bare_at != s.sun_turns // 1:
             self.bare_at = s.sun_turns // 1  # (looked at once a day of the sun)
             self.tree.drop_leaves()
         if s.length_time - self.tree.last_rewrite_T >= self.rules.growth.rewrite_step:
@@ -159,7 +162,8 @@ def sense_light(worlds: list[World]) -> None:
     for world, scene, q in zip(worlds, scenes, queries, strict=True):
         part = light[start:start + len(q)]
         start += len(q)
-        world.tree.sense(scene, part, world.clocks(), shine, sun, rules.memory, world.sim.drought())
+        leafy = seasons.leafy(world.sim.state.sun_turns, world.rules)
+        world.tree.sense(scene, part, world.clocks(), shine, sun, rules.memory, world.sim.drought(), leafy)
         world.journal.observe(world, world.tree.height)
 
 

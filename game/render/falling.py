@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -31,6 +31,7 @@ class StaticView:
     blossoms: LeafInstances
     lo: np.ndarray
     hi: np.ndarray
+    fruits: LeafInstances = field(default_factory=LeafInstances.empty)
 
     @property
     def young_row(self) -> int:

@@ -62,6 +62,7 @@ class GardenRenderer:
         self.placed: list[Placed] = []
         self.lo, self.hi = -np.ones(3), np.ones(3)
         self.leaf_tint, self.bark_tint, self.blossom_tint = (1.0, 1.0, 1.0), BARK, BLOSSOM
+        self.autumn, self.leaf_keep = 0.0, 1.0  # autumn colour (0..1) and share of leaves still on
         self.wind = np.zeros(3)  # direction x strength (scene units at the outermost twigs)
         self.time = 0.0
         self.last_lods: list[int] = []
@@ -173,12 +174,12 @@ class GardenRenderer:
                 "u_sky_color": tuple(c * (1.0 + 1.2 * (1.0 - day)) for c in zenith),  # moonlit: always visible
                 "u_ground_color": tuple(c * max(day, 0.35) for c in (0.30, 0.28, 0.18)),
                 "u_crown_center": tuple(centre + np.array([0.0, radius * 0.25, 0.0])), "u_crown_radius": radius,
-                "u_wind": (*self.wind, self.time),
+                "u_wind": (*self.wind, self.time), "u_autumn": self.autumn, "u_keep": self.leaf_keep,
                 "tints": (self.bark_tint, self.leaf_tint, self.blossom_tint)}
 
     def _shadows(self, light: np.ndarray, sun: np.ndarray, lods: list[int]) -> None:
         """Redraw the shadow map if the sun turned, a tree changed, or it is simply old."""
-        versions = tuple((id(p.buffers.view), p.version) for p in self.placed)
+        versions = (*((id(p.buffers.view), p.version) for p in self.placed), round(self.leaf_keep, 2))
         old = self._shadow_key
         self._shadow_age += 1
         if (old is not None and old[1] == versions and float(np.dot(old[0], sun)) > SHADOW_TURN
@@ -191,7 +192,7 @@ class GardenRenderer:
         self.shadow_fbo.clear(depth=1.0)
         ctx.enable(moderngl.DEPTH_TEST)
         uniforms = {"u_mvp": _gl(light), "u_light_mvp": _gl(light), "u_wind": (*self.wind, self.time),
-                    "u_eye": (0.0, 0.0, 0.0), "u_pixel": 0.0}
+                    "u_eye": (0.0, 0.0, 0.0), "u_pixel": 0.0, "u_keep": self.leaf_keep}
         for placed, lod in zip(self.placed, lods, strict=True):
             uniforms["u_offset"] = tuple(placed.offset)
             self.trees.draw(placed.buffers, "shadow", min(lod + 1, len(SIDES) - 1), uniforms, self.textures)

@@ -13,7 +13,7 @@ LEAF = (120, 200, 90)
 
 
 def draw_icon(surface: pygame.Surface, name: str, box: pygame.Rect) -> None:
-    """Draw icon ``name`` (sun, clock, can, sapling, seed, pencil, gear, book, back) into ``box``."""
+    """Draw icon ``name`` (sun, clock, can, sapling, seed, pencil, gear, book, back, cross) into ``box``."""
     cx, cy, r = box.centerx, box.centery, min(box.width, box.height) * 0.38
     draw = ICONS.get(name)
     if draw is not None:
@@ -83,5 +83,10 @@ def _back(s, cx, cy, r):
     pygame.draw.rect(s, INK, pygame.Rect(cx, cy - r * 0.3, r, r * 0.6))
 
 
-ICONS = {"sun": _sun, "clock": _clock, "can": _can, "sapling": _sapling, "seed": _seed, "pencil": _pencil,
-         "gear": _gear, "book": _book, "back": _back}
+def _cross(s, cx, cy, r):
+    pygame.draw.line(s, (200, 70, 60), (cx - r * 0.7, cy - r * 0.7), (cx + r * 0.7, cy + r * 0.7), 5)
+    pygame.draw.line(s, (200, 70, 60), (cx - r * 0.7, cy + r * 0.7), (cx + r * 0.7, cy - r * 0.7), 5)
+
+
+ICONS = {"cross": _cross, "sun": _sun, "clock": _clock, "can": _can, "sapling": _sapling, "seed": _seed,
+         "pencil": _pencil, "gear": _gear, "book": _book, "back": _back}

@@ -11,6 +11,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
+import numpy as np
 import pygame
 
 from game.render.icons import draw_icon
@@ -65,6 +66,7 @@ class Menu:
         self.visible = False
         self.page = "care"
         self.journal_lines: list[str] = []
+        self.journal_source = None  # () -> the journal page's lines, asked each time the page opens
         names = {name for rows in PAGES.values() for row in rows for name in row}
         page_of = {name: page for page, rows in PAGES.items() for row in rows for name in row if name != "back"}
         self.widgets = [
@@ -102,6 +104,8 @@ class Menu:
         self.page = page or "care"
         self._at = (x, y)
         rows = PAGES[self.page]
+        if self.page == "journal" and self.journal_source is not None:
+            self.journal_lines = list(self.journal_source())
         extra = (len(self.journal_lines) * JOURNAL_LINE + PAD) if self.page == "journal" else 0
         height = len(rows) * (ROW_H + PAD) + PAD + extra
         left = int(min(max(x, PAD), self.screen[0] - MENU_W - PAD))
@@ -169,7 +173,10 @@ class Menu:
         if self.page == "journal":
             y = self.rect.top + PAD
             for line in self.journal_lines:
-                surface.blit(font.render(line, True, TEXT), (self.rect.left + PAD, y))
+                label = font.render(line, True, TEXT)
+                if label.get_width() > MENU_W - 2 * PAD:
+                    label = pygame.transform.smoothscale_by(label, (MENU_W - 2 * PAD) / label.get_width())
+                surface.blit(label, (self.rect.left + PAD, y))
                 y += JOURNAL_LINE
         for w in self.shown():
             if w.kind == "slider":
@@ -216,31 +223,94 @@ class HudInfo:
     speed: float
     message: str = ""
     watering: bool = False
+    season: str = ""  # e.g. "Summer, day 3" ('' without seasons)
+    raining: bool = False
+    hint: str = ""  # a first-run hint, shown large at the top
+    reminder: str = ""  # one calm line about what is worth doing now
 
 
 def draw_hud(surface: pygame.Surface, font: pygame.font.Font, info: HudInfo) -> None:
-    """Meters (yellow sun, blue water), growth state, age, speed and the current message."""
+    """Meters (yellow sun, blue water), season, what the tree needs, age and speed, a reminder, a
+    first-run hint and the current message."""
     x, y = 20, 20
     for label, value, color in ((text("hud.sun"), info.sun, SUN_YELLOW), (text("hud.water"), info.water, WATER_BLUE)):
-        back = pygame.Surface((300, 40), pygame.SRCALPHA)
-        back.fill((0, 0, 0, 120))
-        surface.blit(back, (x, y))
+        _shade(surface, pygame.Rect(x, y, 300, 40), 120)
         pygame.draw.rect(surface, color, (x + 90, y + 8, int(200 * min(max(value, 0.0), 1.0)), 24), border_radius=6)
         pygame.draw.rect(surface, TEXT, (x + 90, y + 8, 200, 24), width=2, border_radius=6)
         pygame.draw.line(surface, TEXT, (x + 190, y + 4), (x + 190, y + 36), 1)  # the half mark
         surface.blit(font.render(label, True, TEXT), (x + 8, y + 6))
         y += 48
+    width = surface.get_width() - 2 * x
+    if info.season:
+        season = info.season + (" - " + text("hud.raining") if info.raining else "")
+        y = _text_lines(surface, font, season, (x, y + 4), width)
+    y = _text_lines(surface, font, info.status, (x, y + 4), width)
     minutes = info.age_seconds / 60
-    age = text("hud.minutes", minutes=minutes) if minutes < 120 else text("hud.hours", hours=minutes / 60)
+    age = (text("hud.minutes", minutes=minutes) if minutes < 120 else text("hud.hours", hours=minutes / 60)
+           if minutes < 2880 else text("hud.days", days=minutes / 1440))
     speed = text("hud.paused") if info.speed == 0 else text("hud.speed", speed=info.speed)
-    surface.blit(font.render(text("hud.line", status=info.status, age=age, speed=speed), True, TEXT), (x, y + 4))
+    y = _text_lines(surface, font, text("hud.line", age=age, speed=speed), (x, y + 4), width)
+    if info.reminder:
+        _boxed(surface, font, info.reminder, (x, y + 10), width, (20, 40, 25, 150), anchor="topleft")
+    if info.hint:
+        _boxed(surface, font, info.hint, (surface.get_width() // 2, 24), min(width, 640), (60, 50, 10, 215),
+               anchor="midtop", border=SUN_YELLOW)
     if info.message:
-        msg = font.render(info.message, True, TEXT)
-        box = msg.get_rect(midbottom=(surface.get_width() // 2, surface.get_height() - 24)).inflate(24, 12)
-        back = pygame.Surface(box.size, pygame.SRCALPHA)
-        back.fill((0, 0, 0, 150))
-        surface.blit(back, box.topleft)
-        surface.blit(msg, msg.get_rect(center=box.center))
+        _boxed(surface, font, info.message, (surface.get_width() // 2, surface.get_height() - 24), width,
+               (0, 0, 0, 150), anchor="midbottom")
+
+
+def _shade(surface: pygame.Surface, rect: pygame.Rect, alpha: int, colour=(0, 0, 0)) -> None:
+    back = pygame.Surface(rect.size, pygame.SRCALPHA)
+    back.fill((*colour, alpha))
+    surface.blit(back, rect.topleft)
+
+
+def _wrap(font: pygame.font.Font, line: str, width: int) -> list[str]:
+    """Words of ``line`` in rows no wider than ``width`` pixels."""
+    rows: list[str] = []
+    for word in line.split():
+        if rows and font.size(rows[-1] + " " + word)[0] <= width:
+            rows[-1] += " " + word
+        else:
+            rows.append(word)
+    return rows or [""]
+
+
+def _text_lines(surface: pygame.Surface, font: pygame.font.Font, line: str, at: tuple[int, int], width: int) -> int:
+    """Draw ``line`` wrapped to ``width`` with a soft shadow; returns the y below it."""
+    x, y = at
+    for row in _wrap(font, line, width):
+        surface.blit(font.render(row, True, (0, 0, 0)), (x + 1, y + 1))
+        surface.blit(font.render(row, True, TEXT), (x, y))
+        y += font.get_linesize()
+    return y
+
+
+def _boxed(surface: pygame.Surface, font: pygame.font.Font, line: str, at: tuple[int, int], width: int,
+           fill: tuple, anchor: str, border: tuple | None = None) -> None:
+    """``line`` wrapped in a rounded box placed by ``anchor`` at ``at``."""
+    rows = _wrap(font, line, width - 24)
+    size = (max(font.size(r)[0] for r in rows) + 24, len(rows) * font.get_linesize() + 12)
+    box = pygame.Rect((0, 0), size)
+    setattr(box, anchor, at)
+    pygame.draw.rect(surface, fill, box, border_radius=10)
+    if border:
+        pygame.draw.rect(surface, border, box, width=2, border_radius=10)
+    for k, row in enumerate(rows):
+        label = font.render(row, True, TEXT)
+        surface.blit(label, label.get_rect(midtop=(box.centerx, box.top + 6 + k * font.get_linesize())))
+
+
+def draw_rain(surface: pygame.Surface, t: float) -> None:
+    """A shower over the whole view: slanted streaks that fall (deterministic in ``t``)."""
+    w, h = surface.get_size()
+    rng = np.random.default_rng(7)
+    xs, phase = rng.uniform(0, w + h * 0.3, 160), rng.uniform(0, 1, 160)
+    y = ((phase + t * 1.4) % 1.0) * (h + 60) - 30
+    x = xs - y * 0.3
+    for x0, y0 in zip(x, y, strict=True):
+        pygame.draw.line(surface, (200, 215, 235, 150), (x0, y0), (x0 - 6, y0 + 22), 1)
 
 
 def draw_polyline(surface: pygame.Surface, project, points, colour, closed: bool, width: int) -> None:

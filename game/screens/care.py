@@ -38,6 +38,8 @@ class CareActions:
                 game.say(text("messages.saved"))
         elif action == "plant":
             self.plant()
+        elif action == "sow":
+            self.sow()
         elif action == "next" and len(game.garden.worlds) > 1:
             game.garden.next()
             game.previous = copy.deepcopy(game.world.sim.state)
@@ -45,6 +47,7 @@ class CareActions:
         elif action in TOOLS:
             TOOLS[action](game.modeling)
             game.menu.widget("edit").label = game.modeling.option_label()
+            self.sync_sliders()
         elif action == "edit":
             game.menu.widget("edit").label = game.modeling.next_option()
         elif action in ("undo", "redo"):
@@ -57,6 +60,8 @@ class CareActions:
 
     def _world_action(self, action: str, value: float) -> None:
         game = self.game
+        if action == "water" and value:
+            game.coach.done("water")
         if action == "replant" and value == 0.0:
             return
         sim_value = self.slider_value(action, value)
@@ -87,6 +92,22 @@ class CareActions:
         game.previous = copy.deepcopy(world.sim.state)
         game.say(text("messages.garden_planted", count=len(game.garden.worlds)), 4)
 
+    def sow(self) -> None:
+        """Plant the oldest seed from the bag beside the others: its parent's L-system, a seed of its own."""
+        game = self.game
+        if not game.garden.seeds:
+            game.say(text("messages.no_seeds"), 5)
+            return
+        if game.garden.full:
+            game.say(text("messages.garden_full", count=MAX_GARDEN), 5)
+            return
+        parent = game.garden.seeds[0].parent_seed
+        number = next((i + 1 for i, w in enumerate(game.garden.worlds) if w.seed == parent), 1)
+        world = game.garden.plant_seed(game.rules, game.system)
+        game.previous = copy.deepcopy(world.sim.state)
+        self.sync_sliders()
+        game.say(text("messages.sown", parent=number, count=len(game.garden.worlds)), 5)
+
     def slider_value(self, action: str, value: float) -> float:
         """A slider position (0..1) as the simulation value it stands for."""
         r = self.game.rules.sun
@@ -105,6 +126,8 @@ class CareActions:
         menu.widget("sun_speed").value = range_to_slider(s.sun_speed, r.speed_min, r.speed_max, log=True)
         speed = game.loop.speed
         menu.widget("speed").label = text("menu.paused") if speed == 0 else text("menu.speed", speed=f"{speed:g}")
+        menu.widget("sow").label = text("menu.sow", count=len(game.garden.seeds))
+        menu.widget("modeler").label = text("menu.modeler_done" if game.modeling.active else "menu.modeler")
 
     def set_speed(self, speed: float) -> None:
         """Time speed: 0 (pause), 1, 10 or 100."""

@@ -4,7 +4,9 @@
 so tests drive the real game headless (SDL dummy video for events, an EGL context for pixels). The jobs
 live in their own classes: :class:`~game.screens.game_input.GameInput` (routing),
 :class:`~game.screens.care.CareActions` (what menu actions do), :class:`~game.screens.saves.SaveKeeper`
-(load/save/autosave) and :class:`~game.screens.game_view.GameView` (meshes, frame, HUD).
+(load/save/autosave), :class:`~game.screens.game_view.GameView` (the 3D scene),
+:class:`~game.screens.game_hud.GameHud` (the 2D layer), :class:`~game.screens.coach.Coach` (hints,
+reminders, journal) and :class:`~game.screens.picking.Picker` (taps on fruit and trees).
 """
 
 from __future__ import annotations
@@ -32,9 +34,12 @@ from game.render.garden import GardenRenderer
 from game.render.renderer import Overlay
 from game.render.ui import HudInfo, Menu
 from game.screens.care import CareActions
+from game.screens.coach import Coach
+from game.screens.game_hud import GameHud
 from game.screens.game_input import GameInput
 from game.screens.game_view import GameView
 from game.screens.modeler import ModelingMode
+from game.screens.picking import Picker
 from game.screens.saves import SaveKeeper
 
 BASE_PITCH = 8.0
@@ -82,8 +87,14 @@ class Game:
         self.input = GameInput(self)
         self.care = CareActions(self)
         self.view = GameView(self)
+        self.hud = GameHud(self)
+        self.coach = Coach(self)
+        self.picker = Picker(self)
+        self.menu.journal_source = self.coach.journal_lines
         self.keeper = SaveKeeper(self)
         self.garden = self.keeper.start()
+        if self.keeper.fresh:
+            self.coach.first_run()
         self.previous = copy.deepcopy(self.world.sim.state)
         self.alpha = 1.0
         self.care.sync_sliders()
@@ -165,7 +176,7 @@ class Game:
 
     def hud_info(self) -> HudInfo:
         """What the HUD shows now."""
-        return self.view.hud_info()
+        return self.hud.hud_info()
 
     def quit(self) -> None:
         """Save on the way out."""

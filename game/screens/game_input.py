@@ -144,14 +144,16 @@ class GameInput:
             self.tap(x, y)
 
     def tap(self, x: float, y: float) -> None:
-        """A tap outside the menu: open the menu there, or close it if it is open."""
+        """A tap outside the menu: close the menu if it is open; else pick the ripe fruit or choose the
+        tree that was tapped, or open the menu there (the modeler's tools page in the modeler)."""
         game = self.game
         if game.menu.visible:
             for action in game.menu.hide():
                 game.act(*action)
-        else:
+        elif game.modeling.active or not game.picker.tap(x, y, game.camera()):
             game.care.sync_sliders()
-            game.menu.show_at(x, y)
+            game.menu.show_at(x, y, "tools" if game.modeling.active else None)
+            game.coach.done("open_menu")
         game.gestures.menu_open = game.menu.visible
 
     def _key(self, key: int, down: bool) -> bool:

@@ -8,15 +8,12 @@ from typing import TYPE_CHECKING
 
 import moderngl
 import numpy as np
-import pygame
 
+from engine.life import seasons
 from engine.life.growth_view import GrowthView
-from game.render.camera import OrbitCamera, project_points
 from game.render.falling import FALL_SECONDS, falling_view
 from game.render.garden import BARK, GardenRenderer, Placed
 from game.render.instanced import LEAF_KEPT, SIDES, TreeBuffers
-from game.render.ui import HudInfo, draw_hud, draw_rain_cloud
-from game.strings import text
 
 if TYPE_CHECKING:
     from game.screens.game import Game
@@ -24,6 +21,7 @@ if TYPE_CHECKING:
 HEALTHY_LEAF, WILTED_LEAF = np.array([1.0, 1.0, 1.0]), np.array([2.6, 0.85, 0.45])  # green -> yellow-brown
 WILT_STEP = 0.02  # a change of wilt this large rebuilds the tree (drooping angles change its shape)
 ASYNC_MODULES = 60_000  # trees with more modules are rebuilt on a worker thread
+SMOOTH_DAY, STEADY_DAY = 20.0, 4.0  # real seconds per day of the sun: light starts to steady / is steady
 FALL_FRESH = 2.0  # physiological time: a branch shed earlier than this before it is first seen does not fall
 
 
@@ -32,8 +30,8 @@ def _triangles(buffers: TreeBuffers, lod: int) -> int:
     parts = buffers.parts
     tubes = parts["tube"].count * 3 * SIDES[lod] if "tube" in parts else 0
     leaves = int(parts["leaf"].count * LEAF_KEPT[lod]) * 2 if "leaf" in parts else 0
-    blossoms = parts["blossom"].count * 2 if "blossom" in parts else 0
-    return tubes + leaves + blossoms
+    small = sum(parts[name].count * 2 for name in ("blossom", "fruit") if name in parts)
+    return tubes + leaves + small
 
 
 class GameView:
@@ -41,12 +39,10 @@ class GameView:
 
     def __init__(self, game: Game) -> None:
         self.game = game
-        self.surface = pygame.Surface(game.size, pygame.SRCALPHA)
         self.views: dict[int, tuple[tuple, GrowthView, TreeBuffers, int]] = {}  # world id -> key, view, GPU, ver
         self.triangles = 0
         self.fall_started: dict[int, float] = {}  # shed branch -> real time its fall began
         self.falls: list[TreeBuffers] = []
-        self._hud_key: tuple | None = None
         self.pending: dict[int, tuple] = {}  # world id -> (key, future) of a rebuild on the worker
         self.worker = ThreadPoolExecutor(max_workers=1, thread_name_prefix="arbor-rebuild")
 
@@ -142,14 +138,33 @@ class GameView:
         camera = game.camera()
         game.renderer.time = game.clock()
         game.renderer.wind = self.wind()
-        game.renderer.render(fbo, camera, game.world.sim.sun_direction(), game.size)
+        self._season_look()
+        game.renderer.render(fbo, camera, self.scene_sun(), game.size)
         self._count_triangles()  # (again: the levels of detail of this very frame)
-        key = self._overlay_key(camera)
-        changed = key != self._hud_key
-        if changed:
-            self.paint(camera)
-            self._hud_key = key
-        game.overlay.draw_surface(self.surface, changed)
+        game.hud.draw(camera)
+
+    def scene_sun(self) -> np.ndarray:
+        """The sun the scene is lit by. When days fly by (a day of the sun in less than SMOOTH_DAY real
+        seconds) the light leans toward the noon sun, fully at a day in a few seconds: at 100x the
+        screen neither strobes nor goes dark every second, while the sim keeps its real sun."""
+        game = self.game
+        sim = game.world.sim
+        sun = sim.sun_direction()
+        turn = sim.state.sun_speed * game.loop.speed  # radians of the sun per real second
+        day = 2 * math.pi / turn if turn > 0 else math.inf
+        lean = min(max((SMOOTH_DAY - day) / (SMOOTH_DAY - STEADY_DAY), 0.0), 1.0)
+        if lean == 0.0:
+            return sun
+        noon = np.array([0.0, sim.sun_height() - math.sin(sim.state.sun_angle) + 1.0, game.rules.sun.side])
+        unit = lambda v: v / max(float(np.linalg.norm(v)), 1e-9)  # noqa: E731
+        return unit(unit(sun) * (1.0 - lean) + unit(noon) * lean)
+
+    def _season_look(self) -> None:
+        """Autumn colours and the leaves that have fallen, for the renderer."""
+        game = self.game
+        turns = game.world.sim.state.sun_turns
+        game.renderer.autumn = seasons.autumn_colour(turns, game.rules)
+        game.renderer.leaf_keep = seasons.leaf_keep(turns, game.rules)
 
     def wind(self) -> np.ndarray:
         """The wind vector for the shaders: the rules' direction x strength, scaled to the tree's size,
@@ -159,77 +174,5 @@ class GameView:
         t = self.game.clock()
         gust = 1.0 + rules.gusts * (0.6 * math.sin(t * 0.23) + 0.4 * math.sin(t * 0.61 + 1.3))
         a = math.radians(rules.direction)
-        return np.array([math.cos(a), 0.0, math.sin(a)]) * rules.strength * 0.1 * height * max(gust, 0.0)
-
-    def _overlay_key(self, camera: OrbitCamera) -> tuple:
-        """Everything the HUD layer shows: it is repainted (and uploaded) only when this changes, and
-        at least 4 times a second for what animates (rain cloud, cursor, messages timing out)."""
-        game = self.game
-        info = self.hud_info()
-        menu = game.menu
-        widgets = tuple((w.value, w.pressed, w.label) for w in menu.widgets) if menu.visible else ()
-        modeling = game.modeling
-        view = (round(camera.yaw, 2), round(camera.pitch, 2), round(camera.distance, 3), len(modeling.points),
-                id(modeling.preview)) if modeling.active or game.cursor3d is not None else ()
-        return (round(info.sun * 200), round(info.water * 200), info.status, int(info.age_seconds // 60),
-                info.speed, info.message, info.watering, menu.visible, widgets, view, game.cursor3d,
-                len(game.overlay_hooks), int(game.clock() * 4))
-
-    def hud_info(self) -> HudInfo:
-        """What the HUD shows now."""
-        game = self.game
-        s, tree = game.world.sim.state, game.world.tree
-        message = game.message if game.clock() < game.message_until else ""
-        if not message and tree.budget_hit:
-            message = text("messages.budget")
-        status = text(f"status.{game.world.status()}")
-        return HudInfo(s.sun_meter, s.water_meter, status, s.time, game.loop.speed, message, s.watering)
-
-    def overlay_pixels(self, camera: OrbitCamera) -> bytes:
-        """The HUD, menu, rain cloud, cursor and tool outlines as RGBA rows, bottom row first."""
-        self.paint(camera)
-        return pygame.image.tobytes(self.surface, "RGBA", True)
-
-    def paint(self, camera: OrbitCamera) -> None:
-        """Draw the HUD, menu, rain cloud, cursor and tool outlines into the overlay surface."""
-        game = self.game
-        self.surface.fill((0, 0, 0, 0))
-        info = self.hud_info()
-        if info.watering:
-            self._draw_cloud(camera)
-        draw_hud(self.surface, game.font, info)
-        if game.cursor3d is not None:
-            self._draw_cursor3d(camera)
-        project = lambda points: self.project_many(camera, points)  # noqa: E731
-        game.modeling.draw_outline(self.surface, project)
-        game.modeling.draw_symbols(self.surface, camera, game.small_font, project)
-        game.menu.draw(self.surface, game.font)
-        for hook in game.overlay_hooks:
-            hook(self.surface)
-
-    def project(self, camera: OrbitCamera, point) -> tuple[float, float] | None:
-        """The window pixel of one 3D point, or None when it is behind the camera."""
-        x, y = project_points(camera, self.game.size, np.asarray(point, float)[None])[0]
-        return (float(x), float(y)) if np.isfinite(x) and np.isfinite(y) else None
-
-    def project_many(self, camera: OrbitCamera, points) -> list[tuple[float, float]]:
-        """Window pixels of many 3D points at once, leaving out those behind the camera."""
-        pixels = project_points(camera, self.game.size, np.asarray(points, float).reshape(-1, 3))
-        return [(float(x), float(y)) for x, y in pixels[np.isfinite(pixels).all(axis=1)]]
-
-    def _draw_cloud(self, camera: OrbitCamera) -> None:
-        game = self.game
-        at = self.project(camera, (0.0, max(float(game.renderer.hi[1]), 1.0) * 1.25, 0.0))
-        if at is not None:
-            draw_rain_cloud(self.surface, (at[0], max(at[1], 60.0)), game.size[1] * 0.12, game.world.sim.state.time)
-
-    def _draw_cursor3d(self, camera: OrbitCamera) -> None:
-        """The 3D tracker's cursor (scene units, relative to the tree's base) as a ring with a drop line."""
-        cursor = self.game.cursor3d
-        at = self.project(camera, cursor)
-        ground = self.project(camera, (cursor[0], 0.0, cursor[2]))
-        if at is None:
-            return
-        if ground is not None:
-            pygame.draw.line(self.surface, (255, 255, 255, 120), at, ground, 1)
-        pygame.draw.circle(self.surface, (255, 230, 120, 230), (int(at[0]), int(at[1])), 10, 3)
+        shower = self.game.rules.weather.rain_wind if self.game.world.sim.raining() else 1.0
+        return np.array([math.cos(a), 0.0, math.sin(a)]) * rules.strength * shower * 0.1 * height * max(gust, 0.0)

@@ -252,6 +252,7 @@ class Kiosk:
         stamp = time.strftime("%Y%m%d-%H%M%S")
         save_world(self.game.world, folder / f"visitor-{stamp}.arbor")
         self.game.act("replant", 1.0)
+        self.game.coach.first_run()
         self.game.say(text("messages.visitor_reset"), 5)
         self.visitor_saved = True
 

@@ -10,6 +10,7 @@ autosave) are read once and folded into the autosave.
 from __future__ import annotations
 
 import os
+import time
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -17,6 +18,7 @@ from engine.base.errors import LSysError
 from engine.life.away import AwaySummary, away_seconds, live_away
 from engine.life.garden import MAX_GARDEN, Garden
 from engine.life.save import load_garden, load_seeds, save_garden
+from engine.life.sim import sun_angle_at
 from engine.life.world import World
 from game.strings import text
 
@@ -31,6 +33,7 @@ class SaveKeeper:
         self.game = game
         self.last_autosave = game.clock()
         self.last_summary: AwaySummary | None = None
+        self.fresh = False  # True when start() found no garden to resume: a new player
 
     @property
     def autosave_path(self) -> Path:
@@ -43,6 +46,9 @@ class SaveKeeper:
         seed = game.config.seed if game.config.seed is not None else int(game.wall_clock() * 1000) % 2**31
         world = World(game.system, game.rules, seed=seed)
         world.apply("replant", 1.0)
+        if game.rules.pace == "home":  # a day of the sun lasts a day: start it at the player's time of day
+            now = time.localtime(game.wall_clock())
+            world.sim.state.sun_angle = sun_angle_at(now.tm_hour * 3600 + now.tm_min * 60 + now.tm_sec)
         game.input_log = [(0, "replant", 1.0)]
         return world
 
@@ -54,6 +60,7 @@ class SaveKeeper:
             garden = self.load(self.autosave_path)
             if garden is not None:
                 return garden
+        self.fresh = not self.autosave_path.exists()
         return Garden([self.new_world()])
 
     def load(self, path: Path) -> Garden | None:

@@ -1,0 +1,96 @@
+"""What the game tells a player besides the meters: first-run hints, gentle reminders, the journal.
+
+Hints teach the three things a new player must find (open the menu, water, turn the view), one at a
+time, each gone once done. Reminders are one calm line about what is worth doing now (rain, ripe fruit,
+seeds to sow, another tree in need). New journal entries of any tree are announced as they happen;
+the menu's journal page lists the cared-for tree's milestones by day.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import TYPE_CHECKING
+
+from engine.life.world import World
+from game.strings import text
+
+if TYPE_CHECKING:
+    from game.screens.game import Game
+
+HINTS = ("open_menu", "water", "turn")
+ATTENTION = ("dead", "wilting", "drowning", "thirsty", "needs_light")  # statuses worth a reminder
+JOURNAL_SHOWN = 12  # latest milestones listed on the journal page
+
+
+class Coach:
+    """Hints, reminders and journal announcements for one game (see module docstring)."""
+
+    def __init__(self, game: Game) -> None:
+        self.game = game
+        self.hints: list[str] = []
+        self.seen: dict[int, int] = {}  # world id -> journal entries already announced
+        self.start_yaw = game.control.yaw
+
+    def first_run(self) -> None:
+        """Show the hints from the first (a new player, or the kiosk's next visitor)."""
+        self.hints = list(HINTS)
+        self.start_yaw = self.game.control.yaw
+
+    def done(self, what: str) -> None:
+        """The player did ``what`` (one of HINTS): its hint goes."""
+        if what in self.hints:
+            self.hints.remove(what)
+
+    def hint(self) -> str:
+        """The hint to show now ('' when none)."""
+        turned = abs(self.game.control.yaw - self.start_yaw) % 360.0
+        if "turn" in self.hints and min(turned, 360.0 - turned) > 20:
+            self.done("turn")
+        return text(f"hints.{self.hints[0]}") if self.hints else ""
+
+    def watch(self) -> None:
+        """Announce milestones written since the last look (every tree of the garden)."""
+        for world in self.game.garden.worlds:
+            entries = world.journal.entries
+            first = self.seen.setdefault(id(world), len(entries))
+            fresh = [e for e in entries[first:] if e[1] != "planted"]
+            self.seen[id(world)] = len(entries)
+            if fresh:
+                self.game.say(text("journal.announce", what=describe(*fresh[-1][1:])), 6)
+
+    def reminder(self) -> str:
+        """One line about what is worth doing now, or ''."""
+        game = self.game
+        world = game.world
+        if world.sim.raining() and world.sim.state.alive:
+            return text("reminders.rain")
+        view = game.view.views.get(id(world))
+        if view is not None and len(view[1].fruits.data) and (view[1].fruits.data[:, 10] >= 1.0).any():
+            return text("reminders.fruit")
+        garden = game.garden
+        if garden.seeds and not garden.full:
+            return text("reminders.sow", count=len(garden.seeds))
+        for number, other in enumerate(garden.worlds, 1):
+            status = other.status()
+            if other is not world and status in ATTENTION:
+                return text("reminders.other", number=number, status=text(f"status.{status}").split(":")[0])
+        return ""
+
+    def journal_lines(self) -> list[str]:
+        """The cared-for tree's latest milestones, oldest first, by day of its life."""
+        world = self.game.world
+        entries = world.journal.entries[-JOURNAL_SHOWN:]
+        if not entries:
+            return [text("journal.empty")]
+        return [text("journal.line", day=day_of(world, t), what=describe(kind, value)) for t, kind, value in entries]
+
+
+def describe(kind: str, value: float) -> str:
+    """A milestone in words."""
+    return text(f"journal.{kind}", value=value)
+
+
+def day_of(world: World, time: float) -> int:
+    """The day of the tree's life (1 = the day it was planted) at game time ``time``."""
+    day = 2 * math.pi / max(world.sim.state.sun_speed, 1e-9)
+    return int(max(time, 0.0) // day) + 1

@@ -1,0 +1,156 @@
+"""The game's 2D layer over the scene: meters, status, season, hints, reminders, garden markers, rain,
+menu, cursor and tool outlines. It is repainted (and uploaded) only when what it shows changes."""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+import numpy as np
+import pygame
+
+from game.render.camera import OrbitCamera, project_points
+from game.render.icons import draw_icon
+from game.render.ui import HudInfo, draw_hud, draw_rain, draw_rain_cloud
+from game.strings import duration, text
+
+if TYPE_CHECKING:
+    from game.screens.game import Game
+
+NEEDS_ICON = {"thirsty": "can", "wilting": "can", "needs_light": "sun", "drowning": "can", "dead": "cross"}
+BADGE = 30  # pixels: a garden marker's size
+
+
+class GameHud:
+    """Paints the overlay surface (see module docstring)."""
+
+    def __init__(self, game: Game) -> None:
+        self.game = game
+        self.surface = pygame.Surface(game.size, pygame.SRCALPHA)
+        self._key: tuple | None = None
+
+    def draw(self, camera: OrbitCamera) -> None:
+        """Repaint the overlay if anything on it changed, and composite it over the frame."""
+        game = self.game
+        game.coach.watch()
+        key = self._overlay_key(camera)
+        changed = key != self._key
+        if changed:
+            self.paint(camera)
+            self._key = key
+        game.overlay.draw_surface(self.surface, changed)
+
+    def _overlay_key(self, camera: OrbitCamera) -> tuple:
+        """Everything the HUD layer shows: repainted only when this changes, and at least 4 times a
+        second for what animates (rain, cursor, messages timing out)."""
+        game = self.game
+        info = self.hud_info()
+        menu = game.menu
+        widgets = tuple((w.value, w.pressed, w.label) for w in menu.widgets) if menu.visible else ()
+        modeling = game.modeling
+        moving = modeling.active or game.cursor3d is not None or len(game.garden.worlds) > 1
+        view = (round(camera.yaw, 2), round(camera.pitch, 2), round(camera.distance, 3), len(modeling.points),
+                id(modeling.preview)) if moving else ()
+        return (round(info.sun * 200), round(info.water * 200), info.status, int(info.age_seconds // 60),
+                info.speed, info.message, info.watering, info.season, info.raining, info.hint, info.reminder,
+                menu.visible, menu.page, widgets, view, game.cursor3d, len(game.overlay_hooks),
+                tuple(w.status() for w in game.garden.worlds), game.garden.current, int(game.clock() * 4))
+
+    def hud_info(self) -> HudInfo:
+        """What the HUD shows now."""
+        game = self.game
+        world = game.world
+        s, tree = world.sim.state, world.tree
+        message = game.message if game.clock() < game.message_until else ""
+        if not message and tree.budget_hit:
+            message = text("messages.budget")
+        status = text(f"status.{world.status()}", hold=duration(game.rules.growth.hold_time))
+        season = ""
+        if game.rules.seasons.enabled:
+            day = int(s.sun_turns) + 1
+            season = text("hud.season", season=text(f"seasons.{world.sim.season().name}"), day=day)
+        return HudInfo(s.sun_meter, s.water_meter, status, s.time, game.loop.speed, message, s.watering, season,
+                       world.sim.raining(), game.coach.hint(), game.coach.reminder())
+
+    def overlay_pixels(self, camera: OrbitCamera) -> bytes:
+        """The HUD layer as RGBA rows, bottom row first."""
+        self.paint(camera)
+        return pygame.image.tobytes(self.surface, "RGBA", True)
+
+    def paint(self, camera: OrbitCamera) -> None:
+        """Draw the whole overlay into the surface."""
+        game = self.game
+        self.surface.fill((0, 0, 0, 0))
+        info = self.hud_info()
+        if info.raining:
+            draw_rain(self.surface, game.clock())
+        if info.watering:
+            self._draw_cloud(camera)
+        self._draw_markers(camera)
+        draw_hud(self.surface, game.font, info)
+        if game.cursor3d is not None:
+            self._draw_cursor3d(camera)
+        project = lambda points: self.project_many(camera, points)  # noqa: E731
+        game.modeling.draw_outline(self.surface, project)
+        game.modeling.draw_symbols(self.surface, camera, game.small_font, project)
+        game.menu.draw(self.surface, game.font)
+        for hook in game.overlay_hooks:
+            hook(self.surface)
+
+    def project(self, camera: OrbitCamera, point) -> tuple[float, float] | None:
+        """The window pixel of one 3D point, or None when it is behind the camera."""
+        x, y = project_points(camera, self.game.size, np.asarray(point, float)[None])[0]
+        return (float(x), float(y)) if np.isfinite(x) and np.isfinite(y) else None
+
+    def project_many(self, camera: OrbitCamera, points) -> list[tuple[float, float]]:
+        """Window pixels of many 3D points at once, leaving out those behind the camera."""
+        pixels = project_points(camera, self.game.size, np.asarray(points, float).reshape(-1, 3))
+        return [(float(x), float(y)) for x, y in pixels[np.isfinite(pixels).all(axis=1)]]
+
+    def _draw_markers(self, camera: OrbitCamera) -> None:
+        """Over every tree of a garden: its number, and an icon when it needs something (water, sun);
+        a ring at the foot of the tree being cared for."""
+        game = self.game
+        if len(game.garden.worlds) < 2 or game.modeling.active:
+            return
+        here = np.array(game.world.position)
+        for number, world in enumerate(game.garden.worlds, 1):
+            entry = game.view.views.get(id(world))
+            top = max(float(entry[1].hi[1]), 1.0) if entry else 2.0
+            dx, dz = np.array(world.position) - here
+            at = self.project(camera, (dx, top * 1.08, dz))
+            if at is None or not (0 <= at[0] < game.size[0] and 0 <= at[1] < game.size[1]):
+                continue
+            cared = world is game.world
+            status = world.status()
+            box = pygame.Rect(0, 0, BADGE, BADGE)
+            box.midbottom = (int(at[0]), int(max(at[1], BADGE + 4)))
+            colour = (250, 250, 240, 230) if cared else (30, 40, 30, 190)
+            pygame.draw.circle(self.surface, colour, box.center, BADGE // 2)
+            icon = NEEDS_ICON.get(status)
+            if icon:
+                draw_icon(self.surface, icon, box.inflate(-6, -6))
+            else:
+                label = game.small_font.render(str(number), True, (30, 40, 30) if cared else (245, 245, 240))
+                self.surface.blit(label, label.get_rect(center=box.center))
+            if cared:
+                foot = self.project(camera, (0.0, 0.0, 0.0))
+                if foot is not None:
+                    pygame.draw.ellipse(self.surface, (255, 255, 255, 160),
+                                        pygame.Rect(0, 0, 70, 18).move(int(foot[0]) - 35, int(foot[1]) - 9), 2)
+
+    def _draw_cloud(self, camera: OrbitCamera) -> None:
+        game = self.game
+        at = self.project(camera, (0.0, max(float(game.renderer.hi[1]), 1.0) * 1.25, 0.0))
+        if at is not None:
+            draw_rain_cloud(self.surface, (at[0], max(at[1], 60.0)), game.size[1] * 0.12, game.clock())
+
+    def _draw_cursor3d(self, camera: OrbitCamera) -> None:
+        """The 3D tracker's cursor (scene units, relative to the tree's base) as a ring with a drop line."""
+        cursor = self.game.cursor3d
+        at = self.project(camera, cursor)
+        ground = self.project(camera, (cursor[0], 0.0, cursor[2]))
+        if at is None:
+            return
+        if ground is not None:
+            pygame.draw.line(self.surface, (255, 255, 255, 120), at, ground, 1)
+        pygame.draw.circle(self.surface, (255, 230, 120, 230), (int(at[0]), int(at[1])), 10, 3)

@@ -1,0 +1,81 @@
+"""Taps on the garden itself: pick a ripe fruit, or choose the tree to care for by tapping it."""
+
+from __future__ import annotations
+
+import copy
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from game.render.camera import OrbitCamera, project_points
+from game.strings import text
+
+if TYPE_CHECKING:
+    from game.screens.game import Game
+
+FRUIT_PIXELS = 28  # a tap this close to a ripe fruit picks it (a finger, not a mouse pointer)
+TRUNK_PIXELS = 40  # a tap this close to another tree's trunk line chooses it
+
+
+class Picker:
+    """Finds what a tap on the scene points at (see module docstring)."""
+
+    def __init__(self, game: Game) -> None:
+        self.game = game
+
+    def tap(self, x: float, y: float, camera: OrbitCamera) -> bool:
+        """Pick the ripe fruit or choose the tree at (x, y); False when the tap hit neither."""
+        game = self.game
+        module = self.fruit_at(x, y, camera)
+        if module is not None and game.garden.harvest(game.world, module) is not None:
+            game.say(text("messages.picked", count=len(game.garden.seeds)), 4)
+            return True
+        index = self.tree_at(x, y, camera)
+        if index is None:
+            return False
+        game.garden.current = index
+        game.previous = copy.deepcopy(game.world.sim.state)
+        game.care.sync_sliders()
+        game.say(text("messages.caring_for", number=index + 1), 4)
+        return True
+
+    def fruit_at(self, x: float, y: float, camera: OrbitCamera) -> int | None:
+        """The module of the ripe fruit of the cared-for tree nearest to (x, y), if one is close."""
+        entry = self.game.view.views.get(id(self.game.world))
+        if entry is None or not len(entry[1].fruits.data):
+            return None
+        view = entry[1]
+        ripe = np.flatnonzero(view.fruits.data[:, 10] >= 1.0)
+        if not len(ripe):
+            return None
+        pixels = project_points(camera, self.game.size, view.fruits.data[ripe, 0:3].astype(float))
+        dist = np.hypot(pixels[:, 0] - x, pixels[:, 1] - y)
+        dist[~np.isfinite(dist)] = np.inf
+        best = int(np.argmin(dist))
+        return int(view.fruit_module[ripe[best]]) if dist[best] <= FRUIT_PIXELS else None
+
+    def tree_at(self, x: float, y: float, camera: OrbitCamera) -> int | None:
+        """The index of the other tree whose trunk line (foot to top) passes closest to (x, y)."""
+        game = self.game
+        here = np.array(game.world.position)
+        best, best_dist = None, float(TRUNK_PIXELS)
+        for i, world in enumerate(game.garden.worlds):
+            entry = game.view.views.get(id(world))
+            if world is game.world or entry is None:
+                continue
+            dx, dz = np.array(world.position) - here
+            top = max(float(entry[1].hi[1]), 1.0)
+            ends = project_points(camera, game.size, np.array([[dx, 0.0, dz], [dx, top, dz]]))
+            if not np.isfinite(ends).all():
+                continue
+            dist = _to_segment(np.array([x, y]), ends[0], ends[1])
+            if dist < best_dist:
+                best, best_dist = i, dist
+        return best
+
+
+def _to_segment(p: np.ndarray, a: np.ndarray, b: np.ndarray) -> float:
+    """Distance from point p to segment ab (pixels)."""
+    ab = b - a
+    t = float(np.clip(np.dot(p - a, ab) / max(float(np.dot(ab, ab)), 1e-9), 0.0, 1.0))
+    return float(np.linalg.norm(p - (a + t * ab)))

@@ -1,0 +1,175 @@
+"""Paces, seasons, rain, blossoms, fruit, seeds, the journal and time away (engine, headless)."""
+
+import copy
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from engine.life import seasons
+from engine.life.away import away_seconds, live_away, tree_height
+from engine.life.garden import Garden
+from engine.life.rules import load_rules
+from engine.life.save import load_garden, load_seeds, save_garden
+from engine.life.world import World
+from engine.lsystem.lsys import load_lsystem
+
+ASSETS = Path(__file__).resolve().parent.parent / "assets"
+RULES = ASSETS / "rules.toml"
+
+
+def careful(world: World, until_turns: float, snaps: dict | None = None, every: float = 0.25) -> None:
+    """Water like a careful player until the sun has turned ``until_turns`` times, noting the string
+    every ``every`` days in ``snaps`` (turns -> (season, L, K, O, V, length time, shed, I))."""
+    s = world.sim.state
+    next_snap = s.sun_turns
+    while s.sun_turns < until_turns:
+        world.apply("water", float(s.water_meter < 0.75 if s.watering else s.water_meter < 0.55))
+        world.step(0.5)
+        if snaps is not None and s.sun_turns >= next_snap:
+            ls = world.tree.lstring
+            snaps[round(s.sun_turns, 2)] = (world.sim.season().name, ls.count("L"), ls.count("K"), ls.count("O"),
+                                            ls.count("V"), s.length_time, world.tree.shed_total, ls.count("I"))
+            next_snap += every
+
+
+@pytest.fixture(scope="module")
+def year():
+    """One tree through more than a year at the demo pace (about 5 s): the world and its diary."""
+    world = World(load_lsystem(ASSETS / "lsystems" / "game_tree.lsys"), load_rules(RULES, pace="demo"), seed=3)
+    world.sim.state.sun_meter = world.sim.state.water_meter = 0.9
+    snaps: dict = {}
+    careful(world, 31.0, snaps)
+    return world, snaps
+
+
+def test_paces_scale_times_and_rates_but_keep_the_rules_shape():
+    demo, home = load_rules(RULES, pace="demo"), load_rules(RULES, pace="home")
+    assert demo.growth.hold_time == 20.0 and demo.growth.deadline == 40.0  # seed 003's numbers
+    k = home.time_scale
+    assert 500 < k < 1000
+    assert home.growth.hold_time == pytest.approx(20.0 * k) and home.growth.deadline == pytest.approx(40.0 * k)
+    assert home.water.drain_rate == pytest.approx(demo.water.drain_rate / k)
+    assert home.water.fill_rate == demo.water.fill_rate  # the watering can fills as fast at every pace
+    day = 2 * math.pi / home.sun.speed
+    assert 0.9 * 86400 < day < 1.1 * 86400  # a day of the sun lasts a day at home
+    full_to_empty = 1.0 / (home.water.drain_rate + home.water.sun_drain_rate)
+    assert full_to_empty > 0.5 * 86400  # a full water meter lasts most of a day even in full sun
+
+
+def test_a_year_has_its_seasons_in_order(year):
+    _, snaps = year
+    names = [v[0] for v in snaps.values()]
+    order = [n for i, n in enumerate(names) if i == 0 or n != names[i - 1]]
+    assert order[:5] == ["spring", "summer", "autumn", "winter", "spring"]
+
+
+def test_winter_is_bare_and_still_and_sheds_nothing(year):
+    _, snaps = year
+    winter = [v for v in snaps.values() if v[0] == "winter"]
+    winter = winter[: int(len(winter) * 0.85)]  # (buds break in the last days of winter)
+    assert len(winter) > 10
+    assert all(v[1] == 0 for v in winter)  # no leaves
+    assert max(v[5] for v in winter) - min(v[5] for v in winter) < 0.5  # (almost) no growth
+    assert winter[-1][6] == winter[0][6]  # no branch shed all winter
+    assert winter[0][4] > 100  # leaf buds wait for spring
+
+
+def test_autumn_drops_leaves_and_spring_opens_them_again(year):
+    _, snaps = year
+    summer = max(v[1] for v in snaps.values() if v[0] == "summer")
+    late_autumn = [v for v in snaps.values() if v[0] == "autumn"][-1]
+    assert late_autumn[1] < 0.8 * summer
+    spring2 = [v for t, v in snaps.items() if v[0] == "spring" and t > 20]
+    assert max(v[1] for v in spring2) > 0.8 * summer  # the crown is green again
+    assert spring2[-1][4] == 0  # every leaf bud opened
+    winter = [v for v in snaps.values() if v[0] == "winter"]
+    wood = [v[7] for v in winter + spring2[:8]]
+    assert min(wood) > 0.9 * winter[0][7]  # a bare crown does not starve before its leaves are out
+
+
+def test_a_mature_tree_blossoms_in_spring_and_sets_fruit(year):
+    world, snaps = year
+    first_year = [v for t, v in snaps.items() if t < 20]
+    assert all(v[2] == 0 and v[3] == 0 for v in first_year)  # a young tree does not flower
+    spring2 = [v for t, v in snaps.items() if v[0] == "spring" and t > 20]
+    assert max(v[2] for v in spring2) > 5  # blossoms (K modules from the tree's own rules)
+    assert max(v[3] for v in spring2) > 5  # fruit
+    first_k = min(t for t, v in snaps.items() if v[2] > 0)
+    first_o = min(t for t, v in snaps.items() if v[3] > 0)
+    assert first_o > first_k  # blossoms come first
+    kinds = {k for _, k, _ in world.journal.entries}
+    assert {"branch", "flower", "fruit", "season", "height"} <= kinds
+
+
+def test_ripe_fruit_can_be_picked_and_its_seed_sown(year):
+    world, _ = year
+    world = copy.deepcopy(world)
+    garden = Garden([world])
+    ls = world.tree.lstring
+    fruit = np.flatnonzero(ls.sym == ord("O"))
+    born = ls.params[ls.offsets[fruit]]
+    ripe = fruit[world.sim.state.length_time - born >= world.tree.geometry_constants["RIPEN"]]
+    green = fruit[world.sim.state.length_time - born < world.tree.geometry_constants["RIPEN"]]
+    assert len(ripe) and len(green)
+    assert garden.harvest(world, int(green[0])) is None  # not ripe yet
+    assert garden.harvest(world, int(np.flatnonzero(ls.sym == ord("I"))[0])) is None  # not a fruit
+    seed = garden.harvest(world, int(ripe[0]))
+    assert seed is not None and seed.parent_seed == world.seed and garden.seeds == [seed]
+    assert world.tree.lstring.count("O") == len(fruit) - 1
+    assert world.journal.has("harvest", 1.0)
+    child = garden.plant_seed(world.rules, world.system)
+    assert child is garden.world and child.system is world.system and not garden.seeds
+    assert child.sim.state.sun_turns == world.sim.state.sun_turns  # one calendar for the garden
+
+
+def test_rain_showers_fill_the_water_meter():
+    rules = load_rules(RULES, pace="demo")
+    world = World(load_lsystem(ASSETS / "lsystems" / "game_tree.lsys"), rules, seed=3)
+    rainy = [t / 100 for t in range(2800) if seasons.raining(t / 100, world.sim.state.weather_seed, rules)]
+    assert 0.02 < len(rainy) / 2800 < 0.1  # a shower on some days, not all the time
+    s = world.sim.state
+    s.sun_turns = rainy[len(rainy) // 2]
+    s.water_meter = 0.3
+    world.step(0.5)
+    assert world.sim.raining() and s.water_meter > 0.3
+
+
+def test_time_away_is_capped_and_ignores_clocks_that_cannot_be_read():
+    assert away_seconds(1000.0, 400.0, 14) == 600.0
+    assert away_seconds(100 * 86400.0, 0.0, 14) == 14 * 86400.0
+    for saved_at in (2000.0, float("nan"), 1e308, float("inf")):
+        assert away_seconds(1000.0, saved_at, 14) == 0.0
+
+
+def test_a_well_kept_tree_lives_three_days_away_at_home_and_grows():
+    rules = load_rules(RULES, pace="home")
+    world = World(load_lsystem(ASSETS / "lsystems" / "game_tree.lsys"), rules, seed=3)
+    garden = Garden([world])
+    world.sim.state.water_meter = 0.9
+    for _ in range(48 * 60):  # two days of watering every evening and morning
+        world.apply("water", float(world.sim.state.water_meter < 0.6))
+        garden.step(60.0)
+    world.apply("water", 0.0)
+    before = tree_height(world)
+    summary = live_away(garden, 3 * 86400.0)
+    assert world.sim.state.alive and summary.grown > 0 and not summary.died
+    assert tree_height(world) > before
+    assert 2.5 < summary.days < 3.5
+
+
+def test_journal_and_seeds_survive_a_save(tmp_path, year):
+    world, _ = year
+    garden = Garden([copy.deepcopy(world)])
+    ls = garden.world.tree.lstring
+    fruit = np.flatnonzero(ls.sym == ord("O"))
+    born = ls.params[ls.offsets[fruit]]
+    ripe = fruit[garden.world.sim.state.length_time - born >= garden.world.tree.geometry_constants["RIPEN"]]
+    garden.harvest(garden.world, int(ripe[0]))
+    path = tmp_path / "g.arbor"
+    save_garden(garden.worlds, path, 0, "game_tree.lsys", 1000.0, garden.seeds)
+    worlds, _, saved_at = load_garden(path, world.rules)
+    assert saved_at == 1000.0
+    assert worlds[0].journal.entries == garden.world.journal.entries
+    assert load_seeds(path) == garden.seeds
