@@ -163,7 +163,8 @@ class Game:
         r = self.renderer
         cam = OrbitCamera(yaw=self.control.yaw, pitch=BASE_PITCH + self.control.tilt)
         r_lo, r_hi = self.modeling.bounds if self.modeling.active and self.modeling.bounds else (r.lo, r.hi)
-        height = max(float(r_hi[1]), 2.0)
+        modeling = self.modeling.active
+        height = max(float(r_hi[1]), 2.0 if modeling else 4.0)  # a sapling stands small in its garden
         width = max(float(np.max(r_hi[[0, 2]] - r_lo[[0, 2]])), 1.0)
         lo, hi = np.array([-width / 2, 0.0, -width / 2]), np.array([width / 2, height, width / 2])
         cam.frame_bounds(lo, hi, self.size[0] / self.size[1], fill=0.8)
