@@ -76,7 +76,7 @@ def _cmd_export(args: argparse.Namespace) -> int:
         raise UserError(f"cannot export as {fmt or 'a file without a suffix'!r}: use --out NAME.glb or NAME.obj "
                         "(or --format glb|obj)")
     args.format = fmt
-    geometry, _ = tree_geometry(_source(args), args.lod)
+    geometry, _ = tree_geometry(_source(args), args.lod, roots=True)
     files = export_tree(geometry.mesh, args.out, ASSETS / "textures", args.format)
     print(f"{args.out}: {geometry.mesh.n_triangles:,} triangles (lod {args.lod}); wrote {len(files)} file(s)")
     return 0
@@ -106,6 +106,23 @@ def _cmd_landscape(args: argparse.Namespace) -> int:
         instances = scatter(args.trees, len(presets), landscape_size(args.trees), args.seed or 0)
         export_garden(presets, instances, args.glb, ASSETS / "textures")
         print(f"{args.glb}: {args.trees:,} trees as glTF nodes sharing {len(presets)} trees' meshes")
+    return 0
+
+
+def _cmd_breed(args: argparse.Namespace) -> int:
+    from game.commands.family import breed_saves
+
+    garden = breed_saves(args.a, args.b, args.seed, args.out, args.tree_a, args.tree_b)
+    child = garden.world
+    print(f"{args.out}: {child.lineage.species} {child.lineage.id}, generation {child.lineage.generation}, "
+          f"from {garden.worlds[0].lineage.id} x {child.lineage.parents[-1]} (seed {args.seed})")
+    return 0
+
+
+def _cmd_lineage(args: argparse.Namespace) -> int:
+    from game.commands.family import lineage_text
+
+    print(lineage_text(args.save))
     return 0
 
 
@@ -157,6 +174,18 @@ def build_parser() -> argparse.ArgumentParser:
     land.add_argument("--presets", default="abop_2_8_tree:4,abop_2_6_monopodial:7,broadleaf,weeping",
                       help="comma-separated: LSYS_NAME[:STEPS] or a species from assets/presets")
     land.set_defaults(run=_cmd_landscape)
+    breed = sub.add_parser("breed", help="cross the trees of two saves into a child's save")
+    breed.add_argument("a", type=Path, help="the mother's save (.arbor)")
+    breed.add_argument("b", type=Path, help="the father's save (.arbor)")
+    breed.add_argument("--seed", type=_bounded(0, 2**63 - 1, "--seed"), default=0,
+                       help="the same parents and seed give the same child")
+    breed.add_argument("--tree-a", type=_bounded(0, 5, "--tree-a"), default=None, help="tree of a (default: cared-for)")
+    breed.add_argument("--tree-b", type=_bounded(0, 5, "--tree-b"), default=None, help="tree of b (default: cared-for)")
+    breed.add_argument("--out", type=Path, default=Path("child.arbor"))
+    breed.set_defaults(run=_cmd_breed)
+    lineage = sub.add_parser("lineage", help="print the family tree of a save's trees")
+    lineage.add_argument("save", type=Path)
+    lineage.set_defaults(run=_cmd_lineage)
     view = sub.add_parser("view", help="open a window showing an .lsys tree (drag, wheel, space)")
     view.add_argument("source", type=Path)
     view.set_defaults(run=lambda a: __import__("game.app", fromlist=["run_viewer"]).run_viewer(a.source))

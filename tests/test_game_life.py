@@ -146,7 +146,9 @@ def test_a_ripe_fruit_is_picked_by_a_tap_and_its_seed_sown(gl_ctx, tmp_path, fru
     game.care.sync_sliders()
     assert game.menu.widget("sow").label == "Sow a seed (1)"
     game.act("sow", 1.0)
-    assert len(game.garden.worlds) == 2 and game.world.system is game.garden.worlds[0].system
+    parent = game.garden.worlds[0]
+    assert len(game.garden.worlds) == 2 and game.world.lineage.parents == (parent.lineage.id,)
+    assert game.world.lineage.planted == pytest.approx(NOW + game.fake_clock.t, abs=1)
     assert not game.garden.seeds and "seed of tree 1" in game.hud_info().message
     game.act("sow", 1.0)
     assert "No seeds yet" in game.hud_info().message
@@ -178,7 +180,7 @@ def test_the_menu_puts_care_first_with_big_targets_and_tools_in_the_modeler(gl_c
     assert {"save", "prune", "crown"}.isdisjoint(names)  # developer and modeler buttons live elsewhere
     settings = game.menu.widget("settings")
     tap(game, *settings.rect.center)
-    assert {w.name for w in game.menu.shown()} == {"save", "load", "devices", "back"}
+    assert {w.name for w in game.menu.shown()} == {"save", "load", "roots", "devices", "back"}
     game.menu.hide()
     game.act("modeler", 1.0)
     assert game.modeling.active
@@ -225,3 +227,65 @@ def test_the_light_stays_steady_when_days_fly_by(gl_ctx, tmp_path):
     assert min(turns) > math.cos(math.radians(1.0)) and min(s[1] for s in suns) > 0.3  # steady, and day
     game.set_speed(1.0)
     np.testing.assert_allclose(game.view.scene_sun(), sim.sun_direction())  # at 1x the sun is the sun
+
+
+def test_crossing_two_trees_by_menu_and_tap_and_the_family_screen(gl_ctx, tmp_path):
+    game = new_game(gl_ctx, tmp_path)
+    game.coach.hints = []
+    fbo = framebuffer(gl_ctx)
+    game.act("cross", 1.0)
+    assert "second tree" in game.hud_info().message  # alone, no cross
+    game.garden.plant(load_lsystem(ASSETS / "lsystems" / "game_poplar.lsys"), game.rules, now=NOW)
+    game.act("next", 1.0)  # care for the first tree again: she is the mother
+    mother, father = game.garden.worlds
+    game.act("cross", 1.0)
+    assert game.care.crossing is mother and "Tap the other parent" in game.hud_info().message
+    game.draw(fbo)
+    dx, dz = np.array(father.position) - np.array(mother.position)
+    game.control.distance = 5.0
+    for _ in range(12):
+        x, y = game.hud.project(game.camera(), (dx, 1.0, dz))
+        if 100 <= x < SIZE[0] - 100 and 100 <= y < SIZE[1] - 100:
+            break
+        game.control.turn(30.0)
+    game.draw(fbo)
+    tap(game, x + 5, y)
+    assert len(game.garden.worlds) == 3 and game.world.lineage.parents == (mother.lineage.id, father.lineage.id)
+    assert "seedling is planted" in game.hud_info().message
+    game.act("family", 1.0)
+    assert game.family.visible and not game.menu.visible
+    game.draw(fbo)
+    boxes = {lin.id: box for box, lin in game.family.boxes}
+    assert set(boxes) == {w.lineage.id for w in game.garden.worlds}
+    assert boxes[mother.lineage.id].centery < boxes[game.world.lineage.id].centery  # parents above
+    img = np.frombuffer(fbo.read(components=3), np.uint8).reshape(SIZE[1], SIZE[0], 3)[::-1].astype(int)
+    box = boxes[mother.lineage.id]
+    thumb = img[box.top:box.bottom, box.left:box.right]
+    assert (thumb[:, :, 1] > thumb[:, :, 0] + 30).sum() > 30  # a sketch of the tree, with its leaves
+    tap(game, *boxes[father.lineage.id].center)
+    assert not game.family.visible and game.world is father
+
+
+def test_the_cut_away_view_shows_the_roots_in_the_soil(gl_ctx, tmp_path, fruiting):
+    game = new_game(gl_ctx, tmp_path)
+    game.coach.hints = []
+    game.garden.worlds[0] = copy.deepcopy(fruiting)
+    fbo = framebuffer(gl_ctx)
+
+    def shot():
+        game.draw(fbo)
+        return np.frombuffer(fbo.read(components=3), np.uint8).reshape(SIZE[1], SIZE[0], 3)[::-1].astype(int)
+
+    grass = shot()
+    game.act("roots", 1.0)
+    assert game.cutaway and game.menu.widget("roots").label == "Hide roots"
+    soil = shot()
+    low = soil[SIZE[1] - 150:, :, :]
+    below = grass[SIZE[1] - 150:, :, :]
+    assert (low[:, :, 0] > low[:, :, 1]).mean() > 0.5 and (below[:, :, 1] > below[:, :, 0]).mean() > 0.5
+    foot = game.hud.project(game.camera(), (0.0, 0.0, 0.0))
+    under = game.hud.project(game.camera(), (0.0, game.view.roots_bottom * 0.5, 0.0))
+    assert foot is not None and under is not None and under[1] > foot[1] + 20  # the view reaches below the ground
+    x, y = int(under[0]), int(under[1])
+    column = soil[y - 40:y + 40, x - 40:x + 40]
+    assert (np.abs(column - soil[y, x - 200]).sum(axis=2) > 40).sum() > 80  # roots stand out of the soil

@@ -187,6 +187,7 @@ def test_a_raised_tree_leaves_the_game_as_it_stands(system, tmp_path):
     """`arbor render` and `arbor export` take a save and show the tree exactly as saved."""
     import trimesh
 
+    from engine.geometry.mesh import tree_mesh
     from engine.life.save import save_world
     from game.cli import main
 
@@ -194,9 +195,12 @@ def test_a_raised_tree_leaves_the_game_as_it_stands(system, tmp_path):
     path = tmp_path / "mine.arbor"
     save_world(world, path)
     expected = world.tree.geometry(world.clocks()).mesh
+    roots = tree_mesh(world.roots.turtle())
+    assert roots.n_triangles > 100  # the tree grew roots
     assert main(["export", str(path), "--out", str(tmp_path / "mine.glb")]) == 0
     scene = trimesh.load(tmp_path / "mine.glb")
-    assert sum(len(g.faces) for g in scene.geometry.values()) == expected.n_triangles
+    assert sum(len(g.faces) for g in scene.geometry.values()) == expected.n_triangles + roots.n_triangles
+    assert scene.bounds[0][1] < -1.0  # the roots go along, below the ground
     assert main(["render", str(path), "--out", str(tmp_path / "mine.png"), "--size", "320x240"]) == 0
     assert (tmp_path / "mine.png").stat().st_size > 1000
     assert main(["render", str(path), "--tree", "3", "--out", str(tmp_path / "x.png")]) == 2  # one tree only

@@ -120,7 +120,9 @@ def test_ripe_fruit_can_be_picked_and_its_seed_sown(year):
     assert world.tree.lstring.count("O") == len(fruit) - 1
     assert world.journal.has("harvest", 1.0)
     child = garden.plant_seed(world.rules, world.system)
-    assert child is garden.world and child.system is world.system and not garden.seeds
+    assert child is garden.world and not garden.seeds
+    assert child.lineage.parents == (world.lineage.id,) and child.lineage.generation == 1  # alone: self-pollinated
+    assert [p.key for p in child.system.productions] == [p.key for p in world.system.productions]
     assert child.sim.state.sun_turns == world.sim.state.sun_turns  # one calendar for the garden
 
 

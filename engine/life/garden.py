@@ -11,12 +11,16 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from engine.life import collide
+from engine.life.breed import cross
+from engine.life.lineage import Family, new_lineage, species_of
 from engine.life.rules import Rules
 from engine.life.world import MAX_CATCH_UP_STEPS, World, catch_up_steps, sense_light
 from engine.lsystem.lsys import LSystem
 
 MAX_GARDEN = 6  # trees in one garden
 MAX_SEEDS = 50  # seeds kept in the seed bag
+MAX_ROCKS = 20
 GARDEN_SPACING = 7.0  # scene units between neighbouring trees
 SUN_ACTIONS = ("orbit_height", "sun_speed")
 
@@ -33,12 +37,17 @@ class Seed:
 class Garden:
     """The trees of one garden and which one is cared for."""
 
-    def __init__(self, worlds: list[World], current: int = 0, seeds: list[Seed] | None = None) -> None:
+    def __init__(self, worlds: list[World], current: int = 0, seeds: list[Seed] | None = None,
+                 family: Family | None = None) -> None:
         if not worlds:
             raise ValueError("a garden has at least one tree")
         self.worlds = list(worlds)
         self.current = min(max(current, 0), len(self.worlds) - 1)
         self.seeds: list[Seed] = list(seeds or [])  # harvested, waiting to be planted
+        self.family = family or Family()  # every tree this garden has known
+        self.rocks: list[tuple[float, float, float, float]] = []  # (x, y, z, radius): shoots grow around them
+        for world in self.worlds:
+            self.family.add(world.lineage)
 
     @property
     def world(self) -> World:
@@ -59,8 +68,10 @@ class Garden:
         """True when no more trees fit."""
         return len(self.worlds) >= MAX_GARDEN
 
-    def plant(self, system: LSystem, rules: Rules, seed: int | None = None) -> World:
-        """A new sapling beside the others, under the same sun; it becomes the cared-for tree."""
+    def plant(self, system: LSystem, rules: Rules, seed: int | None = None, now: float = 0.0,
+              parents: tuple[World, ...] = (), species: str | None = None) -> World:
+        """A new sapling beside the others, under the same sun; it becomes the cared-for tree. ``now``
+        (wall-clock seconds) and ``parents`` go into its lineage."""
         if self.full:
             raise ValueError(f"a garden holds at most {MAX_GARDEN} trees")
         k = len(self.worlds)
@@ -77,6 +88,9 @@ class Garden:
         world.sim.state.sun_turns = sun.sun_turns  # the same calendar (and the same weather) for all
         world.sim.state.weather_seed = sun.weather_seed
         world.journal.write(world.sim.state.time, "planted", float(world.seed))
+        world.lineage = new_lineage(world.seed, now, species or species_of(system.file),
+                                    tuple(p.lineage for p in parents))
+        self.family.add(world.lineage)
         self.worlds.append(world)
         self.current = len(self.worlds) - 1
         return world
@@ -100,14 +114,28 @@ class Garden:
                                                                         if e[1] == "harvest"]) + 1))
         return seed
 
-    def plant_seed(self, rules: Rules, fallback: LSystem) -> World | None:
-        """Plant the oldest seed from the bag: a sapling with its parent's L-system (its DNA)."""
+    def plant_seed(self, rules: Rules, fallback: LSystem, now: float = 0.0) -> World | None:
+        """Plant the oldest seed from the bag. The wind brought it pollen from another tree of the garden
+        (chosen by the seed), so the sapling is a cross of its parent and that tree; alone in the garden,
+        the parent pollinates itself (a mutated copy of its L-system)."""
         if not self.seeds or self.full:
             return None
         seed = self.seeds.pop(0)
-        parent = next((w for w in self.worlds if w.system.sha256 == seed.parent_sha), None)
-        system = parent.system if parent is not None else fallback
-        return self.plant(system, rules, seed=(seed.parent_seed * 31 + seed.number) % 2**31)
+        parent = next((w for w in self.worlds if w.system.sha256 == seed.parent_sha
+                       and w.seed == seed.parent_seed), None)
+        parent = parent or next((w for w in self.worlds if w.system.sha256 == seed.parent_sha), None)
+        child_seed = (seed.parent_seed * 31 + seed.number) % 2**31
+        if parent is None:
+            return self.plant(fallback, rules, seed=child_seed, now=now)
+        others = [w for w in self.worlds if w is not parent]
+        pollen = others[seed.number % len(others)] if others else parent
+        return self.breed(parent, pollen, child_seed, rules, now)
+
+    def breed(self, mother: World, father: World, seed: int, rules: Rules, now: float = 0.0) -> World:
+        """Cross two trees into a sapling planted in this garden (see engine/life/breed.py)."""
+        child = cross(mother.system, father.system, seed, name=f"{mother.lineage.species} x {father.lineage.species}")
+        species = mother.lineage.species if mother.lineage.species == father.lineage.species else "cross"
+        return self.plant(child.system, rules, seed=seed, now=now, parents=(mother, father), species=species)
 
     def next(self) -> World:
         """Care for the next tree (round the garden in planting order)."""
@@ -128,7 +156,7 @@ class Garden:
             world.advance(dt)
         due = [w for w in self.worlds if w.light_due()]
         if due:
-            sense_light(self.worlds)
+            sense_light(self.worlds, collide.rocks(self.rocks))
         for world in self.worlds:
             world.grow()
 

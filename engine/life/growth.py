@@ -28,6 +28,7 @@ import numpy as np
 from engine.geometry.mesh import LOD_LEVELS, tree_mesh
 from engine.geometry.tree import TreeGeometry
 from engine.geometry.turtle import Leaves, Segments, TurtleConfig, TurtleResult, interpret, set_radii, subtree_sums
+from engine.life.collide import Obstacles
 from engine.life.light import memory_weight
 from engine.lsystem import brackets
 from engine.lsystem.derive import Deriver, StepReport
@@ -47,6 +48,8 @@ LEAF_ASPECT = 0.5  # leaf quads are half as wide as long (engine/geometry/mesh.p
 FALL_KEEP = 40.0  # physiological time a shed branch stays in `fallen` for the game to show its fall
 AROUND = np.array([[1.0, 0, 0], [-1, 0, 0], [0, 1, 0], [0, -1, 0], [0, 0, 1], [0, 0, -1]])  # light probes
 GRADIENT_REACH = 1.5  # internode lengths from an apex to its light probes
+LOOKAHEAD, AVOID_MARGIN = 2.5, 1.5  # an apex looks this many internodes ahead, for obstacles this near (x IL)
+AVOID_WEIGHT, AVOID_TURN = 4.0, 35.0  # how hard an obstacle ahead pushes, and the turn it allows (degrees)
 CLUSTER_ANGLES = (0.0, 38.0, -38.0)  # degrees the blades of one leaf cluster fan out
 CLUSTER_SIZES = (1.0, 0.8, 0.8)
 CLUSTER_AREA = sum(s * s for s in CLUSTER_SIZES)
@@ -180,7 +183,8 @@ class GrowingTree:
                           around)
 
     def sense(self, scene: LightScene, light: np.ndarray, clocks: Clocks, shine: float, sun: np.ndarray,
-              memory: float, drought: float = 0.0, leafy: bool = True) -> SenseReport:
+              memory: float, drought: float = 0.0, leafy: bool = True,
+              obstacles: Obstacles | None = None) -> SenseReport:
         """Write a light reading (``light``: one value per ``scene.queries``) into the string.
 
         ``shine`` (0..1) is the sun's strength: buds and apices remember light x shine (a low sun feeds
@@ -189,7 +193,8 @@ class GrowingTree:
         shade kill faster. See the module docstring for what changes.
         ``leafy`` is False while a deciduous crown is bare or
         half bare (leaf fall, winter, the first days of spring): shade is not counted then, or every
-        branch would starve for want of leaves it does not grow yet.
+        branch would starve for want of leaves it does not grow yet. ``obstacles`` (in this tree's
+        frame: neighbours' wood, rocks) turn apices away or stop them (engine/life/collide.py).
         """
         now, girth = clocks.length_time, clocks.girth_time
         dt = 0.0 if self.last_sense_length is None else max(now - self.last_sense_length, 0.0)
@@ -204,7 +209,7 @@ class GrowingTree:
             self._remember_light(ls, params, scene, probe_light * min(shine, 1.0), weight)
             mean = np.asarray(sun, float) / max(float(np.linalg.norm(sun)), 1e-12)
             self.light_dir = _unit(self.light_dir + weight * (mean - self.light_dir))
-            self._turn_apices(ls, params, scene, around, memory_weight(dt, shine, memory / 4))
+            self._turn_apices(ls, params, scene, around, memory_weight(dt, shine, memory / 4), obstacles)
         area = float(scene.leaf_area.sum())
         if area > 0 and weight > 0:
             self.mean_light = float((leaf_light * scene.leaf_area).sum() / area)
@@ -221,10 +226,11 @@ class GrowingTree:
         params[at] += weight * (light - params[at])
 
     def _turn_apices(self, ls: LString, params: np.ndarray, scene: LightScene, around: np.ndarray,
-                     weight: float) -> None:
+                     weight: float, obstacles: Obstacles | None = None) -> None:
         """Yaw and pitch (degrees) that turn each apex's next internode toward its target direction:
         its own heading, up (negative gravitropism), the mean sun direction and the side where the
-        light around it is brighter (Palubicki's optimal growth direction), at most PHOTO degrees."""
+        light around it is brighter (Palubicki's optimal growth direction), at most PHOTO degrees; and
+        away from an obstacle ahead (up to AVOID_TURN degrees), or no further if it touches one."""
         const = self.geometry_constants
         apex = ls.sym[scene.probe_idx] == APEX
         idx = scene.probe_idx[apex]
@@ -240,16 +246,40 @@ class GrowingTree:
         up_weight = np.where(branch, const["UPB"], const["UPW"])[:, None]  # up-weight alone lifts them
         target = (const["STRAIGHT"] * frames[:, :, 0] + up_weight * np.array([0.0, 1.0, 0.0])
                   + const["SUNW"] * sun + const["LIGHTW"] * brighter)
+        push = self._avoid(ls, params, idx, scene.turtle.probes.position[apex], frames, order, obstacles)
+        target += AVOID_WEIGHT * push
         target /= np.maximum(np.linalg.norm(target, axis=1, keepdims=True), 1e-12)
         local = np.einsum("kij,ki->kj", frames, target)  # target in each apex's (H, L, U)
         angle = np.degrees(np.arccos(np.clip(local[:, 0], -1.0, 1.0)))
         limit = np.where(order == 0, const["PHOTO"], const["PHOTOB"])
+        limit = np.where(np.linalg.norm(push, axis=1) > 0, np.maximum(limit, AVOID_TURN), limit)
         scale = np.minimum(1.0, limit / np.maximum(angle, 1e-9))
         yaw = np.degrees(np.arctan2(local[:, 1], local[:, 0])) * scale  # "+" turns H toward L
         pitch = np.degrees(np.arctan2(local[:, 2], np.hypot(local[:, 0], local[:, 1]))) * scale
         at = ls.offsets[idx]
         params[at + 4] += weight * (yaw - params[at + 4])
         params[at + 5] += weight * (pitch - params[at + 5])
+
+    def _avoid(self, ls: LString, params: np.ndarray, idx: np.ndarray, position: np.ndarray, frames: np.ndarray,
+               order: np.ndarray, obstacles: Obstacles | None) -> np.ndarray:
+        """Per apex, a push away from the obstacle ahead (0..1 times a unit vector); an apex that
+        already touches an obstacle loses its light (it stops growing)."""
+        push = np.zeros((len(idx), 3))
+        if obstacles is None or not len(obstacles) or not len(idx):
+            return push
+        step = self.geometry_constants["IL"] * self.geometry_constants["IO"] ** order
+        margin = AVOID_MARGIN * self.geometry_constants["IL"]
+        ahead = position + frames[:, :, 0] * (LOOKAHEAD * step)[:, None]
+        gap, away = obstacles.gaps(ahead, margin)
+        strength = np.where(np.isfinite(gap), np.clip((margin - gap) / margin, 0.0, 1.0), 0.0)
+        heading = frames[:, :, 0]
+        side = away - heading * np.einsum("ki,ki->k", away, heading)[:, None]  # around it, not back
+        side = np.where((np.linalg.norm(side, axis=1) < 0.2)[:, None], frames[:, :, 1], side)  # head-on: sideways
+        push = side / np.maximum(np.linalg.norm(side, axis=1, keepdims=True), 1e-9) * strength[:, None]
+        touching, _ = obstacles.gaps(position, 0.05)
+        stopped = np.isfinite(touching)
+        params[ls.offsets[idx[stopped]] + 3] = 0.0  # the light it remembers: an apex without light rests
+        return push
 
     def _grow_wood_and_count_shade(self, ls: LString, params: np.ndarray, scene: LightScene, leaf_light: np.ndarray,
                                    dt: float, dg: float, drought: float, count: bool) -> np.ndarray:

@@ -52,6 +52,7 @@ class GrowthView:
         self.leaves = self._leaf_records(turtle, leaves, flex)
         self.blossoms = self._leaf_records(turtle, turtle.blossoms, flex, aspect=1.0)
         self.fruits, self.fruit_module = self._fruit_records(ls, turtle, flex, clocks.length_time)
+        self.stones = LeafInstances.empty()  # (rocks are the garden's, drawn apart)
         self.lo, self.hi = turtle.bounds()
         if len(self.leaves.data):  # the leaves' tips too: what is drawn, not just where leaves start
             tips = self.leaves.data[:, 0:3] + self.leaves.data[:, 3:6] * self.leaves.data[:, 9:10]

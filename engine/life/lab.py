@@ -23,7 +23,7 @@ from engine.life.rules import SECTIONS, Rules
 from engine.life.world import World
 from engine.lsystem.lsys import LSystem, load_lsystem
 
-METRICS = ("height", "width", "offset", "girth", "modules", "leaves", "shed", "sun", "water", "wilt")
+METRICS = ("height", "width", "offset", "girth", "modules", "leaves", "shed", "roots", "sun", "water", "wilt")
 MAX_TREES = 6
 
 
@@ -249,7 +249,7 @@ class Lab:
 
 def measure(world: World) -> dict[str, float]:
     """Height, crown width, crown offset toward the sun's side, trunk girth (diameter at the base),
-    modules, leaf clusters on the tree, branches shed, meters and wilt."""
+    modules, leaf clusters on the tree, branches shed, root length, meters and wilt."""
     geometry = world.tree.geometry(world.clocks())
     segs, leaves = geometry.turtle.segments, geometry.turtle.leaves
     shape = crown_shape(segs, leaves)
@@ -260,7 +260,8 @@ def measure(world: World) -> dict[str, float]:
     s = world.sim.state
     return {"height": shape["height"], "width": shape["width"], "offset": float(shape["centroid"] @ side),
             "girth": girth, "modules": float(len(world.tree.lstring)), "leaves": float(on_tree),
-            "shed": float(world.tree.shed_total), "sun": s.sun_meter, "water": s.water_meter, "wilt": s.wilt}
+            "shed": float(world.tree.shed_total), "roots": world.roots.length(), "sun": s.sun_meter,
+            "water": s.water_meter, "wilt": s.wilt}
 
 
 def crown_shape(segs, leaves) -> dict:

@@ -127,6 +127,16 @@ class TimeAwayRules:
 
 
 @dataclass
+class RootRules:
+    """Roots (engine/life/roots.py): how fast they grow on water and how much they spare it."""
+
+    growth_rate: float = 0.06  # root time per second with a full water meter
+    step: float = 0.5  # root time between two rewrites of the roots' L-string
+    drain_relief: float = 0.35  # a full root system drains the water meter this much more slowly
+    full_length: float = 150.0  # scene units of roots that count as a full root system
+
+
+@dataclass
 class Rules:
     """All game rules, one section per table of rules.toml."""
 
@@ -140,6 +150,7 @@ class Rules:
     seasons: SeasonRules = field(default_factory=SeasonRules)
     weather: WeatherRules = field(default_factory=WeatherRules)
     away: TimeAwayRules = field(default_factory=TimeAwayRules)
+    roots: RootRules = field(default_factory=RootRules)
     pace: str = "demo"  # the pace these rules are at
     time_scale: float = 1.0  # real seconds per second of the demo pace
 
@@ -150,8 +161,8 @@ TIMES = ("growth.hold_time", "growth.deadline", "growth.penalty_time", "water.dr
          "light.interval")
 RATES = ("growth.length_rate", "growth.girth_rate", "sun.speed", "sun.speed_min", "sun.speed_max", "sun.fill_rate",
          "sun.drain_rate", "water.drain_rate", "water.sun_drain_rate", "health.wilt_rate", "health.recover_rate",
-         "weather.rain_fill")
-SECTIONS = ("growth", "sun", "water", "health", "replant", "light", "wind", "seasons", "weather", "away")
+         "weather.rain_fill", "roots.growth_rate")
+SECTIONS = ("growth", "sun", "water", "health", "replant", "light", "wind", "seasons", "weather", "away", "roots")
 
 
 def load_rules(path: str | Path, pace: str | None = None) -> Rules:
@@ -228,6 +239,8 @@ RULE_RANGES = {
     "weather.spring_rain": (0.0, 1.0), "weather.summer_rain": (0.0, 1.0), "weather.autumn_rain": (0.0, 1.0),
     "weather.winter_rain": (0.0, 1.0), "weather.shower": (0.0, 1.0), "weather.rain_fill": (0.0, 100.0),
     "weather.rain_wind": (0.0, 10.0), "away.cap_days": (0.0, 3650.0), "away.fast_light": (0.5, 100.0),
+    "roots.growth_rate": (0.0, 100.0), "roots.step": (0.01, 100.0), "roots.drain_relief": (0.0, 0.9),
+    "roots.full_length": (1.0, 1e5),
 }
 
 

@@ -17,14 +17,16 @@ import math
 import re
 import time
 import tomllib
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 
 from engine.base.errors import LSysError
 from engine.base.files import atomic_write
-from engine.life.garden import MAX_SEEDS, Seed
+from engine.life.garden import MAX_ROCKS, MAX_SEEDS, Garden, Seed
 from engine.life.journal import Journal
+from engine.life.lineage import Family, Lineage, lineage_from_row, new_lineage, species_of
 from engine.life.save_check import (
     BIG,
     SaveError,
@@ -119,6 +121,9 @@ def _tree_lines(world: World, lsystem_name: str) -> list[str]:
         "",
         *_table("trees.sim", world.sim.state.to_dict()),
         "",
+        "[trees.lineage]",
+        *_lineage_pairs(world.lineage),
+        "",
         "[trees.journal]",
         "entries = [" + ", ".join(f"[{format_number(tm)}, {_toml_string(k)}, {format_number(v)}]"
                                   for tm, k, v in world.journal.entries) + "]",
@@ -136,6 +141,9 @@ def _tree_lines(world: World, lsystem_name: str) -> list[str]:
                   f"last_sense_girth = {format_number(tree.last_sense_girth)}"]
     lines += [
         f"rng_world = {_toml_string(_rng_text(world.rng))}",
+        f"rng_roots = {_toml_string(_rng_text(world.roots.deriver.rng))}",
+        f"roots_rewrite = {format_number(world.roots.last_rewrite)}",
+        f"roots = {_toml_block(world.roots.lstring.to_text())}",
         f"rng_tree = {_toml_string(_rng_text(tree.deriver.rng))}",
         f"modules = {len(ls)}",
         f"lstring = {_toml_block(ls.to_text())}",
@@ -144,10 +152,25 @@ def _tree_lines(world: World, lsystem_name: str) -> list[str]:
     return lines
 
 
+def _lineage_pairs(lineage: Lineage) -> list[str]:
+    return [f"id = {_toml_string(lineage.id)}",
+            "parents = [" + ", ".join(_toml_string(p) for p in lineage.parents) + "]",
+            f"generation = {lineage.generation}", f"seed = {lineage.seed}",
+            f"planted = {format_number(lineage.planted)}", f"species = {_toml_string(lineage.species)}"]
+
+
+def _family_lines(family: Family | None) -> list[str]:
+    """The garden's family: one inline table per tree it has known."""
+    if family is None or not family.members:
+        return []
+    return ["family = [", *("{" + ", ".join(_lineage_pairs(m)) + "}," for m in family.members.values()), "]"]
+
+
 def garden_text(worlds: list[World], current: int = 0, lsystem_name: str = "game_tree.lsys",
-                saved_at: float | None = None, seeds: list[Seed] = ()) -> str:
-    """The text of a save file holding ``worlds`` (a garden; the tree cared for is ``current``) and the
-    seed bag."""
+                saved_at: float | None = None, seeds: list[Seed] = (), family: Family | None = None,
+                rocks: list[tuple] = ()) -> str:
+    """The text of a save file holding ``worlds`` (a garden; the tree cared for is ``current``), the
+    seed bag and the family of every tree the garden has known."""
     if not 1 <= len(worlds) <= MAX_TREES:
         raise ValueError(f"a save holds 1 to {MAX_TREES} trees")
     lines = [
@@ -156,6 +179,8 @@ def garden_text(worlds: list[World], current: int = 0, lsystem_name: str = "game
         f"saved_at = {time.time() if saved_at is None else saved_at!r}",
         f"current = {min(max(current, 0), len(worlds) - 1)}",
         "seeds = [" + ", ".join(f"[{s.parent_seed}, {_toml_string(s.parent_sha)}, {s.number}]" for s in seeds) + "]",
+        "rocks = [" + ", ".join(_numbers(r) for r in rocks) + "]",
+        *_family_lines(family),
         "",
     ]
     for world in worlds:
@@ -169,9 +194,11 @@ def save_text(world: World, lsystem_name: str, saved_at: float | None = None) ->
 
 
 def save_garden(worlds: list[World], path: str | Path, current: int = 0, lsystem_name: str = "game_tree.lsys",
-                saved_at: float | None = None, seeds: list[Seed] = ()) -> None:
+                saved_at: float | None = None, seeds: list[Seed] = (), family: Family | None = None,
+                rocks: list[tuple] = ()) -> None:
     """Write a whole garden to ``path`` as one atomic unit (temp file, fsync, rename)."""
-    atomic_write(path, garden_text(worlds, current, lsystem_name, saved_at, seeds).encode("utf-8"))
+    text = garden_text(worlds, current, lsystem_name, saved_at, seeds, family, rocks)
+    atomic_write(path, text.encode("utf-8"))
 
 
 def save_world(world: World, path: str | Path, lsystem_name: str = "game_tree.lsys",
@@ -256,6 +283,13 @@ def _load_tree(data: dict, where: Where, rules: Rules, budget_slack: float) -> W
     growth = table(data, "growth", where)
     _restore_growth(world, growth, where, budget_slack)
     world.journal, _ = Journal.from_rows(table(data, "journal", where, required=False).get("entries", []))
+    saved = data.get("lineage")
+    lineage = lineage_from_row(saved) if saved is not None else None
+    world.dropped_lineage = int(saved is not None and lineage is None)  # told to the player, never trusted
+    if lineage is None:  # an older save, or a lineage that cannot be trusted: the tree starts a line
+        name = data.get("lsystem") if isinstance(data.get("lsystem"), str) else "tree"
+        lineage = new_lineage(world.seed, 0.0, species_of(name))
+    world.lineage = lineage
     return world
 
 
@@ -287,7 +321,27 @@ def _restore_growth(world: World, growth: dict, where: Where, budget_slack: floa
         tree.last_sense_length = value(growth, "last_sense_length", "float", 0.0, BIG, where)
         tree.last_sense_girth = value(growth, "last_sense_girth", "float", 0.0, BIG, where)
     restore_rng(world.rng, text_value(growth, "rng_world", where, 4096), "rng_world", where)
+    _restore_roots(world, growth, where)
     restore_rng(tree.deriver.rng, text_value(growth, "rng_tree", where, 4096), "rng_tree", where)
+
+
+def _restore_roots(world: World, growth: dict, where: Where) -> None:
+    """The roots (saves from before roots have none: the tree starts a root system)."""
+    if "roots" not in growth:
+        return
+    roots = world.roots
+    limit = 2 * (roots.system.budget or 10_000)
+    text = text_value(growth, "roots", where, 64 * limit)
+    try:
+        roots.lstring = parse_lstring(text, str(where.path))
+    except LSysError as err:
+        raise SaveError(f"in the roots: {err.message}", str(where.path), where.line("roots"), err.col) from None
+    if len(roots.lstring) > limit:
+        raise where.error(f"the roots are larger than their budget allows ({limit:,} modules)", "roots")
+    lstring_sane(roots.lstring, where)
+    roots.last_rewrite = value(growth, "roots_rewrite", "float", 0.0, BIG, where)
+    restore_rng(roots.deriver.rng, text_value(growth, "rng_roots", where, 4096), "rng_roots", where)
+    world.sync_roots()
 
 
 def load_garden(path: str | Path, rules: Rules | None = None, budget_slack: float = 1.0
@@ -296,6 +350,11 @@ def load_garden(path: str | Path, rules: Rules | None = None, budget_slack: floa
     the save's clock cannot be read: the caller then counts no time away)."""
     path = Path(path)
     data, text = _read(path)
+    return _garden(data, text, path, rules, budget_slack)
+
+
+def _garden(data: dict, text: str, path: Path, rules: Rules | None, budget_slack: float
+            ) -> tuple[list[World], int, float]:
     where = Where(path, text)
     parts = _tree_parts(data, path, text)
     saved_at = data.get("saved_at")  # lenient: a clock that cannot be read only means no time away
@@ -306,9 +365,55 @@ def load_garden(path: str | Path, rules: Rules | None = None, budget_slack: floa
     return worlds, current, saved_at
 
 
+@dataclass
+class SavedGarden:
+    """Everything a save holds: trees, which one is cared for, when it was saved, seeds, family, and how
+    many lineage entries were dropped as malformed or hostile."""
+
+    worlds: list[World]
+    current: int
+    saved_at: float
+    seeds: list[Seed]
+    family: Family
+    dropped: int = 0
+    rocks: list[tuple[float, float, float, float]] = field(default_factory=list)
+
+    def garden(self) -> Garden:
+        """The garden these make."""
+        garden = Garden(self.worlds, self.current, self.seeds, self.family)
+        garden.rocks = list(self.rocks)
+        return garden
+
+
+def read_garden(path: str | Path, rules: Rules | None = None, budget_slack: float = 1.0) -> SavedGarden:
+    """Read a whole save once (see :func:`load_garden` for the trees)."""
+    path = Path(path)
+    data, text = _read(path)
+    worlds, current, saved_at = _garden(data, text, path, rules, budget_slack)
+    family, dropped = Family.from_rows(data.get("family", []))
+    dropped += sum(getattr(w, "dropped_lineage", 0) for w in worlds)
+    return SavedGarden(worlds, current, saved_at, _seeds(data), family, dropped, _rocks(data))
+
+
 def load_seeds(path: str | Path) -> list[Seed]:
     """The seed bag of a save; entries that are not [parent seed, parent hash, number] are dropped."""
     data, _ = _read(Path(path))
+    return _seeds(data)
+
+
+def _rocks(data: dict) -> list[tuple[float, float, float, float]]:
+    """The garden's rocks; rows that are not four sane numbers are dropped."""
+    out = []
+    rows = data.get("rocks", [])
+    for row in rows if isinstance(rows, list) else []:
+        ok = (isinstance(row, list) and len(row) == 4 and len(out) < MAX_ROCKS
+              and all(isinstance(v, int | float) and not isinstance(v, bool) and math.isfinite(v) for v in row))
+        if ok and all(abs(v) <= 1e4 for v in row[:3]) and 0.05 <= row[3] <= 50:
+            out.append(tuple(float(v) for v in row))
+    return out
+
+
+def _seeds(data: dict) -> list[Seed]:
     out = []
     for row in data.get("seeds", []) if isinstance(data.get("seeds", []), list) else []:
         if (isinstance(row, list) and len(row) == 3 and isinstance(row[0], int) and isinstance(row[2], int)

@@ -32,8 +32,9 @@ SIM_FIELDS = {
     "watering": ("bool", 0, 1), "length_time": ("float", 0.0, BIG), "girth_time": ("float", 0.0, BIG),
     "wilt": ("float", 0.0, 1.0), "drowning": ("float", 0.0, BIG), "dead_for": ("float", 0.0, BIG),
     "alive": ("bool", 0, 1), "sun_turns": ("float", 0.0, BIG), "weather_seed": ("int", 0, 2**63 - 1),
+    "root_time": ("float", 0.0, BIG),
 }
-OPTIONAL_SIM = {"sun_turns": 0.0, "weather_seed": 0}  # saves from before the seasons have none
+OPTIONAL_SIM = {"sun_turns": 0.0, "weather_seed": 0, "root_time": 0.0}  # older saves have none
 CYCLE_FIELDS = {"cycle": ("float", 0.0, BIG), "above": ("float", 0.0, BIG), "rate": ("float", 0.0, 1.0),
                 "earned": ("int", 0, 2**53)}
 

@@ -65,6 +65,7 @@ class SimState:
     alive: bool = True
     sun_turns: float = 0.0  # days of the sun so far (turns of its orbit): the calendar of the seasons
     weather_seed: int = 0  # which days it rains (see engine/life/seasons.py)
+    root_time: float = 0.0  # the roots' clock: runs on water (engine/life/roots.py)
     sun_cycle: GrowthCycle = field(default_factory=GrowthCycle)
     water_cycle: GrowthCycle = field(default_factory=GrowthCycle)
 
@@ -102,6 +103,7 @@ class Simulation:
         if state is None:
             state = SimState(orbit_height=self.rules.sun.orbit_height, sun_speed=self.rules.sun.speed)
         self.state = state
+        self.root_share = 0.0  # how much of a full root system the tree has (set by its World)
 
     def season(self) -> Season:
         """The season now (spring, summer, autumn, winter)."""
@@ -201,7 +203,8 @@ class Simulation:
             s.sun_meter -= rules.sun.drain_rate * dt
         w = rules.water
         need = seasons.water_factor(s.sun_turns, rules)
-        s.water_meter -= (w.drain_rate + w.sun_drain_rate * shine) * need * dt
+        relief = 1.0 - rules.roots.drain_relief * self.root_share  # good roots take up water better
+        s.water_meter -= (w.drain_rate + w.sun_drain_rate * shine) * need * relief * dt
         if s.watering:
             s.water_meter += w.fill_rate * dt
         if self.raining():
@@ -214,6 +217,9 @@ class Simulation:
         length, girth = self.growth_speeds()
         s.length_time += length * dt
         s.girth_time += girth * dt
+        if s.alive:
+            wet = min(max((s.water_meter - 0.2) / 0.6, 0.0), 1.0)
+            s.root_time += rules.roots.growth_rate * wet * seasons.growth_factor(s.sun_turns, rules) * dt
 
     def _health(self, dt: float) -> None:
         s, h, w = self.state, self.rules.health, self.rules.water

@@ -10,10 +10,13 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from engine.life import seasons
+from engine.life import collide, seasons
+from engine.life.collide import Obstacles
 from engine.life.growth import Clocks, GrowingTree
 from engine.life.journal import Journal
 from engine.life.light import exposure
+from engine.life.lineage import Lineage, new_lineage, species_of
+from engine.life.roots import Roots
 from engine.life.sim import Rules, SimState, Simulation
 from engine.lsystem.lsys import LSystem
 
@@ -37,12 +40,16 @@ class World:
     last_light: float = float("-inf")  # game time of the last light reading
     journal: Journal = field(default_factory=Journal)
     bare_at: float = -1.0  # the day of the sun winter last stripped the leaves
+    lineage: Lineage = field(init=False)  # parents, generation, planting (engine/life/lineage.py)
+    roots: Roots = field(init=False)  # grown below ground on water (engine/life/roots.py)
 
     def __post_init__(self) -> None:
         self.sim = Simulation(self.rules)
         self.sim.state.weather_seed = self.seed
         self.rng = np.random.Generator(np.random.PCG64(self.seed))
         self.tree = self._plant(self.seed)
+        self.lineage = new_lineage(self.seed, 0.0, species_of(self.system.file))
+        self.roots = Roots(seed=self.seed)
 
     def _plant(self, seed: int) -> GrowingTree:
         """A sapling: the axiom grown to the rules' sapling age (its leader only, no side shoots)."""
@@ -79,9 +86,15 @@ class World:
         if season.index == 3 and season.progress < 0.5 and self.bare_at != s.sun_turns // 1:
             self.bare_at = s.sun_turns // 1  # (looked at once a day of the sun)
             self.tree.drop_leaves()
+        if self.roots.grow(s.root_time, self.rules.roots.step):
+            self.sync_roots()
         if s.length_time - self.tree.last_rewrite_T >= self.rules.growth.rewrite_step:
             self.tree.rewrite(s.length_time, s.girth_time, self.sim.resources(), self.sim.leaf_vigour(),
                               self.sim.season_externs(s.length_time))
+
+    def sync_roots(self) -> None:
+        """Tell the simulation how big the roots are (they spare water)."""
+        self.sim.root_share = self.roots.share(self.rules.roots.full_length)
 
     def status(self) -> str:
         """What the HUD says about this tree (see :meth:`Simulation.status`); a tree that grows but whose
@@ -101,7 +114,11 @@ class World:
             self.sim.set_sun_speed(value)
         elif action == "replant":
             self.sim.replant(self.rng)
-            self.tree = self._plant(int(self.rng.integers(2**31)))
+            seed = int(self.rng.integers(2**31))
+            self.tree = self._plant(seed)
+            self.lineage = new_lineage(seed, self.lineage.planted, self.lineage.species)  # a new line starts
+            self.roots = Roots(seed=seed)
+            self.sync_roots()
         else:
             raise ValueError(f"unknown action {action!r}")
 
@@ -133,8 +150,9 @@ def catch_up_steps(seconds: float, dt: float, max_steps: int) -> tuple[int, floa
     return max_steps, seconds / max_steps
 
 
-def sense_light(worlds: list[World]) -> None:
-    """One light reading for trees that share a sun (a garden): every tree's leaves shade every tree."""
+def sense_light(worlds: list[World], rocks: Obstacles | None = None) -> None:
+    """One light reading for trees that share a sun (a garden): every tree's leaves shade every tree;
+    every tree's shoots bend away from the others' wood and from ``rocks`` (engine/life/collide.py)."""
     if not worlds:
         return
     sim = worlds[0].sim
@@ -163,8 +181,20 @@ def sense_light(worlds: list[World]) -> None:
         part = light[start:start + len(q)]
         start += len(q)
         leafy = seasons.leafy(world.sim.state.sun_turns, world.rules)
-        world.tree.sense(scene, part, world.clocks(), shine, sun, rules.memory, world.sim.drought(), leafy)
+        world.tree.sense(scene, part, world.clocks(), shine, sun, rules.memory, world.sim.drought(), leafy,
+                         _obstacles(world, worlds, scenes, offsets, rocks))
         world.journal.observe(world, world.tree.height)
+
+
+def _obstacles(world: World, worlds: list[World], scenes: list, offsets: list[np.ndarray],
+               rocks: Obstacles | None) -> Obstacles:
+    """What ``world``'s shoots must avoid, in its own frame: the other trees' wood and the rocks."""
+    here = np.array([world.position[0], 0.0, world.position[1]])
+    parts = [collide.wood(scene.turtle.segments, offset - here)
+             for other, scene, offset in zip(worlds, scenes, offsets, strict=True) if other is not world]
+    if rocks is not None:
+        parts.append(rocks.moved(-here))
+    return collide.Obstacles.join(parts)
 
 
 def replay(system: LSystem, rules: Rules, seed: int, log: InputLog, steps: int, dt: float) -> World:

@@ -6,7 +6,10 @@ import sys
 from dataclasses import dataclass
 from pathlib import Path
 
+import numpy as np
+
 from engine.base.errors import LSysError
+from engine.geometry.mesh import LOD_LEVELS, merge_trees, tree_mesh
 from engine.geometry.tree import TreeGeometry, build_geometry
 from engine.life.save import load_trees
 from engine.lsystem.derive import Deriver
@@ -45,8 +48,9 @@ def derive_source(source: TreeSource):
     return system, result
 
 
-def tree_geometry(source: TreeSource, lod: int) -> tuple[TreeGeometry, LString]:
-    """The geometry of the asked-for tree at LOD ``lod``: exactly as it stands in a save, or derived."""
+def tree_geometry(source: TreeSource, lod: int, roots: bool = False) -> tuple[TreeGeometry, LString]:
+    """The geometry of the asked-for tree at LOD ``lod``: exactly as it stands in a save (with its
+    roots below the ground when ``roots``: exports carry them), or derived."""
     if is_save(source.path):
         if source.steps is not None or source.budget is not None:
             raise LSysError("--steps and --budget grow an .lsys source; a save holds a grown tree", str(source.path))
@@ -55,6 +59,10 @@ def tree_geometry(source: TreeSource, lod: int) -> tuple[TreeGeometry, LString]:
             raise LSysError(f"--tree {source.tree}: this save holds {len(worlds)} tree(s), numbered from 0",
                             str(source.path))
         world = worlds[source.tree]
-        return world.tree.geometry(world.clocks(), lod), world.tree.lstring
+        geometry = world.tree.geometry(world.clocks(), lod)
+        if roots:
+            below = tree_mesh(world.roots.turtle(), LOD_LEVELS[min(lod, len(LOD_LEVELS) - 1)])
+            geometry.mesh = merge_trees([geometry.mesh, below], [np.zeros(3), np.zeros(3)])
+        return geometry, world.tree.lstring
     system, ls = derive_source(source)
     return build_geometry(ls, system, lod=lod), ls

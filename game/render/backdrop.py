@@ -19,6 +19,7 @@ SKY_HORIZON = (0.78, 0.87, 0.95)
 NIGHT_ZENITH = (0.09, 0.13, 0.32)  # nights are dark blue, never black
 NIGHT_HORIZON = (0.22, 0.27, 0.46)
 GRASS = (0.33, 0.50, 0.22)
+SOIL = (0.36, 0.26, 0.17)  # the cut-away view: the ground as soil
 
 
 def program(ctx: moderngl.Context, vertex: str, fragment: str, include: tuple[str, ...] = ()) -> moderngl.Program:
@@ -93,6 +94,7 @@ class Backdrop:
 
     def __init__(self, ctx: moderngl.Context) -> None:
         self.ctx = ctx
+        self.cutaway = False
         self.dome_prog = program(ctx, "dome.vert", "dome.frag")
         self.sun_prog = program(ctx, "sun.vert", "sun.frag")
         self.ground_prog = program(ctx, "ground_plain.vert", "ground_plain.frag")
@@ -136,8 +138,9 @@ class Backdrop:
         _, horizon, day = sky_colors(sun)
         light_level = (0.45 + 0.55 * max(float(sun[1]), 0.0)) * (0.7 + 0.3 * day)
         self.noise.use(location=2)
+        ground = SOIL if self.cutaway else GRASS  # the cut-away view shows the soil (and the roots in it)
         set_uniforms(self.ground_prog, {
-            "u_mvp": mvp, "u_noise": 2, "u_grass": tuple(c * light_level for c in GRASS), "u_horizon": horizon,
+            "u_mvp": mvp, "u_noise": 2, "u_grass": tuple(c * light_level for c in ground), "u_horizon": horizon,
             "u_fade_start": fade[0], "u_fade_end": fade[1]})
         if self.ground is not None:
             self.ground.render()

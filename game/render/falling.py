@@ -32,6 +32,7 @@ class StaticView:
     lo: np.ndarray
     hi: np.ndarray
     fruits: LeafInstances = field(default_factory=LeafInstances.empty)
+    stones: LeafInstances = field(default_factory=LeafInstances.empty)
 
     @property
     def young_row(self) -> int:

@@ -88,5 +88,11 @@ def _cross(s, cx, cy, r):
     pygame.draw.line(s, (200, 70, 60), (cx - r * 0.7, cy + r * 0.7), (cx + r * 0.7, cy - r * 0.7), 5)
 
 
-ICONS = {"cross": _cross, "sun": _sun, "clock": _clock, "can": _can, "sapling": _sapling, "seed": _seed,
+def _stone(s, cx, cy, r):
+    pygame.draw.ellipse(s, (150, 145, 135), pygame.Rect(cx - r, cy - r * 0.6, 2 * r, r * 1.3))
+    pygame.draw.arc(s, INK, pygame.Rect(cx - r, cy - r * 0.6, 2 * r, r * 1.3), 0.4, 2.6, 2)
+
+
+ICONS = {"stone": _stone, "cross": _cross, "sun": _sun, "clock": _clock, "can": _can, "sapling": _sapling,
+         "seed": _seed,
          "pencil": _pencil, "gear": _gear, "book": _book, "back": _back}

@@ -19,7 +19,7 @@ SIDES = (8, 6, 4, 3)  # ring sides per level of detail
 LEAF_KEPT = (1.0, 0.75, 0.5, 0.3)  # share of leaves drawn per level (the rest grow to cover the same area)
 TUBE_LAYOUT = ("3f 3f 3f 3f 3f 3f 2f 2f 2f 1f 4x/i",  # the last float (branch order) is not read
                ("i_c0", "i_t0", "i_x0", "i_c1", "i_t1", "i_x1", "i_r", "i_v", "i_flex", "i_tip"))
-PARTS = (("tube", 0), ("leaf", 1), ("blossom", 2), ("fruit", 3))  # record buffers and the shaders' kinds
+PARTS = (("tube", 0), ("leaf", 1), ("blossom", 2), ("fruit", 3), ("stone", 4))  # record buffers, shader kinds
 LEAF_LAYOUT = ("3f 3f 3f 3f 1f/i", ("i_base", "i_axis", "i_normal", "i_size", "i_hash"))
 
 
@@ -93,7 +93,8 @@ class InstancedTrees:
         for name, records, young_from in (("tube", view.tubes.data, view.young_row),
                                           ("leaf", view.leaves.data, view.young_leaf_row),
                                           ("blossom", view.blossoms.data, len(view.blossoms.data)),
-                                          ("fruit", view.fruits.data, len(view.fruits.data))):
+                                          ("fruit", view.fruits.data, len(view.fruits.data)),
+                                          ("stone", view.stones.data, len(view.stones.data))):
             self._write(tree, name, records, 0 if full else young_from)
 
     def _write(self, tree: TreeBuffers, name: str, records: np.ndarray, first: int) -> None:
@@ -130,17 +131,18 @@ class InstancedTrees:
         ``lod`` (fruit casts no shadow: too small to see in a 1024-texel map)."""
         for name, kind in PARTS:
             part = tree.parts.get(name)
-            if part is None or part.count == 0 or (kind == 3 and pass_ != "lit"):
+            if part is None or part.count == 0 or (kind >= 3 and pass_ != "lit"):
                 continue
             prog = self.programs[("tube" if name == "tube" else "leaf", pass_)]
             set_uniforms(prog, {k: v for k, v in uniforms.items() if k != "tints"})
-            textures["bark" if kind == 0 else "leaf" if kind == 1 else "blossom"].use(location=0)
+            textures["bark" if kind in (0, 4) else "leaf" if kind == 1 else "blossom"].use(location=0)
             per_part = {"u_tex": 0, "u_fraction": LEAF_KEPT[lod] if kind == 1 else 1.0,
-                        "u_keep": uniforms.get("u_keep", 1.0) if kind == 1 else 1.0, "u_ball": int(kind == 3),
+                        "u_keep": uniforms.get("u_keep", 1.0) if kind == 1 else 1.0, "u_ball": int(kind >= 3),
                         # far away, leaves skip the shadow lookup (their shade is the AO)
                         "u_shadowed": float(pass_ != "lit" or kind == 0 or lod < 2)}
             if pass_ == "lit":
-                per_part.update(u_kind=kind, u_tint=(*uniforms["tints"], (1.0, 1.0, 1.0))[kind], u_uv_scale=(1.0, 1.0))
+                per_part.update(u_kind=kind, u_tint=(*uniforms["tints"], (1.0, 1.0, 1.0), (1.0, 1.0, 1.0))[kind],
+                                u_uv_scale=(1.0, 1.0))
             else:
                 per_part["u_alpha_test"] = int(kind != 0)
             set_uniforms(prog, per_part)

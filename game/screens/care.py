@@ -3,9 +3,11 @@
 from __future__ import annotations
 
 import copy
+import math
 from typing import TYPE_CHECKING
 
-from engine.life.garden import MAX_GARDEN
+from engine.life.garden import MAX_GARDEN, MAX_ROCKS
+from engine.life.lineage import new_lineage
 from game.loop import SPEEDS
 from game.render.ui import range_to_slider, slider_to_range
 from game.screens.modeler import TOOLS
@@ -22,6 +24,7 @@ class CareActions:
 
     def __init__(self, game: Game) -> None:
         self.game = game
+        self.crossing = None  # the mother of a cross, while the player picks the father
 
     def act(self, action: str, value: float = 0.0) -> None:
         """Apply a player action; world actions are logged against the sim step (replayable)."""
@@ -40,6 +43,15 @@ class CareActions:
             self.plant()
         elif action == "sow":
             self.sow()
+        elif action == "cross":
+            self.start_cross()
+        elif action == "family":
+            game.family.open()
+        elif action == "rock":
+            self.place_rock()
+        elif action == "roots":
+            game.cutaway = not game.cutaway
+            self.sync_sliders()
         elif action == "next" and len(game.garden.worlds) > 1:
             game.garden.next()
             game.previous = copy.deepcopy(game.world.sim.state)
@@ -71,6 +83,9 @@ class CareActions:
         else:
             game.world.apply(action, sim_value)
         if action == "replant":
+            lineage = game.world.lineage
+            game.world.lineage = new_lineage(lineage.seed, game.wall_clock(), lineage.species)
+            game.garden.family.add(game.world.lineage)
             game.previous = copy.deepcopy(game.world.sim.state)
             game.say(text("messages.planted"))
 
@@ -88,12 +103,13 @@ class CareActions:
         if game.garden.full:
             game.say(text("messages.garden_full", count=MAX_GARDEN), 5)
             return
-        world = game.garden.plant(game.system, game.rules)
+        world = game.garden.plant(game.system, game.rules, now=game.wall_clock())
         game.previous = copy.deepcopy(world.sim.state)
         game.say(text("messages.garden_planted", count=len(game.garden.worlds)), 4)
 
     def sow(self) -> None:
-        """Plant the oldest seed from the bag beside the others: its parent's L-system, a seed of its own."""
+        """Plant the oldest seed from the bag beside the others: a cross of its parent and the tree whose
+        pollen reached it (engine/life/garden.py)."""
         game = self.game
         if not game.garden.seeds:
             game.say(text("messages.no_seeds"), 5)
@@ -103,10 +119,58 @@ class CareActions:
             return
         parent = game.garden.seeds[0].parent_seed
         number = next((i + 1 for i, w in enumerate(game.garden.worlds) if w.seed == parent), 1)
-        world = game.garden.plant_seed(game.rules, game.system)
+        world = game.garden.plant_seed(game.rules, game.system, game.wall_clock())
         game.previous = copy.deepcopy(world.sim.state)
         self.sync_sliders()
         game.say(text("messages.sown", parent=number, count=len(game.garden.worlds)), 5)
+
+    def place_rock(self) -> None:
+        """A boulder beside the cared-for tree (each next one further round it): shoots grow around it."""
+        game = self.game
+        rocks = game.garden.rocks
+        if len(rocks) >= MAX_ROCKS:
+            game.say(text("messages.rocks_full", count=MAX_ROCKS), 5)
+            return
+        x, z = game.world.position
+        angle = len(rocks) * 2.39996 + 0.6
+        rocks.append((x + 2.6 * math.cos(angle), 0.5, z + 2.6 * math.sin(angle), 1.4))
+        game.say(text("messages.rock"), 5)
+
+    def care_for(self, index: int) -> None:
+        """Care for tree ``index`` of the garden (the meters, the can and the modeler act on it)."""
+        game = self.game
+        game.garden.current = index
+        game.previous = copy.deepcopy(game.world.sim.state)
+        self.sync_sliders()
+        game.say(text("messages.caring_for", number=index + 1), 4)
+
+    def start_cross(self) -> None:
+        """The cared-for tree will be the mother: the next tap on another tree picks the father."""
+        game = self.game
+        if len(game.garden.worlds) < 2:
+            game.say(text("messages.cross_alone"), 5)
+        elif game.garden.full:
+            game.say(text("messages.garden_full", count=MAX_GARDEN), 5)
+        else:
+            self.crossing = game.world
+            game.menu.hide()
+            game.say(text("messages.cross_pick", number=game.garden.current + 1), 30)
+
+    def cross_with(self, index: int | None) -> None:
+        """Cross the mother chosen by :meth:`start_cross` with tree ``index`` (None or herself: cancel)."""
+        game, mother = self.game, self.crossing
+        self.crossing = None
+        worlds = game.garden.worlds
+        number = next((i + 1 for i, w in enumerate(worlds) if w is mother), None)
+        if index is None or number is None or worlds[index] is mother:
+            game.say(text("messages.cross_cancelled"), 4)
+            return
+        father = worlds[index]
+        seed = (mother.seed * 1_000_003 + father.seed * 7919 + len(game.garden.family.members)) % 2**31
+        child = game.garden.breed(mother, father, seed, game.rules, game.wall_clock())
+        game.previous = copy.deepcopy(child.sim.state)
+        self.sync_sliders()
+        game.say(text("messages.crossed", a=number, b=index + 1, count=len(worlds)), 6)
 
     def slider_value(self, action: str, value: float) -> float:
         """A slider position (0..1) as the simulation value it stands for."""
@@ -127,6 +191,7 @@ class CareActions:
         speed = game.loop.speed
         menu.widget("speed").label = text("menu.paused") if speed == 0 else text("menu.speed", speed=f"{speed:g}")
         menu.widget("sow").label = text("menu.sow", count=len(game.garden.seeds))
+        menu.widget("roots").label = text("menu.roots_hide" if game.cutaway else "menu.roots")
         menu.widget("modeler").label = text("menu.modeler_done" if game.modeling.active else "menu.modeler")
 
     def set_speed(self, speed: float) -> None:

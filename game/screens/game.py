@@ -35,6 +35,7 @@ from game.render.renderer import Overlay
 from game.render.ui import HudInfo, Menu
 from game.screens.care import CareActions
 from game.screens.coach import Coach
+from game.screens.family import FamilyScreen
 from game.screens.game_hud import GameHud
 from game.screens.game_input import GameInput
 from game.screens.game_view import GameView
@@ -90,6 +91,7 @@ class Game:
         self.hud = GameHud(self)
         self.coach = Coach(self)
         self.picker = Picker(self)
+        self.family = FamilyScreen(self)
         self.menu.journal_source = self.coach.journal_lines
         self.keeper = SaveKeeper(self)
         self.garden = self.keeper.start()
@@ -97,6 +99,7 @@ class Game:
             self.coach.first_run()
         self.previous = copy.deepcopy(self.world.sim.state)
         self.alpha = 1.0
+        self.cutaway = False  # the roots' view: the ground turns to soil and the roots show
         self.care.sync_sliders()
 
     @property
@@ -166,7 +169,8 @@ class Game:
         modeling = self.modeling.active
         height = max(float(r_hi[1]), 2.0 if modeling else 4.0)  # a sapling stands small in its garden
         width = max(float(np.max(r_hi[[0, 2]] - r_lo[[0, 2]])), 1.0)
-        lo, hi = np.array([-width / 2, 0.0, -width / 2]), np.array([width / 2, height, width / 2])
+        bottom = self.view.roots_bottom if self.cutaway and not modeling else 0.0
+        lo, hi = np.array([-width / 2, bottom, -width / 2]), np.array([width / 2, height, width / 2])
         cam.frame_bounds(lo, hi, self.size[0] / self.size[1], fill=0.8)
         cam.distance *= self.control.distance
         return cam

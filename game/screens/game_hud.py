@@ -53,7 +53,8 @@ class GameHud:
         return (round(info.sun * 200), round(info.water * 200), info.status, int(info.age_seconds // 60),
                 info.speed, info.message, info.watering, info.season, info.raining, info.hint, info.reminder,
                 menu.visible, menu.page, widgets, view, game.cursor3d, len(game.overlay_hooks),
-                tuple(w.status() for w in game.garden.worlds), game.garden.current, int(game.clock() * 4))
+                tuple(w.status() for w in game.garden.worlds), game.garden.current, game.family.visible,
+                int(game.clock() * 4))
 
     def hud_info(self) -> HudInfo:
         """What the HUD shows now."""
@@ -93,6 +94,7 @@ class GameHud:
         game.modeling.draw_outline(self.surface, project)
         game.modeling.draw_symbols(self.surface, camera, game.small_font, project)
         game.menu.draw(self.surface, game.font)
+        game.family.draw(self.surface, game.font, game.small_font)
         for hook in game.overlay_hooks:
             hook(self.surface)
 

@@ -147,7 +147,9 @@ class GameInput:
         """A tap outside the menu: close the menu if it is open; else pick the ripe fruit or choose the
         tree that was tapped, or open the menu there (the modeler's tools page in the modeler)."""
         game = self.game
-        if game.menu.visible:
+        if game.family.visible:
+            game.family.tap(x, y)
+        elif game.menu.visible:
             for action in game.menu.hide():
                 game.act(*action)
         elif game.modeling.active or not game.picker.tap(x, y, game.camera()):

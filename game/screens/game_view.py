@@ -14,6 +14,7 @@ from engine.life.growth_view import GrowthView
 from game.render.falling import FALL_SECONDS, falling_view
 from game.render.garden import BARK, GardenRenderer, Placed
 from game.render.instanced import LEAF_KEPT, SIDES, TreeBuffers
+from game.render.roots import rocks_view, roots_view
 
 if TYPE_CHECKING:
     from game.screens.game import Game
@@ -45,6 +46,9 @@ class GameView:
         self.falls: list[TreeBuffers] = []
         self.pending: dict[int, tuple] = {}  # world id -> (key, future) of a rebuild on the worker
         self.worker = ThreadPoolExecutor(max_workers=1, thread_name_prefix="arbor-rebuild")
+        self.root_buffers: dict[int, tuple[tuple, TreeBuffers]] = {}  # world id -> (key, GPU records)
+        self.roots_bottom = 0.0  # lowest root of the cared-for tree (the cut-away view frames it)
+        self.rock_buffers: tuple[tuple, TreeBuffers] | None = None
 
     def rebuild(self) -> None:
         """Bring every tree's records up to date: a full build when its L-string (or wilt) changed,
@@ -68,10 +72,46 @@ class GameView:
         for gone in set(self.views) - seen:
             self.views.pop(gone)[2].release()
         placed += self._falling(here)
+        placed += self._roots(here)
+        placed += self._rocks(here)
         current = self.views[id(game.world)][1]
         renderer.place(placed, current.lo, current.hi)
         self._tints()
         self._count_triangles()
+
+    def _roots(self, here: np.ndarray) -> list[Placed]:
+        """Every tree's roots, in the cut-away view only (elsewhere the ground hides them)."""
+        game = self.game
+        if not game.cutaway:
+            for _, buffers in self.root_buffers.values():
+                buffers.release()
+            self.root_buffers.clear()
+            return []
+        out = []
+        for world in game.garden.worlds:
+            key = (id(world.roots.lstring), len(world.roots.lstring))
+            entry = self.root_buffers.get(id(world))
+            if entry is None or entry[0] != key:
+                buffers = entry[1] if entry else TreeBuffers()
+                game.renderer.trees.sync(buffers, roots_view(world.roots))
+                entry = self.root_buffers[id(world)] = (key, buffers)
+            offset = np.array([world.position[0], 0.0, world.position[1]]) - here
+            out.append(Placed(entry[1], offset, -2))
+            if world is game.world:
+                self.roots_bottom = float(entry[1].view.lo[1])
+        return out
+
+    def _rocks(self, here: np.ndarray) -> list[Placed]:
+        """The garden's rocks (grey balls; shoots grow around them)."""
+        rocks = self.game.garden.rocks
+        if not rocks:
+            return []
+        key = tuple(rocks)
+        if self.rock_buffers is None or self.rock_buffers[0] != key:
+            buffers = self.rock_buffers[1] if self.rock_buffers else TreeBuffers()
+            self.game.renderer.trees.sync(buffers, rocks_view(rocks))
+            self.rock_buffers = (key, buffers)
+        return [Placed(self.rock_buffers[1], -here, -3)]
 
     def _view(self, world, shown, clocks, key: tuple) -> tuple:
         """The records for ``world``'s tree: rebuilt when ``key`` changed, else moved to ``clocks``. A
@@ -138,6 +178,7 @@ class GameView:
         camera = game.camera()
         game.renderer.time = game.clock()
         game.renderer.wind = self.wind()
+        game.renderer.backdrop.cutaway = game.cutaway
         self._season_look()
         game.renderer.render(fbo, camera, self.scene_sun(), game.size)
         self._count_triangles()  # (again: the levels of detail of this very frame)

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import copy
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -24,8 +23,12 @@ class Picker:
         self.game = game
 
     def tap(self, x: float, y: float, camera: OrbitCamera) -> bool:
-        """Pick the ripe fruit or choose the tree at (x, y); False when the tap hit neither."""
+        """Pick the ripe fruit or choose the tree at (x, y) (to care for, or as the other parent of a
+        cross the player started); False when the tap hit neither."""
         game = self.game
+        if game.care.crossing is not None:
+            game.care.cross_with(self.tree_at(x, y, camera))
+            return True
         module = self.fruit_at(x, y, camera)
         if module is not None and game.garden.harvest(game.world, module) is not None:
             game.say(text("messages.picked", count=len(game.garden.seeds)), 4)
@@ -33,10 +36,7 @@ class Picker:
         index = self.tree_at(x, y, camera)
         if index is None:
             return False
-        game.garden.current = index
-        game.previous = copy.deepcopy(game.world.sim.state)
-        game.care.sync_sliders()
-        game.say(text("messages.caring_for", number=index + 1), 4)
+        game.care.care_for(index)
         return True
 
     def fruit_at(self, x: float, y: float, camera: OrbitCamera) -> int | None:

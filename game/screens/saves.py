@@ -17,7 +17,8 @@ from typing import TYPE_CHECKING
 from engine.base.errors import LSysError
 from engine.life.away import AwaySummary, away_seconds, live_away
 from engine.life.garden import MAX_GARDEN, Garden
-from engine.life.save import load_garden, load_seeds, save_garden
+from engine.life.lineage import new_lineage, species_of
+from engine.life.save import load_garden, read_garden, save_garden
 from engine.life.sim import sun_angle_at
 from engine.life.world import World
 from game.strings import text
@@ -46,6 +47,7 @@ class SaveKeeper:
         seed = game.config.seed if game.config.seed is not None else int(game.wall_clock() * 1000) % 2**31
         world = World(game.system, game.rules, seed=seed)
         world.apply("replant", 1.0)
+        world.lineage = new_lineage(world.lineage.seed, game.wall_clock(), species_of(game.system.file))
         if game.rules.pace == "home":  # a day of the sun lasts a day: start it at the player's time of day
             now = time.localtime(game.wall_clock())
             world.sim.state.sun_angle = sun_angle_at(now.tm_hour * 3600 + now.tm_min * 60 + now.tm_sec)
@@ -67,16 +69,17 @@ class SaveKeeper:
         """A saved garden, grown by the time away; None (and the file kept as .broken) if unreadable."""
         game = self.game
         try:
-            worlds, current, saved_at = load_garden(path, game.rules)
-            seeds = load_seeds(path)
-            worlds += self._legacy_trees(path, len(worlds))
+            saved = read_garden(path, game.rules)
+            saved.worlds += self._legacy_trees(path, len(saved.worlds))
         except LSysError as err:
             kept = path.with_name(path.name + ".broken")
             path.replace(kept)
             game.say(text("messages.load_failed", name=path.name, error=err.message, kept=kept.name), 12)
             return None
-        garden = Garden(worlds, current, seeds)
-        seconds = away_seconds(game.wall_clock(), saved_at, game.rules.away.cap_days)
+        garden = saved.garden()
+        if saved.dropped:
+            game.say(text("messages.lineage_dropped", count=saved.dropped, name=path.name), 8)
+        seconds = away_seconds(game.wall_clock(), saved.saved_at, game.rules.away.cap_days)
         summary = live_away(garden, seconds)
         self.last_summary = summary
         if summary.anything:
@@ -105,8 +108,9 @@ class SaveKeeper:
         path = path or self.autosave_path
         try:
             path.parent.mkdir(parents=True, exist_ok=True)
-            save_garden(game.garden.worlds, path, game.garden.current, game.config.lsystem.name, game.wall_clock(),
-                        game.garden.seeds)
+            garden = game.garden
+            save_garden(garden.worlds, path, garden.current, game.config.lsystem.name, game.wall_clock(),
+                        garden.seeds, garden.family, garden.rocks)
             if path == self.autosave_path:
                 for legacy in path.parent.glob("garden-*.arbor"):
                     legacy.unlink()

@@ -1,0 +1,142 @@
+"""The family-tree screen: the garden's trees and their known ancestors, one row per generation, each
+with a thumbnail (a side-view sketch of the tree as it stands; a sapling icon for ancestors no longer
+in the garden), parents joined to children; a tap on a tree of the garden cares for it."""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+import numpy as np
+import pygame
+
+from engine.life.lineage import Lineage
+from game.render.icons import draw_icon
+from game.strings import text
+
+if TYPE_CHECKING:
+    from engine.life.world import World
+    from game.screens.game import Game
+
+THUMB = 112  # pixels: a thumbnail's side
+MAX_SHOWN = 24  # members drawn at most (the garden's trees first, then their nearest ancestors)
+INK, PANEL, LINE = (245, 245, 235), (18, 28, 22, 235), (150, 190, 120)
+
+
+def sketch(world: World, size: int = THUMB) -> pygame.Surface:
+    """A side view of ``world``'s tree: wood as lines as wide as the branches, leaves as green dots."""
+    surface = pygame.Surface((size, size), pygame.SRCALPHA)
+    turtle = world.tree.geometry(world.clocks(), lod=3).turtle
+    segs = turtle.segments
+    if not len(segs):
+        return surface
+    pts = np.concatenate([segs.start, segs.end])
+    lo, hi = pts.min(axis=0), pts.max(axis=0)
+    scale = (size - 8) / max(float(hi[1] - lo[1]), float(hi[0] - lo[0]), 1e-6)
+    mid = (lo[0] + hi[0]) / 2
+
+    def px(p: np.ndarray) -> np.ndarray:
+        return np.stack([size / 2 + (p[:, 0] - mid) * scale, size - 4 - (p[:, 1] - lo[1]) * scale], axis=1)
+
+    a, b = px(segs.start), px(segs.end)
+    widths = np.clip(segs.radius * 2 * scale, 1, 6).astype(int)
+    for p, q, w in zip(a, b, widths, strict=True):
+        pygame.draw.line(surface, (120, 92, 66), p, q, int(w))
+    leaves = turtle.leaves.position
+    if len(leaves):
+        step = max(len(leaves) // 300, 1)
+        for x, y in px(leaves[::step]):
+            pygame.draw.circle(surface, (70, 150, 60), (int(x), int(y)), 2)
+    return surface
+
+
+class FamilyScreen:
+    """Layout, drawing and taps of the family tree (see module docstring)."""
+
+    def __init__(self, game: Game) -> None:
+        self.game = game
+        self.visible = False
+        self.boxes: list[tuple[pygame.Rect, Lineage]] = []
+        self._thumbs: dict[tuple, pygame.Surface] = {}
+
+    def open(self) -> None:
+        """Show the screen (the menu closes)."""
+        self.visible = True
+        self.game.menu.hide()
+
+    def members(self) -> list[Lineage]:
+        """Who is drawn: every tree of the garden, then their known ancestors, nearest first."""
+        garden = self.game.garden
+        shown = {w.lineage.id: w.lineage for w in garden.worlds}
+        for world in garden.worlds:
+            for ancestor in garden.family.ancestors(world.lineage):
+                if len(shown) < MAX_SHOWN:
+                    shown.setdefault(ancestor.id, ancestor)
+        return list(shown.values())
+
+    def layout(self) -> None:
+        """Boxes by generation (oldest at the top), centred on each row."""
+        width, height = self.game.size
+        members = sorted(self.members(), key=lambda m: (m.generation, m.planted, m.id))
+        generations = sorted({m.generation for m in members})
+        row_h = min(THUMB + 60, (height - 90) // max(len(generations), 1))
+        thumb = max(min(THUMB, row_h - 40, (width - 40) // max(len(members), 1) - 12), 32)
+        self.boxes = []
+        for r, gen in enumerate(generations):
+            row = [m for m in members if m.generation == gen]
+            gap = width / (len(row) + 1)
+            for k, member in enumerate(row):
+                box = pygame.Rect(0, 0, thumb, thumb)
+                box.center = (int(gap * (k + 1)), 80 + r * row_h + thumb // 2)
+                self.boxes.append((box, member))
+
+    def draw(self, surface: pygame.Surface, font: pygame.font.Font, small: pygame.font.Font) -> None:
+        """The screen over the scene."""
+        if not self.visible:
+            return
+        self.layout()
+        panel = pygame.Surface(surface.get_size(), pygame.SRCALPHA)
+        panel.fill(PANEL)
+        surface.blit(panel, (0, 0))
+        surface.blit(font.render(text("family.title"), True, INK), (24, 20))
+        hint = small.render(text("family.hint"), True, INK)
+        surface.blit(hint, (surface.get_width() - hint.get_width() - 24, 28))
+        where = {lin.id: box for box, lin in self.boxes}
+        for box, lin in self.boxes:
+            for parent in lin.parents:
+                if parent in where:
+                    pygame.draw.line(surface, LINE, where[parent].midbottom, box.midtop, 3)
+        worlds = {w.lineage.id: (i, w) for i, w in enumerate(self.game.garden.worlds)}
+        for box, lin in self.boxes:
+            here = worlds.get(lin.id)
+            cared = here is not None and here[1] is self.game.world
+            pygame.draw.rect(surface, (40, 60, 38), box, border_radius=8)
+            pygame.draw.rect(surface, (250, 230, 120) if cared else LINE, box, width=3 if cared else 1,
+                             border_radius=8)
+            if here is not None:
+                surface.blit(pygame.transform.smoothscale(self._thumb(here[1]), box.size), box.topleft)
+            else:
+                draw_icon(surface, "sapling", box.inflate(-box.width // 3, -box.height // 3))
+            label = text("family.tree", number=here[0] + 1) if here else text("family.gone")
+            for k, line in enumerate((f"{lin.species} - {text('family.generation', n=lin.generation)}", label)):
+                rendered = small.render(line, True, INK)
+                if rendered.get_width() > box.width + 40:
+                    rendered = pygame.transform.smoothscale_by(rendered, (box.width + 40) / rendered.get_width())
+                surface.blit(rendered, rendered.get_rect(midtop=(box.centerx, box.bottom + 2 + 18 * k)))
+
+    def _thumb(self, world: World) -> pygame.Surface:
+        key = (id(world), len(world.tree.lstring), round(world.sim.state.length_time))
+        if key not in self._thumbs:
+            self._thumbs = {k: v for k, v in self._thumbs.items() if k[0] != id(world)}
+            self._thumbs[key] = sketch(world)
+        return self._thumbs[key]
+
+    def tap(self, x: float, y: float) -> None:
+        """A tap on a tree of the garden cares for it; any tap closes the screen."""
+        game = self.game
+        self.visible = False
+        hit = next((lin for box, lin in self.boxes if box.collidepoint(x, y)), None)
+        if hit is None:
+            return
+        index = next((i for i, w in enumerate(game.garden.worlds) if w.lineage.id == hit.id), None)
+        if index is not None:
+            game.care.care_for(index)
