@@ -243,3 +243,47 @@ def test_deeply_nested_side_branches_write_without_recursion_limits():
     segments = interpret(parse_lstring(text), TurtleConfig(width=0.05)).segments
     assert len(segments) == n - 1
     assert np.linalg.norm(segments.end[:, None, :] - position[None, 1:, :], axis=2).min(axis=0).max() < 1e-6
+
+
+def jittered(points: np.ndarray, rng, amount: float = 0.03) -> np.ndarray:
+    """A hand-drawn version of ``points``: wobble and a shaky hand."""
+    return points + rng.normal(0.0, amount, points.shape) + np.sin(np.arange(len(points))[:, None] * 0.7) * amount
+
+
+def test_every_lobe_fills_from_the_branches_near_it_drawn_and_grown():
+    """Seed 004 section 5: all the tree's nodes grow toward the attractors in their lobes. Two drawn
+    branches leaning left and right, a lobe over each, hand-drawn: both lobes get branches."""
+    rng = np.random.default_rng(11)
+    modeler = Modeler()
+    u = np.linspace(0, 1, 120)
+    modeler.add_stroke(Stroke(jittered(np.stack([0 * u, 3.0 * u, 0 * u], 1), rng), np.linspace(0, 1.2, 120)))
+    for side in (-1, 1):
+        path = np.stack([side * 2.2 * u, 2.4 + 1.6 * u, 0.3 * u], 1)
+        modeler.add_stroke(Stroke(jittered(path, rng), np.linspace(0, 0.9, 120)))
+    drawn = interpret(modeler.lstring, TurtleConfig()).segments
+    a = np.linspace(0, 2 * np.pi, 90, endpoint=False)
+    lobes = [lobe_from_outline(jittered(np.stack([side * 2.6 + 1.2 * np.cos(a), 4.6 + 1.1 * np.sin(a), 0 * a], 1),
+                                        rng, 0.02), depth=0.8) for side in (-1, 1)]
+    added = grow_crown(modeler, lobes, np.random.default_rng(2), per_lobe=600)
+    segments = interpret(modeler.lstring, TurtleConfig()).segments
+    gap = np.linalg.norm(segments.end[:, None, :] - drawn.end[None], axis=2).min(axis=1)
+    new = segments.end[gap > 1e-9]
+    per_lobe = [int(lobe.contains(new).sum()) for lobe in lobes]
+    assert added > 100 and len(new) == added and min(per_lobe) > 0.25 * max(per_lobe), per_lobe
+    assert np.linalg.norm(drawn.end[:, None, :] - segments.end[None], axis=2).min(axis=1).max() < 1e-9  # kept
+    is_new = gap > 1e-9
+    roots = np.flatnonzero(is_new & (segments.parent >= 0) & ~is_new[np.maximum(segments.parent, 0)])
+    sides = np.sign(segments.end[segments.parent[roots], 0])
+    assert (sides < 0).sum() >= 2 and (sides > 0).sum() >= 2  # branches leave both drawn branches
+
+
+def test_a_cluster_across_the_back_is_not_split_in_two():
+    """Attractors straddling azimuth +-180 deg form one cluster: one branch, not two."""
+    skeleton = Skeleton(np.zeros((1, 3)), np.array([-1]), np.array([[0.0, 1.0, 0.0]]), np.array([True]))
+    a = np.radians(np.array([170.0, 175.0, -175.0, -170.0]))
+    points = np.stack([np.cos(a), np.full(4, 0.3), np.sin(a)], 1) * 2.0
+    from engine.modeling.crown import _grow_step
+
+    nodes, directions, _ = _grow_step(skeleton, points, np.array([0]), np.zeros(4, np.int64), np.array([5.0]),
+                                      np.radians(40.0), 0.5)
+    assert len(nodes) == 1 and directions[0, 0] < -0.5

@@ -116,9 +116,11 @@ def _grow_step(skeleton: Skeleton, points, active, owner_local, to_surface, t, s
     vec = points - base
     d = np.sqrt(np.einsum("ij,ij->i", vec, vec))
     toward = vec / np.maximum(d, 1e-12)[:, None]
-    az = np.arctan2(toward[:, 2], toward[:, 0])
-    el = np.arcsin(np.clip(toward[:, 1], -1.0, 1.0))
     m = len(active)
+    mean = np.stack([np.bincount(owner_local, weights=toward[:, c], minlength=m) for c in range(3)], axis=1)
+    mean_az = np.arctan2(mean[:, 2], mean[:, 0])  # azimuths relative to the cluster's own mean, so a
+    az = np.angle(np.exp(1j * (np.arctan2(toward[:, 2], toward[:, 0]) - mean_az[owner_local])))  # cluster
+    el = np.arcsin(np.clip(toward[:, 1], -1.0, 1.0))  # that straddles +-180 deg is not split in two
     lo_az, hi_az = np.full(m, np.inf), np.full(m, -np.inf)
     lo_el, hi_el = np.full(m, np.inf), np.full(m, -np.inf)
     np.minimum.at(lo_az, owner_local, az)
@@ -246,14 +248,14 @@ def _piece(turn, pitch, length, start, d, up, variation, diameter) -> str:
 
 def grow_crown(modeler: Modeler, lobes: list[Lobe], rng: np.random.Generator, per_lobe: int = 1500,
                max_nodes: int = 6000, tip: str = "", step_fraction: float = 0.12) -> int:
-    """Grow the modeled tree into ``lobes`` (seed 004) and commit the branches to its L-string
-    (undoable). Growth starts at the drawn tip nearest the lobes, or where nothing is drawn yet at a
-    straight trunk from the base into the lowest lobe; ``tip`` ends every new branch (a leaf in the game).
-    Branch pieces are ``step_fraction`` of a lobe's size long, so a crown looks alike at any scale.
-    Returns the number of branch pieces added."""
+    """Grow the modeled tree into ``lobes`` (seed 004 section 5) and commit the branches to its
+    L-string (undoable). Every node of the tree, drawn or grown, may grow toward the attractors of the
+    lobes (each attractor joins its nearest node), so every lobe fills from the branches nearest to it;
+    where nothing is drawn yet, a straight trunk grows from the base into the lowest lobe first.
+    ``tip`` ends every new branch (a leaf in the game). Branch pieces are ``step_fraction`` of a lobe's
+    size long, so a crown looks alike at any scale. Returns the number of branch pieces added."""
     surface = np.concatenate([lobe.vertices for lobe in lobes])
     attractors = np.concatenate([surface] + [lobe.sample_inside(per_lobe, rng) for lobe in lobes])
-    centre = surface.mean(axis=0)
     step = step_fraction * float(np.mean([np.ptp(lobe.vertices, axis=0).max() for lobe in lobes]))
     sizes = {"step": step, "kill": step / 2, "stop": step / 4, "max_nodes": max_nodes}
     segs = modeler.segments() if len(modeler.lstring) else None
@@ -266,24 +268,58 @@ def grow_crown(modeler: Modeler, lobes: list[Lobe], rng: np.random.Generator, pe
         kept = modeler.lstring  # modules that draw nothing yet (a new sapling's apex) stay
         modeler.commit(concat(parse_lstring(f"[{text}]"), kept) if len(kept) else parse_lstring(text))
         return len(grown.parent) - 1
-    tips = np.setdiff1d(np.arange(len(segs)), segs.parent)
-    k = int(tips[np.argmin(np.linalg.norm(segs.end[tips] - centre, axis=1))])
-    heading = segs.frame[k][:, 0]
-    start = Skeleton(np.stack([segs.start[k], segs.end[k]]), np.array([-1, 0]), np.stack([heading, heading]),
-                     np.array([False, True]))
+    m = len(segs)
+    sizes["max_nodes"] = m + max_nodes
+    start = Skeleton(segs.end.copy(), segs.parent.copy(), segs.frame[:, :, 0].copy(), np.ones(m, bool))
     grown = grow_into_lobes(start, lobes, attractors, **sizes)
-    if len(grown.parent) == 2:
+    if len(grown.parent) == m:
         return 0
-    diameters = pipe_diameters(grown, 2.0 * float(segs.radius_end[k]), root=1)
-    body = parse_lstring(skeleton_text(grown, root=1, frame=segs.frame[k], diameters=diameters, tip=tip))
-    ls, module = modeler.lstring, int(segs.module[k])
-    end = int(brackets.branch_ends(ls.sym, np.array([module]))[0])
+    modeler.commit(_graft(modeler.lstring, segs, grown, tip))
+    return len(grown.parent) - m
+
+
+TWIG = 0.03  # diameter of a crown branch's last piece (the pipe model widens it toward the tree)
+
+
+def _graft(ls, segs, grown: Skeleton, tip: str):
+    """The L-string with the grown branches inserted where they leave the tree: after the module of the
+    segment whose end they start from, each in a bracket (the tree's own axes continue unchanged)."""
+    m = len(segs)
+    parent = grown.parent.copy()
+    parent[:m] = -1  # the tree's own nodes: only their new children are written
+    detached = Skeleton(grown.position, parent, grown.heading, grown.active)
+    tips = (np.bincount(parent[parent >= 0], minlength=len(parent)) == 0).astype(float)
+    for node in range(len(tips) - 1, m - 1, -1):  # children always come after their parents
+        if parent[node] >= m:
+            tips[parent[node]] += tips[node]
+    raw = TWIG * np.sqrt(np.maximum(tips, 1.0))
+    first = np.arange(len(parent))  # the first piece of the branch each new node is on
+    scale = np.ones(len(parent))
+    for node in range(m, len(parent)):  # parents first: a branch is never wider than where it starts
+        if parent[node] < m:
+            scale[node] = min(1.0, 2.0 * float(segs.radius_end[grown.parent[node]]) / raw[node])
+        else:
+            first[node] = first[parent[node]]
+    diameters = raw * scale[first]
+    sources = np.unique(parent[m:][parent[m:] < m])
+    is_tip = np.bincount(segs.parent[segs.parent >= 0], minlength=m)[sources] == 0
+    at = segs.module[sources]
+    ends = brackets.branch_ends(ls.sym, at)
+    parts, last = [], 0
     index = np.arange(len(ls))
-    # the crown continues the tip's axis (one smooth joint, no cap inside the wood); what followed the
-    # tip on its branch (buds, leaves, an apex) stays at the tip in a bracket of its own
-    rest = ls.select((index > module) & (index < end))
-    parts = [ls.select(index <= module)]
-    if len(rest):
-        parts += [parse_lstring("["), rest, parse_lstring("]")]
-    modeler.commit(concat(*parts, body, ls.select(index >= end)))
-    return len(grown.parent) - 2
+    for k in np.argsort(at, kind="stable"):
+        pos = int(at[k]) + 1
+        text = skeleton_text(detached, root=int(sources[k]), frame=segs.frame[sources[k]], diameters=diameters,
+                             tip=tip)
+        parts.append(ls.select((index >= last) & (index < pos)))
+        if is_tip[k]:  # the crown continues a tip's axis (one smooth joint); what followed the tip on
+            rest = ls.select((index >= pos) & (index < ends[k]))  # its branch (buds, leaves, an apex)
+            if len(rest):  # stays at the tip in a bracket of its own
+                parts += [parse_lstring("["), rest, parse_lstring("]")]
+            parts.append(parse_lstring(text))
+            last = int(ends[k])
+        else:
+            parts.append(parse_lstring("[" + text + "]"))
+            last = pos
+    parts.append(ls.select(index >= last))
+    return concat(*parts)
