@@ -57,20 +57,22 @@ def test_added_blossoms_grow_in_and_show_only_inside():
 
 
 def test_bend_turns_branches_down_only_inside():
+    from engine.modeling.bend import bend_region
+
     ls = parse_lstring("F(1)[&(30)F(1)F(1)]F(1)[&(30)F(1)F(1)]F(1)")
     pos = module_positions(ls)
-    region = Sphere((0.0, 2.2, 0.0), 0.5)  # the upper branch's base only
-    new, changed, _ = apply_edit(ls, pos, region, SETS["bend"])
+    second = np.flatnonzero(ls.sym == ord("F"))[5]  # the upper branch's second piece
+    new, changed = bend_region(ls, ls, Sphere(tuple(pos[second]), 0.2), degrees=20.0)
     assert changed == 1
     before, after = interpret(ls).segments.end, interpret(new).segments.end
     moved = np.linalg.norm(after - before, axis=1) > 1e-9
-    assert moved.sum() == 2 and after[moved][:, 1].max() < before[moved][:, 1].max()
+    assert moved.sum() == 1 and after[moved][0, 1] < before[moved][0, 1]
 
 
 def test_grow_in_an_empty_region_starts_a_new_axis_there():
     ls = parse_lstring("F(1)F(1)")
     pos = module_positions(ls)
-    new, changed, _ = apply_edit(ls, pos, Sphere((2.0, 0.5, 1.0), 0.3), SETS["bend"], new_axis="F(1)")
+    new, changed, _ = apply_edit(ls, pos, Sphere((2.0, 0.5, 1.0), 0.3), SETS["grow"], new_axis="F(1)")
     assert changed == -1
     segs = interpret(new).segments
     assert np.isclose(np.linalg.norm(segs.start - [2.0, 0.5, 1.0], axis=1).min(), 0.0, atol=1e-6)

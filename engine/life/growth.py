@@ -27,7 +27,16 @@ import numpy as np
 
 from engine.geometry.mesh import LOD_LEVELS, tree_mesh
 from engine.geometry.tree import TreeGeometry
-from engine.geometry.turtle import Leaves, Segments, TurtleConfig, TurtleResult, interpret, set_radii, subtree_sums
+from engine.geometry.turtle import (
+    Leaves,
+    Segments,
+    TurtleConfig,
+    TurtleResult,
+    interpret,
+    module_positions,
+    set_radii,
+    subtree_sums,
+)
 from engine.life.collide import Obstacles
 from engine.life.light import memory_weight
 from engine.lsystem import brackets
@@ -117,6 +126,8 @@ class GrowingTree:
     shed_total: int = 0
     fallen: list[Fallen] = field(default_factory=list)
     last_report: StepReport | None = None
+    confine: object | None = None  # a region (engine/modeling/regions.py): rewrites only inside it ...
+    confine_left: int = 0  # ... for this many more rewrites (seed 000 Fig. 11's region-limited growth)
 
     def __post_init__(self) -> None:
         self.deriver = Deriver(self.system, seed=self.seed, budget=self.budget)
@@ -138,10 +149,18 @@ class GrowingTree:
     def rewrite(self, length_time: float, girth_time: float, resources: float, leaf_vigour: float = 1.0,
                 season: dict[str, float] | None = None) -> StepReport:
         """One derivation step at the given clocks (new modules are born now), then empty brackets go.
-        ``season``: the season's externs (SF, AF, SP; see Simulation.season_externs)."""
+        ``season``: the season's externs (SF, AF, SP; see Simulation.season_externs). While a region
+        confines growth (``confine``, for ``confine_left`` more rewrites) only modules inside it change."""
         extern = {"T": length_time, "G": girth_time, "DT": length_time - self.last_rewrite_T, "R": resources,
                   "B": self.budget_used, "WL": leaf_vigour, "SF": 1.0, "AF": 0.0, "SP": 0.0, **(season or {})}
-        new, self.last_report = self.deriver.step(self.lstring, extern)
+        only = None
+        if self.confine is not None and self.confine_left > 0:
+            view = render_view(self.lstring, Clocks(length_time, girth_time, 0.0), self.geometry_constants)
+            only = self.confine.contains(module_positions(view, TurtleConfig(pipe_model=False, leaves_at_tips=0)))
+            self.confine_left -= 1
+        elif self.confine is not None:
+            self.confine = None
+        new, self.last_report = self.deriver.step(self.lstring, extern, only=only)
         self.lstring = remove_empty_branches(new)
         self.last_rewrite_T = length_time
         return self.last_report

@@ -2,9 +2,10 @@
 whose turtle position lies inside a region of interest.
 
 The built-in sets are ordinary .lsys files (assets/edits/): add or erase leaves, add or erase
-blossoms, bend (gravitropism) and grow (the game tree's buds and apices in the region wake and are
+blossoms and grow (the game tree's buds and apices in the region wake and are
 due at once; an empty region gets a new axis, seed 000 4.2). A system's own productions can be
-applied in a region the same way. Prune removes the subtrees that start inside the region.
+applied in a region the same way. Prune removes the subtrees that start inside the region; Bend turns the
+pieces inside it toward the ground in world terms (engine/modeling/bend.py).
 """
 
 from __future__ import annotations
@@ -19,8 +20,8 @@ from engine.lsystem.lstring import LString
 from engine.lsystem.lsys import LSystem, load_lsystem
 from engine.modeling.regions import seed_in_region
 
-LSYS_EDITS = ("add_leaves", "erase_leaves", "add_blossoms", "erase_blossoms", "bend", "grow")
-EDIT_SETS = (*LSYS_EDITS, "prune")  # prune removes subtrees: not a rewrite, see prune_region
+LSYS_EDITS = ("add_leaves", "erase_leaves", "add_blossoms", "erase_blossoms", "grow")
+EDIT_SETS = (*LSYS_EDITS[:4], "bend", "grow", "prune")  # bend and prune are not rewrites (bend.py, prune_region)
 WOOD = np.zeros(256, bool)
 WOOD[[ord("F"), ord("I")]] = True
 

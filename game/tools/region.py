@@ -15,6 +15,7 @@ import pygame
 from engine.geometry.turtle import TurtleConfig, module_positions
 from engine.life.growth import new_axis_text, render_view
 from engine.lsystem.lstring import LString
+from engine.modeling.bend import bend_region
 from engine.modeling.edits import apply_edit, prune_region
 from engine.modeling.regions import Sphere, Supertoroid, fit_supertoroid
 from game.render.camera import OrbitCamera, project_ball, project_points
@@ -24,6 +25,7 @@ from game.tools.symbols import draw_symbols
 
 CONTOUR_PIXELS = 80.0  # a drag at least this tall, and twice as tall as wide, is a contour
 GROUPS = {"grow": "grown", "prune": "pruned_region"}  # edits with their own message
+GROW_STEPS = 20  # growth steps a Grow region keeps all growth inside it
 
 
 class RegionTool:
@@ -124,12 +126,17 @@ class RegionTool:
         axis = new_axis_text(world.tree.system, now, clocks.girth_time) if edit == "grow" else None
         if edit == "prune":
             (new, changed), held = prune_region(ls, self.positions(ls), self.region), 0
+        elif edit == "bend":
+            (new, changed), held = bend_region(ls, render_view(ls, clocks, world.tree.geometry_constants),
+                                               self.region), 0
         else:
             new, changed, held = apply_edit(ls, self.positions(ls), self.region, system, extern, new_axis=axis,
                                             budget=world.tree.deriver.budget)
         if changed:
             mode.modeler.commit(new)
             world.tree.lstring = new
+        if edit == "grow":  # the tree grows only inside the region for its next growth steps
+            world.tree.confine, world.tree.confine_left = self.region, GROW_STEPS
         key = "messages.new_axis" if changed < 0 else f"messages.{GROUPS.get(edit, 'edited')}"
         message = text(key, edit=text(f"edits.{edit}"), count=changed)
         mode.game.say(message + (" " + text("messages.budget") if held else ""))

@@ -1,0 +1,118 @@
+"""Modeler fidelity (seeds 000, 002, 004): region growth that stays in the region, a bend toward the
+ground in world terms, growth points that keep what was drawn, lobes that are consistent."""
+
+import copy
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from engine.geometry.turtle import TurtleConfig, module_positions
+from engine.life.growth import Clocks, new_axis_text, render_view
+from engine.life.rules import load_rules
+from engine.life.world import World
+from engine.lsystem.lsys import load_lsystem
+from engine.modeling.edits import apply_edit, load_edit_sets
+from engine.modeling.regions import Sphere
+
+ASSETS = Path(__file__).resolve().parent.parent / "assets"
+
+
+@pytest.fixture(scope="module")
+def grown():
+    rules = load_rules(ASSETS / "rules.toml", pace="demo")
+    rules.seasons.enabled = False
+    world = World(load_lsystem(ASSETS / "lsystems" / "game_tree.lsys"), rules, seed=3)
+    world.sim.state.sun_meter = world.sim.state.water_meter = 0.9
+    for _ in range(1500):
+        world.apply("water", float(world.sim.state.water_meter < 0.6))
+        world.step(0.5)
+    return world
+
+
+def positions(world: World) -> np.ndarray:
+    view = render_view(world.tree.lstring, Clocks(world.sim.state.length_time, world.sim.state.girth_time, 0.0),
+                       world.tree.geometry_constants)
+    return module_positions(view, TurtleConfig(pipe_model=False, leaves_at_tips=0))
+
+
+def grow_steps(world: World, rewrites: int) -> None:
+    target = world.tree.last_rewrite_T + rewrites * world.rules.growth.rewrite_step
+    while world.tree.last_rewrite_T < target - 1e-9:
+        world.apply("water", float(world.sim.state.water_meter < 0.6))
+        world.step(0.5)
+
+
+@pytest.mark.parametrize("confined", [True, False])
+def test_region_grow_keeps_new_growth_inside_the_region(grown, confined):
+    """Seed 000 Fig. 11: rules applied only inside the region, for as long as it is active."""
+    world = copy.deepcopy(grown)
+    pos = positions(world)
+    ls = world.tree.lstring
+    internodes = np.flatnonzero(ls.sym == ord("I"))
+    side = internodes[np.argmax(pos[internodes, 0])]  # the crown's far side: a branch, not the leader
+    region = Sphere(tuple(pos[side]), 2.5)
+    grow = load_edit_sets(ASSETS / "edits")["grow"]
+    now = world.sim.state.length_time
+    new, _, _ = apply_edit(ls, pos, region, grow, {"NOW": now, "P": 4.0},
+                                 new_axis=new_axis_text(world.system, now, world.sim.state.girth_time))
+    world.tree.lstring = new
+    if confined:
+        world.tree.confine, world.tree.confine_left = region, 20
+    t0 = world.sim.state.length_time
+    grow_steps(world, 20)
+    ls, pos = world.tree.lstring, positions(world)
+    born = np.flatnonzero((ls.sym == ord("I")) & (ls.nparams == 5))
+    born = born[ls.params[ls.offsets[born]] > t0]
+    inside = region.contains(pos[born]).mean()
+    assert len(born) >= 5
+    if confined:
+        assert (inside >= 0.95 and world.tree.confine is None) or world.tree.confine_left == 0
+    else:
+        assert inside < 0.6  # without the region's hold, the tree grows everywhere
+
+
+def drawn_tree(rng):
+    """A hand-drawn trunk and two branches, one curving in its own turn plane (jittered strokes)."""
+    from engine.modeling.modeler import Modeler
+    from engine.modeling.strokes import Stroke
+
+    modeler = Modeler()
+    u = np.linspace(0, 1, 120)
+    modeler.add_stroke(Stroke(np.stack([0 * u, 3 * u, 0 * u], 1) + rng.normal(0, 0.02, (120, 3)),
+                              np.linspace(0, 1, 120)))
+    for side in (-1, 1):
+        path = np.stack([side * 2.2 * u, 2.0 + 1.2 * np.sin(np.pi * u), 0.4 * u], 1) + rng.normal(0, 0.02, (120, 3))
+        modeler.add_stroke(Stroke(path, np.linspace(0, 1, 120)))
+    return modeler
+
+
+def test_bend_turns_every_branch_down_in_world_terms_and_keeps_stored_frames(grown):
+    from engine.geometry.turtle import interpret
+    from engine.modeling.bend import bend_region
+
+    cfg = TurtleConfig(pipe_model=False, leaves_at_tips=0)
+    ls = drawn_tree(np.random.default_rng(1)).lstring
+    segs = interpret(ls, cfg).segments
+    tips = np.setdiff1d(np.arange(len(segs)), segs.parent)
+    side = tips[np.abs(segs.end[tips, 0]) > 1.0]  # the two branch tips
+    new, count = bend_region(ls, ls, Sphere((0.0, 2.5, 0.0), 3.5))
+    bent = interpret(new, cfg).segments
+    order = np.argsort(bent.module)  # (the turns added shift the modules; the pieces keep their order)
+    assert count > 100 and len(bent) == len(segs)
+    assert np.all(bent.end[order][side, 1] < segs.end[side, 1] - 0.2)  # every branch tip goes down
+    drawn = np.flatnonzero((new.sym == ord("F")) & (new.nparams == 11))
+    row = np.full(len(new), -1)
+    row[bent.module] = np.arange(len(bent))
+    off = new.offsets[drawn]
+    stored = np.stack([new.params[off + k] for k in range(1, 10)], 1)
+    actual = np.concatenate([bent.start[row[drawn]], bent.frame[row[drawn], :, 0], bent.frame[row[drawn], :, 2]], 1)
+    assert np.abs(stored - actual).max() < 1e-6  # V, H, U of every piece as the turtle draws it
+    world = copy.deepcopy(grown)  # the game tree's grown internodes bend too
+    view = render_view(world.tree.lstring, world.clocks(), world.tree.geometry_constants)
+    before = interpret(view, cfg).segments
+    crown = Sphere(tuple(before.end[np.argmax(before.end[:, 0])]), 3.0)
+    new, count = bend_region(world.tree.lstring, view, crown)
+    after = interpret(render_view(new, world.clocks(), world.tree.geometry_constants), cfg).segments
+    moved = crown.contains(before.start)
+    assert count > 0 and after.end[:, 1][np.argsort(after.module)][moved].mean() < before.end[moved, 1].mean()
