@@ -1,9 +1,10 @@
 """Lobes (seed 004 section 4): the crown drawn as a few closed strokes, as closed meshes.
 
 Closed strokes drawn around the crown at different heights are ordered along the lobe's axis and
-given the same number of points by arc-length interpolation; each loop starts at the point whose
-barycentric direction (eq. 2) is closest to the previous loop's start; strips join neighbouring
-loops and fans close both ends, every triangle wound outwards: a closed manifold. One silhouette
+given the same number of points by arc-length interpolation; rings tilted past their neighbours are
+tilted less so strips cannot fold over; each loop starts at the point whose barycentric direction
+(eq. 2) is closest to the previous loop's start; strips join neighbouring loops and fans close both
+ends, every triangle wound the same way, outwards: a closed manifold. One silhouette
 drawn on a plane becomes a lobe through horizontal rings. Lobes can be moved, scaled, turned,
 squeezed and have stroke points dragged, with undo; ``Crossings`` tests points against many lobes.
 """
@@ -218,7 +219,11 @@ def lobe_from_loops(loops: list[np.ndarray], points_per_loop: int = 32,
     span = centers.max(axis=0) - centers.min(axis=0)
     axis = np.eye(3)[int(np.argmax(span))] if span.max() > 1e-9 else np.array([0.0, 1.0, 0.0])
     order = np.argsort(centers @ axis)
-    rings = [_counter_clockwise(resample_loop(np.asarray(loops[i], float), points_per_loop), axis) for i in order]
+    rings = _stacked([resample_loop(np.asarray(loops[i], float), points_per_loop) for i in order], axis)
+    rings[0] = _counter_clockwise(rings[0], axis)
+    for k in range(1, len(rings)):  # every ring runs the way its neighbour does: strips never twist
+        if _normal(rings[k]) @ _normal(rings[k - 1]) < 0:
+            rings[k] = rings[k][::-1].copy()
     for k in range(1, len(rings)):  # eq. 2: start where the barycentric directions agree best
         start = barycentric_directions(rings[k - 1])[0]
         rings[k] = np.roll(rings[k], -int(np.argmax(barycentric_directions(rings[k]) @ start)), axis=0)
@@ -240,10 +245,11 @@ def lobe_from_loops(loops: list[np.ndarray], points_per_loop: int = 32,
             verts.append(inner)
             count += len(inner)
             faces.append(cap_faces)
-        else:  # a flat fan (wound outwards below)
-            faces.append(np.stack([np.full(n, centre), end * n + (i + 1) % n, end * n + i], 1))
+        else:  # a flat fan, wound like the strips
+            ring = end * n + i, end * n + (i + 1) % n
+            faces.append(np.stack([np.full(n, centre), *(ring[::-1] if end == 0 else ring)], 1))
     all_verts = np.concatenate(verts)
-    return Lobe(all_verts, _wind_outwards(all_verts, np.concatenate(faces).astype(np.int64)), n, len(rings))
+    return Lobe(all_verts, _outwards(all_verts, _consistent(np.concatenate(faces).astype(np.int64))), n, len(rings))
 
 
 def _arch_cap(ring: np.ndarray, first: int, stroke: np.ndarray, next_index: int) -> tuple[np.ndarray, np.ndarray]:
@@ -296,19 +302,64 @@ def _zip_strips(ids_a: np.ndarray, pts_a: np.ndarray, ids_b: np.ndarray, pts_b: 
 
 
 def _counter_clockwise(ring: np.ndarray, axis: np.ndarray) -> np.ndarray:
+    return ring if _normal(ring) @ axis > 0 else ring[::-1].copy()
+
+
+def _normal(ring: np.ndarray) -> np.ndarray:
+    """The area vector of a closed ring (its plane's normal, by the way it runs)."""
     c = ring.mean(axis=0)
-    normal = np.cross(ring - c, np.roll(ring, -1, axis=0) - c).sum(axis=0)
-    return ring if normal @ axis > 0 else ring[::-1].copy()
+    return np.cross(ring - c, np.roll(ring, -1, axis=0) - c).sum(axis=0)
 
 
-def _wind_outwards(verts: np.ndarray, faces: np.ndarray) -> np.ndarray:
-    """Flip any triangle whose normal points towards the lobe's centre (lobes are star-shaped)."""
-    tri = verts[faces]
-    normal = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
-    inward = np.einsum("ij,ij->i", normal, tri.mean(axis=1) - verts.mean(axis=0)) < 0
+def _stacked(rings: list[np.ndarray], axis: np.ndarray) -> list[np.ndarray]:
+    """Rings tilted so far that they would reach past their neighbours along the lobe's axis are
+    tilted less (their points' offsets along the axis shrink about the ring's centre) until each
+    keeps to its own slab: stitched strips then never fold over (drawn rings at 90 deg included)."""
+    centres = np.array([r.mean(axis=0) @ axis for r in rings])
+    gaps = np.diff(centres)
+    out = []
+    for k, ring in enumerate(rings):
+        room = min(gaps[k - 1] if k > 0 else np.inf, gaps[k] if k < len(gaps) else np.inf)
+        along = (ring - ring.mean(axis=0)) @ axis
+        reach = float(np.abs(along).max())
+        shrink = 1.0 if not np.isfinite(room) or reach <= 0.45 * room else 0.45 * room / reach
+        out.append(ring - ((1.0 - shrink) * along)[:, None] * axis)
+    return out
+
+
+def _consistent(faces: np.ndarray) -> np.ndarray:
+    """Faces flipped where needed so every shared edge is crossed in opposite directions (a walk over
+    the faces from the first; a lobe has a few hundred)."""
     faces = faces.copy()
-    faces[inward] = faces[inward][:, ::-1]
+    edges: dict[tuple[int, int], list[int]] = {}
+    for f, (a, b, c) in enumerate(faces.tolist()):
+        for u, v in ((a, b), (b, c), (c, a)):
+            edges.setdefault((min(u, v), max(u, v)), []).append(f)
+    seen = np.zeros(len(faces), bool)
+    for first in range(len(faces)):
+        if seen[first]:
+            continue
+        seen[first], todo = True, [first]
+        while todo:
+            f = todo.pop()
+            a, b, c = faces[f].tolist()
+            for u, v in ((a, b), (b, c), (c, a)):
+                for g in edges[(min(u, v), max(u, v))]:
+                    if seen[g]:
+                        continue
+                    ga, gb, gc = faces[g].tolist()
+                    if (u, v) in ((ga, gb), (gb, gc), (gc, ga)):  # the same direction: flip it
+                        faces[g] = faces[g][::-1]
+                    seen[g] = True
+                    todo.append(g)
     return faces
+
+
+def _outwards(verts: np.ndarray, faces: np.ndarray) -> np.ndarray:
+    """All faces flipped together if the (consistently wound) mesh encloses a negative volume."""
+    tri = verts[faces]
+    volume = np.einsum("ij,ij->", tri[:, 0], np.cross(tri[:, 1], tri[:, 2]))
+    return faces if volume >= 0 else faces[:, ::-1].copy()
 
 
 def lobe_from_outline(outline: np.ndarray, depth: float = 1.0, rings: int = 7) -> Lobe:
