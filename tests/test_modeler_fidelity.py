@@ -54,7 +54,7 @@ def test_region_grow_keeps_new_growth_inside_the_region(grown, confined):
     region = Sphere(tuple(pos[side]), 2.5)
     grow = load_edit_sets(ASSETS / "edits")["grow"]
     now = world.sim.state.length_time
-    new, _, _ = apply_edit(ls, pos, region, grow, {"NOW": now, "P": 4.0},
+    new, _, _ = apply_edit(ls, pos, region, grow, {"NOW": now, "P": 4.0, "IL": 1.0, "IO": 0.75, "MAXO": 4.0},
                                  new_axis=new_axis_text(world.system, now, world.sim.state.girth_time))
     world.tree.lstring = new
     if confined:
@@ -116,3 +116,20 @@ def test_bend_turns_every_branch_down_in_world_terms_and_keeps_stored_frames(gro
     after = interpret(render_view(new, world.clocks(), world.tree.geometry_constants), cfg).segments
     moved = crown.contains(before.start)
     assert count > 0 and after.end[:, 1][np.argsort(after.module)][moved].mean() < before.end[moved, 1].mean()
+
+
+def test_growth_points_wake_keeping_the_length_they_were_drawn_with(grown):
+    """A growth point A(l, x, y, z, d) becomes an apex whose internodes are as long as its piece."""
+    from engine.lsystem.derive import Deriver
+    from engine.lsystem.lstring import parse_lstring
+
+    const = grown.tree.geometry_constants
+    for length in (1.0, 0.75, 0.5625, 0.3):
+        ls = parse_lstring(f"I(0,0,0,0,0)[A({length},0,1,0,0.05)]A(0,0,0,1,0,0)")
+        extern = {"T": 10.0, "G": 1.0, "DT": 50.0, "R": 1.0, "B": 0.0, "WL": 1.0, "SF": 1.0, "AF": 0.0, "SP": 0.0}
+        woken = Deriver(grown.system, seed=1).step(ls, extern)[0]
+        apex = [woken.module(i) for i in range(len(woken)) if woken.sym[i] == ord("A")][0][1]
+        order = apex[1]
+        expected = min(max(np.log(length / const["IL"]) / np.log(const["IO"]), 1.0), 4.0)
+        assert order == pytest.approx(expected)
+        assert const["IL"] * const["IO"] ** order == pytest.approx(max(min(length, 0.75), const["IO"] ** 4))

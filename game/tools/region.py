@@ -122,7 +122,9 @@ class RegionTool:
         world = mode.game.world
         ls, clocks = world.tree.lstring, world.clocks()
         now, plastochron = clocks.length_time, float(world.tree.system.constants.get("P", 4.0))
-        extern = {"T": mode.born_visible(), "G": clocks.girth_time, "NOW": now, "P": plastochron}
+        const = world.tree.geometry_constants
+        extern = {"T": mode.born_visible(), "G": clocks.girth_time, "NOW": now, "P": plastochron, "IL": const["IL"],
+                  "IO": const["IO"], "MAXO": float(world.tree.system.constants.get("MAXO", 4.0))}
         axis = new_axis_text(world.tree.system, now, clocks.girth_time) if edit == "grow" else None
         if edit == "prune":
             (new, changed), held = prune_region(ls, self.positions(ls), self.region), 0
