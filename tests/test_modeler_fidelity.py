@@ -128,8 +128,37 @@ def test_growth_points_wake_keeping_the_length_they_were_drawn_with(grown):
         ls = parse_lstring(f"I(0,0,0,0,0)[A({length},0,1,0,0.05)]A(0,0,0,1,0,0)")
         extern = {"T": 10.0, "G": 1.0, "DT": 50.0, "R": 1.0, "B": 0.0, "WL": 1.0, "SF": 1.0, "AF": 0.0, "SP": 0.0}
         woken = Deriver(grown.system, seed=1).step(ls, extern)[0]
-        apex = [woken.module(i) for i in range(len(woken)) if woken.sym[i] == ord("A")][0][1]
+        apex = woken.module(int(np.flatnonzero(woken.sym == ord("A"))[0]))[1]
         order = apex[1]
         expected = min(max(np.log(length / const["IL"]) / np.log(const["IO"]), 1.0), 4.0)
         assert order == pytest.approx(expected)
         assert const["IL"] * const["IO"] ** order == pytest.approx(max(min(length, 0.75), const["IO"] ** 4))
+
+
+def test_a_trunk_drawn_from_the_foot_of_the_sapling_becomes_its_trunk_without_a_step(grown):
+    from engine.geometry.turtle import interpret
+    from engine.life.growth import grow_geometry
+    from engine.modeling.modeler import Modeler
+    from engine.modeling.strokes import Stroke
+
+    rules = grown.rules
+    world = World(grown.system, rules, seed=5)  # a fresh sapling
+    const, clocks = world.tree.geometry_constants, world.clocks()
+    modeler = Modeler(lstring=world.tree.lstring,
+                      segments_of=lambda ls: grow_geometry(ls, clocks, const).turtle.segments)
+    rng = np.random.default_rng(4)
+    u = np.linspace(0, 1, 150)
+    path = np.stack([0.3 * np.sin(2 * u), 4.0 * u, 0.1 * u], 1) + rng.normal(0, 0.015, (150, 3))
+    path[0] = (0.05, 0.02, 0.0)  # started at the foot, by hand
+    result = modeler.add_stroke(Stroke(path, np.linspace(0, 1.0, 150)))
+    assert result.merged and result.snapped_to is None
+    segs = grow_geometry(modeler.lstring, clocks, const).turtle.segments
+    drawn = (modeler.lstring.sym[segs.module] == ord("F"))
+    assert np.allclose(segs.start[0], 0.0) and drawn[0]  # the drawn trunk is the trunk
+    top = np.flatnonzero(drawn)[-1]
+    above = np.flatnonzero(segs.parent == top)
+    assert len(above) and segs.end[:, 1].max() > 4.0  # the sapling grows on from its top
+    ratio = segs.radius[above].max() / segs.radius_end[top]
+    assert 0.8 < ratio < 1.25  # no step where the drawn trunk meets the sapling's stem
+    roots = interpret(modeler.lstring, TurtleConfig(pipe_model=False, leaves_at_tips=0)).segments
+    assert (roots.parent < 0).sum() == 1  # one trunk, not a second one beside the first

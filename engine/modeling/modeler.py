@@ -63,7 +63,8 @@ class StrokeResult:
     pieces: int
     growth_points: int
     snapped_to: int | None = None  # module index of the F the stroke joined
-    snap_point: np.ndarray | None = None
+    snap_point: np.ndarray | None = None  # where the stroke joins the tree (the joint point, seed 000)
+    merged: bool = False  # a trunk drawn from the foot of a grown sapling, which now grows on top of it
     bypassed: int = 0  # samples moved to avoid a collision
     text: str = ""
 
@@ -348,6 +349,11 @@ class Modeler(Undoable):
         segs = self.segments()
         k, frac, dist = nearest_on_segments(path[0], segs)
         skip = np.zeros(len(segs), bool)
+        base = np.flatnonzero(segs.parent < 0)
+        at_foot = (len(base) and path[0][1] <= cfg.snap_distance
+                   and float(np.linalg.norm(path[0] - segs.start[base[0]])) <= 2 * cfg.snap_distance)
+        if at_foot and not self._is_drawn(int(segs.module[base[0]])):
+            return self._trunk_under(path, widths, growth, 2 * float(segs.radius[base[0]]), result)
         on_ground = path[0][1] <= cfg.snap_distance and dist > cfg.snap_distance + segs.radius[k]
         if not on_ground:  # every stroke off the ground belongs to the tree: join the nearest branch
             if not self._is_drawn(int(segs.module[k])):
@@ -381,6 +387,18 @@ class Modeler(Undoable):
         result.text = body
         # (at the start of the string the turtle is still at the base with its initial frame)
         return concat(parse_lstring("[" + move + body + "]"), self.lstring), result
+
+    def _trunk_under(self, path: np.ndarray, widths: np.ndarray, growth, top: float,
+                     result: StrokeResult) -> tuple[LString, StrokeResult]:
+        """A trunk drawn up from the foot of a grown sapling: it becomes the tree's trunk and the sapling
+        carries on from its top, the drawn widths easing into the sapling's stem (no step at the joint,
+        no second trunk beside the first)."""
+        path = path - path[0]
+        ease = np.linspace(0.0, 1.0, len(widths)) ** 2
+        widths = np.maximum(widths * (1 - ease) + top * ease, top)
+        body, _ = path_modules(path, INITIAL_FRAME, widths, growth, self.settings)
+        result.text, result.snap_point, result.merged = body, np.zeros(3), True
+        return concat(parse_lstring(body), self.lstring), result
 
     def _is_drawn(self, module: int) -> bool:
         return bool(self.lstring.sym[module] == DRAWN and self.lstring.nparams[module] == F_PARAMS)

@@ -40,6 +40,7 @@ class ModelingMode:
         self.points: list[np.ndarray] = []
         self.times: list[float] = []
         self.preview: LString | None = None
+        self.joint: np.ndarray | None = None  # where the stroke being drawn joins the tree (shown, seed 000)
         self.plane: tuple[np.ndarray, np.ndarray] | None = None  # point, normal
         self.last_plane: tuple[np.ndarray, np.ndarray] | None = None
         self.stroke_camera: OrbitCamera | None = None  # the view a 2D stroke is drawn in
@@ -141,7 +142,7 @@ class ModelingMode:
 
     def cancel(self) -> None:
         """Drop the stroke being drawn."""
-        self.points, self.times, self.preview, self.plane = [], [], None, None
+        self.points, self.times, self.preview, self.plane, self.joint = [], [], None, None, None
 
     def begin2d(self, x: float, y: float, t: float, camera: OrbitCamera) -> None:
         """A finger or the mouse went down: start a stroke on the camera-facing plane."""
@@ -160,7 +161,7 @@ class ModelingMode:
     def cancel_points(self) -> None:
         """Forget the points of the stroke being drawn (the drawing plane stays) and any shape or
         region drag in progress."""
-        self.points, self.times, self.preview = [], [], None
+        self.points, self.times, self.preview, self.joint = [], [], None, None
         self._preview_at = float("-inf")
         self.crown_tool.drag = None
         self.region_tool.pixels = []
@@ -193,7 +194,8 @@ class ModelingMode:
             self.region_tool.drag(self.points[-1], pixel)
         elif self._preview_due(t):
             self._preview_at = t
-            self.preview, _ = self.modeler.convert(Stroke(np.array(self.points), np.array(self.times)))
+            self.preview, result = self.modeler.convert(Stroke(np.array(self.points), np.array(self.times)))
+            self.joint = result.snap_point
 
     def _preview_due(self, t: float) -> bool:
         """A branch stroke of 3+ points whose last preview is PREVIEW_SECONDS old (or from another stroke)."""
@@ -220,16 +222,22 @@ class ModelingMode:
             if result.pieces:
                 self.modeler.commit(new)
             self.game.world.tree.lstring = self.modeler.lstring
-            how = text("messages.stroke_joined" if result.snapped_to is not None else "messages.stroke_new")
+            how = text("messages.stroke_merged" if result.merged else "messages.stroke_joined"
+                       if result.snapped_to is not None else "messages.stroke_new")
             if result.bypassed:
                 how += ", " + text("messages.stroke_bent", count=result.bypassed)
             self.game.say(text("messages.stroke", pieces=result.pieces, points=result.growth_points, how=how))
         self.cancel()
 
     def draw_outline(self, surface: pygame.Surface, project) -> None:
-        """The crown's lobes and the crown stroke being drawn, over the scene (crown and shape tools)."""
+        """The crown's lobes and the crown stroke being drawn, over the scene (crown and shape tools),
+        and the joint point where a branch stroke being drawn will join the tree."""
         if (self.crown or self.shaping) and self.modeler is not None:
             self.crown_tool.draw(surface, project, self.points if self.crown else [], self.shaping)
+        elif self.points and self.joint is not None:
+            for x, y in project(np.asarray(self.joint, float)[None]):
+                pygame.draw.circle(surface, (255, 225, 90, 240), (int(x), int(y)), 11, 3)
+                pygame.draw.circle(surface, (255, 225, 90, 240), (int(x), int(y)), 3)
 
     def born_visible(self) -> float:
         """A birth time for leaves and blossoms added while the garden is paused: one growth time
