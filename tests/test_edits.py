@@ -106,3 +106,17 @@ def test_prune_region_removes_the_subtrees_that_start_inside_and_nothing_else():
     everything = Sphere((0.0, 0.0, 0.0), 1e6)
     stump, _ = prune_region(ls, pos, everything)
     assert stump.count("I") == 1  # the trunk's first piece always stays
+
+
+def test_added_leaves_grow_round_the_branch_in_varied_sizes_not_a_comb():
+    ls = parse_lstring("".join(f"F({0.3},0,{0.3 * k},0,0,1,0,0,0,1,0)" for k in range(20)))
+    pos = module_positions(ls)
+    new, changed, _ = apply_edit(ls, pos, Sphere((0.0, 3.0, 0.0), 5.0), SETS["add_leaves"], {"T": 0.0})
+    assert changed == 20
+    leaves = interpret(new).leaves
+    side = leaves.frame[:, :, 0][:, [0, 2]]  # where each leaf points, seen from above
+    azimuth = np.arctan2(side[:, 1], side[:, 0])
+    spread = 1 - np.hypot(np.cos(azimuth).mean(), np.sin(azimuth).mean())  # circular variance
+    assert spread > 0.5  # all round the branch
+    vigour = np.array([new.module(i)[1][1] for i in np.flatnonzero(new.sym == ord("L"))])
+    assert vigour.std() > 0.1 and 0.7 <= vigour.min() and vigour.max() <= 1.3  # sizes vary
