@@ -390,3 +390,24 @@ def test_grow_edit_wakes_buds_in_the_region_and_starts_an_axis_in_an_empty_one(g
     touch(game, UP, 0, x0 + 320, y0 - 320)
     seeded = game.world.tree.lstring
     assert "new axis" in game.hud_info().message and seeded.count("A") == after.count("A") + 1
+
+
+def test_a_region_is_moved_by_dragging_inside_it_and_resized_from_its_rim(game):
+    from engine.modeling.regions import Sphere
+
+    press_menu(game, "symbols")
+    x0, y0 = base_pixel(game)
+    draw(game, [(x0, y0 - 100), (x0, y0 - 160), (x0, y0 - 200)])  # a short drag places a sphere
+    first = game.modeling.region_tool.region
+    assert isinstance(first, Sphere)
+    centre = game.hud.project(game.camera(), first.center)
+    draw(game, [centre, (centre[0] + 30, centre[1]), (centre[0] + 80, centre[1] - 20)])  # from inside: move
+    moved = game.modeling.region_tool.region
+    assert moved.radius == pytest.approx(first.radius) and np.linalg.norm(np.subtract(moved.center, first.center)) > 0.3
+    centre = game.hud.project(game.camera(), moved.center)
+    right = game.camera().view()[0, :3]  # the screen's right, in the world
+    ring = game.hud.project(game.camera(), np.add(moved.center, moved.radius * 0.95 * right))
+    rim = (centre[0] + np.hypot(ring[0] - centre[0], ring[1] - centre[1]) * 0.9, centre[1])
+    draw(game, [rim, (rim[0] + 30, rim[1]), (rim[0] + 70, rim[1])])  # from the rim outwards: bigger
+    bigger = game.modeling.region_tool.region
+    assert bigger.radius > 1.3 * moved.radius and bigger.center == pytest.approx(moved.center)

@@ -64,3 +64,26 @@ def test_prune_removes_the_subtree_a_touch_picked():
     touched = int(mesh.face_module[np.flatnonzero(mesh.face_module == 3)[0]])  # a triangle of the branch
     assert prune(ls, touched).to_text() == "F(1)[+]F(1)L"
     assert prune(ls, 0).to_text() == ""  # pruning the trunk's base removes everything after it
+
+
+def test_fit_takes_the_depth_from_outlines_drawn_in_3d():
+    truth = Supertoroid(a_x=2.0, a_y=2.0, a_z=1.0, alpha_y=5.0, n=0.8, e=0.5)
+    rng = np.random.default_rng(2)
+    u = np.linspace(-np.pi / 2 + 0.1, np.pi / 2 - 0.1, 60)
+    left = truth.surface(u, np.full_like(u, np.pi - 0.7)) + rng.normal(0, 0.01, (60, 3))  # wandering in depth
+    right = truth.surface(u, np.full_like(u, -0.6)) + rng.normal(0, 0.01, (60, 3))  # (behind: around it)
+    fit = fit_supertoroid(left, right)
+    assert fit.a_z == pytest.approx(truth.surface(np.zeros(1), np.full(1, 0.7))[0, 2], rel=0.1)
+    assert fit.a_z < 0.6 * fit.a_x  # a flat crown, not a round one
+    flat = fit_supertoroid(left * [1, 1, 0], right * [1, 1, 0])  # drawn on a plane: no depth to read
+    assert flat.a_z == flat.a_x and flat.e == 1.0
+
+
+def test_regions_move_and_resize():
+    from engine.modeling.regions import moved_region, scaled_region
+
+    ball = moved_region(Sphere((0.0, 2.0, 0.0), 1.0), (1.0, 0.5, 0.0))
+    assert ball.center == (1.0, 2.5, 0.0) and scaled_region(ball, 2.0).radius == 2.0
+    crown = Supertoroid(a_x=2.0, a_y=1.0, a_z=2.0, alpha_y=4.0)
+    bigger = scaled_region(moved_region(crown, (0.0, 1.0, 0.0)), 1.5)
+    assert bigger.center == (0.0, 5.0, 0.0) and bigger.a_x == 3.0 and bigger.contains(np.array([[2.8, 5.0, 0.0]]))[0]

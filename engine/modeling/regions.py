@@ -11,7 +11,7 @@ with signed powers (c^n = sign(c) |c|^n). Here b_x and b_z grow linearly with he
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -89,8 +89,9 @@ def fit_supertoroid(left: np.ndarray, right: np.ndarray) -> Supertoroid:
     """Fit eq. 3 to two contour strokes drawn as the left and right outline of a crown.
 
     The axis runs through the midpoints of the two outlines at each height (a straight line: b and
-    slope), the half-widths give a_x (and a_z, a round crown), the outlines' height range gives a_y and
-    alpha_y, and n is the exponent whose profile (1 - |s|^(2/n))^(n/2) fits the half-widths best.
+    slope), the half-widths give a_x, the outlines' height range gives a_y and alpha_y, n is the exponent
+    whose profile (1 - |s|^(2/n))^(n/2) fits the half-widths best, and outlines drawn in 3D also give
+    the depth a_z (see _depth).
     """
     left, right = np.asarray(left, float), np.asarray(right, float)
     lo = max(left[:, 1].min(), right[:, 1].min())
@@ -115,8 +116,34 @@ def fit_supertoroid(left: np.ndarray, right: np.ndarray) -> Supertoroid:
         err = float(np.sum((profile - half) ** 2))
         if err < best_err:
             best, best_err = float(n), err
-    return Supertoroid(a_x=a_x, a_y=a_y, a_z=a_x, alpha_y=alpha_y, n=best, b_x=float(b_x), b_z=float(b_z),
+    a_z = _depth(np.concatenate([left, right]), a_x, alpha_y, (b_z, slope_z))
+    return Supertoroid(a_x=a_x, a_y=a_y, a_z=a_z, alpha_y=alpha_y, n=best, b_x=float(b_x), b_z=float(b_z),
                        slope_x=float(slope_x), slope_z=float(slope_z))
+
+
+def _depth(points: np.ndarray, a_x: float, alpha_y: float, axis_z) -> float:
+    """The crown's depth (a_z) from outlines drawn in 3D (a tracker): how far they reach in depth from
+    the axis. Outlines drawn on a plane carry no depth: then a round crown, a_z = a_x. (Two outlines do
+    not tell the cross-section's exponent e apart from its depth and width: e stays 1.)"""
+    dz = points[:, 2] - axis_z[0] - axis_z[1] * (points[:, 1] - alpha_y)
+    reach = float(np.abs(dz).max())
+    return reach if reach >= 0.1 * a_x else a_x
+
+
+def moved_region(region: Sphere | Supertoroid, by) -> Sphere | Supertoroid:
+    """The region moved by the vector ``by``."""
+    dx, dy, dz = (float(v) for v in by)
+    if isinstance(region, Sphere):
+        x, y, z = region.center
+        return Sphere((x + dx, y + dy, z + dz), region.radius)
+    return replace(region, b_x=region.b_x + dx, alpha_y=region.alpha_y + dy, b_z=region.b_z + dz)
+
+
+def scaled_region(region: Sphere | Supertoroid, factor: float) -> Sphere | Supertoroid:
+    """The region grown (factor > 1) or shrunk about its centre."""
+    if isinstance(region, Sphere):
+        return Sphere(region.center, region.radius * factor)
+    return replace(region, a_x=region.a_x * factor, a_y=region.a_y * factor, a_z=region.a_z * factor)
 
 
 def derive_in_region(deriver: Deriver, ls: LString, positions: np.ndarray, region,

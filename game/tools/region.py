@@ -17,7 +17,7 @@ from engine.life.growth import new_axis_text, render_view
 from engine.lsystem.lstring import LString
 from engine.modeling.bend import bend_region
 from engine.modeling.edits import apply_edit, prune_region
-from engine.modeling.regions import Sphere, Supertoroid, fit_supertoroid
+from engine.modeling.regions import Sphere, Supertoroid, fit_supertoroid, moved_region, scaled_region
 from game.render.camera import OrbitCamera, project_ball, project_points
 from game.render.ui import draw_polyline
 from game.strings import text
@@ -35,6 +35,7 @@ class RegionTool:
         self.mode = mode
         self.region: Sphere | Supertoroid | None = None
         self.kept: Sphere | Supertoroid | None = None  # the region before the drag being made
+        self.grab: tuple | None = None  # a drag that holds the region: ("move" | "size", region, start)
         self.contours: list[np.ndarray] = []  # a left outline waiting for its right one
         self.pixels: list[tuple[float, float]] = []  # the drag being made, in window pixels
         self.labels: list[tuple[str, float, float, bool]] = []  # last drawn: symbol, x, y, transformation
@@ -56,22 +57,47 @@ class RegionTool:
 
     def drag(self, point: np.ndarray, pixel: tuple[float, float] | None) -> None:
         """The pointer moved to ``point`` (at window ``pixel`` for a 2D pointer; None for a 3D
-        tracker, whose drags always move the sphere): a short drag moves the sphere with it (a tap
-        does not); a tall one is drawn as a contour and leaves the region where it is."""
+        tracker, whose drags always move the sphere). A drag that starts inside the region moves it, one
+        that starts on its rim resizes it (sphere or supertoroid alike); elsewhere a short drag places a
+        sphere that follows it (a tap does not), and a tall one is drawn as a contour."""
         if pixel is None:
             self.region = Sphere(tuple(point), self._radius())
             return
         if not self.pixels:
-            self.kept = self.region
+            self.kept, self.grab = self.region, self._grab(pixel, point)
         self.pixels.append(pixel)
         moved = abs(pixel[0] - self.pixels[0][0]) + abs(pixel[1] - self.pixels[0][1]) >= 12  # not a tap
-        if moved and not self._is_contour():
+        if self.grab is not None and moved:
+            self.region = self._grabbed(point)
+        elif moved and not self._is_contour():
             self.region = Sphere(tuple(point), self._radius())
+
+    def _grab(self, pixel: tuple[float, float], point: np.ndarray) -> tuple | None:
+        """What a drag starting at ``pixel`` holds: ("move" | "size", the region then, the start point)."""
+        if self.region is None:
+            return None
+        camera = self.mode.game.camera()
+        centre = project_points(camera, self.mode.game.size, np.asarray(self.region.center, float)[None])[0]
+        rim = float(np.nanmax(np.hypot(*(project_points(camera, self.mode.game.size, self._outline().reshape(-1, 3))
+                                          - centre).T)))
+        away = float(np.hypot(pixel[0] - centre[0], pixel[1] - centre[1]))
+        if not np.isfinite(rim) or away > rim * 1.15:
+            return None
+        return ("size" if away > 0.7 * rim else "move", self.region, np.asarray(point, float))
+
+    def _grabbed(self, point: np.ndarray) -> Sphere | Supertoroid:
+        """The held region moved by (or resized toward) the pointer."""
+        how, region, start = self.grab
+        centre = np.asarray(region.center, float)
+        if how == "move":
+            return moved_region(region, np.asarray(point, float) - start)
+        scale = max(np.linalg.norm(point - centre), 1e-3) / max(np.linalg.norm(start - centre), 1e-3)
+        return scaled_region(region, min(max(scale, 0.2), 5.0))
 
     def finish(self, points: list[np.ndarray], camera: OrbitCamera) -> None:
         """The pointer went up: a contour is kept; with two of them the region becomes a supertoroid."""
-        contour = self._is_contour()
-        self.pixels = []
+        contour = self._is_contour() and self.grab is None
+        self.pixels, self.grab = [], None
         if not contour:
             return
         self.region = self.kept  # the start of the contour had moved the sphere: put it back
