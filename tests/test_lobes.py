@@ -326,3 +326,19 @@ def test_hand_drawn_ring_sets_give_consistent_lobes_that_never_fold():
         assert mesh.is_watertight and mesh.is_winding_consistent and mesh.volume > 0, s
         points = rng.uniform(lobe.vertices.min(0), lobe.vertices.max(0), (40, 3))
         assert np.abs(winding_numbers(mesh, points)).max() < 1.02, s  # no fold-over anywhere
+
+
+def test_eq1_reads_a_shaky_stroke_by_its_shape_not_its_jitter():
+    from engine.modeling.strokes import adaptive_sample
+
+    rng = np.random.default_rng(0)
+    a = np.linspace(0, 2 * np.pi, 600)
+    circle_points = np.stack([2 * np.cos(a), 2 * np.sin(a), 0 * a], 1)
+    clean = np.diff(adaptive_sample(circle_points)).mean()
+    shaky = np.diff(adaptive_sample(circle_points + rng.normal(0, 0.001, (600, 3)))).mean()
+    assert shaky > 0.9 * clean and shaky > 2.5  # not every other point
+    ring = circle(0.0, 2.0, n=300) + rng.normal(0, 0.01, (300, 3))
+    lobe = lobe_from_loops([ring, circle(1.5, 2.0, n=300) + rng.normal(0, 0.01, (300, 3))])
+    first = lobe.stroke_rings[0]
+    turn = np.diff(np.unwrap(np.arctan2(first[:, 2], first[:, 0])))
+    assert turn.std() < 0.25 * abs(turn.mean())  # the ring runs round smoothly, no zigzag

@@ -1,7 +1,8 @@
 """Lobes (seed 004 section 4): the crown drawn as a few closed strokes, as closed meshes.
 
-Closed strokes drawn around the crown at different heights are ordered along the lobe's axis and
-given the same number of points by arc-length interpolation; rings tilted past their neighbours are
+Closed strokes drawn around the crown at different heights are sampled by eq. 1 (key points where they
+bend, a smooth curve through them), ordered along the lobe's axis and given the same number of points
+by arc-length interpolation; rings tilted past their neighbours are
 tilted less so strips cannot fold over; each loop starts at the point whose barycentric direction
 (eq. 2) is closest to the previous loop's start; strips join neighbouring loops and fans close both
 ends, every triangle wound the same way, outwards: a closed manifold. One silhouette
@@ -18,6 +19,7 @@ import numpy as np
 
 from engine.geometry.turtle import unit
 from engine.modeling.history import Undoable
+from engine.modeling.strokes import ArcLengthSpline, adaptive_sample
 
 
 def resample_loop(points: np.ndarray, count: int) -> np.ndarray:
@@ -26,6 +28,19 @@ def resample_loop(points: np.ndarray, count: int) -> np.ndarray:
     s = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(closed, axis=0), axis=1))])
     t = np.linspace(0.0, s[-1], count, endpoint=False)
     return np.stack([np.interp(t, s, closed[:, c]) for c in range(3)], axis=1)
+
+
+def sampled_loop(points: np.ndarray) -> np.ndarray:
+    """A drawn closed stroke through its key points (seed 004 eq. 1: dense where it bends, sparse where
+    it runs straight, jitter averaged away) and a smooth curve through them (the first key closes it)."""
+    if len(points) < 8:
+        return points
+    closed = np.concatenate([points, points[:1]])
+    keys = closed[adaptive_sample(closed)][:-1]  # (the last key is the first point again)
+    if len(keys) < 4:
+        return points
+    curve = ArcLengthSpline(np.concatenate([keys, keys[:1]]))
+    return curve.at(np.linspace(0.0, curve.length, 4 * len(keys), endpoint=False))
 
 
 def barycentric_directions(loop: np.ndarray) -> np.ndarray:
@@ -219,7 +234,8 @@ def lobe_from_loops(loops: list[np.ndarray], points_per_loop: int = 32,
     span = centers.max(axis=0) - centers.min(axis=0)
     axis = np.eye(3)[int(np.argmax(span))] if span.max() > 1e-9 else np.array([0.0, 1.0, 0.0])
     order = np.argsort(centers @ axis)
-    rings = _stacked([resample_loop(np.asarray(loops[i], float), points_per_loop) for i in order], axis)
+    rings = _stacked([resample_loop(sampled_loop(np.asarray(loops[i], float)), points_per_loop) for i in order],
+                     axis)
     rings[0] = _counter_clockwise(rings[0], axis)
     for k in range(1, len(rings)):  # every ring runs the way its neighbour does: strips never twist
         if _normal(rings[k]) @ _normal(rings[k - 1]) < 0:

@@ -67,12 +67,23 @@ def sample_steps(kappa: np.ndarray, k: float = SAMPLE_K) -> np.ndarray:
     return np.floor(k * np.log2(2.0 + 1.0 / rho)).astype(np.int64)
 
 
+def denoised(points: np.ndarray, width: int = 5) -> np.ndarray:
+    """A moving average over ``width`` points (ends held), so a shaky hand does not read as curvature."""
+    if len(points) <= width:
+        return points
+    half = width // 2
+    padded = np.concatenate([np.repeat(points[:1], half, axis=0), points, np.repeat(points[-1:], half, axis=0)])
+    sums = np.cumsum(np.concatenate([np.zeros((1, points.shape[1])), padded]), axis=0)
+    return (sums[width:] - sums[:-width]) / width
+
+
 def adaptive_sample(points: np.ndarray, k: float = SAMPLE_K) -> np.ndarray:
-    """Indices of key points: from the first point, step by eq. 1; the last point is always kept."""
+    """Indices of key points: from the first point, step by eq. 1 with the curvature of the stroke as
+    drawn (its jitter averaged away); the last point is always kept."""
     n = len(points)
     if n <= 2:
         return np.arange(n)
-    steps = sample_steps(curvature(points), k)
+    steps = sample_steps(curvature(denoised(points, max(5, (n // 40) | 1))), k)
     idx = [0]
     i = 0
     while True:
