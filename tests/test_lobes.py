@@ -342,3 +342,29 @@ def test_eq1_reads_a_shaky_stroke_by_its_shape_not_its_jitter():
     first = lobe.stroke_rings[0]
     turn = np.diff(np.unwrap(np.arctan2(first[:, 2], first[:, 0])))
     assert turn.std() < 0.25 * abs(turn.mean())  # the ring runs round smoothly, no zigzag
+
+
+def test_squeeze_is_laplacian_editing_that_keeps_the_surface_detail():
+    from engine.modeling.lobes import laplacian_edit
+
+    lobe = lobe_from_loops([circle(0.0, 1.0, wobble=0.2), circle(1.0, 1.5, wobble=0.2), circle(2.0, 1.0)])
+    at, radius = lobe.vertices[lobe.ring_size + 3], 1.2
+    squeezed = lobe.squeezed(at, radius, 0.5)
+    ok, volume = closed(squeezed)
+    assert ok and volume < closed(lobe)[1]
+    d = np.linalg.norm(lobe.vertices - at, axis=1)
+    far = (d > radius) & (np.arange(len(d)) < lobe.rings * lobe.ring_size)  # (cap centres follow their rings)
+    assert np.allclose(squeezed.vertices[far], lobe.vertices[far])  # the far surface stays
+    handle = d <= radius / 3
+    assert np.linalg.norm(squeezed.vertices[handle] - lobe.vertices[handle], axis=1).min() > 0.1  # pulled in
+    n = len(lobe.vertices)
+    edges = np.concatenate([lobe.faces[:, [0, 1]], lobe.faces[:, [1, 2]], lobe.faces[:, [2, 0]]])
+    adj = np.zeros((n, n))
+    adj[edges[:, 0], edges[:, 1]] = adj[edges[:, 1], edges[:, 0]] = 1
+    lap = np.eye(n) - adj / adj.sum(axis=1, keepdims=True)
+    w = np.clip(1.0 - (d / radius) ** 2, 0.0, 1.0) ** 2  # the old radial pull, for comparison
+    radial = lobe.vertices + (0.5 * w)[:, None] * (lobe.vertices.mean(axis=0) - lobe.vertices)
+    detail = lambda v: np.linalg.norm(lap @ v - lap @ lobe.vertices)  # noqa: E731
+    assert detail(squeezed.vertices) < 0.8 * detail(radial)  # the wobble survives the squeeze
+    same = laplacian_edit(lobe.vertices, lobe.faces, np.array([0]), lobe.vertices[:1], np.array([n - 1]))
+    assert np.allclose(same, lobe.vertices)  # no edit, no change

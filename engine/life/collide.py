@@ -15,6 +15,7 @@ from dataclasses import dataclass
 import numpy as np
 
 CHUNK = 4096  # obstacles compared with all points at once
+LOOKAHEAD, MARGIN = 2.5, 1.5  # an apex looks this many internodes ahead, for obstacles this near (x IL)
 
 
 @dataclass
@@ -89,3 +90,24 @@ def wood(segments, offset: np.ndarray) -> Obstacles:
     if not len(segments):
         return Obstacles.empty()
     return Obstacles(segments.start + offset, segments.end + offset, np.maximum(segments.radius, 0.02))
+
+
+def avoidance(position: np.ndarray, frames: np.ndarray, step: np.ndarray, unit: float,
+              obstacles: Obstacles | None) -> tuple[np.ndarray, np.ndarray]:
+    """For apices at ``position`` with turtle ``frames`` (H, L, U) and internodes ``step`` long: a push
+    away from the obstacle ahead (0..1 times a unit vector, sideways round it rather than back), and
+    which apices already touch one (they stop). ``unit`` (the trunk's internode length) scales the
+    margin."""
+    k = len(position)
+    push, touching = np.zeros((k, 3)), np.zeros(k, bool)
+    if obstacles is None or not len(obstacles) or not k:
+        return push, touching
+    margin = MARGIN * unit
+    heading = frames[:, :, 0]
+    gap, away = obstacles.gaps(position + heading * (LOOKAHEAD * step)[:, None], margin)
+    strength = np.where(np.isfinite(gap), np.clip((margin - gap) / margin, 0.0, 1.0), 0.0)
+    side = away - heading * np.einsum("ki,ki->k", away, heading)[:, None]  # around it, not back
+    side = np.where((np.linalg.norm(side, axis=1) < 0.2)[:, None], frames[:, :, 1], side)  # head-on: sideways
+    push = side / np.maximum(np.linalg.norm(side, axis=1, keepdims=True), 1e-9) * strength[:, None]
+    touching = np.isfinite(obstacles.gaps(position, 0.05)[0])
+    return push, touching

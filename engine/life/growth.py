@@ -37,7 +37,7 @@ from engine.geometry.turtle import (
     set_radii,
     subtree_sums,
 )
-from engine.life.collide import Obstacles
+from engine.life.collide import Obstacles, avoidance
 from engine.life.light import memory_weight
 from engine.lsystem import brackets
 from engine.lsystem.derive import Deriver, StepReport
@@ -57,7 +57,6 @@ LEAF_ASPECT = 0.5  # leaf quads are half as wide as long (engine/geometry/mesh.p
 FALL_KEEP = 40.0  # physiological time a shed branch stays in `fallen` for the game to show its fall
 AROUND = np.array([[1.0, 0, 0], [-1, 0, 0], [0, 1, 0], [0, -1, 0], [0, 0, 1], [0, 0, -1]])  # light probes
 GRADIENT_REACH = 1.5  # internode lengths from an apex to its light probes
-LOOKAHEAD, AVOID_MARGIN = 2.5, 1.5  # an apex looks this many internodes ahead, for obstacles this near (x IL)
 AVOID_WEIGHT, AVOID_TURN = 4.0, 35.0  # how hard an obstacle ahead pushes, and the turn it allows (degrees)
 CLUSTER_ANGLES = (0.0, 38.0, -38.0)  # degrees the blades of one leaf cluster fan out
 CLUSTER_SIZES = (1.0, 0.8, 0.8)
@@ -265,7 +264,10 @@ class GrowingTree:
         up_weight = np.where(branch, const["UPB"], const["UPW"])[:, None]  # up-weight alone lifts them
         target = (const["STRAIGHT"] * frames[:, :, 0] + up_weight * np.array([0.0, 1.0, 0.0])
                   + const["SUNW"] * sun + const["LIGHTW"] * brighter)
-        push = self._avoid(ls, params, idx, scene.turtle.probes.position[apex], frames, order, obstacles)
+        push, touching = avoidance(scene.turtle.probes.position[apex], frames,
+                                   self.geometry_constants["IL"] * self.geometry_constants["IO"] ** order,
+                                   self.geometry_constants["IL"], obstacles)
+        params[ls.offsets[idx[touching]] + 3] = 0.0  # the light it remembers: an apex without light rests
         target += AVOID_WEIGHT * push
         target /= np.maximum(np.linalg.norm(target, axis=1, keepdims=True), 1e-12)
         local = np.einsum("kij,ki->kj", frames, target)  # target in each apex's (H, L, U)
@@ -278,27 +280,6 @@ class GrowingTree:
         at = ls.offsets[idx]
         params[at + 4] += weight * (yaw - params[at + 4])
         params[at + 5] += weight * (pitch - params[at + 5])
-
-    def _avoid(self, ls: LString, params: np.ndarray, idx: np.ndarray, position: np.ndarray, frames: np.ndarray,
-               order: np.ndarray, obstacles: Obstacles | None) -> np.ndarray:
-        """Per apex, a push away from the obstacle ahead (0..1 times a unit vector); an apex that
-        already touches an obstacle loses its light (it stops growing)."""
-        push = np.zeros((len(idx), 3))
-        if obstacles is None or not len(obstacles) or not len(idx):
-            return push
-        step = self.geometry_constants["IL"] * self.geometry_constants["IO"] ** order
-        margin = AVOID_MARGIN * self.geometry_constants["IL"]
-        ahead = position + frames[:, :, 0] * (LOOKAHEAD * step)[:, None]
-        gap, away = obstacles.gaps(ahead, margin)
-        strength = np.where(np.isfinite(gap), np.clip((margin - gap) / margin, 0.0, 1.0), 0.0)
-        heading = frames[:, :, 0]
-        side = away - heading * np.einsum("ki,ki->k", away, heading)[:, None]  # around it, not back
-        side = np.where((np.linalg.norm(side, axis=1) < 0.2)[:, None], frames[:, :, 1], side)  # head-on: sideways
-        push = side / np.maximum(np.linalg.norm(side, axis=1, keepdims=True), 1e-9) * strength[:, None]
-        touching, _ = obstacles.gaps(position, 0.05)
-        stopped = np.isfinite(touching)
-        params[ls.offsets[idx[stopped]] + 3] = 0.0  # the light it remembers: an apex without light rests
-        return push
 
     def _grow_wood_and_count_shade(self, ls: LString, params: np.ndarray, scene: LightScene, leaf_light: np.ndarray,
                                    dt: float, dg: float, drought: float, count: bool) -> np.ndarray:

@@ -73,12 +73,19 @@ class Lobe:
         return Lobe(moved, self.faces, self.ring_size, self.rings)
 
     def squeezed(self, at, radius: float, amount: float) -> Lobe:
-        """A local smooth deformation: surface within ``radius`` of ``at`` pulled towards the lobe's
-        centre by ``amount`` (0..1; negative pushes out), fading smoothly to nothing at ``radius``."""
+        """Seed 004's lobe editing as Laplacian surface editing: the surface nearest ``at`` (within a
+        third of ``radius``) is pulled towards the lobe's centre by ``amount`` (0..1; negative pushes
+        out), the surface beyond ``radius`` stays, and everything between follows so as to keep its
+        shape (its Laplacian coordinates), in the least-squares sense."""
         d = np.linalg.norm(self.vertices - np.asarray(at, float), axis=1)
-        w = np.clip(1.0 - (d / radius) ** 2, 0.0, 1.0) ** 2
         centre = self.vertices.mean(axis=0)
-        return self._with_rings(self.vertices + (amount * w)[:, None] * (centre - self.vertices))
+        handle = np.flatnonzero(d <= radius / 3)
+        if not len(handle):
+            handle = np.array([int(np.argmin(d))])
+        pull = (1.0 - (d[handle] / radius) ** 2)[:, None]
+        targets = self.vertices[handle] + amount * pull * (centre - self.vertices[handle])
+        fixed = np.flatnonzero(d > radius)
+        return self._with_rings(laplacian_edit(self.vertices, self.faces, handle, targets, fixed))
 
     def dragged(self, ring: int, index: int, to, width: int = 4) -> Lobe:
         """One stroke point dragged to ``to``, as the control point of the stroke segment of ``width``
@@ -213,6 +220,29 @@ class Crossings:
         odd = crossings.reshape(len(rows), self.count) % 2 == 1
         which[rows] = np.where(odd.any(axis=1), np.argmax(odd, axis=1), -1)
         return which
+
+
+def laplacian_edit(vertices: np.ndarray, faces: np.ndarray, handle: np.ndarray, targets: np.ndarray,
+                   fixed: np.ndarray) -> np.ndarray:
+    """Vertices that keep their uniform Laplacian coordinates (each vertex's offset from the mean of its
+    neighbours) as well as possible while ``handle`` goes exactly to ``targets`` and ``fixed`` stays
+    (Sorkine et al.'s Laplacian surface editing with hard constraints; a lobe has a few hundred
+    vertices, so a dense least-squares solve)."""
+    n = len(vertices)
+    edges = np.concatenate([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]])
+    adjacency = np.zeros((n, n))
+    adjacency[edges[:, 0], edges[:, 1]] = adjacency[edges[:, 1], edges[:, 0]] = 1.0
+    lap = np.eye(n) - adjacency / np.maximum(adjacency.sum(axis=1), 1.0)[:, None]
+    known = np.zeros(n, bool)
+    known[handle] = known[fixed] = True
+    out = vertices.copy()
+    out[fixed] = vertices[fixed]
+    out[handle] = targets
+    free = np.flatnonzero(~known)
+    if len(free):
+        rhs = lap @ vertices - lap[:, known] @ out[known]
+        out[free], *_ = np.linalg.lstsq(lap[:, free], rhs, rcond=None)
+    return out
 
 
 def _ranges(counts: np.ndarray) -> np.ndarray:

@@ -303,6 +303,13 @@ def _boxed(surface: pygame.Surface, font: pygame.font.Font, line: str, at: tuple
         surface.blit(label, label.get_rect(midtop=(box.centerx, box.top + 6 + k * font.get_linesize())))
 
 
+def draw_joint(surface: pygame.Surface, project, point) -> None:
+    """The joint point where the stroke being drawn will join the tree (seed 000 shows it)."""
+    for x, y in project(np.asarray(point, float)[None]):
+        pygame.draw.circle(surface, (255, 225, 90, 240), (int(x), int(y)), 11, 3)
+        pygame.draw.circle(surface, (255, 225, 90, 240), (int(x), int(y)), 3)
+
+
 def draw_rain(surface: pygame.Surface, t: float) -> None:
     """A shower over the whole view: slanted streaks that fall (deterministic in ``t``)."""
     w, h = surface.get_size()

@@ -20,6 +20,7 @@ from engine.modeling.regions import prune
 from engine.modeling.strokes import Stroke
 from game.paths import ASSETS
 from game.render.camera import OrbitCamera, project_points, unproject_to_plane
+from game.render.ui import draw_joint
 from game.strings import text
 from game.tools.crown import CrownTool
 from game.tools.region import RegionTool
@@ -85,8 +86,9 @@ class ModelingMode:
         self.crown_tool.clear()  # a new editing session: earlier crown steps cannot be undone into
         self.game.say(text("messages.modeler_on"))
 
-    def _tool(self, name: str) -> None:
-        """Switch to tool ``name`` (crown, shaping, pruning, symbols) or back to branches if it is on."""
+    def tool(self, name: str) -> None:
+        """Switch to tool ``name`` (crown, shaping, pruning, symbols) or back to branches if it is on
+        (entering the modeler if needed)."""
         if not self.active:
             self.toggle()
         on = not getattr(self, name)
@@ -98,22 +100,6 @@ class ModelingMode:
             self.game.say(text("messages.shaping_on", op=text(f"shapes.{self.crown_tool.op}")))
         else:
             self.game.say(text(f"messages.{name}_on" if on else "messages.crown_off"))
-
-    def toggle_crown(self) -> None:
-        """Switch strokes between branches and crown outlines (entering the modeler if needed)."""
-        self._tool("crown")
-
-    def toggle_shape(self) -> None:
-        """Switch the lobe shaping tool on or off (entering the modeler if needed)."""
-        self._tool("shaping")
-
-    def toggle_prune(self) -> None:
-        """Switch the pruning tool on or off (entering the modeler if needed)."""
-        self._tool("pruning")
-
-    def toggle_symbols(self) -> None:
-        """Switch the L-string overlay tool on or off (entering the modeler if needed)."""
-        self._tool("symbols")
 
     def prune_at(self, x: float, y: float, camera: OrbitCamera) -> bool:
         """With the prune tool, cut the branch under pixel (x, y) and what grows from it (undoable).
@@ -235,9 +221,7 @@ class ModelingMode:
         if (self.crown or self.shaping) and self.modeler is not None:
             self.crown_tool.draw(surface, project, self.points if self.crown else [], self.shaping)
         elif self.points and self.joint is not None:
-            for x, y in project(np.asarray(self.joint, float)[None]):
-                pygame.draw.circle(surface, (255, 225, 90, 240), (int(x), int(y)), 11, 3)
-                pygame.draw.circle(surface, (255, 225, 90, 240), (int(x), int(y)), 3)
+            draw_joint(surface, project, self.joint)
 
     def born_visible(self) -> float:
         """A birth time for leaves and blossoms added while the garden is paused: one growth time
@@ -288,8 +272,8 @@ class ModelingMode:
 
 TOOLS = {  # menu button -> what it switches
     "modeler": ModelingMode.toggle,
-    "crown": ModelingMode.toggle_crown,
-    "shape": ModelingMode.toggle_shape,
-    "prune": ModelingMode.toggle_prune,
-    "symbols": ModelingMode.toggle_symbols,
+    "crown": lambda mode: mode.tool("crown"),
+    "shape": lambda mode: mode.tool("shaping"),
+    "prune": lambda mode: mode.tool("pruning"),
+    "symbols": lambda mode: mode.tool("symbols"),
 }
