@@ -5,6 +5,7 @@ import subprocess
 import sys
 import time
 
+import numpy as np
 import pytest
 
 from engine.life.rules import load_rules
@@ -40,9 +41,10 @@ def test_round_trip_is_exact_and_continues_identically(world, tmp_path):
 def test_save_is_readable_text(world):
     text = save_text(world, "game_tree.lsys")
     assert text.startswith("# Arbor save file")
-    assert "\nlstring = \"\"\"\\\nI(0,0,0,0," in text
-    tail = text[text.index("lstring = "):].splitlines()
-    assert max(len(line) for line in tail) <= 102  # the L-string is wrapped for text editors
+    assert "\nlstring = '''\nI(0,0,0,0," in text  # a literal block: read without unescaping
+    tail = text[text.index("lstring = "):].splitlines()[1:]
+    assert max(len(line) for line in tail) <= 100 + 200 and np.median([len(x) for x in tail]) <= 130  # wrapped
+    assert all(re.match(r"[!-'*+\--~]", line) for line in tail if line and line != "'''")  # between modules
     assert "#extern T G DT R" in text  # the rules that grew it travel with it
 
 
@@ -59,13 +61,13 @@ def write(path, text):
         (lambda t: t.replace("format = 2", "format = 0"), "too old"),
         (lambda t: t.replace('seed = ', 'seed = "x"  # ', 1), "'seed' must be a whole number"),
         (lambda t: t.replace("#extern T G DT R", "#extern T G DT Q"), "does not match its hash"),
-        (lambda t: t.replace('lstring = """\\\nI(0,0,0,', 'lstring = """\\\nI(0,0,zz,'), "in the L-string"),
+        (lambda t: t.replace("lstring = '''\nI(0,0,0,", "lstring = '''\nI(0,0,zz,"), "in the L-string"),
         (lambda t: re.sub(r"\nwilt = [^\n]*", "\nwilt = nan", t), "'wilt' must be a finite number"),
         (lambda t: re.sub(r"\nwater_meter = [^\n]*", "\nwater_meter = 7.5", t), "'water_meter' = 7.5 is out of range"),
         (lambda t: re.sub(r"\ntime = [^\n]*", "\ntime = 1e400", t), "'time' must be a finite number"),
         (lambda t: re.sub(r"\nseed = [^\n]*", "\nseed = -1", t, count=1), "'seed' = -1 is out of range"),
-        (lambda t: t.replace('lstring = """\\\nI(0,0,0,', 'lstring = """\\\n]I(0,0,0,'), "without a matching"),
-        (lambda t: t.replace('lstring = """\\\nI(0,0,0,', 'lstring = """\\\nI(0,0,nan,'), "finite number"),
+        (lambda t: t.replace("lstring = '''\nI(0,0,0,", "lstring = '''\n]I(0,0,0,"), "without a matching"),
+        (lambda t: t.replace("lstring = '''\nI(0,0,0,", "lstring = '''\nI(0,0,nan,"), "finite number"),
         (lambda t: re.sub(r"PCG64", "MT19937", t), "random state"),
         (lambda t: "\x00\xff garbage", "not"),
     ],
@@ -124,3 +126,17 @@ def test_killed_while_saving_leaves_a_loadable_save(tmp_path, world):
         assert len(loaded.tree.lstring) >= 2
     leftovers = [p.name for p in tmp_path.iterdir() if p.name != "tree.arbor"]
     assert all(name.endswith(".tmp") for name in leftovers)  # at most a stray temp file, never a torn save
+
+
+def test_saves_with_the_older_wrapped_string_still_load(world, tmp_path):
+    from engine.life.save import _toml_basic_block
+
+    text = save_text(world, "game_tree.lsys")
+    start = text.index("lstring = '''")
+    end = text.index("'''", start + 14) + 3
+    old = text[:start] + "lstring = " + _toml_basic_block(world.tree.lstring.to_text()) + text[end:]
+    assert 'lstring = """\\\nI(0,0,0,' in old
+    path = tmp_path / "old.arbor"
+    path.write_text(old)
+    back, _ = load_world(path, world.rules)
+    assert back.tree.lstring.equals(world.tree.lstring)

@@ -12,6 +12,7 @@ file, line and column. Format 1 (one tree per file) still loads.
 from __future__ import annotations
 
 import hashlib
+import itertools
 import json
 import math
 import re
@@ -69,6 +70,26 @@ def _toml_text(text: str) -> str:
 
 
 def _toml_block(text: str) -> str:
+    """An L-string as a multi-line literal string, broken into lines of about WRAP characters between
+    modules (the L-string reader skips the line breaks; TOML reads a literal string without unescaping,
+    fast). Text a literal string cannot hold (three quotes in a row, control characters) is wrapped
+    with line-ending backslashes in a basic string instead, as older saves were."""
+    if "'''" not in text and not _CONTROLS_AND_NEWLINE.search(text) and not text.endswith("'"):
+        return "'''\n" + "\n".join(_lines_between_modules(text)) + "'''"
+    return _toml_basic_block(text)
+
+
+def _lines_between_modules(text: str) -> list[str]:
+    """``text`` cut before the first module that starts in each run of WRAP characters."""
+    raw = np.frombuffer(text.encode("ascii"), np.uint8)
+    depth = np.cumsum(raw == 40) - np.cumsum(raw == 41)
+    starts = np.flatnonzero((depth == 0) & (raw != 41))  # a symbol outside parentheses starts a module
+    cuts = starts[np.flatnonzero(np.diff(starts // WRAP, prepend=0))] if len(starts) else starts
+    bounds = [0, *cuts.tolist(), len(text)]
+    return [text[a:b] for a, b in itertools.pairwise(bounds)]
+
+
+def _toml_basic_block(text: str) -> str:
     """Whitespace-free text wrapped with line-ending backslashes (TOML joins the lines on reading)."""
     pieces = [text[i : i + WRAP] for i in range(0, len(text), WRAP)] or [""]
     escaped = [_escape(p) for p in pieces]
@@ -270,7 +291,7 @@ def _system(data: dict, where: Where):
 def _load_tree(data: dict, where: Where, rules: Rules, budget_slack: float) -> World:
     """One checked tree (see save_check for the checks)."""
     system = _system(data, where)
-    world = World(system, rules, seed=value(data, "seed", "int", 0, 2**63 - 1, where))
+    world = World(system, rules, seed=value(data, "seed", "int", 0, 2**63 - 1, where), plant=False)
     world.steps = value(data, "steps", "int", 0, 2**53, where)
     world.position = tuple(vector(data, "position", 2, where, [0.0, 0.0], limit=1e4))
     sim = sim_values(table(data, "sim", where), where)
@@ -303,9 +324,11 @@ def _restore_growth(world: World, growth: dict, where: Where, budget_slack: floa
     try:
         tree.lstring = parse_lstring(lstring_text, str(where.path))
     except LSysError as err:
-        pos = err.col - 1  # the L-string is one line once TOML has joined its wrapped lines
-        line = where.line("lstring") + 1 + pos // WRAP
-        raise SaveError(f"in the L-string: {err.message}", str(where.path), line, pos % WRAP + 1) from None
+        if "\n" in lstring_text:  # a literal block: its lines are the file's lines
+            line, col = where.line("lstring") + err.line, err.col
+        else:  # one line once TOML has joined the wrapped lines of an older save
+            line, col = where.line("lstring") + 1 + (err.col - 1) // WRAP, (err.col - 1) % WRAP + 1
+        raise SaveError(f"in the L-string: {err.message}", str(where.path), line, col) from None
     if len(tree.lstring) > limit:
         raise where.error(f"the tree is larger than this L-system's budget allows ({limit:,} modules)", "lstring")
     lstring_sane(tree.lstring, where)

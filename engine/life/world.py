@@ -6,7 +6,7 @@ identical trees and meters (tests rely on it; the input log makes bug reports re
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import InitVar, dataclass, field
 
 import numpy as np
 
@@ -43,11 +43,13 @@ class World:
     lineage: Lineage = field(init=False)  # parents, generation, planting (engine/life/lineage.py)
     roots: Roots = field(init=False)  # grown below ground on water (engine/life/roots.py)
 
-    def __post_init__(self) -> None:
+    plant: InitVar[bool] = True  # False: an empty tree, for a save to fill in (loading plants nothing)
+
+    def __post_init__(self, plant: bool) -> None:
         self.sim = Simulation(self.rules)
         self.sim.state.weather_seed = self.seed
         self.rng = np.random.Generator(np.random.PCG64(self.seed))
-        self.tree = self._plant(self.seed)
+        self.tree = self._plant(self.seed) if plant else GrowingTree(self.system, seed=self.seed)
         self.lineage = new_lineage(self.seed, 0.0, species_of(self.system.file))
         self.roots = Roots(seed=self.seed)
 

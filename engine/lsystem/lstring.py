@@ -13,6 +13,7 @@ That is 18 bytes for a module with one parameter, with no Python object per modu
 from __future__ import annotations
 
 import re
+import warnings
 from dataclasses import dataclass
 
 import numpy as np
@@ -91,16 +92,23 @@ class LString:
         )
 
     def to_text(self) -> str:
-        """Readable ABOP-style text, e.g. ``F(5)[+(25.7)F(2.5)]``; floats round-trip exactly."""
+        """Readable ABOP-style text, e.g. ``F(5)[+(25.7)F(2.5)]``; floats round-trip exactly. Built from
+        whole-array operations: one token per symbol, number and separator, joined once."""
         chars = self.sym.tobytes().decode("ascii")
         if len(self.params) == 0:
             return chars
-        texts = [format_number(v) for v in self.params.tolist()]
-        out: list[str] = []
-        offs, counts = self.offsets.tolist(), self.nparams.tolist()
-        for ch, o, k in zip(chars, offs, counts, strict=False):
-            out.append(ch if k == 0 else f"{ch}({','.join(texts[o : o + k])})")
-        return "".join(out)
+        n, total = len(self.sym), len(self.params)
+        owner = np.repeat(np.arange(n), self.nparams)  # the module each parameter belongs to
+        first = _PREFIX_OPEN[self.sym]  # symbol, with '(' when it has parameters
+        first[self.nparams == 0] = _PREFIX_BARE[self.sym[self.nparams == 0]]
+        last = np.zeros(total, bool)
+        last[self.offsets[self.nparams > 0] + self.nparams[self.nparams > 0].astype(np.int64) - 1] = True
+        tokens = np.empty(n + 2 * total, dtype=object)
+        tokens[self.offsets + np.arange(n) + self.offsets] = first  # module m: after 2 x its params before
+        at = 2 * np.arange(total) + owner + 1
+        tokens[at] = number_texts(self.params)
+        tokens[at + 1] = np.where(last, ")", ",")
+        return "".join(tokens.tolist())
 
     def __str__(self) -> str:
         return self.to_text()
@@ -153,6 +161,23 @@ def _zero_signs(values: np.ndarray) -> np.ndarray:
     return np.signbit(values) & (values == 0)
 
 
+_PREFIX_BARE = np.array([chr(c) for c in range(256)], dtype=object)
+_PREFIX_OPEN = np.array([chr(c) + "(" for c in range(256)], dtype=object)
+
+
+def number_texts(values: np.ndarray) -> np.ndarray:
+    """``format_number`` of every value (object array): whole numbers through one integer cast, the
+    rest by ``repr`` (the shortest text that reads back exactly)."""
+    values = np.asarray(values, dtype=np.float64)
+    whole = (values == np.round(values)) & (np.abs(values) < 1e16) & ~_zero_signs(values)
+    out = np.empty(len(values), dtype=object)
+    out[whole] = values[whole].astype(np.int64).astype(str).tolist()
+    rest = np.flatnonzero(~whole)
+    if len(rest):
+        out[rest] = list(map(repr, values[rest].tolist()))
+    return out
+
+
 def format_number(v: float) -> str:
     """Shortest text that parses back to exactly ``v`` (integers without a trailing '.0')."""
     if v.is_integer() and abs(v) < 1e16 and not (v == 0.0 and np.signbit(v)):
@@ -164,12 +189,64 @@ _MODULE = re.compile(r"\s*([^\s(),])(?:\(([^()]*)\))?")
 _NUMBER = re.compile(r"\s*[+-]?(?:(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?|inf|nan)\s*")
 
 
+_BLANKS = r"(?>[ \t\r\n]*)"  # atomic groups and possessive repeats: no backtracking on hostile text
+_NUM = r"(?>[+-]?(?:(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?|inf|nan))"
+_ARGS = rf"\({_BLANKS}{_NUM}{_BLANKS}(?:,{_BLANKS}{_NUM}{_BLANKS})*+\)"
+_WELL_FORMED = re.compile(rf"(?:{_BLANKS}[!-'*+\--~](?:{_ARGS})?)*+{_BLANKS}")
+_SPACE = np.zeros(256, bool)
+_SPACE[[9, 10, 13, 32]] = True
+
+
 def parse_lstring(text: str, file: str = "<string>", line: int = 1) -> LString:
     """Parse L-string text (numbers only as parameters) back into an :class:`LString`.
 
-    The inverse of :meth:`LString.to_text`. Whitespace between modules is allowed. Errors name the
-    file, line and column (untrusted input: saves are shared between players).
+    The inverse of :meth:`LString.to_text`. Whitespace between modules is allowed. Well-formed text
+    (one regular-expression match over the whole of it) is read with whole-array operations and one
+    C-level number parse; anything else is read module by module to name the file, line and column of
+    the first error (untrusted input: saves are shared between players).
     """
+    if _WELL_FORMED.fullmatch(text):
+        parsed = _parse_fast(text)
+        if parsed is not None:
+            return parsed
+    return _parse_slow(text, file, line)
+
+
+def _parse_fast(text: str) -> LString | None:
+    """Well-formed text as arrays: symbols are the characters outside parentheses that are not blanks;
+    a module's parameters are the numbers in the parentheses that follow it."""
+    raw = np.frombuffer(text.encode("ascii"), np.uint8)
+    opens, closes = raw == 40, raw == 41
+    depth = np.cumsum(opens.astype(np.int64)) - np.cumsum(closes.astype(np.int64))
+    inside = (depth > 0) | closes
+    symbols = np.flatnonzero(~inside & ~_SPACE[raw])
+    group = np.cumsum(opens) - 1  # which parenthesis pair a character is in
+    has_args = np.zeros(len(symbols), bool)
+    nxt = symbols + 1
+    has_args[nxt < len(raw)] = opens[nxt[nxt < len(raw)]]
+    counts = np.zeros(len(symbols), np.int64)
+    if has_args.any():
+        commas = np.bincount(group[(raw == 44) & inside], minlength=int(opens.sum()))
+        counts[has_args] = commas + 1
+    if counts.max(initial=0) > MAX_PARAMS:
+        return None
+    values = _numbers(raw, inside) if has_args.any() else np.zeros(0)
+    if len(values) != int(counts.sum()):
+        return None
+    return LString.from_arrays(raw[symbols], counts.astype(np.uint8), values)
+
+
+def _numbers(raw: np.ndarray, inside: np.ndarray) -> np.ndarray:
+    """Every number inside parentheses, in order (one C-level parse of the blanked text)."""
+    keep = inside & (raw != 40) & (raw != 41) & (raw != 44)
+    blanked = np.where(keep, raw, 32).astype(np.uint8).tobytes().decode("ascii")
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", DeprecationWarning)
+        return np.fromstring(blanked, sep=" ")
+
+
+def _parse_slow(text: str, file: str, line: int) -> LString:
+    """Module by module, naming the first error's line and column."""
     syms: list[int] = []
     counts: list[int] = []
     values: list[float] = []

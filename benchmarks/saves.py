@@ -1,0 +1,81 @@
+"""Save and load of big trees: 100k-module saves, written and read back (best and median of 5).
+
+Run: python -m benchmarks.saves
+Two trees of about 100,000 modules: the game tree (its living state: birth times, light, wood; most
+parameters are full-precision floats) and the ABOP fig. 2.8 tree (short numbers). For each: save
+(text, temp file, fsync, rename) and load (read, TOML, the L-string, checks), and the time spent
+turning the L-string into text and back alone.
+"""
+
+from __future__ import annotations
+
+import tempfile
+import time
+from pathlib import Path
+
+import numpy as np
+
+from engine.life.rules import load_rules
+from engine.life.save import load_garden, save_world
+from engine.life.world import World
+from engine.lsystem.derive import Deriver
+from engine.lsystem.lstring import concat, parse_lstring
+from engine.lsystem.lsys import load_lsystem
+
+ASSETS = Path(__file__).resolve().parent.parent / "assets"
+TARGET = 100_000
+
+
+def _times(fn, runs: int = 5) -> tuple[float, float]:
+    out = []
+    for _ in range(runs):
+        start = time.perf_counter()
+        fn()
+        out.append((time.perf_counter() - start) * 1e3)
+    return min(out), float(np.median(out))
+
+
+def game_world(rules) -> World:
+    """The game tree after 3,000 steps of a careful player, its string repeated to TARGET modules."""
+    world = World(load_lsystem(ASSETS / "lsystems" / "game_tree.lsys"), rules, seed=3)
+    for _ in range(3000):
+        world.apply("water", float(world.sim.state.water_meter < 0.6))
+        world.step(0.5)
+    ls = world.tree.lstring
+    world.tree.lstring = concat(*([ls] * (TARGET // len(ls) + 1)))
+    return world
+
+
+def abop_world(rules) -> World:
+    """The ABOP fig. 2.8 tree derived past TARGET modules, in a world."""
+    system = load_lsystem(ASSETS / "lsystems" / "abop_2_8_tree.lsys")
+    world = World(system, rules, seed=1)
+    ls = system.axiom
+    deriver = Deriver(system)
+    while len(ls) < TARGET:
+        ls, _ = deriver.step(ls)
+    world.tree.lstring = ls
+    return world
+
+
+def main() -> None:
+    """Print the table."""
+    rules = load_rules(ASSETS / "rules.toml", pace="demo")
+    print(f"{'tree':10} {'modules':>8} {'numbers':>8} {'file MB':>8} {'save ms':>14} {'load ms':>14} "
+          f"{'to_text ms':>14} {'parse ms':>14}")
+    with tempfile.TemporaryDirectory() as folder:
+        for name, world in (("game", game_world(rules)), ("abop 2.8", abop_world(rules))):
+            ls = world.tree.lstring
+            path = Path(folder) / f"{name}.arbor"
+            save = _times(lambda world=world, path=path: save_world(world, path))
+            slack = 2 * len(ls) / (world.system.budget or len(ls))  # (past the tree's own budget: allowed here)
+            load = _times(lambda path=path, slack=slack: load_garden(path, rules, budget_slack=slack))
+            text = ls.to_text()
+            write = _times(ls.to_text)
+            read = _times(lambda text=text: parse_lstring(text))
+            print(f"{name:10} {len(ls):8,} {len(ls.params):8,} {path.stat().st_size / 1e6:8.2f} "
+                  + " ".join(f"{b:6.0f} /{m:6.0f}" for b, m in (save, load, write, read)))
+
+
+if __name__ == "__main__":
+    main()
