@@ -3,7 +3,7 @@ import hashlib
 import numpy as np
 import pytest
 
-from engine.lsystem import brackets
+from engine.lsystem import brackets, context
 from engine.lsystem.derive import Deriver, derive
 from engine.lsystem.lstring import parse_lstring
 from engine.lsystem.lsys import load_lsystem, parse_lsystem
@@ -103,6 +103,59 @@ def test_context_parameters_and_ignore():
     assert derive(strict, 1).to_text() == "A(1)+FB(2)"
 
 
+def test_contexts_of_several_modules_bind_every_parameter():
+    system = parse_lsystem("w: A(1)B(2)[E(9)]C(3)D(4)E(5)\n"
+                           "p1: A(a) B(b) < C(c) > D(d) E(e) : a + b + c + d + e == 15 -> X(a*b*c*d*e)\n"
+                           "p2: A B < D > E F -> Y")
+    assert derive(system, 1).to_text() == "A(1)B(2)[E(9)]X(120)D(4)E(5)"
+    out_of_branch = parse_lsystem("w: A[B[C]D]\np1: A B < D -> Z\np2: B < C > D -> W")
+    assert derive(out_of_branch, 1).to_text() == "A[B[C]Z]"
+
+
+def _reference_neighbours(text: str, ignored: str) -> tuple[list[int], list[int]]:
+    """ABOP context neighbours by walking the string, one module at a time."""
+    n, partner, stack = len(text), {}, []
+    for i, c in enumerate(text):
+        if c == "[":
+            stack.append(i)
+        elif c == "]":
+            partner[i] = stack.pop()
+            partner[partner[i]] = i
+    good = [c not in "[]" and c not in ignored for c in text]
+    left, right = [], []
+    for i in range(n):
+        j = i - 1
+        while j >= 0 and not good[j]:
+            j = partner[j] - 1 if text[j] == "]" else j - 1
+        left.append(j)
+        j = i + 1
+        while j < n and not good[j] and text[j] != "]":
+            j = partner[j] + 1 if text[j] == "[" else j + 1
+        right.append(j if j < n and good[j] else -1)
+    return left, right
+
+
+def test_context_neighbours_match_a_module_by_module_walk():
+    rng = np.random.default_rng(3)
+    skip = np.zeros(256, bool)
+    skip[[ord("+"), ord("F")]] = True
+    for _ in range(200):
+        text, depth = [], 0
+        for _ in range(int(rng.integers(0, 50))):
+            r = rng.random()
+            if r < 0.2:
+                text.append("[")
+                depth += 1
+            elif r < 0.4 and depth:
+                text.append("]")
+                depth -= 1
+            else:
+                text.append(str(rng.choice(list("AB+F"))))
+        s = "".join(text) + "]" * depth
+        left, right = context.neighbours(np.frombuffer(s.encode(), np.uint8), skip)
+        assert (left.tolist(), right.tolist()) == _reference_neighbours(s, "+F"), s
+
+
 def test_cut_removes_rest_of_branch():
     system = parse_lsystem("w: F[A B C]D[E]\np1: B -> %")
     assert derive(system, 1).to_text() == "F[A]D[E]"
@@ -154,3 +207,16 @@ def test_big_derivation_is_vectorised(lsys_dir):
     result = derive(system, 11)
     assert len(result) == 1_594_318
     assert np.isfinite(result.params).all()
+
+
+@pytest.mark.parametrize("name", ["abop_1_24d", "stochastic_plant", "context_plant"])
+def test_symbols_only_steps_equal_the_general_path(lsys_dir, name):
+    system = load_lsystem(lsys_dir / f"{name}.lsys")
+    for budget in (None, 3000):
+        fast, general = Deriver(system, budget=budget), Deriver(system, budget=budget)
+        general._symbols = None  # the column-by-column path every parametric system takes
+        a = b = system.axiom
+        for _ in range(min(system.iterations, 7)):
+            (a, ra), (b, rb) = fast.step(a), general.step(b)
+            assert a.equals(b) and (ra.rewritten, ra.deferred) == (rb.rewritten, rb.deferred)
+        assert len(a) <= (budget or len(a))

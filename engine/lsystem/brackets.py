@@ -1,7 +1,7 @@
 """Vectorised bracket structure of an L-string: depth, matching brackets, parents, context neighbours.
 
-All functions are O(n log n) numpy, with no Python loop over modules, so the derivation and the
-turtle can use them on million-module strings.
+All functions are O(n log n) numpy at most, with no Python loop over modules, so the derivation and
+the turtle can use them on million-module strings (context neighbours are in context.py, O(n)).
 """
 
 from __future__ import annotations
@@ -109,46 +109,3 @@ def first_good(step: np.ndarray, good: np.ndarray) -> np.ndarray:
         p = np.where(bad, p[p], p)
     p = p[:n]
     return np.where(p == n, -1, p)
-
-
-def _chase(start: np.ndarray, step: np.ndarray, good: np.ndarray) -> np.ndarray:
-    """First good index in each chain start[i], step[start[i]], ... (-1 when none)."""
-    chain = first_good(step, good)
-    out = np.full(len(start), -1, dtype=np.int64)
-    valid = start >= 0
-    s = start[valid]
-    out[valid] = np.where(good[s], s, chain[s])
-    return out
-
-
-def _context_good(sym: np.ndarray, skip: np.ndarray) -> np.ndarray:
-    return ~(skip[sym] | (sym == OPEN) | (sym == CLOSE))
-
-
-def left_neighbours(sym: np.ndarray, skip: np.ndarray, partner: np.ndarray) -> np.ndarray:
-    """ABOP left-context neighbour of each module: the previous module on its path to the root.
-
-    Skips complete branches ``[...]`` to the left, steps out of the enclosing branch at '[', and
-    passes over symbols in ``skip`` (the #ignore set, as a boolean table indexed by symbol).
-    """
-    n = len(sym)
-    step = np.arange(n, dtype=np.int64) - 1
-    closes = np.flatnonzero(sym == CLOSE)
-    step[closes] = partner[closes] - 1
-    return _chase(np.arange(n, dtype=np.int64) - 1, step, _context_good(sym, skip))
-
-
-def right_neighbours(sym: np.ndarray, skip: np.ndarray, partner: np.ndarray) -> np.ndarray:
-    """ABOP right-context neighbour: the next module on the same axis, skipping whole branches.
-
-    The axis ends at the ']' closing its branch, so the last module of a branch has none.
-    """
-    n = len(sym)
-    step = np.arange(n, dtype=np.int64) + 1
-    opens = np.flatnonzero(sym == OPEN)
-    step[opens] = partner[opens] + 1
-    step[sym == CLOSE] = -1
-    step[step >= n] = -1
-    start = np.arange(n, dtype=np.int64) + 1
-    start[start >= n] = -1
-    return _chase(start, step, _context_good(sym, skip))

@@ -1,0 +1,83 @@
+"""Symbols-only rewriting: when no module has parameters, a derivation step is a few C-speed byte passes.
+
+Every production alternative gets a placeholder byte that can never be a module symbol (control codes
+and bytes above 126). A step marks each rewritten module with its alternative's placeholder (for plain
+deterministic systems one ``bytes.translate`` does it; otherwise the vectorised matcher decides, with
+contexts, conditions and random choices exactly as in the general path) and then replaces each
+placeholder by its successor with ``bytes.replace``. Successors hold only real symbols, so the
+replacements cannot see each other's output: the step stays parallel, as an L-system step must be.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from engine.lsystem.lsys import Alternative, LSystem
+
+PLACEHOLDERS = bytes(range(1, 33)) + bytes(range(127, 256))  # never valid module symbols
+
+
+class SymbolRewriter:
+    """Placeholders and successor bytes for a parameter-free L-system (see module docstring)."""
+
+    def __init__(self, system: LSystem) -> None:
+        alts = [a for p in system.productions for a in p.alternatives]
+        self.placeholder: dict[int, int] = {id(a): PLACEHOLDERS[i] for i, a in enumerate(alts)}
+        self.successor: dict[bytes, bytes] = {
+            bytes([PLACEHOLDERS[i]]): a.symbols.tobytes() for i, a in enumerate(alts)}
+        self.direct_map, self.lengths = self._direct(system)
+        self.ruled = np.zeros(256, bool) if self.direct_map is None else (
+            np.frombuffer(self.direct_map, np.uint8) != np.arange(256))
+
+    @staticmethod
+    def usable(system: LSystem) -> bool:
+        """True when the system can never create or read a parameter (and its alternatives fit the
+        placeholders): then a string without parameters stays without them."""
+        prods = system.productions
+        alts = [a for p in prods for a in p.alternatives]
+        no_formals = all(not pat.formals for p in prods for pat in (p.pred, *p.left, *p.right))
+        return no_formals and len(alts) <= len(PLACEHOLDERS) and not any(a.nparams.any() for a in alts)
+
+    def _direct(self, system: LSystem) -> tuple[bytes | None, np.ndarray]:
+        """For systems where the symbol alone decides the successor (one unconditional, context-free,
+        single-alternative production per symbol): the translate table and each symbol's output
+        length (0 for symbols no production rewrites)."""
+        prods = system.productions
+        lengths = np.zeros(256, dtype=np.int64)
+        symbols = [p.pred.symbol for p in prods]
+        if len(set(symbols)) != len(symbols) or any(
+                p.left or p.right or p.condition is not None or len(p.alternatives) != 1 for p in prods):
+            return None, lengths
+        table = bytearray(range(256))
+        for p in prods:
+            alt = p.alternatives[0]
+            table[p.pred.symbol] = self.placeholder[id(alt)]
+            lengths[p.pred.symbol] = len(alt.symbols)
+        return bytes(table), lengths
+
+    def direct_counts(self, sym: np.ndarray) -> tuple[int, int, list[int]]:
+        """Output length, number of rewritten modules and the symbols rewritten, for a direct step."""
+        counts = np.bincount(sym, minlength=256)
+        present = np.flatnonzero(self.ruled & (counts > 0))
+        rewritten = int(counts[present].sum())
+        return len(sym) - rewritten + int(counts[present] @ self.lengths[present]), rewritten, present.tolist()
+
+    def rewrite_direct(self, sym: np.ndarray, present: list[int]) -> np.ndarray:
+        """One step of a direct system over the whole string (``present``: the rewritten symbols)."""
+        assert self.direct_map is not None
+        return self._expand(sym.tobytes().translate(self.direct_map), [self.direct_map[s] for s in present])
+
+    def rewrite_marked(self, sym: np.ndarray, marks: list[tuple[np.ndarray, Alternative]]) -> np.ndarray:
+        """One step where the modules ``idx`` of each (idx, alternative) pair get that successor."""
+        marked = sym.copy()
+        used = []
+        for idx, alt in marks:
+            marked[idx] = self.placeholder[id(alt)]
+            used.append(self.placeholder[id(alt)])
+        return self._expand(marked.tobytes(), used)
+
+    def _expand(self, data: bytes, used: list[int]) -> np.ndarray:
+        for ph in dict.fromkeys(used):
+            key = bytes([ph])
+            data = data.replace(key, self.successor[key])
+        return np.frombuffer(bytearray(data), dtype=np.uint8)
