@@ -94,6 +94,12 @@ def _cmd_lab(args: argparse.Namespace) -> int:
     return 0
 
 
+def _cmd_sweep(args: argparse.Namespace) -> int:
+    from game.commands.sweep import run_sweep
+
+    return run_sweep(args.sweep, args.out, args.workers, args.scheduler, plots=not args.no_plots)
+
+
 def _cmd_landscape(args: argparse.Namespace) -> int:
     from game.commands.landscape import parse_presets, render_landscape
 
@@ -162,6 +168,15 @@ def build_parser() -> argparse.ArgumentParser:
     lab.add_argument("experiment", type=Path, help="experiment .toml (see assets/experiments)")
     lab.add_argument("--out", type=Path, default=None, help="write CSV, PNG charts and saves here, no window")
     lab.set_defaults(run=_cmd_lab)
+    sweep = sub.add_parser("sweep", help="educators: many headless runs (factors x seeds) -> CSVs and plots")
+    sweep.add_argument("sweep", type=Path, help="sweep .toml (see assets/experiments/sweep_*.toml)")
+    sweep.add_argument("--out", type=Path, required=True, help="folder for runs, CSVs and figures (resumable)")
+    sweep.add_argument("--workers", type=_bounded(1, 256, "--workers"), default=None,
+                       help="worker processes (default: every core)")
+    sweep.add_argument("--scheduler", default=None, metavar="ADDRESS",
+                       help="run on an existing Dask cluster, e.g. tcp://10.0.0.5:8786 (pip install 'arbor[cluster]')")
+    sweep.add_argument("--no-plots", action="store_true", help="CSV tables only")
+    sweep.set_defaults(run=_cmd_sweep)
     land = sub.add_parser("landscape", help="render a landscape of many trees (instancing, LOD, culling)")
     land.add_argument("trees", type=_bounded(1, MAX_TREES, "the number of trees"),
                       help=f"number of trees, 1-{MAX_TREES:,}")

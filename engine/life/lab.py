@@ -23,7 +23,8 @@ from engine.life.rules import SECTIONS, Rules
 from engine.life.world import World
 from engine.lsystem.lsys import LSystem, load_lsystem
 
-METRICS = ("height", "width", "offset", "girth", "modules", "leaves", "shed", "roots", "sun", "water", "wilt")
+METRICS = ("height", "width", "offset", "girth", "modules", "leaves", "shed", "roots", "sun", "water", "wilt",
+           "alive", "fruit")
 MAX_TREES = 6
 
 
@@ -72,7 +73,8 @@ class Experiment:
     seasons: bool = True  # false: an endless summer, to study light or water alone
 
 
-def _number(data: dict, key: str, file: str, default=None, positive: bool = False) -> float:
+def number_value(data: dict, key: str, file: str, default=None, positive: bool = False) -> float:
+    """``data[key]`` as a finite number (``default`` when missing); an error naming the key otherwise."""
     value = data.get(key, default)
     if value is None or isinstance(value, bool) or not isinstance(value, int | float) or not math.isfinite(value):
         raise LSysError(f"'{key}' must be a number", file)
@@ -94,8 +96,8 @@ def load_experiment(path: str | Path, lsystem_dir: Path) -> Experiment:
     trees = data.get("tree", [])
     if not isinstance(trees, list) or not 1 <= len(trees) <= MAX_TREES:
         raise LSysError(f"an experiment needs 1 to {MAX_TREES} [[tree]] tables", file)
-    regimes = [_regime(t, i, file) for i, t in enumerate(trees)]
-    duration = _number(data, "duration", file, positive=True)
+    regimes = [parse_regime(t, i, file) for i, t in enumerate(trees)]
+    duration = number_value(data, "duration", file, positive=True)
     if duration > 7 * 24 * 3600:
         raise LSysError("'duration' is at most a week of game time", file)
     lsys_name = str(data.get("lsystem", "game_tree.lsys"))
@@ -103,32 +105,35 @@ def load_experiment(path: str | Path, lsystem_dir: Path) -> Experiment:
         raise LSysError("'lsystem' must be a file name in assets/lsystems", file)
     return Experiment(
         title=str(data.get("title", path.stem)),
-        seed=int(_number(data, "seed", file, 0)),
+        seed=int(number_value(data, "seed", file, 0)),
         duration=duration,
-        sample_every=_number(data, "sample_every", file, 30.0, positive=True),
+        sample_every=number_value(data, "sample_every", file, 30.0, positive=True),
         regimes=regimes,
         lsystem=lsystem_dir / lsys_name,
         file=file,
-        pace=_pace(data, file),
-        seasons=_flag(data, "seasons", file),
+        pace=pace_value(data, file),
+        seasons=flag_value(data, "seasons", file),
     )
 
 
-def _flag(data: dict, key: str, file: str) -> bool:
+def flag_value(data: dict, key: str, file: str) -> bool:
+    """``data[key]`` as true or false (true when missing)."""
     value = data.get(key, True)
     if not isinstance(value, bool):
         raise LSysError(f"'{key}' must be true or false", file)
     return value
 
 
-def _pace(data: dict, file: str) -> str:
+def pace_value(data: dict, file: str) -> str:
+    """The pace a file asks for (default demo)."""
     pace = data.get("pace", "demo")
     if not isinstance(pace, str) or not pace.isidentifier():
         raise LSysError("'pace' must be the name of a pace in rules.toml (demo or home)", file)
     return pace
 
 
-def _regime(t: dict, i: int, file: str) -> Regime:
+def parse_regime(t: dict, i: int, file: str) -> Regime:
+    """One tree's regime from its table (sun, watering, rule overrides), checked."""
     where = f"{file} [[tree]] #{i + 1}"
     if not isinstance(t, dict) or "name" not in t:
         raise LSysError("every [[tree]] needs a name", where)
@@ -137,10 +142,10 @@ def _regime(t: dict, i: int, file: str) -> Regime:
         watering = Watering()
     elif isinstance(water, dict):
         watering = Watering(
-            below=_number(water, "below", where) if "below" in water else None,
-            until=_number(water, "until", where, 0.7),
-            every=_number(water, "every", where, positive=True) if "every" in water else None,
-            seconds=_number(water, "seconds", where, 5.0, positive=True),
+            below=number_value(water, "below", where) if "below" in water else None,
+            until=number_value(water, "until", where, 0.7),
+            every=number_value(water, "every", where, positive=True) if "every" in water else None,
+            seconds=number_value(water, "seconds", where, 5.0, positive=True),
         )
     else:
         raise LSysError("'watering' is \"never\" or a table like { below = 0.5, until = 0.7 }", where)
@@ -148,18 +153,19 @@ def _regime(t: dict, i: int, file: str) -> Regime:
     if not isinstance(rules, dict):
         raise LSysError("'rules' must be a table of \"section.key\" = number", where)
     for key in rules:
-        _rule_target(Rules(), key, where)
-        _number(rules, key, where)
+        rule_target(Rules(), key, where)
+        number_value(rules, key, where)
     return Regime(
         name=str(t["name"]),
-        orbit_height=_number(t, "orbit_height", where) if "orbit_height" in t else None,
-        sun_speed=_number(t, "sun_speed", where, positive=True) if "sun_speed" in t else None,
+        orbit_height=number_value(t, "orbit_height", where) if "orbit_height" in t else None,
+        sun_speed=number_value(t, "sun_speed", where, positive=True) if "sun_speed" in t else None,
         watering=watering,
         rules={k: float(v) for k, v in rules.items()},
     )
 
 
-def _rule_target(rules: Rules, key: str, where: str):
+def rule_target(rules: Rules, key: str, where: str):
+    """The rules section object and field name a ``"section.key"`` names; an error if it names none."""
     section, _, name = key.partition(".")
     if section not in SECTIONS:
         raise LSysError(f"unknown rule section in {key!r}", where)
@@ -173,7 +179,7 @@ def regime_rules(base: Rules, regime: Regime) -> Rules:
     """The base rules with the regime's overrides."""
     rules = copy.deepcopy(base)
     for key, value in regime.rules.items():
-        target, name = _rule_target(rules, key, regime.name)
+        target, name = rule_target(rules, key, regime.name)
         setattr(target, name, value)
     return rules
 
@@ -249,7 +255,7 @@ class Lab:
 
 def measure(world: World) -> dict[str, float]:
     """Height, crown width, crown offset toward the sun's side, trunk girth (diameter at the base),
-    modules, leaf clusters on the tree, branches shed, root length, meters and wilt."""
+    modules, leaf clusters on the tree, branches shed, root length, meters, wilt, alive (1 or 0) and fruit."""
     geometry = world.tree.geometry(world.clocks())
     segs, leaves = geometry.turtle.segments, geometry.turtle.leaves
     shape = crown_shape(segs, leaves)
@@ -261,7 +267,8 @@ def measure(world: World) -> dict[str, float]:
     return {"height": shape["height"], "width": shape["width"], "offset": float(shape["centroid"] @ side),
             "girth": girth, "modules": float(len(world.tree.lstring)), "leaves": float(on_tree),
             "shed": float(world.tree.shed_total), "roots": world.roots.length(), "sun": s.sun_meter,
-            "water": s.water_meter, "wilt": s.wilt}
+            "water": s.water_meter, "wilt": s.wilt, "alive": float(s.alive),
+            "fruit": float(world.tree.lstring.count("O"))}
 
 
 def crown_shape(segs, leaves) -> dict:

@@ -10,7 +10,7 @@ from engine.life.lab import Lab, load_experiment
 from engine.life.rules import load_rules
 from engine.life.save import save_world
 from game.paths import ASSETS
-from game.render.charts import charts_png
+from game.render.figures import lab_charts
 from game.render.renderer import headless_context, render_image, save_png
 
 
@@ -39,16 +39,17 @@ def scene_png(lab: Lab, path: Path, tile: tuple[int, int] = (640, 720), ctx=None
 
 
 def run_headless(experiment_path: Path, out: Path) -> list[Path]:
-    """Run the experiment without a window; write results.csv, charts.png, scene.png and saves."""
+    """Run the experiment without a window; write results.csv, charts (PNG and SVG), scene.png and saves."""
     lab = new_lab(experiment_path)
     lab.run()
     out.mkdir(parents=True, exist_ok=True)
-    files = [out / "results.csv", out / "charts.png", out / "scene.png"]
-    lab.write_csv(files[0])
-    charts_png(lab.series, str(files[1]), title=f"{lab.experiment.title} ({lab.experiment.duration / 60:.0f} min)")
+    lab.write_csv(out / "results.csv")
+    charts = lab_charts(lab.series, out / "charts",
+                        title=f"{lab.experiment.title} ({lab.experiment.duration / 60:.0f} min)")
+    files = [out / "results.csv", *charts, out / "scene.png"]
     ctx = headless_context()
     try:
-        scene_png(lab, files[2], ctx=ctx)
+        scene_png(lab, out / "scene.png", ctx=ctx)
     finally:
         ctx.release()
     for world, regime in zip(lab.worlds, lab.experiment.regimes, strict=True):

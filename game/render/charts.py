@@ -1,4 +1,4 @@
-"""Line charts of lab time series, drawn with pygame (in the lab screen and into PNG files).
+"""Live line charts of lab time series, drawn with pygame in the lab screen (exports: figures.py).
 
 Small multiples: one panel per measurement, one coloured line per tree, with a shared legend. Thick
 lines and large type so a class can read them on a projector.
@@ -67,17 +67,3 @@ def draw_charts(surface: pygame.Surface, rect: pygame.Rect, series: list,
     for k, metric in enumerate(metrics):
         panel = pygame.Rect(rect.left + (k % cols) * w + 4, rect.top + legend_h + (k // cols) * h + 4, w - 8, h - 8)
         draw_panel(surface, panel, metric, series, font, small)
-
-
-def charts_png(series: list, path: str, size: tuple[int, int] = (1600, 900), title: str = "") -> None:
-    """Write the charts of a run as a PNG."""
-    surface = pygame.Surface(size)
-    surface.fill((235, 235, 228))
-    top = 0
-    if title:
-        pygame.font.init()
-        text = pygame.font.Font(None, 44).render(title, True, INK)
-        surface.blit(text, (12, 10))
-        top = 50
-    draw_charts(surface, pygame.Rect(0, top, size[0], size[1] - top), series)
-    pygame.image.save(surface, path)

@@ -18,7 +18,8 @@ from engine.life.save import save_world
 from game.input.events import DOWN, KEY_DOWN, QUIT, InputEvent
 from game.loop import SPEEDS, FixedStepLoop
 from game.render.camera import OrbitCamera
-from game.render.charts import COLORS, charts_png, draw_charts
+from game.render.charts import COLORS, draw_charts
+from game.render.figures import lab_charts
 from game.render.renderer import Overlay, TreeRenderer, save_png
 
 SCENE_FRACTION = 0.55
@@ -130,13 +131,13 @@ class LabScreen:
         return pygame.image.tobytes(s, "RGBA", True)
 
     def export(self) -> Path:
-        """CSV, a PNG of the screen, a PNG of the charts and a save of every tree."""
+        """CSV, a PNG of the screen, the charts (PNG and SVG) and a save of every tree."""
         stamp = time.strftime("%Y%m%d-%H%M%S")
         name = "".join(c if c.isalnum() else "_" for c in self.lab.experiment.title).strip("_").lower()
         folder = self.results / f"{name}-{stamp}"
         folder.mkdir(parents=True, exist_ok=True)
         self.lab.write_csv(folder / "results.csv")
-        charts_png(self.lab.series, str(folder / "charts.png"), title=self.lab.experiment.title)
+        lab_charts(self.lab.series, folder / "charts", title=self.lab.experiment.title, colors=COLORS)
         fbo = self.ctx.simple_framebuffer(self.size)
         self.draw(fbo)
         pixels = np.frombuffer(fbo.read(components=3), np.uint8).reshape(self.size[1], self.size[0], 3)[::-1]

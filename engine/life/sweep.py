@@ -1,0 +1,168 @@
+"""Sweeps: one or two factors x many seeds, each run a headless one-tree lab experiment.
+
+A sweep file (TOML) names the factors (sun orbit height or speed, a watering interval or threshold,
+the species, or any number in rules.toml) with their levels, the seeds, the simulated duration and
+the responses to record. Every run is independent and reproducible from its seed and levels alone:
+a :class:`Task` carries the L-system source and the rules, so a run needs no files and can go to
+another process or another machine.
+"""
+
+from __future__ import annotations
+
+import copy
+import hashlib
+import itertools
+from dataclasses import dataclass, field, replace
+from pathlib import Path
+
+import numpy as np
+
+from engine.life.lab import METRICS, Experiment, Lab, Regime
+from engine.life.rules import Rules
+from engine.life.save import save_text
+from engine.lsystem.lsys import parse_lsystem
+
+RESPONSES = METRICS
+REGIME_KEYS = ("orbit_height", "sun_speed", "watering.every", "watering.below")
+MAX_FACTORS, MAX_LEVELS, MAX_SEEDS, MAX_RUNS = 2, 24, 500, 5000
+
+
+@dataclass(frozen=True)
+class Factor:
+    """One thing the sweep varies: a name for the plots, what it sets, and its levels."""
+
+    name: str
+    key: str  # a REGIME_KEYS entry, "species", or "section.key" of rules.toml
+    levels: tuple
+
+
+@dataclass
+class Sweep:
+    """A whole sweep (see module docstring)."""
+
+    title: str
+    factors: list[Factor]
+    seeds: list[int]
+    duration: float
+    sample_every: float
+    responses: tuple[str, ...]
+    base: Regime
+    species: str = "game_tree.lsys"
+    pace: str = "demo"
+    seasons: bool = True
+    file: str = "<sweep>"
+    source: str = ""
+
+    @property
+    def digest(self) -> str:
+        """Hash of the sweep file: finished runs are only reused by the same sweep."""
+        return hashlib.sha256(self.source.encode("utf-8")).hexdigest()[:16]
+
+
+@dataclass(frozen=True)
+class Run:
+    """One run: its number, the level of each factor and the seed."""
+
+    index: int
+    levels: tuple
+    seed: int
+
+    @property
+    def name(self) -> str:
+        """A file-safe name, stable for a given sweep."""
+        return f"run{self.index:05d}"
+
+
+@dataclass
+class Task:
+    """Everything one run needs, with no paths: it can be pickled to a worker anywhere."""
+
+    sweep: Sweep
+    run: Run
+    rules: Rules
+    sources: dict[str, str]  # species file name -> .lsys text
+    keep_tree: bool = False
+
+
+@dataclass
+class Outcome:
+    """What a run sends back: sampled rows and, for kept runs, the final tree as save text."""
+
+    run: Run
+    rows: list[dict[str, float]] = field(default_factory=list)
+    tree: str | None = None
+
+
+def runs(sweep: Sweep) -> list[Run]:
+    """Every run of the sweep: each combination of levels, each seed, in a fixed order."""
+    combos = itertools.product(*(f.levels for f in sweep.factors))
+    return [Run(i, levels, seed) for i, (levels, seed) in
+            enumerate(itertools.product(list(combos), sweep.seeds))]
+
+
+def execute(task: Task) -> Outcome:
+    """Grow one run's tree headless and sample its responses (the worker's function)."""
+    sweep, run = task.sweep, task.run
+    regime, rules, species = copy.deepcopy(sweep.base), copy.deepcopy(task.rules), sweep.species
+    for factor, level in zip(sweep.factors, run.levels, strict=True):
+        if factor.key == "species":
+            species = level
+        elif factor.key in REGIME_KEYS:
+            _set_regime(regime, factor.key, float(level))
+        else:
+            regime.rules[factor.key] = float(level)
+    system = parse_lsystem(task.sources[species], species)
+    experiment = Experiment(sweep.title, run.seed, sweep.duration, sweep.sample_every, [regime],
+                            Path(species), pace=sweep.pace, seasons=sweep.seasons)
+    lab = Lab(experiment, rules, system)
+    lab.run()
+    if lab.series[0].time[-1] < sweep.duration - 1e-6:
+        lab.sample()  # every run ends with a sample at the full duration: the dose-response reads it
+    series, world = lab.series[0], lab.worlds[0]
+    rows = [{"time_s": t, **{m: series.values[m][i] for m in sweep.responses}} for i, t in enumerate(series.time)]
+    return Outcome(run, rows, save_text(world, species) if task.keep_tree else None)
+
+
+def _set_regime(regime: Regime, key: str, value: float) -> None:
+    if key == "orbit_height":
+        regime.orbit_height = value
+    elif key == "sun_speed":
+        regime.sun_speed = value
+    elif key == "watering.every":
+        regime.watering = replace(regime.watering, every=value, below=None)
+    else:
+        regime.watering = replace(regime.watering, below=value, every=None)
+
+
+STATS = ("n", "mean", "sd", "p10", "median", "p90")
+
+
+def final_values(table: list[dict[str, str]], sweep: Sweep) -> dict[tuple, dict[str, np.ndarray]]:
+    """Each run's last sample, grouped by levels: {levels: {response: values over seeds}} (tidy rows in)."""
+    last: dict[str, dict[str, str]] = {}
+    for row in table:
+        last[row["run"]] = row  # rows come in time order within a run
+    lookup = [{cell(level): level for level in f.levels} for f in sweep.factors]
+    groups: dict[tuple, dict[str, list[float]]] = {
+        levels: {r: [] for r in sweep.responses} for levels in itertools.product(*(f.levels for f in sweep.factors))}
+    for row in last.values():
+        levels = tuple(names[row[f.name]] for names, f in zip(lookup, sweep.factors, strict=True))
+        for r in sweep.responses:
+            groups[levels][r].append(float(row[r]))
+    return {k: {r: np.array(v) for r, v in g.items()} for k, g in groups.items() if len(g[sweep.responses[0]])}
+
+
+def cell(value) -> str:
+    """How a level or a value is written in the CSVs (text as is, numbers to 10 digits)."""
+    return value if isinstance(value, str) else f"{float(value):.10g}"
+
+
+def summarize(finals: dict[tuple, dict[str, np.ndarray]]) -> list[tuple[tuple, str, tuple[float, ...]]]:
+    """(levels, response, (n, mean, sd, p10, median, p90)) of the final values, levels in sweep order."""
+    out = []
+    for levels, group in finals.items():
+        for response, v in group.items():
+            p10, p50, p90 = np.percentile(v, [10, 50, 90])
+            sd = float(v.std(ddof=1)) if len(v) > 1 else 0.0
+            out.append((levels, response, (float(len(v)), float(v.mean()), sd, float(p10), float(p50), float(p90))))
+    return out

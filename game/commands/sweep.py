@@ -1,0 +1,145 @@
+"""`arbor sweep SWEEP.toml --out DIR`: every run of a sweep, then a tidy CSV, a summary CSV and figures.
+
+DIR gets: runs/ (one CSV per finished run, kept across Ctrl-C), trees/ (the final tree of each
+level's first seed, as saves the game opens), tidy.csv (one row per run and sample time), summary.csv
+(per level and response at the end: n, mean, sd, 10 %, median, 90 %), and dose_response, time_series
+and thumbnails as PNG and SVG.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import csv
+import io
+import os
+from collections.abc import Callable
+from pathlib import Path
+
+import numpy as np
+
+from engine.life.rules import load_rules
+from engine.life.save import load_world
+from engine.life.sweep import STATS, Outcome, Sweep, Task, cell, final_values, runs, summarize
+from engine.life.sweep_file import load_sweep
+from game.commands.sweep_runs import RunStore, outcomes, progress_bar, write_atomic
+from game.paths import ASSETS
+
+MAX_WORKERS = 256
+
+
+def run_sweep(path: Path, out: Path, workers: int | None = None, scheduler: str | None = None,
+              plots: bool = True, echo: Callable[[str], None] = print) -> int:
+    """Run what is not done yet of the sweep in ``path`` into ``out``; write tables and figures when every
+    run is done. Returns the exit status (0 done, 1 some runs failed, 130 stopped by Ctrl-C)."""
+    sweep = load_sweep(path, ASSETS / "lsystems")
+    store = RunStore(out, sweep)
+    everything = runs(sweep)
+    done = store.done()
+    todo = [r for r in everything if r.name not in done]
+    workers = min(workers or os.cpu_count() or 1, MAX_WORKERS)
+    where = f"the Dask scheduler at {scheduler}" if scheduler else f"{workers} worker process(es)"
+    echo(f"{sweep.title}: {len(everything)} runs, {len(everything) - len(todo)} already done, on {where}")
+    tasks = _tasks(sweep, todo)
+    bar = progress_bar(len(everything), len(everything) - len(todo), sweep.title)
+    failed = []
+    try:
+        with contextlib.closing(outcomes(tasks, workers, scheduler)) as finished:
+            for outcome in finished:
+                if isinstance(outcome, Outcome):
+                    store.keep(outcome)
+                else:
+                    failed.append(outcome)
+                bar.update()
+    except KeyboardInterrupt:
+        bar.close()
+        echo(f"stopped: {len(store.done())} of {len(everything)} runs kept in {out / 'runs'}; "
+             "run the same command again to finish the rest")
+        return 130
+    bar.close()
+    for run, error in failed:
+        echo(f"{run.name} (seed {run.seed}, levels {run.levels}) failed: {error.strip().splitlines()[-1]}")
+    if failed:
+        echo(f"{len(failed)} runs failed; the others are kept. Run the same command again to retry them.")
+        return 1
+    for written in write_outputs(sweep, store, everything, plots):
+        echo(str(written))
+    return 0
+
+
+def _tasks(sweep: Sweep, todo: list) -> list[Task]:
+    rules = load_rules(ASSETS / "rules.toml", sweep.pace)
+    names = {sweep.species, *(v for f in sweep.factors if f.key == "species" for v in f.levels)}
+    sources = {name: (ASSETS / "lsystems" / name).read_text(encoding="utf-8") for name in names}
+    return [Task(sweep, run, rules, sources, keep_tree=run.seed == sweep.seeds[0]) for run in todo]
+
+
+def write_outputs(sweep: Sweep, store: RunStore, everything: list, plots: bool = True) -> list[Path]:
+    """tidy.csv, summary.csv and (with ``plots``) the figures, from the finished runs."""
+    out = store.out
+    tidy = store.table(everything)
+    write_atomic(out / "tidy.csv", tidy)
+    rows = list(csv.DictReader(io.StringIO(tidy)))
+    finals = final_values(rows, sweep)
+    write_atomic(out / "summary.csv", summary_csv(sweep, finals))
+    files = [out / "tidy.csv", out / "summary.csv"]
+    if plots:
+        from game.render import figures
+
+        files += figures.dose_response(sweep, finals, out / "dose_response")
+        files += figures.time_series(sweep, _series(sweep, rows), out / "time_series")
+        files += _thumbnails(sweep, store, everything)
+    return files
+
+
+def summary_csv(sweep: Sweep, finals: dict) -> str:
+    """Per combination of levels and response, the spread over seeds of the final values."""
+    buf = io.StringIO()
+    writer = csv.writer(buf, lineterminator="\n")
+    writer.writerow([*(f.name for f in sweep.factors), "response", *STATS])
+    for levels, response, stats in summarize(finals):
+        writer.writerow([*(cell(v) for v in levels), response, *(cell(s) for s in stats)])
+    return buf.getvalue()
+
+
+def _series(sweep: Sweep, rows: list[dict]) -> dict:
+    """levels -> (times, {response: seeds x samples}) from the tidy rows."""
+    by_run: dict[str, list[dict]] = {}
+    for row in rows:
+        by_run.setdefault(row["run"], []).append(row)
+    groups: dict[tuple, list[list[dict]]] = {}
+    for run_rows in by_run.values():
+        levels = tuple(run_rows[0][f.name] for f in sweep.factors)
+        groups.setdefault(levels, []).append(run_rows)
+    series = {}
+    for levels, members in groups.items():
+        n = min(len(m) for m in members)
+        times = np.array([float(r["time_s"]) for r in members[0][:n]])
+        series[levels] = (times, {resp: np.array([[float(r[resp]) for r in m[:n]] for m in members])
+                                  for resp in sweep.responses})
+    return series
+
+
+def _thumbnails(sweep: Sweep, store: RunStore, everything: list) -> list[Path]:
+    """Render the kept final trees alike (same framing, so sizes compare) into a grid."""
+    from game.render import figures
+    from game.render.renderer import headless_context, render_image
+
+    kept = {r.levels: store.trees_dir / f"{r.name}.arbor" for r in everything if r.seed == sweep.seeds[0]}
+    rules = load_rules(ASSETS / "rules.toml", sweep.pace)
+    meshes = {}
+    for levels, path in kept.items():
+        if path.is_file():
+            world, _ = load_world(path, rules)
+            meshes[levels] = world.tree.geometry(world.clocks())
+    try:
+        ctx = headless_context()
+    except Exception as exc:  # no EGL / GL here: the tables and plots are still worth having
+        print(f"thumbnails skipped: no OpenGL for headless rendering ({exc})")
+        return []
+    try:
+        top = max([float(g.turtle.bounds()[1][1]) for g in meshes.values()] + [1.0])
+        images = {k: render_image(g.mesh, (300, 360), pitch=8.0, ctx=ctx, frame_height=top, samples=4)
+                  for k, g in meshes.items()}
+    finally:
+        ctx.release()
+    return figures.thumbnails(sweep, images, store.out / "thumbnails")

@@ -1,0 +1,129 @@
+"""Running a sweep: a local process pool (default), one process, or an existing Dask cluster.
+
+Every finished run is written to DIR/runs/ at once (temp file, fsync, rename), so Ctrl-C, a crash or
+a killed machine loses only the runs in flight; the same command run again skips what is done.
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+import multiprocessing
+import os
+import signal
+import traceback
+from collections.abc import Iterable, Iterator
+from pathlib import Path
+
+from engine.base.errors import LSysError
+from engine.life.sweep import Outcome, Run, Sweep, Task, cell, execute
+
+
+class RunStore:
+    """The runs of one sweep kept in a folder: one small CSV per finished run, kept trees as saves."""
+
+    def __init__(self, out: Path, sweep: Sweep) -> None:
+        self.out, self.sweep = out, sweep
+        self.runs_dir, self.trees_dir = out / "runs", out / "trees"
+        stamp = out / "sweep.toml"
+        if stamp.is_file() and stamp.read_text(encoding="utf-8") != sweep.source:
+            raise LSysError(f"{out} holds the runs of another sweep: choose a new --out folder", sweep.file)
+        self.runs_dir.mkdir(parents=True, exist_ok=True)
+        self.trees_dir.mkdir(exist_ok=True)
+        if not stamp.is_file():
+            write_atomic(stamp, sweep.source)
+
+    @property
+    def columns(self) -> list[str]:
+        """The tidy table's columns: run, seed, one per factor, time, the responses."""
+        return ["run", "seed", *(f.name for f in self.sweep.factors), "time_s", *self.sweep.responses]
+
+    def done(self) -> set[str]:
+        """Names of the runs already finished."""
+        return {p.stem for p in self.runs_dir.glob("run*.csv")}
+
+    def keep(self, outcome: Outcome) -> None:
+        """Write one finished run (and its tree, when kept)."""
+        run = outcome.run
+        buf = io.StringIO()
+        writer = csv.writer(buf, lineterminator="\n")
+        writer.writerow(self.columns)
+        for row in outcome.rows:
+            writer.writerow([run.name, run.seed, *(cell(v) for v in run.levels), cell(row["time_s"]),
+                             *(cell(row[r]) for r in self.sweep.responses)])
+        if outcome.tree is not None:
+            write_atomic(self.trees_dir / f"{run.name}.arbor", outcome.tree)
+        write_atomic(self.runs_dir / f"{run.name}.csv", buf.getvalue())
+
+    def table(self, runs: list[Run]) -> str:
+        """The tidy CSV of every run, in run order (the header once)."""
+        parts = [",".join(self.columns) + "\n"]
+        for run in runs:
+            text = (self.runs_dir / f"{run.name}.csv").read_text(encoding="utf-8")
+            parts.append(text.split("\n", 1)[1])
+        return "".join(parts)
+
+
+def write_atomic(path: Path, text: str) -> None:
+    """Write ``text`` so that ``path`` is either the old file or the whole new one."""
+    tmp = path.with_name(f".{path.name}.tmp")
+    with open(tmp, "w", encoding="utf-8", newline="") as fh:
+        fh.write(text)
+        fh.flush()
+        os.fsync(fh.fileno())
+    os.replace(tmp, path)
+
+
+def run_safely(task: Task) -> Outcome | tuple[Run, str]:
+    """A run's outcome, or (run, error text) when it fails: one bad run must not stop the others."""
+    try:
+        return execute(task)
+    except Exception:  # reported with the run's name; the sweep goes on
+        return task.run, traceback.format_exc(limit=3)
+
+
+def _quiet_interrupts() -> None:
+    signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl-C is the parent's to handle
+
+
+def outcomes(tasks: list[Task], workers: int, scheduler: str | None) -> Iterator[Outcome | tuple[Run, str]]:
+    """Run ``tasks`` and yield each outcome as it finishes (in any order). Stops the workers when the
+    consumer stops (Ctrl-C in the caller), so no run goes on in the background."""
+    if not tasks:
+        return
+    if scheduler:
+        yield from _dask(tasks, scheduler)
+    elif workers == 1:
+        yield from map(run_safely, tasks)
+    else:
+        pool = multiprocessing.get_context("spawn").Pool(min(workers, len(tasks)), initializer=_quiet_interrupts)
+        try:
+            yield from pool.imap_unordered(run_safely, tasks)
+        finally:
+            pool.terminate()
+            pool.join()
+
+
+def _dask(tasks: list[Task], scheduler: str) -> Iterable[Outcome | tuple[Run, str]]:
+    try:
+        from dask.distributed import Client, as_completed
+    except ImportError:
+        raise LSysError("--scheduler needs Dask: pip install 'arbor[cluster]'", scheduler) from None
+    try:
+        client = Client(scheduler, timeout="10s")
+    except (OSError, TimeoutError) as exc:
+        raise LSysError(f"cannot reach the Dask scheduler: {exc}", scheduler) from None
+    futures = client.map(run_safely, tasks, pure=False)
+    try:
+        for future in as_completed(futures):
+            yield future.result()
+    finally:
+        client.cancel(futures)
+        client.close()
+
+
+def progress_bar(total: int, done: int, title: str):
+    """A terminal progress bar with an ETA (tqdm): ``update()`` after each run, ``close()`` at the end."""
+    from tqdm import tqdm
+
+    return tqdm(total=total, initial=done, unit="run", desc=title[:40], mininterval=0.5, dynamic_ncols=True)

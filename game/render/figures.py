@@ -1,0 +1,158 @@
+"""Exported figures, drawn with matplotlib (PNG and SVG): sweep dose-response, time series per level,
+a thumbnail grid of final trees, and the lab's charts. Large type and thick lines for a projector."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import matplotlib
+
+matplotlib.use("Agg")  # files only: never a window, never a display
+
+import matplotlib.pyplot as plt
+import numpy as np
+
+TITLES = {"height": "Height", "width": "Crown width", "offset": "Lean toward the sun", "girth": "Trunk girth",
+          "modules": "Modules", "leaves": "Leaf clusters", "shed": "Branches shed", "roots": "Root length",
+          "sun": "Sun meter", "water": "Water meter", "wilt": "Wilt", "alive": "Alive (share)",
+          "fruit": "Fruit"}
+plt.rcParams.update({"font.size": 13, "axes.titlesize": 15, "axes.titleweight": "bold", "lines.linewidth": 2.5,
+                     "svg.hashsalt": "arbor", "axes.spines.top": False, "axes.spines.right": False})
+
+
+def save_both(fig, path: Path) -> list[Path]:
+    """Write ``fig`` as PNG and SVG next to each other; returns both paths."""
+    png, svg = path.with_suffix(".png"), path.with_suffix(".svg")
+    fig.savefig(png, dpi=110, bbox_inches="tight")
+    fig.savefig(svg, bbox_inches="tight", metadata={"Date": None})
+    plt.close(fig)
+    return [png, svg]
+
+
+def _grid(n: int, width: float = 5.2, height: float = 3.8):
+    cols = min(n, 3)
+    rows = (n + cols - 1) // cols
+    fig, axes = plt.subplots(rows, cols, figsize=(width * cols, height * rows), squeeze=False, layout="constrained")
+    for ax in axes.flat[n:]:
+        ax.axis("off")
+    return fig, list(axes.flat[:n])
+
+
+def _positions(levels: tuple) -> tuple[np.ndarray, list[str] | None]:
+    """x positions of a factor's levels: the values, or 0..k-1 with labels for names (species)."""
+    if all(isinstance(v, float | int) for v in levels):
+        return np.array(levels, dtype=float), None
+    return np.arange(len(levels), dtype=float), [str(v).removesuffix(".lsys") for v in levels]
+
+
+def dose_response(sweep, finals: dict, path: Path) -> list[Path]:
+    """Each response at the end of the runs against the first factor's levels: the mean over seeds, a
+    10-90 % band and every run as a dot; one line per level of the second factor."""
+    first = sweep.factors[0]
+    second = sweep.factors[1].levels if len(sweep.factors) > 1 else (None,)
+    x, labels = _positions(first.levels)
+    colors = plt.cm.viridis(np.linspace(0.05, 0.85, len(second)))
+    fig, axes = _grid(len(sweep.responses))
+    for ax, response in zip(axes, sweep.responses, strict=True):
+        for color, other in zip(colors, second, strict=True):
+            stats = []
+            for xi, level in zip(x, first.levels, strict=True):
+                key = (level,) if other is None else (level, other)
+                values = finals.get(key, {}).get(response, np.zeros(0))
+                if len(values):
+                    ax.scatter(np.full(len(values), xi), values, s=9, color=color, alpha=0.35, linewidths=0)
+                    stats.append((xi, values.mean(), *np.percentile(values, [10, 90])))
+            if stats:
+                sx, mean, low, high = np.array(stats).T
+                ax.fill_between(sx, low, high, color=color, alpha=0.2, linewidth=0)
+                label = None if other is None else f"{sweep.factors[1].name} = {_text(other)}"
+                ax.plot(sx, mean, "-o", color=color, label=label, markersize=5)
+        _limits(ax, response)
+        ax.set_title(TITLES.get(response, response))
+        ax.set_xlabel(first.name)
+        if labels:
+            ax.set_xticks(x, labels)
+        ax.grid(alpha=0.3)
+    if len(second) > 1:
+        axes[0].legend(fontsize=10, frameon=False)
+    fig.suptitle(f"{sweep.title}: after {_duration(sweep.duration)}, {len(sweep.seeds)} seeds per level "
+                 "(line: mean; band: 10-90 %)", fontsize=16)
+    return save_both(fig, path)
+
+
+def time_series(sweep, series: dict, path: Path) -> list[Path]:
+    """Each response over time: per combination of levels, the mean over seeds and a 10-90 % band.
+    ``series`` maps levels -> (times, {response: array seeds x samples})."""
+    fig, axes = _grid(len(sweep.responses))
+    colors = plt.cm.viridis(np.linspace(0.05, 0.85, max(len(series), 1)))
+    for ax, response in zip(axes, sweep.responses, strict=True):
+        for color, (levels, (times, values)) in zip(colors, series.items(), strict=True):
+            v = values[response]
+            minutes = times / 60.0
+            ax.fill_between(minutes, *np.percentile(v, [10, 90], axis=0), color=color, alpha=0.15, linewidth=0)
+            ax.plot(minutes, v.mean(axis=0), color=color, label=", ".join(_text(x) for x in levels))
+        _limits(ax, response)
+        ax.set_title(TITLES.get(response, response))
+        ax.set_xlabel("minutes of game time")
+        ax.grid(alpha=0.3)
+    axes[0].legend(fontsize=9, frameon=False, title=" x ".join(f.name for f in sweep.factors), title_fontsize=9)
+    fig.suptitle(f"{sweep.title}: mean over {len(sweep.seeds)} seeds (band: 10-90 %)", fontsize=16)
+    return save_both(fig, path)
+
+
+def thumbnails(sweep, images: dict, path: Path) -> list[Path]:
+    """The final tree of each combination of levels (its first seed), in a grid: first factor across,
+    second factor down. ``images`` maps levels -> RGB array."""
+    across = sweep.factors[0].levels
+    down = sweep.factors[1].levels if len(sweep.factors) > 1 else (None,)
+    fig, axes = plt.subplots(len(down), len(across), figsize=(2.6 * len(across), 3.2 * len(down)), squeeze=False,
+                             layout="constrained")
+    for r, other in enumerate(down):
+        for c, level in enumerate(across):
+            ax = axes[r][c]
+            ax.axis("off")
+            key = (level,) if other is None else (level, other)
+            if key in images:
+                ax.imshow(images[key])
+            title = _text(level)
+            if other is not None and c == 0:
+                title = f"{sweep.factors[1].name} = {_text(other)}\n{title}"
+            ax.set_title(title, fontsize=11, fontweight="normal")
+    fig.suptitle(f"{sweep.title}: final trees (seed {sweep.seeds[0]}); across: {sweep.factors[0].name}", fontsize=13)
+    return save_both(fig, path)
+
+
+def lab_charts(series: list, path: Path, title: str = "", colors=((230, 90, 60), (60, 140, 230), (90, 180, 70),
+                                                                   (200, 160, 30), (150, 80, 180), (60, 60, 60)),
+               metrics=("height", "girth", "modules", "leaves", "sun", "water")) -> list[Path]:
+    """The lab's time series as small multiples, one line per tree in the live charts' colours (the
+    exported twin of the lab screen's charts)."""
+    fig, axes = _grid(len(metrics))
+    for ax, metric in zip(axes, metrics, strict=True):
+        for k, s in enumerate(series):
+            color = np.array(colors[k % len(colors)]) / 255.0
+            ax.plot(np.array(s.time) / 60.0, s.values[metric], label=s.name, color=color)
+        _limits(ax, metric)
+        ax.set_title(TITLES.get(metric, metric))
+        ax.set_xlabel("minutes")
+        ax.grid(alpha=0.3)
+    axes[0].legend(fontsize=10, frameon=False)
+    if title:
+        fig.suptitle(title, fontsize=16)
+    return save_both(fig, path)
+
+
+def _limits(ax, response: str) -> None:
+    """Shares and meters on 0..1; counts and sizes from 0, so small differences do not look large."""
+    if response in ("sun", "water", "wilt", "alive"):
+        ax.set_ylim(-0.02, 1.05)
+    elif response != "offset":
+        ax.set_ylim(bottom=0)
+
+
+def _text(value) -> str:
+    return str(value).removesuffix(".lsys") if isinstance(value, str) else f"{value:g}"
+
+
+def _duration(seconds: float) -> str:
+    return f"{seconds / 60:.0f} min" if seconds < 7200 else f"{seconds / 3600:.1f} h"

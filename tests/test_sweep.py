@@ -1,0 +1,164 @@
+"""Sweeps: file checks, runs on a process pool, one process and a Dask LocalCluster giving the same CSVs,
+Ctrl-C keeping finished runs, tables and figures a teacher can open."""
+
+from __future__ import annotations
+
+import csv
+import io
+import os
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from engine.base.errors import LSysError
+from engine.life.sweep_file import load_sweep
+from game.commands.sweep import run_sweep
+from game.paths import ASSETS
+
+ROOT = Path(__file__).resolve().parent.parent
+SWEEP = """
+title = "Tiny sun sweep"
+duration = 150
+sample_every = 50
+seeds = 3
+seasons = false
+responses = ["height", "girth", "leaves", "alive"]
+
+[base]
+watering = { below = 0.5, until = 0.7 }
+
+[[factor]]
+name = "Sun orbit height"
+key = "orbit_height"
+levels = [-0.6, 1.0]
+
+[[factor]]
+name = "Drain"
+key = "water.drain_rate"
+levels = [0.004, 0.02]
+"""
+
+
+@pytest.fixture(scope="module")
+def sweep_file(tmp_path_factory) -> Path:
+    path = tmp_path_factory.mktemp("sweep") / "tiny.toml"
+    path.write_text(SWEEP, encoding="utf-8")
+    return path
+
+
+@pytest.fixture(scope="module")
+def pooled(sweep_file, tmp_path_factory) -> Path:
+    """The tiny sweep on a two-process pool, with figures."""
+    out = tmp_path_factory.mktemp("pooled")
+    assert run_sweep(sweep_file, out, workers=2, echo=lambda _: None) == 0
+    return out
+
+
+def _rows(path: Path) -> list[dict]:
+    return list(csv.DictReader(io.StringIO(path.read_text(encoding="utf-8"))))
+
+
+def test_tidy_and_summary_tables(pooled):
+    rows = _rows(pooled / "tidy.csv")
+    assert len(rows) == 2 * 2 * 3 * 4  # levels x levels x seeds x samples (0, 50, 100, 150 s)
+    assert list(rows[0]) == ["run", "seed", "Sun orbit height", "Drain", "time_s", "height", "girth", "leaves",
+                             "alive"]
+    assert {r["time_s"] for r in rows} == {"0", "50", "100", "150"}
+    summary = _rows(pooled / "summary.csv")
+    assert len(summary) == 4 * 4  # level combinations x responses
+    height = {(r["Sun orbit height"], r["Drain"]): r for r in summary if r["response"] == "height"}
+    low, high = height[("-0.6", "0.004")], height[("1", "0.004")]
+    assert float(low["n"]) == 3 and float(low["p10"]) <= float(low["median"]) <= float(low["p90"])
+    finals = [float(r["height"]) for r in rows if r["time_s"] == "150" and r["Sun orbit height"] == "1"
+              and r["Drain"] == "0.004"]
+    assert np.isclose(float(high["mean"]), np.mean(finals))
+
+
+def test_figures_are_real_pictures(pooled):
+    import matplotlib.image as mpimg
+
+    for name in ("dose_response", "time_series", "thumbnails"):
+        png, svg = pooled / f"{name}.png", pooled / f"{name}.svg"
+        assert svg.read_text(encoding="utf-8").lstrip().startswith("<?xml") and "<svg" in svg.read_text()
+        img = mpimg.imread(png)[..., :3]
+        assert img.shape[0] > 200 and img.shape[1] > 300
+        assert img.std() > 0.05, f"{name}.png is nearly blank"
+    thumbs = mpimg.imread(pooled / "thumbnails.png")[..., :3]
+    greens = (thumbs[..., 1] > thumbs[..., 0] + 0.05) & (thumbs[..., 1] > thumbs[..., 2])
+    assert greens.mean() > 0.05  # trees and grass were rendered, not empty frames
+    assert len(list((pooled / "trees").glob("run*.arbor"))) == 4  # first seed of each level combination
+
+
+def test_one_process_and_a_dask_cluster_give_identical_tables(sweep_file, pooled, tmp_path):
+    from dask.distributed import LocalCluster
+
+    single = tmp_path / "single"
+    assert run_sweep(sweep_file, single, workers=1, plots=False, echo=lambda _: None) == 0
+    with LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster:
+        clustered = tmp_path / "cluster"
+        assert run_sweep(sweep_file, clustered, scheduler=cluster.scheduler_address, plots=False,
+                         echo=lambda _: None) == 0
+    for name in ("tidy.csv", "summary.csv"):
+        reference = (pooled / name).read_bytes()
+        assert (single / name).read_bytes() == reference
+        assert (clustered / name).read_bytes() == reference
+
+
+def test_ctrl_c_keeps_finished_runs_and_the_rerun_finishes(sweep_file, pooled, tmp_path):
+    out = tmp_path / "stopped"
+    env = {**os.environ, "PYTHONPATH": str(ROOT)}
+    proc = subprocess.Popen([sys.executable, "-m", "game.cli", "sweep", str(sweep_file), "--out", str(out),
+                             "--workers", "2", "--no-plots"], env=env, cwd=ROOT,
+                            stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    deadline = time.monotonic() + 120
+    while len(list((out / "runs").glob("run*.csv"))) < 3 and time.monotonic() < deadline and proc.poll() is None:
+        time.sleep(0.05)
+    proc.send_signal(signal.SIGINT)
+    output, _ = proc.communicate(timeout=60)
+    kept = sorted((out / "runs").glob("run*.csv"))
+    assert proc.returncode == 130, output
+    assert "Traceback" not in output and "run the same command again" in output
+    assert 3 <= len(kept) < 12
+    for path in kept:  # every kept run is whole: its header and its four samples
+        assert path.read_text(encoding="utf-8").count("\n") == 5
+    assert not list((out / "runs").glob(".*.tmp"))
+    said = []
+    assert run_sweep(sweep_file, out, workers=2, plots=False, echo=said.append) == 0
+    assert f"{len(kept)} already done" in said[0]
+    assert (out / "tidy.csv").read_bytes() == (pooled / "tidy.csv").read_bytes()
+
+
+def test_a_folder_of_another_sweep_is_refused(sweep_file, pooled, tmp_path):
+    other = tmp_path / "other.toml"
+    other.write_text(SWEEP.replace("seeds = 3", "seeds = 4"), encoding="utf-8")
+    with pytest.raises(LSysError, match="another sweep"):
+        run_sweep(other, pooled, workers=1, echo=lambda _: None)
+
+
+@pytest.mark.parametrize("change, message", [
+    (("key = \"orbit_height\"", "key = \"water.nonsense\""), "unknown rule 'water.nonsense'"),
+    (("seeds = 3", "seeds = 0"), "'seeds' must be 1 to"),
+    (("seeds = 3", "seeds = 501"), "'seeds' must be 1 to 500"),
+    (("levels = [-0.6, 1.0]", "levels = [1.0, 1.0]"), "must not repeat"),
+    (("levels = [-0.6, 1.0]", "levels = [\"high\"]"), "'levels' must be a number"),
+    (("\"alive\"]", "\"beauty\"]"), "unknown response 'beauty'"),
+    (("sample_every = 50", "sample_every = 0.01"), "more than 2000 samples"),
+    (("key = \"orbit_height\"", "key = \"species\""), "a species is the file name"),
+])
+def test_bad_sweep_files_name_the_problem(tmp_path, change, message):
+    path = tmp_path / "bad.toml"
+    path.write_text(SWEEP.replace(*change), encoding="utf-8")
+    with pytest.raises(LSysError, match=message) as err:
+        load_sweep(path, ASSETS / "lsystems")
+    assert str(path) in str(err.value)
+
+
+def test_example_sweeps_load():
+    for path in sorted((ASSETS / "experiments").glob("sweep_*.toml")):
+        sweep = load_sweep(path, ASSETS / "lsystems")
+        assert sweep.factors and len(sweep.seeds) >= 10
