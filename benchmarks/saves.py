@@ -2,7 +2,8 @@
 
 Run: python -m benchmarks.saves
 Two trees of about 100,000 modules: the game tree (its living state: birth times, light, wood; most
-parameters are full-precision floats) and the ABOP fig. 2.8 tree (short numbers). For each: save
+parameters are full-precision floats; the grown tree's string repeated, so values repeat), the same
+with every number made distinct (the writer's worst case), and the ABOP fig. 2.8 tree (short numbers). For each: save
 (text, temp file, fsync, rename) and load (read, TOML, the L-string, checks), and the time spent
 turning the L-string into text and back alone.
 """
@@ -46,6 +47,15 @@ def game_world(rules) -> World:
     return world
 
 
+def distinct_world(rules) -> World:
+    """The game tree with every parameter made distinct (a tiny offset each): the worst case for the
+    writer, which formats each distinct value once."""
+    world = game_world(rules)
+    ls = world.tree.lstring
+    ls.params = ls.params + np.arange(len(ls.params)) * 1e-9
+    return world
+
+
 def abop_world(rules) -> World:
     """The ABOP fig. 2.8 tree derived past TARGET modules, in a world."""
     system = load_lsystem(ASSETS / "lsystems" / "abop_2_8_tree.lsys")
@@ -64,7 +74,8 @@ def main() -> None:
     print(f"{'tree':10} {'modules':>8} {'numbers':>8} {'file MB':>8} {'save ms':>14} {'load ms':>14} "
           f"{'to_text ms':>14} {'parse ms':>14}")
     with tempfile.TemporaryDirectory() as folder:
-        for name, world in (("game", game_world(rules)), ("abop 2.8", abop_world(rules))):
+        for name, world in (("game", game_world(rules)), ("distinct", distinct_world(rules)),
+                            ("abop 2.8", abop_world(rules))):
             ls = world.tree.lstring
             path = Path(folder) / f"{name}.arbor"
             save = _times(lambda world=world, path=path: save_world(world, path))

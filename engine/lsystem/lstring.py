@@ -167,8 +167,14 @@ _PREFIX_OPEN = np.array([chr(c) + "(" for c in range(256)], dtype=object)
 
 def number_texts(values: np.ndarray) -> np.ndarray:
     """``format_number`` of every value (object array): whole numbers through one integer cast, the
-    rest by ``repr`` (the shortest text that reads back exactly)."""
+    rest by ``repr`` (the shortest text that reads back exactly). Each distinct value (bit for bit, so
+    -0.0 stays apart from 0.0) is formatted once: a tree repeats its constants, angles and times."""
     values = np.asarray(values, dtype=np.float64)
+    bits, back = np.unique(values.view(np.int64), return_inverse=True)
+    return _number_texts(bits.view(np.float64))[back.ravel()]
+
+
+def _number_texts(values: np.ndarray) -> np.ndarray:
     whole = (values == np.round(values)) & (np.abs(values) < 1e16) & ~_zero_signs(values)
     out = np.empty(len(values), dtype=object)
     out[whole] = values[whole].astype(np.int64).astype(str).tolist()

@@ -41,7 +41,7 @@ def run_sweep(path: Path, out: Path, workers: int | None = None, scheduler: str 
     echo(f"{sweep.title}: {len(everything)} runs, {len(everything) - len(todo)} already done, on {where}")
     tasks = _tasks(sweep, todo)
     bar = progress_bar(len(everything), len(everything) - len(todo), sweep.title)
-    failed = []
+    failed, stopped = [], False
     try:
         with contextlib.closing(outcomes(tasks, workers, scheduler)) as finished:
             for outcome in finished:
@@ -51,11 +51,13 @@ def run_sweep(path: Path, out: Path, workers: int | None = None, scheduler: str 
                     failed.append(outcome)
                 bar.update()
     except KeyboardInterrupt:
+        stopped = True
+    finally:
         bar.close()
+    if stopped:
         echo(f"stopped: {len(store.done())} of {len(everything)} runs kept in {out / 'runs'}; "
              "run the same command again to finish the rest")
         return 130
-    bar.close()
     for run, error in failed:
         echo(f"{run.name} (seed {run.seed}, levels {run.levels}) failed: {error.strip().splitlines()[-1]}")
     if failed:

@@ -17,6 +17,7 @@ from pathlib import Path
 
 from engine.base.errors import LSysError
 from engine.life.sweep import Outcome, Run, Sweep, Task, cell, execute
+from game.errors import UserError
 
 
 class RunStore:
@@ -108,11 +109,11 @@ def _dask(tasks: list[Task], scheduler: str) -> Iterable[Outcome | tuple[Run, st
     try:
         from dask.distributed import Client, as_completed
     except ImportError:
-        raise LSysError("--scheduler needs Dask: pip install 'arbor[cluster]'", scheduler) from None
+        raise UserError("--scheduler needs Dask: pip install 'arbor[cluster]'") from None
     try:
         client = Client(scheduler, timeout="10s")
     except (OSError, TimeoutError) as exc:
-        raise LSysError(f"cannot reach the Dask scheduler: {exc}", scheduler) from None
+        raise UserError(f"cannot reach the Dask scheduler at {scheduler} ({exc}): is it running?") from None
     futures = client.map(run_safely, tasks, pure=False)
     try:
         for future in as_completed(futures):
