@@ -205,9 +205,18 @@ def test_lobe_editing_moves_scales_turns_squeezes_and_drags_and_stays_closed():
     tip = lobe.vertices[lobe.ring_size + 5]  # the middle stroke's sixth point, pulled outwards
     dragged = lobe.dragged(1, 5, tip * [1.6, 1.0, 1.6])
     ok4, volume4 = closed(dragged)
-    moved_points = np.linalg.norm(dragged.vertices - lobe.vertices, axis=1) > 1e-12
-    assert ok4 and volume4 > volume and 3 <= moved_points.sum() <= 9
+    shift = np.linalg.norm(dragged.vertices - lobe.vertices, axis=1)
+    reach = max(np.linalg.norm(lobe.stroke_rings[1, (5 + s) % lobe.ring_size] - tip) for s in (-5, 5))
+    beyond = np.linalg.norm(lobe.vertices - tip, axis=1) > reach
+    beyond[lobe.rings * lobe.ring_size:] = False  # cap centres follow their rings' means
+    assert ok4 and volume4 > volume and np.all(shift[beyond] < 1e-9)
     assert dragged.vertices[lobe.ring_size + 5] == pytest.approx(tip * [1.6, 1.0, 1.6])
+    neighbours = dragged.stroke_rings[1, [3, 4, 6, 7]] - lobe.stroke_rings[1, [3, 4, 6, 7]]
+    pull = tip * [0.6, 0.0, 0.6]
+    assert np.all(neighbours @ pull > 0)  # the stroke around the point follows it, not a lone spike
+    assert np.linalg.norm(neighbours[1]) > np.linalg.norm(neighbours[0])  # less the farther along
+    other_rings = np.delete(shift[: lobe.rings * lobe.ring_size].reshape(lobe.rings, -1), 1, axis=0)
+    assert other_rings.max() > 1e-3  # the surface around follows too, not just the one stroke
 
 
 def test_lobe_edits_undo_and_redo():

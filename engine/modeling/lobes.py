@@ -88,18 +88,18 @@ class Lobe:
         return self._with_rings(laplacian_edit(self.vertices, self.faces, handle, targets, fixed))
 
     def dragged(self, ring: int, index: int, to, width: int = 4) -> Lobe:
-        """One stroke point dragged to ``to``, as the control point of the stroke segment of ``width``
-        points each side (seed 004 Fig. 6a): the segment's ends stay and its points follow the
-        quadratic Bezier curve through them, moving by 4 s (1 - s) of the drag at parameter s."""
+        """One stroke point dragged to ``to`` by Laplacian surface editing (seed 004, as for squeeze):
+        the point goes exactly there, the surface farther than the stroke point ``width + 1`` steps
+        along its stroke stays, and the surface between follows, keeping its shape as well as it can."""
         n = self.ring_size
-        vertices = self.vertices.copy()
-        rings = vertices[: self.rings * n].reshape(-1, n, 3)
-        offset = np.asarray(to, float) - rings[ring, index]
-        k = np.arange(n)
-        steps = np.minimum((k - index) % n, (index - k) % n)  # along the closed stroke, either way
-        s = 0.5 - 0.5 * np.minimum(steps / (width + 1.0), 1.0)  # 0 at the segment's ends, 1/2 at the point
-        rings[ring] += (4.0 * s * (1.0 - s))[:, None] * offset
-        return self._with_rings(vertices)
+        point = ring * n + index
+        rings = self.stroke_rings
+        reach = max(np.linalg.norm(rings[ring, (index + side * (width + 1)) % n] - rings[ring, index])
+                    for side in (-1, 1))
+        d = np.linalg.norm(self.vertices - self.vertices[point], axis=1)
+        fixed = np.flatnonzero(d > reach)
+        moved = laplacian_edit(self.vertices, self.faces, np.array([point]), np.asarray(to, float)[None], fixed)
+        return self._with_rings(moved)
 
     def _with_rings(self, vertices: np.ndarray) -> Lobe:
         """The lobe with new vertices; cap centres follow their rings. The triangles keep their
