@@ -66,15 +66,18 @@ def test_prune_removes_the_subtree_a_touch_picked():
     assert prune(ls, 0).to_text() == ""  # pruning the trunk's base removes everything after it
 
 
-def test_fit_takes_the_depth_from_outlines_drawn_in_3d():
-    truth = Supertoroid(a_x=2.0, a_y=2.0, a_z=1.0, alpha_y=5.0, n=0.8, e=0.5)
+@pytest.mark.parametrize("e, a_z", [(0.5, 1.0), (1.0, 1.4), (1.8, 1.2)])
+def test_fit_takes_depth_and_exponent_from_outlines_drawn_in_3d(e, a_z):
+    truth = Supertoroid(a_x=2.0, a_y=2.0, a_z=a_z, alpha_y=5.0, n=0.8, e=e, b_x=0.3)
     rng = np.random.default_rng(2)
     u = np.linspace(-np.pi / 2 + 0.1, np.pi / 2 - 0.1, 60)
-    left = truth.surface(u, np.full_like(u, np.pi - 0.7)) + rng.normal(0, 0.01, (60, 3))  # wandering in depth
-    right = truth.surface(u, np.full_like(u, -0.6)) + rng.normal(0, 0.01, (60, 3))  # (behind: around it)
+    wander = 0.7 + 0.6 * np.sin(3 * u)  # a tracker's outlines wander around the crown in depth
+    left = truth.surface(u, np.pi - wander) + rng.normal(0, 0.01, (60, 3))
+    right = truth.surface(u, -wander) + rng.normal(0, 0.01, (60, 3))
     fit = fit_supertoroid(left, right)
-    assert fit.a_z == pytest.approx(truth.surface(np.zeros(1), np.full(1, 0.7))[0, 2], rel=0.1)
-    assert fit.a_z < 0.6 * fit.a_x  # a flat crown, not a round one
+    assert fit.e == pytest.approx(e, abs=0.15) and fit.a_z == pytest.approx(a_z, rel=0.1)
+    pts = rng.uniform([-3, 2.5, -2], [4, 7.5, 2], (4000, 3))
+    assert (fit.contains(pts) == truth.contains(pts)).mean() > 0.97
     flat = fit_supertoroid(left * [1, 1, 0], right * [1, 1, 0])  # drawn on a plane: no depth to read
     assert flat.a_z == flat.a_x and flat.e == 1.0
 

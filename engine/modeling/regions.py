@@ -91,7 +91,7 @@ def fit_supertoroid(left: np.ndarray, right: np.ndarray) -> Supertoroid:
     The axis runs through the midpoints of the two outlines at each height (a straight line: b and
     slope), the half-widths give a_x, the outlines' height range gives a_y and alpha_y, n is the exponent
     whose profile (1 - |s|^(2/n))^(n/2) fits the half-widths best, and outlines drawn in 3D also give
-    the depth a_z (see _depth).
+    the depth a_z and the cross-section's exponent e (see _with_depth).
     """
     left, right = np.asarray(left, float), np.asarray(right, float)
     lo = max(left[:, 1].min(), right[:, 1].min())
@@ -116,18 +116,46 @@ def fit_supertoroid(left: np.ndarray, right: np.ndarray) -> Supertoroid:
         err = float(np.sum((profile - half) ** 2))
         if err < best_err:
             best, best_err = float(n), err
-    a_z = _depth(np.concatenate([left, right]), a_x, alpha_y, (b_z, slope_z))
-    return Supertoroid(a_x=a_x, a_y=a_y, a_z=a_z, alpha_y=alpha_y, n=best, b_x=float(b_x), b_z=float(b_z),
-                       slope_x=float(slope_x), slope_z=float(slope_z))
+    region = Supertoroid(a_x=a_x, a_y=a_y, a_z=a_x, alpha_y=alpha_y, n=best, b_x=float(b_x), b_z=float(b_z),
+                         slope_x=float(slope_x), slope_z=float(slope_z))
+    return _with_depth(region, np.concatenate([left, right]))
 
 
-def _depth(points: np.ndarray, a_x: float, alpha_y: float, axis_z) -> float:
-    """The crown's depth (a_z) from outlines drawn in 3D (a tracker): how far they reach in depth from
-    the axis. Outlines drawn on a plane carry no depth: then a round crown, a_z = a_x. (Two outlines do
-    not tell the cross-section's exponent e apart from its depth and width: e stays 1.)"""
-    dz = points[:, 2] - axis_z[0] - axis_z[1] * (points[:, 1] - alpha_y)
-    reach = float(np.abs(dz).max())
-    return reach if reach >= 0.1 * a_x else a_x
+def _with_depth(region: Supertoroid, points: np.ndarray) -> Supertoroid:
+    """Width a_x, depth a_z and the exponents e and n from outlines drawn in 3D (a tracker), which
+    wander around the crown: neither at its widest nor at its deepest.
+
+    Every outline point, relative to the axis, lies on the surface when
+    (x / a_x)^(2/e) + (z / a_z)^(2/e) = c^(2/e), with c = (1 - |s|^(2/n))^(n/2) the profile at its
+    height. For fixed e and n that is linear in a_x^(-2/e) and a_z^(-2/e): a 2 x 2 least-squares
+    solve for every (e, n) on a grid, and the pair whose surface passes closest to the points wins.
+    Outlines drawn on a plane carry no depth: then a round crown (a_z = a_x, e = 1) as drawn.
+    """
+    y = points[:, 1] - region.alpha_y
+    dx = np.abs(points[:, 0] - region.b_x - region.slope_x * y)
+    dz = np.abs(points[:, 2] - region.b_z - region.slope_z * y)
+    if dz.max(initial=0.0) < 0.1 * region.a_x:
+        return replace(region, a_z=region.a_x, e=1.0)
+    s = np.abs(np.clip(y / region.a_y, -1.0, 1.0))
+    ns = np.linspace(0.2, 3.0, 57)[:, None]
+    profiles = np.clip(1.0 - s[None] ** (2.0 / ns), 0.0, 1.0) ** (ns / 2.0)  # (n, points)
+    keep = profiles.min(axis=0) > 0.05
+    dx, dz, profiles = dx[keep], dz[keep], profiles[:, keep]
+    best = (np.inf, region)
+    for e in np.linspace(0.2, 2.5, 47):
+        x, z, c = dx ** (2.0 / e), dz ** (2.0 / e), profiles ** (2.0 / e)
+        normal = np.array([[x @ x, x @ z], [x @ z, z @ z]])
+        if abs(np.linalg.det(normal)) < 1e-12 * (x @ x) * (z @ z):
+            continue
+        coef = np.linalg.solve(normal, np.stack([c @ x, c @ z]))  # (2, n): a_x^(-2/e), a_z^(-2/e)
+        valid = (coef > 0).all(axis=0)
+        radius = np.maximum(coef[0][:, None] * x + coef[1][:, None] * z, 0.0) ** (e / 2.0)
+        err = np.where(valid, ((radius - profiles) ** 2).sum(axis=1), np.inf)
+        k = int(np.argmin(err))
+        if err[k] < best[0]:
+            a_x, a_z = coef[:, k] ** (-e / 2.0)
+            best = (float(err[k]), replace(region, a_x=float(a_x), a_z=float(a_z), e=float(e), n=float(ns[k, 0])))
+    return best[1]
 
 
 def moved_region(region: Sphere | Supertoroid, by) -> Sphere | Supertoroid:
