@@ -158,17 +158,20 @@ def widths_from_speed(stroke: Stroke, s: np.ndarray, settings: ModelerSettings) 
 
 
 def growth_points(s: np.ndarray, settings: ModelerSettings, rng: np.random.Generator) -> list[tuple[int, float]]:
-    """Seed 002 algorithm 2: accumulate lambda(s) * ds along the axis; a point wherever it passes 1.
+    """Seed 002 algorithm 2: along the axis, a' = a + lambda(s) ds; with r a fresh random number, a
+    piece gets a growth point when a' >= r (and a' drops by one): lambda(s) points per unit length on
+    average, at random places, never two where the density allows one.
 
     lambda(s) is 0 on the lowest ``bare_fraction`` of the axis and ``density`` above it. Each point
     is rolled by the golden angle from the previous one.
     """
     total = s[-1] if len(s) else 0.0
-    out, acc, roll = [], float(rng.random()), float(rng.random() * 360.0)
+    out, acc, roll = [], 0.0, float(rng.random() * 360.0)
+    draws = rng.random(max(len(s) - 1, 0))
     for i in range(len(s) - 1):
         mid = 0.5 * (s[i] + s[i + 1]) / max(total, 1e-12)
         acc += (s[i + 1] - s[i]) * (settings.density if mid > settings.bare_fraction else 0.0)
-        if acc >= 1.0:
+        if acc >= draws[i]:
             acc -= 1.0
             roll = (roll + 137.5) % 360.0
             out.append((i, roll))
