@@ -15,6 +15,7 @@ from dataclasses import dataclass
 import numpy as np
 
 SAMPLE_K = 2.0
+STRAY = 0.003  # of the stroke's length: how far it may leave the chord between two key points
 MIN_RHO = 0.01
 TABLE_PER_SPAN = 12  # spline evaluations per span for the arc-length table
 
@@ -92,7 +93,29 @@ def adaptive_sample(points: np.ndarray, k: float = SAMPLE_K) -> np.ndarray:
             break
         idx.append(i)
     idx.append(n - 1)
-    return np.array(idx, dtype=np.int64)
+    return _kept_close(points, np.array(idx, dtype=np.int64))
+
+
+def _kept_close(points: np.ndarray, idx: np.ndarray, tolerance: float = STRAY) -> np.ndarray:
+    """Key points added where the stroke strays from the chord between two key points by more than
+    ``tolerance`` of its length (the farthest point of such a stretch becomes a key point): a wiggle
+    the averaged curvature missed is still drawn."""
+    limit = tolerance * float(np.linalg.norm(np.diff(points, axis=0), axis=1).sum())
+    for _ in range(64):
+        span = np.searchsorted(idx, np.arange(len(points)), side="right") - 1
+        span = np.minimum(span, len(idx) - 2)
+        a, b = points[idx[span]], points[idx[span + 1]]
+        ab = b - a
+        t = np.clip(np.einsum("ij,ij->i", points - a, ab) / np.maximum(np.einsum("ij,ij->i", ab, ab), 1e-300), 0, 1)
+        dist = np.linalg.norm(points - a - ab * t[:, None], axis=1)
+        worst = np.maximum.reduceat(dist, idx[:-1])
+        far = np.flatnonzero(worst > limit)
+        if not len(far):
+            break
+        first = np.flatnonzero((dist == worst[span]) & np.isin(span, far))
+        _, at = np.unique(span[first], return_index=True)
+        idx = np.union1d(idx, first[at])
+    return idx
 
 
 class ArcLengthSpline:
