@@ -140,3 +140,15 @@ def test_saves_with_the_older_wrapped_string_still_load(world, tmp_path):
     path.write_text(old)
     back, _ = load_world(path, world.rules)
     assert back.tree.lstring.equals(world.tree.lstring)
+
+
+def test_lstring_blocks_read_past_toml_give_what_toml_gives(world):
+    import tomllib
+
+    from engine.life import save_blocks
+
+    text = save_text(world, "game_tree.lsys")
+    assert save_blocks.loads(text) == tomllib.loads(text)
+    # a decoy: a line like a block's start inside the embedded .lsys source (a comment there)
+    decoy = text.replace("// ", "// x\nlstring = '''\n// ", 1)
+    assert decoy != text and save_blocks.loads(decoy) == tomllib.loads(decoy)

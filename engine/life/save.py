@@ -25,6 +25,7 @@ import numpy as np
 
 from engine.base.errors import LSysError
 from engine.base.files import atomic_write
+from engine.life import save_blocks
 from engine.life.garden import MAX_ROCKS, MAX_SEEDS, Garden, Seed
 from engine.life.journal import Journal
 from engine.life.lineage import Family, Lineage, lineage_from_row, new_lineage, species_of
@@ -74,7 +75,7 @@ def _toml_block(text: str) -> str:
     modules (the L-string reader skips the line breaks; TOML reads a literal string without unescaping,
     fast). Text a literal string cannot hold (three quotes in a row, control characters) is wrapped
     with line-ending backslashes in a basic string instead, as older saves were."""
-    if "'''" not in text and not _CONTROLS_AND_NEWLINE.search(text) and not text.endswith("'"):
+    if "'''" not in text and text.isascii() and text.isprintable() and not text.endswith("'"):
         return "'''\n" + "\n".join(_lines_between_modules(text)) + "'''"
     return _toml_basic_block(text)
 
@@ -82,7 +83,7 @@ def _toml_block(text: str) -> str:
 def _lines_between_modules(text: str) -> list[str]:
     """``text`` cut before the first module that starts in each run of WRAP characters."""
     raw = np.frombuffer(text.encode("ascii"), np.uint8)
-    depth = np.cumsum(raw == 40) - np.cumsum(raw == 41)
+    depth = np.cumsum((raw == 40).view(np.int8) - (raw == 41).view(np.int8), dtype=np.int32)
     starts = np.flatnonzero((depth == 0) & (raw != 41))  # a symbol outside parentheses starts a module
     cuts = starts[np.flatnonzero(np.diff(starts // WRAP, prepend=0))] if len(starts) else starts
     bounds = [0, *cuts.tolist(), len(text)]
@@ -241,7 +242,7 @@ def _read(path: Path) -> tuple[dict, str]:
         raise SaveError(f"too large (more than {MAX_BYTES:,} bytes)", str(path))
     try:
         text = raw.decode("utf-8-sig")
-        return tomllib.loads(text), text
+        return save_blocks.loads(text), text
     except UnicodeDecodeError as exc:
         raise SaveError(f"not UTF-8 text (byte {exc.start})", str(path)) from None
     except tomllib.TOMLDecodeError as exc:
@@ -250,6 +251,18 @@ def _read(path: Path) -> tuple[dict, str]:
         raise SaveError(f"not a valid save: {exc}", str(path), line, col) from None
     except RecursionError:
         raise SaveError("not a valid save: nested too deeply", str(path)) from None
+
+
+def _table_lines(text: str, header: str) -> list[int]:
+    """Where each line that holds only ``header`` (blanks before it allowed) starts (str.find, not a
+    regular expression over every line of a 2 MB save)."""
+    out, at = [], text.find(header)
+    while at >= 0:
+        start = text.rfind("\n", 0, at) + 1
+        if not text[start:at].strip():
+            out.append(start)
+        at = text.find(header, at + len(header))
+    return out
 
 
 def _tree_parts(data: dict, path: Path, text: str) -> list[tuple[dict, Where]]:
@@ -266,7 +279,7 @@ def _tree_parts(data: dict, path: Path, text: str) -> list[tuple[dict, Where]]:
     trees = data.get("trees")
     if not isinstance(trees, list) or not 1 <= len(trees) <= MAX_TREES:
         raise where.error(f"a save holds 1 to {MAX_TREES} [[trees]]")
-    starts = [m.start() for m in re.finditer(r"^\s*\[\[trees\]\]", text, re.MULTILINE)] or [0]
+    starts = _table_lines(text, "[[trees]]") or [0]
     starts += [len(text)] * (len(trees) + 1 - len(starts))
     parts = []
     for k, tree in enumerate(trees):

@@ -195,60 +195,80 @@ _MODULE = re.compile(r"\s*([^\s(),])(?:\(([^()]*)\))?")
 _NUMBER = re.compile(r"\s*[+-]?(?:(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?|inf|nan)\s*")
 
 
-_BLANKS = r"(?>[ \t\r\n]*)"  # atomic groups and possessive repeats: no backtracking on hostile text
-_NUM = r"(?>[+-]?(?:(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?|inf|nan))"
-_ARGS = rf"\({_BLANKS}{_NUM}{_BLANKS}(?:,{_BLANKS}{_NUM}{_BLANKS})*+\)"
-_WELL_FORMED = re.compile(rf"(?:{_BLANKS}[!-'*+\--~](?:{_ARGS})?)*+{_BLANKS}")
-_SPACE = np.zeros(256, bool)
-_SPACE[[9, 10, 13, 32]] = True
+_CLASS = np.zeros(256, np.uint8)  # bit 1: a symbol, 2: a blank (both only outside parentheses), 4: inside
+_CLASS[33:127] = 1
+_CLASS[[40, 41, 44]] = 0
+_CLASS[[9, 10, 13, 32]] = 2
+_CLASS[np.frombuffer(b"0123456789+-.eEinfa,()", np.uint8)] |= 4
+_OPEN, _CLOSE, _COMMA = 40, 41, 44
+_CLOSE_TO_COMMA = bytes.maketrans(b")", b",")
 
 
 def parse_lstring(text: str, file: str = "<string>", line: int = 1) -> LString:
     """Parse L-string text (numbers only as parameters) back into an :class:`LString`.
 
-    The inverse of :meth:`LString.to_text`. Whitespace between modules is allowed. Well-formed text
-    (one regular-expression match over the whole of it) is read with whole-array operations and one
-    C-level number parse; anything else is read module by module to name the file, line and column of
-    the first error (untrusted input: saves are shared between players).
+    The inverse of :meth:`LString.to_text`. Whitespace between modules is allowed. Text our writer
+    could have written is checked and read with whole-array operations and one C-level number parse;
+    anything else is read module by module to name the file, line and column of the first error
+    (untrusted input: saves are shared between players).
     """
-    if _WELL_FORMED.fullmatch(text):
-        parsed = _parse_fast(text)
-        if parsed is not None:
-            return parsed
-    return _parse_slow(text, file, line)
+    parsed = _parse_fast(text)
+    return parsed if parsed is not None else _parse_slow(text, file, line)
 
 
 def _parse_fast(text: str) -> LString | None:
-    """Well-formed text as arrays: symbols are the characters outside parentheses that are not blanks;
-    a module's parameters are the numbers in the parentheses that follow it."""
-    raw = np.frombuffer(text.encode("ascii"), np.uint8)
-    opens, closes = raw == 40, raw == 41
-    depth = np.cumsum(opens.astype(np.int64)) - np.cumsum(closes.astype(np.int64))
-    inside = (depth > 0) | closes
-    symbols = np.flatnonzero(~inside & ~_SPACE[raw])
-    group = np.cumsum(opens) - 1  # which parenthesis pair a character is in
-    has_args = np.zeros(len(symbols), bool)
-    nxt = symbols + 1
-    has_args[nxt < len(raw)] = opens[nxt[nxt < len(raw)]]
+    """Well-formed text as arrays, or None for anything unusual (then the careful reader decides).
+
+    Well-formed: ASCII; parentheses never nested, each right after a module symbol; between them only
+    numbers and single commas, no blanks; outside them only symbols and blanks. A module's
+    parameters are the numbers in the parentheses that follow it.
+    """
+    try:
+        raw = np.frombuffer(text.encode("ascii"), np.uint8)
+    except UnicodeEncodeError:
+        return None
+    if len(raw) == 0:
+        return LString.empty()
+    opens, closes = raw == _OPEN, raw == _CLOSE
+    depth = np.cumsum(opens.view(np.int8) - closes.view(np.int8), dtype=np.int32)
+    if depth.min() < 0 or depth.max() > 1 or depth[-1] != 0:
+        return None
+    inside = depth.astype(bool) | closes
+    cls = _CLASS[raw]
+    open_at = np.flatnonzero(opens)
+    if (not (cls & (inside.view(np.uint8) + 3)).all()  # bits 1|2 outside, bit 4 inside
+            or (len(open_at) and (open_at[0] == 0 or not (_CLASS[raw[open_at - 1]] & 1).all()))):
+        return None
+    symbols = np.flatnonzero((cls & 1).astype(bool) & ~inside)
     counts = np.zeros(len(symbols), np.int64)
-    if has_args.any():
-        commas = np.bincount(group[(raw == 44) & inside], minlength=int(opens.sum()))
-        counts[has_args] = commas + 1
+    if len(open_at):
+        has_args = np.zeros(len(raw) + 1, bool)
+        has_args[open_at - 1] = True
+        group = np.searchsorted(open_at, np.flatnonzero(raw == _COMMA)) - 1  # each comma's parentheses
+        counts[has_args[symbols]] = np.bincount(group, minlength=len(open_at)) + 1
     if counts.max(initial=0) > MAX_PARAMS:
         return None
-    values = _numbers(raw, inside) if has_args.any() else np.zeros(0)
-    if len(values) != int(counts.sum()):
+    values = _numbers(raw, inside & ~opens) if len(open_at) else np.zeros(0)
+    if values is None or len(values) != int(counts.sum()):
         return None
     return LString.from_arrays(raw[symbols], counts.astype(np.uint8), values)
 
 
-def _numbers(raw: np.ndarray, inside: np.ndarray) -> np.ndarray:
-    """Every number inside parentheses, in order (one C-level parse of the blanked text)."""
-    keep = inside & (raw != 40) & (raw != 41) & (raw != 44)
-    blanked = np.where(keep, raw, 32).astype(np.uint8).tobytes().decode("ascii")
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", DeprecationWarning)
-        return np.fromstring(blanked, sep=" ")
+def _numbers(raw: np.ndarray, keep: np.ndarray) -> np.ndarray | None:
+    """Every number between parentheses, in order (None if one is not a number). Text that repeats
+    its numbers (trees repeat constants, angles and times) parses each distinct one once."""
+    blob = raw[keep].tobytes().translate(_CLOSE_TO_COMMA)[:-1]
+    tokens = blob.split(b",")
+    sample = tokens[:: max(1, len(tokens) // 2048)]
+    try:
+        if len(set(sample)) < 0.5 * len(sample):
+            table = {t: float(t) for t in set(tokens)}
+            return np.fromiter(map(table.__getitem__, tokens), np.float64, len(tokens))
+        with warnings.catch_warnings():
+            warnings.simplefilter("error", DeprecationWarning)  # a malformed number stops it: not silently
+            return np.fromstring(blob.decode("ascii"), sep=",")
+    except (ValueError, DeprecationWarning):
+        return None
 
 
 def _parse_slow(text: str, file: str, line: int) -> LString:
