@@ -109,6 +109,13 @@ def test_one_process_and_a_dask_cluster_give_identical_tables(sweep_file, pooled
         assert (clustered / name).read_bytes() == reference
 
 
+def _like_a_terminal() -> None:
+    """Ctrl-C as a shell delivers it: whatever this test process set up for its own signals (pools,
+    clusters), the sweep starts with SIGINT unblocked and at its default."""
+    signal.pthread_sigmask(signal.SIG_UNBLOCK, [signal.SIGINT])
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
+
+
 def test_ctrl_c_keeps_finished_runs_and_the_rerun_finishes(tmp_path):
     slow = tmp_path / "slow.toml"  # six runs of a few seconds each: Ctrl-C lands while most are to do
     text = SWEEP.replace("duration = 150", "duration = 1200").replace("sample_every = 50", "sample_every = 300")
@@ -116,7 +123,7 @@ def test_ctrl_c_keeps_finished_runs_and_the_rerun_finishes(tmp_path):
     out = tmp_path / "stopped"
     env = {**os.environ, "PYTHONPATH": str(ROOT)}
     proc = subprocess.Popen([sys.executable, "-m", "game.cli", "sweep", str(slow), "--out", str(out),
-                             "--workers", "2", "--no-plots"], env=env, cwd=ROOT,
+                             "--workers", "2", "--no-plots"], env=env, cwd=ROOT, preexec_fn=_like_a_terminal,
                             stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
     deadline = time.monotonic() + 120
     while not list((out / "runs").glob("run*.csv")) and time.monotonic() < deadline and proc.poll() is None:
