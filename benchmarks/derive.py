@@ -163,6 +163,7 @@ def run_plants(runs: int) -> None:
             b, m, out = best_median(lindenmayer, runs)
             assert out == expected_text, "LindenmayerSystem disagrees"
             timings["LindenmayerSystem"] = (b, m)
+        print(f"  (plant {name}: {counts[1]:,} rewritten, {counts[2]:,} copied)")
         report(f"plant {name}", len(ls), (best, med, counts[0]), timings)
 
 
