@@ -167,9 +167,13 @@ _PREFIX_OPEN = np.array([chr(c) + "(" for c in range(256)], dtype=object)
 
 def number_texts(values: np.ndarray) -> np.ndarray:
     """``format_number`` of every value (object array): whole numbers through one integer cast, the
-    rest by ``repr`` (the shortest text that reads back exactly). Each distinct value (bit for bit, so
-    -0.0 stays apart from 0.0) is formatted once: a tree repeats its constants, angles and times."""
+    rest by ``repr`` (the shortest text that reads back exactly). When values repeat (a tree repeats
+    its constants, angles and times), each distinct one (bit for bit: -0.0 stays apart from 0.0) is
+    formatted once."""
     values = np.asarray(values, dtype=np.float64)
+    sample = values[:: max(1, len(values) // 2048)].view(np.int64)
+    if len(np.unique(sample)) > 0.5 * len(sample):  # mostly distinct: sorting them would only cost
+        return _number_texts(values)
     bits, back = np.unique(values.view(np.int64), return_inverse=True)
     return _number_texts(bits.view(np.float64))[back.ravel()]
 
