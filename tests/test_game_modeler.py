@@ -411,3 +411,30 @@ def test_a_region_is_moved_by_dragging_inside_it_and_resized_from_its_rim(game):
     draw(game, [rim, (rim[0] + 30, rim[1]), (rim[0] + 70, rim[1])])  # from the rim outwards: bigger
     bigger = game.modeling.region_tool.region
     assert bigger.radius > 1.3 * moved.radius and bigger.center == pytest.approx(moved.center)
+
+
+def test_a_pinch_over_the_region_resizes_it_and_one_elsewhere_zooms(game):
+    press_menu(game, "symbols")
+    x0, y0 = base_pixel(game)
+    draw(game, [(x0, y0 - 100), (x0, y0 - 160), (x0, y0 - 200)])  # a short drag places a sphere
+    first = game.modeling.region_tool.region
+    cx, cy = game.hud.project(game.camera(), first.center)
+    distance = game.control.distance
+
+    def pinch(x, y, start, end):
+        touch(game, DOWN, 3, x - start, y)
+        touch(game, DOWN, 4, x + start, y)
+        for k in range(1, 11):
+            game.clock_box[0] += 0.02
+            gap = start + (end - start) * k / 10
+            touch(game, MOVE, 3, x - gap, y)
+            touch(game, MOVE, 4, x + gap, y)
+        touch(game, UP, 3, x - end, y)
+        touch(game, UP, 4, x + end, y)
+
+    pinch(cx, cy, 10, 30)  # fingers apart over the sphere: a bigger sphere, the same view
+    bigger = game.modeling.region_tool.region
+    assert bigger.radius > 1.8 * first.radius and bigger.center == pytest.approx(first.center)
+    assert game.control.distance == pytest.approx(distance)
+    pinch(150, 650, 10, 30)  # far from it: the camera zooms in, the region stays
+    assert game.control.distance < 0.8 * distance and game.modeling.region_tool.region == bigger

@@ -3,7 +3,8 @@
 * one finger dragged horizontally turns the tree about the vertical axis (a full 360 deg);
 * two fingers, one still and one moving vertically, tilt it, at most acos(0.8) ~ 36.9 deg;
 * two fingers sliding sideways together also turn it (one finger draws in the modeler);
-* a pinch zooms, faster when the camera is farther away (the change is proportional to distance);
+* a pinch zooms, faster when the camera is farther away (the change is proportional to distance),
+  unless ``pinch_target`` takes it (a pinch over a modeler region resizes the region);
 * a quick tap shows the menu at the tap point; another tap hides it. While the menu is shown the
   camera gestures are off (touches go to the menu).
 
@@ -13,6 +14,7 @@ Pure logic: feed it pointer events with positions in pixels and times in seconds
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass, field
 
 MAX_TILT = math.degrees(math.acos(0.8))  # 36.87 deg
@@ -65,6 +67,7 @@ class Gestures:
     pointers: dict[int, _Pointer] = field(default_factory=dict)
     taps: list[tuple[float, float]] = field(default_factory=list)  # taps not yet consumed
     _multi: bool = False  # a second finger joined during this gesture (so it is not a tap)
+    pinch_target: Callable[[float, float, float], bool] | None = None  # (scale, x, y) -> took the pinch
 
     def down(self, pid: int, x: float, y: float, t: float) -> None:
         """A finger or the mouse button went down."""
@@ -102,7 +105,9 @@ class Gestures:
         if not other_still and same_way:
             self.camera.turn(-dx * YAW_PER_PX / 2)  # both fingers sliding sideways together: turn
         elif old > 1 and new > 1:
-            self.camera.zoom(old / new)
+            mid_x, mid_y = (pa.x + pb.x) / 2, (pa.y + pb.y) / 2
+            if self.pinch_target is None or not self.pinch_target(new / old, mid_x, mid_y):
+                self.camera.zoom(old / new)
 
     def up(self, pid: int, x: float, y: float, t: float) -> tuple[float, float] | None:
         """A pointer went up; returns the tap position if this was a quick tap."""

@@ -85,6 +85,7 @@ class Game:
         self.devices: dict[str, str] = {}
         self.overlay_hooks: list = []  # extra overlay layers (kiosk attract text, PIN pad)
         self.modeling = ModelingMode(self)
+        self.gestures.pinch_target = self.modeling.pinch
         self.input = GameInput(self)
         self.care = CareActions(self)
         self.view = GameView(self)

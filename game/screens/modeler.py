@@ -150,7 +150,11 @@ class ModelingMode:
         self.points, self.times, self.preview, self.joint = [], [], None, None
         self._preview_at = float("-inf")
         self.crown_tool.drag = None
-        self.region_tool.pixels = []
+        self.region_tool.cancel()
+
+    def pinch(self, scale: float, x: float, y: float) -> bool:
+        """With the symbols tool, a pinch over the region resizes it instead of zooming the camera."""
+        return self.active and self.symbols and self.region_tool.pinch(scale, x, y)
 
     def add2d(self, x: float, y: float, t: float, camera: OrbitCamera) -> None:
         """The pointer moved: extend the stroke with the point under it on the drawing plane."""

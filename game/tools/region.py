@@ -94,6 +94,21 @@ class RegionTool:
         scale = max(np.linalg.norm(point - centre), 1e-3) / max(np.linalg.norm(start - centre), 1e-3)
         return scaled_region(region, min(max(scale, 0.2), 5.0))
 
+    def cancel(self) -> None:
+        """The drag being made was the start of a two-finger gesture: undo what it did to the region."""
+        if self.pixels:
+            self.region = self.kept
+        self.pixels, self.grab = [], None
+
+    def pinch(self, scale: float, x: float, y: float) -> bool:
+        """A two-finger pinch centred on the region resizes it by ``scale`` (fingers apart: bigger);
+        False when the pinch is elsewhere (the camera zooms instead)."""
+        if self.region is None or not self.hit(x, y, self.mode.game.camera()):
+            return False
+        self.pixels, self.grab = [], None  # the first finger's drag is not a region drag any more
+        self.region = scaled_region(self.region, min(max(scale, 0.5), 2.0))
+        return True
+
     def finish(self, points: list[np.ndarray], camera: OrbitCamera) -> None:
         """The pointer went up: a contour is kept; with two of them the region becomes a supertoroid."""
         contour = self._is_contour() and self.grab is None
