@@ -112,6 +112,12 @@ def test_contexts_of_several_modules_bind_every_parameter():
     assert derive(out_of_branch, 1).to_text() == "A[B[C]Z]"
 
 
+def test_a_context_with_many_parameters_still_matches():
+    formals, values = ",".join(f"a{i}" for i in range(200)), ",".join(["1"] * 200)
+    system = parse_lsystem(f"w: A({values})B\np1: A({formals}) < B : a199 == 1 -> C(a0 + a199)")
+    assert derive(system, 1).to_text().endswith(")C(2)")
+
+
 def _reference_neighbours(text: str, ignored: str) -> tuple[list[int], list[int]]:
     """ABOP context neighbours by walking the string, one module at a time."""
     n, partner, stack = len(text), {}, []

@@ -223,7 +223,7 @@ class _ContextIndex:
         self.chains = []
         for nbr in context.neighbours(ls.sym, system.ignore):
             nbr = np.append(np.where(nbr < 0, n, nbr), n)
-            key = sym[nbr].astype(np.int16) | (nparams[nbr].astype(np.int16) << 8)
+            key = sym[nbr].astype(np.int32) | (nparams[nbr].astype(np.int32) << 8)
             self.chains.append((nbr, key))  # neighbour, and its symbol and parameter count in one key
 
     def follow(self, patterns, side: int, cand: np.ndarray, ok: np.ndarray, where: list) -> None:
