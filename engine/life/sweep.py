@@ -10,7 +10,6 @@ another process or another machine.
 from __future__ import annotations
 
 import copy
-import hashlib
 import itertools
 from dataclasses import dataclass, field, replace
 from pathlib import Path
@@ -51,12 +50,7 @@ class Sweep:
     pace: str = "demo"
     seasons: bool = True
     file: str = "<sweep>"
-    source: str = ""
-
-    @property
-    def digest(self) -> str:
-        """Hash of the sweep file: finished runs are only reused by the same sweep."""
-        return hashlib.sha256(self.source.encode("utf-8")).hexdigest()[:16]
+    source: str = ""  # the file's text: finished runs are reused only by the very same sweep
 
 
 @dataclass(frozen=True)

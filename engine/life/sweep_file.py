@@ -87,6 +87,9 @@ def _factors(data: dict, lsystem_dir: Path, file: str) -> list[Factor]:
         factors.append(Factor(str(t.get("name", key)), key, tuple(levels)))
     if len({f.key for f in factors}) != len(factors):
         raise LSysError("two factors vary the same thing", file)
+    names = [f.name for f in factors]
+    if len(set(names)) != len(names) or set(names) & {"run", "seed", "time_s", "response", *RESPONSES}:
+        raise LSysError("each factor needs its own name (not run, seed, time_s, response or a response's)", file)
     return factors
 
 
