@@ -2,22 +2,12 @@
 
 from __future__ import annotations
 
-import importlib.util
 import os
 from pathlib import Path
 
+from engine.base.assets import assets_dir
+
 ROOT = Path(__file__).resolve().parent.parent
-
-
-def _assets() -> Path:
-    """The assets folder: beside the packages in a checkout, or the installed `arbor_assets` package."""
-    here = ROOT / "assets"
-    if here.is_dir():
-        return here
-    spec = importlib.util.find_spec("arbor_assets")
-    if spec is not None and spec.submodule_search_locations:
-        return Path(next(iter(spec.submodule_search_locations)))
-    return here
 
 
 def default_saves() -> Path:
@@ -28,4 +18,4 @@ def default_saves() -> Path:
     return Path(base) / "arbor" / "saves"
 
 
-ASSETS = _assets()
+ASSETS = assets_dir()

@@ -124,3 +124,13 @@ def test_pyproject_ships_every_package():
             name = ".".join(init.parent.relative_to(ROOT).parts)
             assert name in listed, f"{name} is missing from [tool.setuptools] packages in pyproject.toml"
     assert "arbor_assets" in listed
+
+
+def test_data_is_found_through_one_place():
+    """Code that finds assets/ beside its own file breaks in an installed copy (assets ship as
+    arbor_assets): only engine/base/assets.py may look for them."""
+    for path in list((ROOT / "engine").rglob("*.py")) + list((ROOT / "game").rglob("*.py")):
+        if path.name == "assets.py" and path.parent.name == "base":
+            continue
+        text = path.read_text(encoding="utf-8")
+        assert not ("__file__" in text and '"assets"' in text), f"{path.relative_to(ROOT)} finds assets by itself"

@@ -9,16 +9,16 @@ budget. A larger root system drains the water meter more slowly (``drain_relief`
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from pathlib import Path
 
 import numpy as np
 
+from engine.base.assets import assets_dir
 from engine.geometry.turtle import Segments, TurtleConfig, TurtleResult, interpret
 from engine.lsystem.derive import Deriver
 from engine.lsystem.lstring import LString
 from engine.lsystem.lsys import LSystem, load_lsystem
 
-ROOTS_LSYS = Path(__file__).resolve().parents[2] / "assets" / "lsystems" / "roots.lsys"
+ROOTS_LSYS = assets_dir() / "lsystems" / "roots.lsys"
 PIECE = ord("F")
 _cached: LSystem | None = None
 
