@@ -88,6 +88,9 @@ class Deriver:
             self.budget = self.system.budget if self.system.budget is not None else DEFAULT_BUDGET
         self.budget = min(int(self.budget), MAX_BUDGET)
         self._symbols = SymbolRewriter(self.system) if SymbolRewriter.usable(self.system) else None
+        symbols = [prod.pred.symbol for prod in self.system.productions]
+        self._shared = {s for s in symbols if symbols.count(s) > 1}  # several productions compete for these
+        self._cuts = any(CUT in alt.symbols for prod in self.system.productions for alt in prod.alternatives)
 
     def step(self, ls: LString, extern: dict[str, float] | None = None,
              only: np.ndarray | None = None) -> tuple[LString, StepReport]:
@@ -110,7 +113,7 @@ class Deriver:
                     m.evaluate(self.rng)
                 result = _assemble(ls, matches, _out_lengths(len(ls), matches))
         rewritten = sum(len(m.idx) for m in matches)
-        return _finish(ls, result, rewritten, deferred)
+        return _finish(ls, result, rewritten, deferred, self._cuts or bool(np.any(ls.sym == CUT)))
 
     def _direct_step(self, ls: LString) -> tuple[LString, StepReport] | None:
         """The step of a plain deterministic system without parameters, when it fits the budget."""
@@ -120,7 +123,8 @@ class Deriver:
         total, rewritten, present = self._symbols.direct_counts(ls.sym)
         if total > self.budget:
             return None
-        return _finish(ls, _bare(self._symbols.rewrite_direct(ls.sym, present)), rewritten, 0)
+        result = _bare(self._symbols.rewrite_direct(ls.sym, present))
+        return _finish(ls, result, rewritten, 0, self._cuts or bool(np.any(ls.sym == CUT)))
 
     def _check_extern(self, extern: dict[str, float]) -> dict[str, float]:
         missing = [name for name in self.system.externs if name not in extern]
@@ -145,12 +149,16 @@ class Deriver:
         ctx = _ContextIndex(ls, self.system) if self.system.has_context else None
         matches: list[_Match] = []
         by_symbol: dict[int, np.ndarray] = {}
+        bare = len(ls.params) == 0  # no module has parameters: only formal-free patterns can match
         for prod in self.system.productions:
             s = prod.pred.symbol
             if s not in by_symbol:
                 by_symbol[s] = np.flatnonzero(ls.sym == s)
             cand = by_symbol[s]
-            cand = np.compress(~taken[cand] & (ls.nparams[cand] == len(prod.pred.formals)), cand)
+            if only is not None or s in self._shared or not bare:  # else nothing can have taken them
+                cand = np.compress(~taken[cand] & (ls.nparams[cand] == len(prod.pred.formals)), cand)
+            elif prod.pred.formals:
+                continue
             if len(cand):
                 cand, env = _bind(ls, prod, cand, ctx)
                 env.update(self._extern)
@@ -302,9 +310,10 @@ def _bare(sym: np.ndarray) -> LString:
     return LString(sym, np.zeros(len(sym), np.uint8), np.zeros(len(sym), np.int64), np.zeros(0))
 
 
-def _finish(ls: LString, result: LString, rewritten: int, deferred: int) -> tuple[LString, StepReport]:
-    """Apply cuts and report the step."""
-    if np.any(result.sym == CUT):
+def _finish(ls: LString, result: LString, rewritten: int, deferred: int,
+            cuts: bool = True) -> tuple[LString, StepReport]:
+    """Apply cuts (``cuts``: the step may have made one) and report the step."""
+    if cuts and np.any(result.sym == CUT):
         result = apply_cut(result)
     return result, StepReport(len(ls), len(result), rewritten, deferred)
 

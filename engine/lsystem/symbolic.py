@@ -77,7 +77,7 @@ class SymbolRewriter:
         return self._expand(marked.tobytes(), used)
 
     def _expand(self, data: bytes, used: list[int]) -> np.ndarray:
-        for ph in dict.fromkeys(used):
-            key = bytes([ph])
+        keys = sorted({bytes([ph]) for ph in used}, key=lambda k: len(self.successor[k]))
+        for key in keys:  # the shortest successors first: each later pass has less to scan
             data = data.replace(key, self.successor[key])
         return np.frombuffer(bytearray(data), dtype=np.uint8)
