@@ -20,6 +20,9 @@ NIGHT_ZENITH = (0.09, 0.13, 0.32)  # nights are dark blue, never black
 NIGHT_HORIZON = (0.22, 0.27, 0.46)
 GRASS = (0.33, 0.50, 0.22)
 SOIL = (0.36, 0.26, 0.17)  # the cut-away view: the ground as soil
+# The ground disc's mesh: few, large triangles (a software GL pays per triangle, also for the ones
+# clipped behind the camera: 64 x 24 cost 3-5 ms more per frame than 24 x 10 on llvmpipe)
+GROUND_SECTORS, GROUND_RINGS = 24, 10
 
 
 def program(ctx: moderngl.Context, vertex: str, fragment: str, include: tuple[str, ...] = ()) -> moderngl.Program:
@@ -120,7 +123,7 @@ class Backdrop:
         if self.ground is not None and 0.8 * self.ground_radius <= radius <= 1.25 * self.ground_radius:
             return
         self.ground_radius = radius
-        sectors, radii = 64, radius * (np.geomspace(1.0, 101.0, 24) - 1.0) / 100.0
+        sectors, radii = GROUND_SECTORS, radius * (np.geomspace(1.0, 101.0, GROUND_RINGS) - 1.0) / 100.0
         ang = np.linspace(0, 2 * np.pi, sectors, endpoint=False)
         rings = np.stack([np.outer(radii, np.cos(ang)), np.zeros((len(radii), sectors)),
                           np.outer(radii, np.sin(ang))], axis=-1).reshape(-1, 3).astype("f4")
