@@ -9,13 +9,13 @@ from __future__ import annotations
 import csv
 import io
 import multiprocessing
-import os
 import signal
 import traceback
 from collections.abc import Iterable, Iterator
 from pathlib import Path
 
 from engine.base.errors import LSysError
+from engine.base.files import atomic_write
 from engine.life.sweep import Outcome, Run, Sweep, Task, cell, execute
 from game.errors import UserError
 
@@ -67,12 +67,7 @@ class RunStore:
 
 def write_atomic(path: Path, text: str) -> None:
     """Write ``text`` so that ``path`` is either the old file or the whole new one."""
-    tmp = path.with_name(f".{path.name}.tmp")
-    with open(tmp, "w", encoding="utf-8", newline="") as fh:
-        fh.write(text)
-        fh.flush()
-        os.fsync(fh.fileno())
-    os.replace(tmp, path)
+    atomic_write(path, text.encode("utf-8"))
 
 
 def run_safely(task: Task) -> Outcome | tuple[Run, str]:
