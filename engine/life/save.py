@@ -11,6 +11,7 @@ file, line and column. Format 1 (one tree per file) still loads.
 
 from __future__ import annotations
 
+import functools
 import hashlib
 import itertools
 import json
@@ -290,13 +291,20 @@ def _tree_parts(data: dict, path: Path, text: str) -> list[tuple[dict, Where]]:
     return parts
 
 
+@functools.lru_cache(maxsize=16)
+def _parsed(source: str, label: str):
+    """An embedded .lsys parsed once per file: the trees of a garden mostly share one (systems are
+    never changed after parsing, so sharing is safe; failures are not cached)."""
+    return parse_lsystem(source, label)
+
+
 def _system(data: dict, where: Where):
     source = text_value(data, "lsystem_source", where, MAX_SOURCE)
     digest = text_value(data, "lsystem_sha256", where, 64)
     if hashlib.sha256(source.encode("utf-8")).hexdigest() != digest:
         raise where.error("the embedded .lsys source does not match its hash", "lsystem_sha256")
     try:
-        return parse_lsystem(source, f"{where.path} (embedded .lsys)")
+        return _parsed(source, f"{where.path} (embedded .lsys)")
     except LSysError as err:
         raise SaveError(err.message, err.file, where.line("lsystem_source") + err.line, err.col) from None
 
