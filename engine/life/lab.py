@@ -23,8 +23,8 @@ from engine.life.rules import SECTIONS, Rules
 from engine.life.world import World
 from engine.lsystem.lsys import LSystem, load_lsystem
 
-METRICS = ("height", "width", "offset", "girth", "modules", "leaves", "shed", "roots", "sun", "water", "wilt",
-           "alive", "fruit")
+METRICS = ("height", "width", "offset", "girth", "modules", "leaves", "density", "shed", "roots", "sun", "water",
+           "wilt", "alive", "fruit")
 MAX_TREES = 6
 
 
@@ -255,17 +255,20 @@ class Lab:
 
 def measure(world: World) -> dict[str, float]:
     """Height, crown width, crown offset toward the sun's side, trunk girth (diameter at the base),
-    modules, leaf clusters on the tree, branches shed, root length, meters, wilt, alive (1 or 0) and fruit."""
+    modules, leaf clusters on the tree and per unit of the crown's box (each side at least 0.5),
+    branches shed, root length, meters, wilt, alive (1 or 0) and fruit."""
     geometry = world.tree.geometry(world.clocks())
     segs, leaves = geometry.turtle.segments, geometry.turtle.leaves
     shape = crown_shape(segs, leaves)
     girth = float(2 * segs.radius[0]) if len(segs) else 0.0
     big = leaves.size > 0.05 * leaves.size.max() if len(leaves) else np.zeros(0, bool)
     on_tree = len(np.unique(leaves.module[big]))
+    box = np.ptp(leaves.position[big], axis=0) if big.any() else np.zeros(3)
+    density = on_tree / float(np.prod(np.maximum(box, 0.5)))  # leaf clusters per unit of crown box
     side = np.array([0.0, 0.0, 1.0]) if world.rules.sun.side >= 0 else np.array([0.0, 0.0, -1.0])
     s = world.sim.state
     return {"height": shape["height"], "width": shape["width"], "offset": float(shape["centroid"] @ side),
-            "girth": girth, "modules": float(len(world.tree.lstring)), "leaves": float(on_tree),
+            "girth": girth, "modules": float(len(world.tree.lstring)), "leaves": float(on_tree), "density": density,
             "shed": float(world.tree.shed_total), "roots": world.roots.length(), "sun": s.sun_meter,
             "water": s.water_meter, "wilt": s.wilt, "alive": float(s.alive),
             "fruit": float(world.tree.lstring.count("O"))}

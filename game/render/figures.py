@@ -13,7 +13,8 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 TITLES = {"height": "Height", "width": "Crown width", "offset": "Lean toward the sun", "girth": "Trunk girth",
-          "modules": "Modules", "leaves": "Leaf clusters", "shed": "Branches shed", "roots": "Root length",
+          "modules": "Modules", "leaves": "Leaf clusters", "density": "Leaf density (per unit of crown box)",
+          "shed": "Branches shed", "roots": "Root length",
           "sun": "Sun meter", "water": "Water meter", "wilt": "Wilt", "alive": "Alive (share)",
           "fruit": "Fruit"}
 plt.rcParams.update({"font.size": 13, "axes.titlesize": 15, "axes.titleweight": "bold", "lines.linewidth": 2.5,
