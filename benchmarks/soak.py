@@ -78,12 +78,14 @@ def soak(minutes: float, seed: int = 3) -> float:
             kiosk.frame(events, now - last, fbo)
             last, frames = now, frames + 1
             if frames % 200 == 0:
-                samples.append((now - start, rss_bytes()))
-    half = [r for t, r in samples if t >= minutes * 30]
-    growth = (half[-1] - half[0]) / half[0] if len(half) > 1 else 0.0
+                modules = sum(len(w.tree.lstring) for w in kiosk.game.garden.worlds)
+                samples.append((now - start, rss_bytes(), modules))
+    half = [(r, m) for t, r, m in samples if t >= minutes * 30]
+    growth = (half[-1][0] - half[0][0]) / half[0][0] if len(half) > 1 else 0.0
     print(f"{minutes:g} min, {frames:,} frames, {kiosk.recoveries} recoveries; RSS MiB at half-way "
-          f"{half[0] / 2**20:.1f}, end {half[-1] / 2**20:.1f}, peak {max(r for _, r in samples) / 2**20:.1f}: "
-          f"growth over the second half {100 * growth:+.1f} %")
+          f"{half[0][0] / 2**20:.1f}, end {half[-1][0] / 2**20:.1f}, peak {max(s[1] for s in samples) / 2**20:.1f}: "
+          f"growth over the second half {100 * growth:+.1f} %; modules in the garden then "
+          f"{half[0][1]:,} and {half[-1][1]:,} (trees growing toward their budgets need memory too)")
     return growth
 
 
