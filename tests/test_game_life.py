@@ -46,6 +46,20 @@ def new_game(ctx, saves, pace="demo", seed=4, now=NOW) -> Game:
     return game
 
 
+def _turn_to(game, fbo, other, here) -> tuple[float, float]:
+    """Turn the camera (close in) until the tree at ``other`` is in view from the one at ``here``;
+    returns where it is on the screen."""
+    dx, dz = np.array(other) - np.array(here)
+    game.control.distance = 5.0
+    for _ in range(12):
+        x, y = game.hud.project(game.camera(), (dx, 1.0, dz))
+        if 100 <= x < SIZE[0] - 100 and 100 <= y < SIZE[1] - 100:
+            break
+        game.control.turn(30.0)
+    game.draw(fbo)
+    return x, y
+
+
 def test_three_days_away_at_home_pace_the_tree_lived_on(gl_ctx, tmp_path):
     game = new_game(gl_ctx, tmp_path, pace="home", now=NOW - 3 * 86400)
     game.world.sim.state.water_meter = 0.95
@@ -109,14 +123,7 @@ def test_tapping_another_tree_cares_for_it_and_the_hud_says_which_needs_what(gl_
     second.sim.state.water_meter = 0.05  # the other tree is thirsty
     game.draw(fbo)
     assert game.hud_info().reminder.startswith("Tree 2: thirsty")
-    dx, dz = np.array(second.position) - np.array(first.position)
-    game.control.distance = 5.0
-    for _ in range(12):  # turn until the other tree is in view
-        x, y = game.hud.project(game.camera(), (dx, 1.0, dz))
-        if 100 <= x < SIZE[0] - 100 and 100 <= y < SIZE[1] - 100:
-            break
-        game.control.turn(30.0)
-    game.draw(fbo)
+    x, y = _turn_to(game, fbo, second.position, first.position)
     tap(game, x + 6, y)
     assert game.world is second and not game.menu.visible
     assert "caring for tree 2" in game.hud_info().message
@@ -241,14 +248,7 @@ def test_crossing_two_trees_by_menu_and_tap_and_the_family_screen(gl_ctx, tmp_pa
     game.act("cross", 1.0)
     assert game.care.crossing is mother and "Tap the other parent" in game.hud_info().message
     game.draw(fbo)
-    dx, dz = np.array(father.position) - np.array(mother.position)
-    game.control.distance = 5.0
-    for _ in range(12):
-        x, y = game.hud.project(game.camera(), (dx, 1.0, dz))
-        if 100 <= x < SIZE[0] - 100 and 100 <= y < SIZE[1] - 100:
-            break
-        game.control.turn(30.0)
-    game.draw(fbo)
+    x, y = _turn_to(game, fbo, father.position, mother.position)
     tap(game, x + 5, y)
     assert len(game.garden.worlds) == 3 and game.world.lineage.parents == (mother.lineage.id, father.lineage.id)
     assert "seedling is planted" in game.hud_info().message
