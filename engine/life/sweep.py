@@ -97,7 +97,7 @@ def runs(sweep: Sweep) -> list[Run]:
 def execute(task: Task) -> Outcome:
     """Grow one run's tree headless and sample its responses (the worker's function)."""
     sweep, run = task.sweep, task.run
-    regime, rules, species = copy.deepcopy(sweep.base), copy.deepcopy(task.rules), sweep.species
+    regime, species = copy.deepcopy(sweep.base), sweep.species  # (the lab copies the rules itself)
     for factor, level in zip(sweep.factors, run.levels, strict=True):
         if factor.key == "species":
             species = level
@@ -108,7 +108,7 @@ def execute(task: Task) -> Outcome:
     system = parse_lsystem(task.sources[species], species)
     experiment = Experiment(sweep.title, run.seed, sweep.duration, sweep.sample_every, [regime],
                             Path(species), pace=sweep.pace, seasons=sweep.seasons)
-    lab = Lab(experiment, rules, system)
+    lab = Lab(experiment, task.rules, system)
     lab.run()
     if lab.series[0].time[-1] < sweep.duration - 1e-6:
         lab.sample()  # every run ends with a sample at the full duration: the dose-response reads it

@@ -113,7 +113,7 @@ class Deriver:
                     m.evaluate(self.rng)
                 result = _assemble(ls, matches, _out_lengths(len(ls), matches))
         rewritten = sum(len(m.idx) for m in matches)
-        return _finish(ls, result, rewritten, deferred, self._cuts or bool(np.any(ls.sym == CUT)))
+        return _finish(ls, result, rewritten, deferred, self._may_cut(ls))
 
     def _direct_step(self, ls: LString) -> tuple[LString, StepReport] | None:
         """The step of a plain deterministic system without parameters, when it fits the budget."""
@@ -124,7 +124,11 @@ class Deriver:
         if total > self.budget:
             return None
         result = _bare(self._symbols.rewrite_direct(ls.sym, present))
-        return _finish(ls, result, rewritten, 0, self._cuts or bool(np.any(ls.sym == CUT)))
+        return _finish(ls, result, rewritten, 0, self._may_cut(ls))
+
+    def _may_cut(self, ls: LString) -> bool:
+        """Whether the step's result can hold a cut: a successor writes one, or the input has one."""
+        return self._cuts or bool(np.any(ls.sym == CUT))
 
     def _check_extern(self, extern: dict[str, float]) -> dict[str, float]:
         missing = [name for name in self.system.externs if name not in extern]

@@ -63,7 +63,7 @@ def run_sweep(path: Path, out: Path, workers: int | None = None, scheduler: str 
     if failed:
         echo(f"{len(failed)} runs failed; the others are kept. Run the same command again to retry them.")
         return 1
-    for written in write_outputs(sweep, store, everything, plots):
+    for written in write_outputs(sweep, store, everything, plots, echo):
         echo(str(written))
     return 0
 
@@ -75,7 +75,8 @@ def _tasks(sweep: Sweep, todo: list) -> list[Task]:
     return [Task(sweep, run, rules, sources, keep_tree=run.seed == sweep.seeds[0]) for run in todo]
 
 
-def write_outputs(sweep: Sweep, store: RunStore, everything: list, plots: bool = True) -> list[Path]:
+def write_outputs(sweep: Sweep, store: RunStore, everything: list, plots: bool = True,
+                  echo: Callable[[str], None] = print) -> list[Path]:
     """tidy.csv, summary.csv and (with ``plots``) the figures, from the finished runs."""
     out = store.out
     tidy = store.table(everything)
@@ -89,7 +90,7 @@ def write_outputs(sweep: Sweep, store: RunStore, everything: list, plots: bool =
 
         files += figures.dose_response(sweep, finals, out / "dose_response")
         files += figures.time_series(sweep, _series(sweep, rows), out / "time_series")
-        files += _thumbnails(sweep, store, everything)
+        files += _thumbnails(sweep, store, everything, echo)
     return files
 
 
@@ -121,7 +122,7 @@ def _series(sweep: Sweep, rows: list[dict]) -> dict:
     return series
 
 
-def _thumbnails(sweep: Sweep, store: RunStore, everything: list) -> list[Path]:
+def _thumbnails(sweep: Sweep, store: RunStore, everything: list, echo: Callable[[str], None]) -> list[Path]:
     """Render the kept final trees alike (same framing, so sizes compare) into a grid."""
     from game.render import figures
     from game.render.renderer import headless_context, render_image
@@ -136,7 +137,7 @@ def _thumbnails(sweep: Sweep, store: RunStore, everything: list) -> list[Path]:
     try:
         ctx = headless_context()
     except Exception as exc:  # no EGL / GL here: the tables and plots are still worth having
-        print(f"thumbnails skipped: no OpenGL for headless rendering ({exc})")
+        echo(f"thumbnails skipped: no OpenGL for headless rendering ({exc})")
         return []
     try:
         top = max([float(g.turtle.bounds()[1][1]) for g in meshes.values()] + [1.0])
