@@ -17,6 +17,7 @@ from pathlib import Path
 
 import numpy as np
 
+from engine.base.memory import keep_freed_memory
 from engine.life.rules import load_rules
 from engine.life.save import load_garden, save_world
 from engine.life.world import World
@@ -70,7 +71,8 @@ def abop_world(rules) -> World:
 
 
 def main() -> None:
-    """Print the table."""
+    """Print the table (with the allocator set as `arbor` sets it)."""
+    keep_freed_memory()
     rules = load_rules(ASSETS / "rules.toml", pace="demo")
     print(f"{'tree':10} {'modules':>8} {'numbers':>8} {'file MB':>8} {'save ms':>14} {'first load':>10} "
           f"{'load ms':>14} {'to_text ms':>14} {'parse ms':>14}")

@@ -54,10 +54,12 @@ def soak(minutes: float, seed: int = 3) -> float:
     """Run the soak; returns the RSS growth over the second half (a fraction)."""
     import pygame
 
+    from engine.base.memory import keep_freed_memory
     from game.render.renderer import headless_context
     from game.screens.game import Game, GameConfig
     from game.screens.kiosk import Kiosk, KioskConfig
 
+    keep_freed_memory()  # as `arbor` does
     pygame.init()
     pygame.display.set_mode((64, 64))
     ctx = headless_context()
@@ -80,6 +82,9 @@ def soak(minutes: float, seed: int = 3) -> float:
             if frames % 200 == 0:
                 modules = sum(len(w.tree.lstring) for w in kiosk.game.garden.worlds)
                 samples.append((now - start, rss_bytes(), modules))
+                if len(samples) % 100 == 0:
+                    print(f"  {samples[-1][0] / 60:5.1f} min  RSS {samples[-1][1] / 2**20:6.1f} MiB  "
+                          f"{len(kiosk.game.garden.worlds)} trees  {modules:,} modules", flush=True)
     half = [(r, m) for t, r, m in samples if t >= minutes * 30]
     growth = (half[-1][0] - half[0][0]) / half[0][0] if len(half) > 1 else 0.0
     print(f"{minutes:g} min, {frames:,} frames, {kiosk.recoveries} recoveries; RSS MiB at half-way "

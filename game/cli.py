@@ -7,6 +7,7 @@ import sys
 from pathlib import Path
 
 from engine.base.errors import LSysError
+from engine.base.memory import keep_freed_memory
 from engine.lsystem.derive import DEFAULT_BUDGET, MAX_BUDGET
 from game.errors import UserError
 from game.paths import ASSETS
@@ -228,6 +229,7 @@ def main(argv: list[str] | None = None) -> int:
         return watchdog(argv[1:])
     parser = build_parser()
     args = parser.parse_args(argv)
+    keep_freed_memory()
     try:
         if args.command is None:
             from game.app import run_app, run_kiosk

@@ -13,7 +13,6 @@ from __future__ import annotations
 
 import functools
 import hashlib
-import itertools
 import json
 import math
 import re
@@ -44,8 +43,9 @@ from engine.life.save_check import (
 )
 from engine.life.sim import GrowthCycle, Rules, SimState, Simulation
 from engine.life.world import World
-from engine.lsystem.lstring import format_number, parse_lstring
+from engine.lsystem.lstring import LString, parse_lstring
 from engine.lsystem.lsys import parse_lsystem
+from engine.lsystem.text import format_number
 
 FORMAT = 2
 WRAP = 100
@@ -71,24 +71,16 @@ def _toml_text(text: str) -> str:
     return '"""\n' + _escape(text, keep_newlines=True) + '"""'
 
 
-def _toml_block(text: str) -> str:
+def _toml_lstring(ls: LString) -> str:
     """An L-string as a multi-line literal string, broken into lines of about WRAP characters between
     modules (the L-string reader skips the line breaks; TOML reads a literal string without unescaping,
     fast). Text a literal string cannot hold (three quotes in a row, control characters) is wrapped
     with line-ending backslashes in a basic string instead, as older saves were."""
-    if "'''" not in text and text.isascii() and text.isprintable() and not text.endswith("'"):
-        return "'''\n" + "\n".join(_lines_between_modules(text)) + "'''"
-    return _toml_basic_block(text)
-
-
-def _lines_between_modules(text: str) -> list[str]:
-    """``text`` cut before the first module that starts in each run of WRAP characters."""
-    raw = np.frombuffer(text.encode("ascii"), np.uint8)
-    depth = np.cumsum((raw == 40).view(np.int8) - (raw == 41).view(np.int8), dtype=np.int32)
-    starts = np.flatnonzero((depth == 0) & (raw != 41))  # a symbol outside parentheses starts a module
-    cuts = starts[np.flatnonzero(np.diff(starts // WRAP, prepend=0))] if len(starts) else starts
-    bounds = [0, *cuts.tolist(), len(text)]
-    return [text[a:b] for a, b in itertools.pairwise(bounds)]
+    printable = bool(((ls.sym > 32) & (ls.sym < 127)).all())
+    text = ls.to_text(WRAP if printable else 0)
+    if printable and "'''" not in text and not text.endswith("'"):
+        return "'''\n" + text + "'''"
+    return _toml_basic_block(ls.to_text() if printable else text)
 
 
 def _toml_basic_block(text: str) -> str:
@@ -166,10 +158,10 @@ def _tree_lines(world: World, lsystem_name: str) -> list[str]:
         f"rng_world = {_toml_string(_rng_text(world.rng))}",
         f"rng_roots = {_toml_string(_rng_text(world.roots.deriver.rng))}",
         f"roots_rewrite = {format_number(world.roots.last_rewrite)}",
-        f"roots = {_toml_block(world.roots.lstring.to_text())}",
+        f"roots = {_toml_lstring(world.roots.lstring)}",
         f"rng_tree = {_toml_string(_rng_text(tree.deriver.rng))}",
         f"modules = {len(ls)}",
-        f"lstring = {_toml_block(ls.to_text())}",
+        f"lstring = {_toml_lstring(ls)}",
         "",
     ]
     return lines
@@ -242,7 +234,7 @@ def _read(path: Path) -> tuple[dict, str]:
     if len(raw) > MAX_BYTES:
         raise SaveError(f"too large (more than {MAX_BYTES:,} bytes)", str(path))
     try:
-        text = raw.decode("utf-8-sig")
+        text = raw.decode("ascii" if raw.isascii() else "utf-8-sig")  # (ASCII: one fast pass)
         return save_blocks.loads(text), text
     except UnicodeDecodeError as exc:
         raise SaveError(f"not UTF-8 text (byte {exc.start})", str(path)) from None

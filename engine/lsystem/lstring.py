@@ -13,12 +13,12 @@ That is 18 bytes for a module with one parameter, with no Python object per modu
 from __future__ import annotations
 
 import re
-import warnings
 from dataclasses import dataclass
 
 import numpy as np
 
 from engine.base.errors import LSysError
+from engine.lsystem.text import lstring_text, parse_arrays
 
 MAX_PARAMS = 255
 _FORBIDDEN = set("(),")
@@ -91,24 +91,11 @@ class LString:
             and np.array_equal(_zero_signs(self.params), _zero_signs(other.params))
         )
 
-    def to_text(self) -> str:
-        """Readable ABOP-style text, e.g. ``F(5)[+(25.7)F(2.5)]``; floats round-trip exactly. Built from
-        whole-array operations: one token per symbol, number and separator, joined once."""
-        chars = self.sym.tobytes().decode("ascii")
-        if len(self.params) == 0:
-            return chars
-        n, total = len(self.sym), len(self.params)
-        owner = np.repeat(np.arange(n), self.nparams)  # the module each parameter belongs to
-        first = _PREFIX_OPEN[self.sym]  # symbol, with '(' when it has parameters
-        first[self.nparams == 0] = _PREFIX_BARE[self.sym[self.nparams == 0]]
-        last = np.zeros(total, bool)
-        last[self.offsets[self.nparams > 0] + self.nparams[self.nparams > 0].astype(np.int64) - 1] = True
-        tokens = np.empty(n + 2 * total, dtype=object)
-        tokens[self.offsets + np.arange(n) + self.offsets] = first  # module m: after 2 x its params before
-        at = 2 * np.arange(total) + owner + 1
-        tokens[at] = number_texts(self.params)
-        tokens[at + 1] = np.where(last, ")", ",")
-        return "".join(tokens.tolist())
+    def to_text(self, wrap: int = 0) -> str:
+        """Readable ABOP-style text, e.g. ``F(5)[+(25.7)F(2.5)]``; floats round-trip exactly. With
+        ``wrap``, a line break goes before the first module that starts in each run of ``wrap``
+        characters (the reader skips blanks between modules)."""
+        return lstring_text(self.sym, self.nparams, self.offsets, self.params, wrap)
 
     def __str__(self) -> str:
         return self.to_text()
@@ -161,51 +148,10 @@ def _zero_signs(values: np.ndarray) -> np.ndarray:
     return np.signbit(values) & (values == 0)
 
 
-_PREFIX_BARE = np.array([chr(c) for c in range(256)], dtype=object)
-_PREFIX_OPEN = np.array([chr(c) + "(" for c in range(256)], dtype=object)
-
-
-def number_texts(values: np.ndarray) -> np.ndarray:
-    """``format_number`` of every value (object array): whole numbers through one integer cast, the
-    rest by ``repr`` (the shortest text that reads back exactly). When values repeat (a tree repeats
-    its constants, angles and times), each distinct one (bit for bit: -0.0 stays apart from 0.0) is
-    formatted once."""
-    values = np.asarray(values, dtype=np.float64)
-    sample = values[:: max(1, len(values) // 2048)].view(np.int64)
-    if len(np.unique(sample)) > 0.5 * len(sample):  # mostly distinct: sorting them would only cost
-        return _number_texts(values)
-    bits, back = np.unique(values.view(np.int64), return_inverse=True)
-    return _number_texts(bits.view(np.float64))[back.ravel()]
-
-
-def _number_texts(values: np.ndarray) -> np.ndarray:
-    whole = (values == np.round(values)) & (np.abs(values) < 1e16) & ~_zero_signs(values)
-    out = np.empty(len(values), dtype=object)
-    out[whole] = values[whole].astype(np.int64).astype(str).tolist()
-    rest = np.flatnonzero(~whole)
-    if len(rest):
-        out[rest] = list(map(repr, values[rest].tolist()))
-    return out
-
-
-def format_number(v: float) -> str:
-    """Shortest text that parses back to exactly ``v`` (integers without a trailing '.0')."""
-    if v.is_integer() and abs(v) < 1e16 and not (v == 0.0 and np.signbit(v)):
-        return str(int(v))
-    return repr(v)
 
 
 _MODULE = re.compile(r"\s*([^\s(),])(?:\(([^()]*)\))?")
 _NUMBER = re.compile(r"\s*[+-]?(?:(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?|inf|nan)\s*")
-
-
-_CLASS = np.zeros(256, np.uint8)  # bit 1: a symbol, 2: a blank (both only outside parentheses), 4: inside
-_CLASS[33:127] = 1
-_CLASS[[40, 41, 44]] = 0
-_CLASS[[9, 10, 13, 32]] = 2
-_CLASS[np.frombuffer(b"0123456789+-.eEinfa,()", np.uint8)] |= 4
-_OPEN, _CLOSE, _COMMA = 40, 41, 44
-_CLOSE_TO_COMMA = bytes.maketrans(b")", b",")
 
 
 def parse_lstring(text: str, file: str = "<string>", line: int = 1) -> LString:
@@ -221,58 +167,9 @@ def parse_lstring(text: str, file: str = "<string>", line: int = 1) -> LString:
 
 
 def _parse_fast(text: str) -> LString | None:
-    """Well-formed text as arrays, or None for anything unusual (then the careful reader decides).
-
-    Well-formed: ASCII; parentheses never nested, each right after a module symbol; between them only
-    numbers and single commas, no blanks; outside them only symbols and blanks. A module's
-    parameters are the numbers in the parentheses that follow it.
-    """
-    try:
-        raw = np.frombuffer(text.encode("ascii"), np.uint8)
-    except UnicodeEncodeError:
-        return None
-    if len(raw) == 0:
-        return LString.empty()
-    opens, closes = raw == _OPEN, raw == _CLOSE
-    depth = np.cumsum(opens.view(np.int8) - closes.view(np.int8), dtype=np.int32)
-    if depth.min() < 0 or depth.max() > 1 or depth[-1] != 0:
-        return None
-    inside = depth.astype(bool) | closes
-    cls = _CLASS[raw]
-    open_at = np.flatnonzero(opens)
-    if (not (cls & (inside.view(np.uint8) + 3)).all()  # bits 1|2 outside, bit 4 inside
-            or (len(open_at) and (open_at[0] == 0 or not (_CLASS[raw[open_at - 1]] & 1).all()))):
-        return None
-    symbols = np.flatnonzero((cls & 1).astype(bool) & ~inside)
-    counts = np.zeros(len(symbols), np.int64)
-    if len(open_at):
-        has_args = np.zeros(len(raw) + 1, bool)
-        has_args[open_at - 1] = True
-        group = np.searchsorted(open_at, np.flatnonzero(raw == _COMMA)) - 1  # each comma's parentheses
-        counts[has_args[symbols]] = np.bincount(group, minlength=len(open_at)) + 1
-    if counts.max(initial=0) > MAX_PARAMS:
-        return None
-    values = _numbers(raw, inside & ~opens) if len(open_at) else np.zeros(0)
-    if values is None or len(values) != int(counts.sum()):
-        return None
-    return LString.from_arrays(raw[symbols], counts.astype(np.uint8), values)
-
-
-def _numbers(raw: np.ndarray, keep: np.ndarray) -> np.ndarray | None:
-    """Every number between parentheses, in order (None if one is not a number). Text that repeats
-    its numbers (trees repeat constants, angles and times) parses each distinct one once."""
-    blob = raw[keep].tobytes().translate(_CLOSE_TO_COMMA)[:-1]
-    tokens = blob.split(b",")
-    sample = tokens[:: max(1, len(tokens) // 2048)]
-    try:
-        if len(set(sample)) < 0.5 * len(sample):
-            table = {t: float(t) for t in set(tokens)}
-            return np.fromiter(map(table.__getitem__, tokens), np.float64, len(tokens))
-        with warnings.catch_warnings():
-            warnings.simplefilter("error", DeprecationWarning)  # a malformed number stops it: not silently
-            return np.fromstring(blob.decode("ascii"), sep=",")
-    except (ValueError, DeprecationWarning):
-        return None
+    """Well-formed text as an L-string, or None for anything unusual (see ``text.parse_arrays``)."""
+    parsed = parse_arrays(text, MAX_PARAMS)
+    return None if parsed is None else LString.from_arrays(*parsed)
 
 
 def _parse_slow(text: str, file: str, line: int) -> LString:

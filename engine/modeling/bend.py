@@ -13,7 +13,8 @@ from __future__ import annotations
 import numpy as np
 
 from engine.geometry.turtle import TurtleConfig, interpret
-from engine.lsystem.lstring import LString, concat, format_number, parse_lstring
+from engine.lsystem.lstring import LString, concat, parse_lstring
+from engine.lsystem.text import format_number
 
 DOWN = np.array([0.0, -1.0, 0.0])
 WOOD = (ord("F"), ord("I"))

@@ -18,7 +18,8 @@ import numpy as np
 
 from engine.geometry.turtle import INITIAL_FRAME, unit
 from engine.lsystem import brackets
-from engine.lsystem.lstring import concat, format_number, parse_lstring
+from engine.lsystem.lstring import concat, parse_lstring
+from engine.lsystem.text import format_number
 from engine.modeling.lobes import Crossings, Lobe
 from engine.modeling.modeler import Modeler
 

@@ -27,7 +27,8 @@ import numpy as np
 
 from engine.geometry.turtle import INITIAL_FRAME, Segments, TurtleConfig, interpret, unit
 from engine.lsystem import brackets
-from engine.lsystem.lstring import LString, concat, format_number, parse_lstring
+from engine.lsystem.lstring import LString, concat, parse_lstring
+from engine.lsystem.text import format_number
 from engine.modeling.history import Undoable
 from engine.modeling.strokes import ArcLengthSpline, Stroke, adaptive_sample, curvature, speeds_at
 

@@ -17,7 +17,8 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 import pygame
 
-from engine.lsystem.lstring import LString, format_number
+from engine.lsystem.lstring import LString
+from engine.lsystem.text import format_number
 from engine.modeling.crown import grow_crown
 from engine.modeling.lobes import Lobe, lobe_from_loops, lobe_from_outline
 from engine.modeling.modeler import Modeler
