@@ -141,7 +141,10 @@ def main() -> None:
             game.draw(fbo)
         view = game.view.views[id(world)][1]
         _report(f"{len(view.tubes):,}-segment tree, growing", _frames(game, ctx, fbo, n, tick))
-        print(f"  (levels of detail used: {game.renderer.last_lods}; rebuilds on the worker thread)")
+        detail = game.renderer.last_details[0]
+        print(f"  (level of detail {detail.lod}: {detail.tubes:,} grown segments, {detail.leaves:,} grown leaves "
+              f"(share {detail.leaf_share:.2f}), {detail.vertices(game.renderer.placed[0].buffers):,} vertices; "
+              "rebuilds on the worker thread)")
         full = []
         for k in range(8 if quick else 15):
             start = time.perf_counter()

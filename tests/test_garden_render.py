@@ -13,6 +13,7 @@ from engine.life.rules import load_rules
 from engine.life.world import World
 from engine.lsystem.lsys import load_lsystem
 from game.render.camera import project_points
+from game.render.instanced import LEAF_KEPT, Detail
 from game.screens.game import Game, GameConfig
 
 SIZE = (640, 360)
@@ -130,14 +131,23 @@ def test_blossoms_are_pink(game):
 def test_coarser_levels_draw_fewer_triangles_within_budget(game, monkeypatch):
     counts = []
     for lod in range(4):
-        monkeypatch.setattr(game.renderer, "_lod", lambda *a, lod=lod: lod)
+        level = lambda buffers, *a, lod=lod: Detail.of(buffers, lod, 0.0, LEAF_KEPT[lod])  # noqa: E731
+        monkeypatch.setattr(game.renderer, "_detail", level)
         frame(game)
         counts.append(game.triangles)
     assert counts == sorted(counts, reverse=True) and counts[3] < 0.6 * counts[0] and counts[1] < counts[0]
     monkeypatch.undo()
-    game.renderer.triangle_budget = counts[2] - 1
+    buffers = game.renderer.placed[0].buffers
+    game.renderer.vertex_budget = Detail.of(buffers, 2, 0.0, LEAF_KEPT[2]).vertices(buffers) - 1
     frame(game)
-    assert game.renderer.last_lods[0] == 3  # too many triangles: a coarser level, whatever the size
+    assert game.renderer.last_details[0].lod == 3  # too much to shade: a coarser level, whatever the size
+    whole = Detail.of(buffers, 3, 0.0, LEAF_KEPT[3])
+    young = Detail(3).vertices(buffers)  # the growing parts (always drawn whole)
+    game.renderer.vertex_budget = young + (whole.vertices(buffers) - young) // 3
+    frame(game)
+    detail = game.renderer.last_details[0]
+    assert detail.vertices(buffers) <= game.renderer.vertex_budget  # still too much: the thinnest twigs
+    assert detail.tubes < whole.tubes and detail.leaf_share < LEAF_KEPT[3]  # and a share of the leaves go
 
 
 def test_a_frame_updates_records_without_rebuilding(game, monkeypatch):
@@ -169,3 +179,55 @@ def test_a_branch_shed_just_now_falls_then_is_gone(game, grown):
     game.fake[0] += FALL_SECONDS + 0.5
     frame(game)
     assert not game.view.falls
+
+
+def test_the_sky_and_ground_picture_follows_the_camera_and_the_sun(game):
+    """On a software GL the backdrop is drawn once and copied while nothing it shows changes: after
+    turning the camera, tilting it or moving the sun, the frame must equal a fresh drawing."""
+    game.rules.wind.strength = 0.0
+    frame(game)
+    for change in (lambda: setattr(game.control, "yaw", game.control.yaw + 25.0),
+                   lambda: setattr(game.control, "tilt", game.control.tilt + 8.0),
+                   lambda: setattr(game.world.sim.state, "sun_angle", game.world.sim.state.sun_angle + 0.3)):
+        change()
+        kept = frame(game)
+        game.renderer._backdrop_key = None  # what a fresh drawing shows
+        fresh = frame(game)
+        assert np.abs(kept - fresh).max() <= 2
+    assert game.renderer.samples > 1 or game.renderer._backdrop_key is not None  # (the copy was in use)
+
+
+def test_a_coarse_level_draws_a_prefix_of_the_grown_leaves_and_the_same_picture(game, monkeypatch):
+    """The grown leaves go to the GPU sorted by the hash a level keeps them by: drawing only the first
+    ones must show exactly what drawing all of them and letting the shader drop the rest shows."""
+    game.rules.wind.strength = 0.0
+    frame(game)
+    buffers = game.renderer.placed[0].buffers
+    prefix = Detail.of(buffers, 2, 0.0, 0.5)
+    assert 0 < prefix.leaves < 0.7 * buffers.parts["leaf"].count
+    monkeypatch.setattr(game.renderer, "_detail", lambda *a: prefix)
+    short = frame(game)
+    everything = Detail(2, prefix.tubes, buffers.parts["leaf"].count, 0.5, prefix.leaf_grow)
+    monkeypatch.setattr(game.renderer, "_detail", lambda *a: everything)
+    assert np.abs(frame(game) - short).max() == 0
+
+
+def test_big_leafy_trees_are_drawn_at_a_lower_resolution_and_laid_over_the_frame(game, monkeypatch):
+    game.rules.wind.strength = 0.0
+    full = frame(game)
+    monkeypatch.setattr(game.renderer, "_scale", lambda *a: 0.5)
+    half = frame(game)
+    assert game.renderer.last_scale == 0.5 and game.renderer.layer.size == (SIZE[0] // 2, SIZE[1] // 2)
+    tree = np.abs(full - frame_without_trees(game)).sum(axis=2) > 30
+    assert tree.sum() > 2000
+    assert np.abs(half - full)[tree].mean() < 40  # the same tree, softer
+    assert np.abs(half - full)[~tree].mean() < 3  # and nothing else changed
+
+
+def frame_without_trees(game) -> np.ndarray:
+    drawn = game.renderer.trees.draw
+    game.renderer.trees.draw = lambda *a, **k: None
+    try:
+        return frame(game)
+    finally:
+        game.renderer.trees.draw = drawn

@@ -1,7 +1,7 @@
 #version 330
 // Instanced leaves, blossoms and fruit: one quad per record (base, axis, normal, length, width, flex,
 // hash). Leaves flutter in the wind on top of their twig's sway; at coarse levels of detail a share of
-// them (by hash) is dropped and the rest grow to cover the same area; in autumn a share (by another
+// them (by hash) is dropped and the rest grow by u_grow to cover for them; in autumn a share (by another
 // hash) has fallen (u_keep). Fruit (u_ball = 1) is a ball: a quad turned to the eye, its width slot
 // holding its ripeness.
 uniform mat4 u_mvp;
@@ -9,6 +9,7 @@ uniform mat4 u_light_mvp;
 uniform vec3 u_offset;
 uniform vec3 u_eye;
 uniform float u_fraction;
+uniform float u_grow = 1.0;
 uniform float u_keep = 1.0;
 uniform int u_ball = 0;
 in vec2 in_corner;
@@ -38,7 +39,7 @@ void main() {
         v_normal = to_eye;
         v_extra = i_size.y;
     } else {
-        float grow = inversesqrt(max(u_fraction, 0.05));
+        float grow = u_grow;
         vec3 side = cross(i_normal, i_axis);
         p = i_base + i_axis * (i_size.x * grow * in_corner.y) + side * (i_size.y * grow * (in_corner.x - 0.5));
         float flutter = sin(u_wind.w * 7.0 + i_hash * 40.0) * length(u_wind.xyz) * 0.06 * in_corner.y;

@@ -135,9 +135,9 @@ class Backdrop:
         self.ground = self.ctx.vertex_array(self.ground_prog, [(self.ctx.buffer(rings.tobytes()), "3f", "in_pos")],
                                             self.ctx.buffer(np.array(idx, "u4").tobytes()))
 
-    def draw_ground(self, mvp: bytes, light: bytes, sun: np.ndarray, fade: tuple[float, float],
-                    shadow_texel: float) -> None:
-        """The ground with the shadow map bound at texture unit 1."""
+    def draw_ground(self, mvp: bytes, sun: np.ndarray, fade: tuple[float, float]) -> None:
+        """The ground, lit by the sun, fading into the horizon from ``fade[0]`` to ``fade[1]`` (the
+        trees' shadows go on it with :meth:`draw_shadows`)."""
         _, horizon, day = sky_colors(sun)
         light_level = (0.45 + 0.55 * max(float(sun[1]), 0.0)) * (0.7 + 0.3 * day)
         self.noise.use(location=2)

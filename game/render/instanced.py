@@ -2,11 +2,18 @@
 
 One template per level of detail (sides per ring); one buffer of records per tree part. A grown tree
 is uploaded once; after that each frame rewrites only the rows that grew (the young block at the end of
-each buffer, see engine/life/growth_view.py), so a frame costs what changed, not the tree.
+each view's records, see engine/life/growth_view.py, kept in buffers of their own), so a frame costs
+what changed, not the tree.
+
+The grown (old) block is uploaded in order of importance: segments thickest first, leaves by the hash
+a coarse level keeps them by. A level of detail then draws a prefix of it: only the segments at least
+so thick, only the leaves it keeps. On a software GL every instance costs its vertices even when the
+shader drops it, so drawing fewer instances is what makes a big tree affordable.
 """
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 
 import moderngl
@@ -16,11 +23,57 @@ from engine.life.growth_view import GrowthView
 from game.render.backdrop import program, set_uniforms
 
 SIDES = (8, 6, 4, 3)  # ring sides per level of detail
+TEMPLATE_VERTICES = tuple(3 * (s + 1) + 1 for s in SIDES)  # two rings, the cap ring and the tip
 LEAF_KEPT = (1.0, 0.75, 0.5, 0.3)  # share of leaves drawn per level (the rest grow to cover the same area)
 TUBE_LAYOUT = ("3f 3f 3f 3f 3f 3f 2f 2f 2f 1f 4x/i",  # the last float (branch order) is not read
                ("i_c0", "i_t0", "i_x0", "i_c1", "i_t1", "i_x1", "i_r", "i_v", "i_flex", "i_tip"))
-PARTS = (("tube", 0), ("leaf", 1), ("blossom", 2), ("fruit", 3), ("stone", 4))  # record buffers, shader kinds
-LEAF_LAYOUT = ("3f 3f 3f 3f 1f/i", ("i_base", "i_axis", "i_normal", "i_size", "i_hash"))
+PARTS = (("leaf", 1), ("leaf_young", 1), ("blossom", 2), ("fruit", 3), ("tube", 0), ("tube_young", 0),
+         ("stone", 4))  # record buffers and shader kinds, in drawing order: wood hidden by leaves is not shaded
+RADIUS = 18  # column of a tube record's start radius
+HASH = 12  # column of a leaf record's hash
+LENGTH = 9  # column of a leaf record's length (its width next)
+LEAF_LAYOUT = ("2f 3f 3f 3f 3f 1f", ("i_base", "i_axis", "i_normal", "i_size", "i_hash"))  # a corner, then the record
+CORNERS = np.array([[0, 0], [1, 0], [1, 1], [0, 1]], "f4")  # of a leaf's quad (four vertices per leaf: a
+QUAD = np.array([0, 1, 2, 0, 2, 3], "u4")  # software GL draws them faster than one instance per leaf)
+
+
+@dataclass(frozen=True)
+class Detail:
+    """How much of a tree a frame draws: template level (sides per ring), how many of the grown
+    segments (thickest first) and grown leaves (by hash) it draws, and the share of leaves that is
+    (the shader grows the kept ones to cover for the rest). Young parts are always drawn whole."""
+
+    lod: int
+    tubes: int = 0
+    leaves: int = 0
+    leaf_share: float = 1.0
+    leaf_grow: float = 1.0  # how much larger than life the drawn leaves are (length and width)
+
+    @classmethod
+    def of(cls, tree: TreeBuffers, lod: int, thinnest: float = 0.0, leaf_share: float = 1.0) -> Detail:
+        """Level ``lod`` drawing the grown segments at least ``thinnest`` thick and ``leaf_share``
+        of the grown leaves, grown to cover the same area as all of them."""
+        return cls(lod, tree.tubes_at_least(thinnest), tree.leaves_kept(leaf_share), leaf_share,
+                   cover_grow(leaf_share))
+
+    def vertices(self, tree: TreeBuffers) -> int:
+        """Vertices this detail makes the GL shade for ``tree`` (the cost on a software GL)."""
+        young, small = _counts(tree, ("tube_young",)), _counts(tree, ("leaf_young", "blossom", "fruit"))
+        return TEMPLATE_VERTICES[self.lod] * (self.tubes + young) + 4 * (self.leaves + small)
+
+    def triangles(self, tree: TreeBuffers) -> int:
+        """Triangles drawn for ``tree`` (3 per side of a segment, 2 per leaf)."""
+        young, small = _counts(tree, ("tube_young",)), _counts(tree, ("leaf_young", "blossom", "fruit"))
+        return 3 * SIDES[self.lod] * (self.tubes + young) + 2 * (self.leaves + small)
+
+
+def cover_grow(share: float) -> float:
+    """How much a share of the leaves grows to cover the area all of them cover (at most 4.5x)."""
+    return 1.0 / math.sqrt(max(share, 0.05))
+
+
+def _counts(tree: TreeBuffers, names: tuple[str, ...]) -> int:
+    return sum(tree.parts[name].count for name in names if name in tree.parts)
 
 
 def tube_template(sides: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -40,17 +93,38 @@ def tube_template(sides: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
 
 @dataclass
 class _Part:
-    """One instance buffer (tubes, leaves, blossoms or fruit) of one tree, with its vertex arrays."""
+    """One part of one tree (tubes, leaves, blossoms or fruit): its records on the CPU, the GPU buffer
+    they go to (uploaded as far as they are drawn; leaves as four vertices each) and vertex arrays."""
 
     buffer: moderngl.Buffer
     capacity: int
-    count: int = 0
+    records: np.ndarray
+    quads: moderngl.Buffer | None = None  # leaf parts: the two triangles of each quad
+    uploaded: int = 0
     vaos: dict = field(default_factory=dict)
+
+    @property
+    def count(self) -> int:
+        """Records in this part."""
+        return len(self.records)
+
+    def upload(self, count: int) -> None:
+        """Make sure the first ``count`` records are on the GPU (only what is missing goes)."""
+        if count <= self.uploaded:
+            return
+        rows = self.records[self.uploaded:count]
+        if self.quads is not None:
+            rows = np.concatenate([np.tile(CORNERS, (len(rows), 1)), np.repeat(rows, 4, axis=0)], axis=1)
+        stride = rows.shape[1] * 4 * (4 if self.quads is not None else 1)
+        self.buffer.write(np.ascontiguousarray(rows, dtype="f4").tobytes(), offset=self.uploaded * stride)
+        self.uploaded = count
 
     def release(self) -> None:
         for vao in self.vaos.values():
             vao.release()
         self.buffer.release()
+        if self.quads is not None:
+            self.quads.release()
 
 
 @dataclass
@@ -59,6 +133,17 @@ class TreeBuffers:
 
     view: GrowthView | None = None
     parts: dict[str, _Part] = field(default_factory=dict)
+    radii: np.ndarray = field(default_factory=lambda: np.zeros(0, np.float32))  # old segments', thickest first
+    hashes: np.ndarray = field(default_factory=lambda: np.zeros(0, np.float32))  # old leaves' hashes, ascending
+    leaf_area: float = 0.0  # of all its leaves (scene units squared)
+
+    def tubes_at_least(self, radius: float) -> int:
+        """How many old segments are at least ``radius`` thick (the prefix a level draws)."""
+        return len(self.radii) - int(np.searchsorted(self.radii[::-1], radius, side="left"))
+
+    def leaves_kept(self, fraction: float) -> int:
+        """How many old leaves a level keeping ``fraction`` of them draws (hash <= fraction)."""
+        return int(np.searchsorted(self.hashes, fraction, side="right"))
 
     def release(self) -> None:
         """Free every buffer."""
@@ -83,32 +168,40 @@ class InstancedTrees:
         for sides in SIDES:
             verts, cap, tris = tube_template(sides)
             self.templates.append((ctx.buffer(verts.tobytes()), ctx.buffer(cap.tobytes()), ctx.buffer(tris.tobytes())))
-        corners = np.array([[0, 0], [1, 0], [1, 1], [0, 1]], "f4")
-        self.quad = (ctx.buffer(corners.tobytes()), ctx.buffer(np.array([0, 1, 2, 0, 2, 3], "u4").tobytes()))
 
     def sync(self, tree: TreeBuffers, view: GrowthView) -> None:
-        """Bring ``tree``'s buffers up to ``view``: everything after a rebuild, else the young rows."""
+        """Bring ``tree``'s buffers up to ``view``: everything after a rebuild (the old blocks sorted
+        by importance), else only the young rows."""
         full = tree.view is not view
         tree.view = view
-        for name, records, young_from in (("tube", view.tubes.data, view.young_row),
-                                          ("leaf", view.leaves.data, view.young_leaf_row),
-                                          ("blossom", view.blossoms.data, len(view.blossoms.data)),
-                                          ("fruit", view.fruits.data, len(view.fruits.data)),
-                                          ("stone", view.stones.data, len(view.stones.data))):
-            self._write(tree, name, records, 0 if full else young_from)
+        if full:
+            tubes, leaves = view.tubes.data[: view.young_row], view.leaves.data[: view.young_leaf_row]
+            tubes = tubes[np.argsort(-tubes[:, RADIUS], kind="stable")]
+            leaves = leaves[np.argsort(leaves[:, HASH], kind="stable")]
+            tree.radii, tree.hashes = tubes[:, RADIUS].copy(), leaves[:, HASH].copy()
+            tree.leaf_area = float(np.dot(view.leaves.data[:, LENGTH], view.leaves.data[:, LENGTH + 1]))
+            self._write(tree, "tube", tubes)
+            self._write(tree, "leaf", leaves)
+            for name, records in (("blossom", view.blossoms.data), ("fruit", view.fruits.data),
+                                  ("stone", view.stones.data)):
+                self._write(tree, name, records)
+        self._write(tree, "tube_young", view.tubes.data[view.young_row:])
+        self._write(tree, "leaf_young", view.leaves.data[view.young_leaf_row:])
 
-    def _write(self, tree: TreeBuffers, name: str, records: np.ndarray, first: int) -> None:
+    def _write(self, tree: TreeBuffers, name: str, records: np.ndarray) -> None:
+        """New records for a part (uploaded when drawn); its buffers grow when they must."""
         part = tree.parts.get(name)
-        count = len(records)
+        count, leafy = len(records), not name.startswith("tube")
         if part is None or part.capacity < count:
             if part is not None:
                 part.release()
             capacity = max(64, int(count * 1.5))
-            part = tree.parts[name] = _Part(self.ctx.buffer(reserve=capacity * records.shape[1] * 4), capacity)
-            first = 0
-        part.count = count
-        if count > first:
-            part.buffer.write(np.ascontiguousarray(records[first:]).tobytes(), offset=first * records.shape[1] * 4)
+            row = (records.shape[1] + 2) * 4 * 4 if leafy else records.shape[1] * 4
+            quads = None
+            if leafy:
+                quads = self.ctx.buffer((QUAD[None, :] + 4 * np.arange(capacity, dtype="u4")[:, None]).tobytes())
+            part = tree.parts[name] = _Part(self.ctx.buffer(reserve=capacity * row), capacity, records, quads)
+        part.records, part.uploaded = records, 0
 
     def _vao(self, part: _Part, kind: str, pass_: str, lod: int) -> moderngl.VertexArray:
         key = (kind, pass_, lod if kind == "tube" else 0)
@@ -120,23 +213,28 @@ class InstancedTrees:
                 layout, names = TUBE_LAYOUT
                 content = [(verts, "4f", "in_ring"), (cap, "1f", "in_cap"), (part.buffer, layout, *names)]
             else:
-                corners, tris = self.quad
                 layout, names = LEAF_LAYOUT
-                content = [(corners, "2f", "in_corner"), (part.buffer, layout, *names)]
+                content, tris = [(part.buffer, layout, "in_corner", *names)], part.quads
             vao = part.vaos[key] = self.ctx.vertex_array(prog, content, tris, skip_errors=True)
         return vao
 
-    def draw(self, tree: TreeBuffers, pass_: str, lod: int, uniforms: dict, textures: dict) -> None:
-        """Draw one tree's wood, leaves, blossoms and fruit in ``pass_`` ('lit' or 'shadow') at level
-        ``lod`` (fruit casts no shadow: too small to see in a 1024-texel map)."""
+    def draw(self, tree: TreeBuffers, pass_: str, detail: Detail, uniforms: dict, textures: dict) -> None:
+        """Draw one tree's wood, leaves, blossoms and fruit in ``pass_`` ('lit' or 'shadow') at
+        ``detail`` (fruit casts no shadow: too small to see in a 1024-texel map)."""
+        lod, share = detail.lod, detail.leaf_share
         for name, kind in PARTS:
             part = tree.parts.get(name)
             if part is None or part.count == 0 or (kind >= 3 and pass_ != "lit"):
                 continue
-            prog = self.programs[("tube" if name == "tube" else "leaf", pass_)]
+            count = min(detail.tubes if name == "tube" else detail.leaves if name == "leaf" else part.count,
+                        part.count)
+            if count == 0:
+                continue
+            prog = self.programs[("tube" if kind == 0 else "leaf", pass_)]
             set_uniforms(prog, {k: v for k, v in uniforms.items() if k != "tints"})
             textures["bark" if kind in (0, 4) else "leaf" if kind == 1 else "blossom"].use(location=0)
-            per_part = {"u_tex": 0, "u_fraction": LEAF_KEPT[lod] if kind == 1 else 1.0,
+            per_part = {"u_tex": 0, "u_fraction": share if kind == 1 else 1.0,
+                        "u_grow": detail.leaf_grow if kind == 1 else 1.0,
                         "u_keep": uniforms.get("u_keep", 1.0) if kind == 1 else 1.0, "u_ball": int(kind >= 3),
                         # far away, leaves skip the shadow lookup (their shade is the AO)
                         "u_shadowed": float(pass_ != "lit" or kind == 0 or lod < 2)}
@@ -146,4 +244,9 @@ class InstancedTrees:
             else:
                 per_part["u_alpha_test"] = int(kind != 0)
             set_uniforms(prog, per_part)
-            self._vao(part, "tube" if kind == 0 else "leaf", pass_, lod).render(instances=part.count)
+            part.upload(count)
+            vao = self._vao(part, "tube" if kind == 0 else "leaf", pass_, lod)
+            if kind == 0:
+                vao.render(instances=count)
+            else:
+                vao.render(vertices=6 * count)

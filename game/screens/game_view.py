@@ -13,7 +13,7 @@ from engine.life import seasons
 from engine.life.growth_view import GrowthView
 from game.render.falling import FALL_SECONDS, falling_view
 from game.render.garden import BARK, GardenRenderer, Placed
-from game.render.instanced import LEAF_KEPT, SIDES, TreeBuffers
+from game.render.instanced import Detail, TreeBuffers
 from game.render.roots import rocks_view, roots_view
 
 if TYPE_CHECKING:
@@ -24,15 +24,6 @@ WILT_STEP = 0.02  # a change of wilt this large rebuilds the tree (drooping angl
 ASYNC_MODULES = 60_000  # trees with more modules are rebuilt on a worker thread
 SMOOTH_DAY, STEADY_DAY = 20.0, 4.0  # real seconds per day of the sun: light starts to steady / is steady
 FALL_FRESH = 2.0  # physiological time: a branch shed earlier than this before it is first seen does not fall
-
-
-def _triangles(buffers: TreeBuffers, lod: int) -> int:
-    """Triangles one tree's buffers draw at level ``lod``."""
-    parts = buffers.parts
-    tubes = parts["tube"].count * 3 * SIDES[lod] if "tube" in parts else 0
-    leaves = int(parts["leaf"].count * LEAF_KEPT[lod]) * 2 if "leaf" in parts else 0
-    small = sum(parts[name].count * 2 for name in ("blossom", "fruit") if name in parts)
-    return tubes + leaves + small
 
 
 class GameView:
@@ -137,12 +128,10 @@ class GameView:
         return entry
 
     def _count_triangles(self) -> None:
-        placed = self.game.renderer.placed
-        self.triangles = sum(_triangles(p.buffers, lod) for p, lod in zip(placed, self._lods(placed), strict=True))
-
-    def _lods(self, placed: list[Placed]) -> list[int]:
-        lods = self.game.renderer.last_lods
-        return lods if len(lods) == len(placed) else [0] * len(placed)
+        placed, details = self.game.renderer.placed, self.game.renderer.last_details
+        if len(details) != len(placed):
+            details = [Detail(0)] * len(placed)
+        self.triangles = sum(d.triangles(p.buffers) for p, d in zip(placed, details, strict=True))
 
     def _tints(self) -> None:
         game, renderer = self.game, self.game.renderer
