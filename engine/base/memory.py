@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import ctypes
-import ctypes.util
+import sys
 
 _M_TRIM_THRESHOLD, _M_TOP_PAD, _M_MMAP_THRESHOLD = -1, -2, -3
 MMAP_THRESHOLD = 32 * 2**20
@@ -17,12 +17,10 @@ def keep_freed_memory() -> bool:
     mapped fresh from the system and returned on free, so every use pays its page faults again:
     measured, a 100k-module load goes from 79 to 54 ms. Returns False where there is no glibc
     (other systems keep their own allocator's behaviour); the cost is at most 64 MB held for reuse."""
-    name = ctypes.util.find_library("c")
-    try:
-        libc = ctypes.CDLL(name) if name else None
-        mallopt = libc.mallopt if libc is not None else None
-    except (OSError, AttributeError):
+    if not sys.platform.startswith("linux"):
         return False
-    if mallopt is None:
+    try:
+        mallopt = ctypes.CDLL(None).mallopt  # (the process's own symbols: glibc's allocator, if it is glibc)
+    except (OSError, AttributeError):
         return False
     return bool(mallopt(_M_MMAP_THRESHOLD, MMAP_THRESHOLD)) and bool(mallopt(_M_TRIM_THRESHOLD, TRIM_THRESHOLD))
