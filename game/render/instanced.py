@@ -14,6 +14,7 @@ shader drops it, so drawing fewer instances is what makes a big tree affordable.
 from __future__ import annotations
 
 import math
+import weakref
 from dataclasses import dataclass, field
 
 import moderngl
@@ -65,6 +66,23 @@ class Detail:
         """Triangles drawn for ``tree`` (3 per side of a segment, 2 per leaf)."""
         young, small = _counts(tree, ("tube_young",)), _counts(tree, ("leaf_young", "blossom", "fruit"))
         return 3 * SIDES[self.lod] * (self.tubes + young) + 2 * (self.leaves + small)
+
+
+_PREPARED: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()  # view -> its grown records, sorted
+
+
+def prepare_upload(view: GrowthView) -> GrowthView:
+    """Sort ``view``'s grown records by importance now (on the worker thread that built a big tree's
+    view), so that the frame that uploads it does not have to."""
+    _PREPARED[view] = _by_importance(view)
+    return view
+
+
+def _by_importance(view) -> tuple[np.ndarray, np.ndarray]:
+    """The grown (old) tube records thickest first and leaf records by ascending hash."""
+    tubes, leaves = view.tubes.data[: view.young_row], view.leaves.data[: view.young_leaf_row]
+    return (tubes[np.argsort(-tubes[:, RADIUS], kind="stable")],
+            leaves[np.argsort(leaves[:, HASH], kind="stable")])
 
 
 def cover_grow(share: float) -> float:
@@ -171,13 +189,12 @@ class InstancedTrees:
 
     def sync(self, tree: TreeBuffers, view: GrowthView) -> None:
         """Bring ``tree``'s buffers up to ``view``: everything after a rebuild (the old blocks sorted
-        by importance), else only the young rows."""
+        by importance, see :func:`prepare_upload`), else only the young rows."""
         full = tree.view is not view
         tree.view = view
         if full:
-            tubes, leaves = view.tubes.data[: view.young_row], view.leaves.data[: view.young_leaf_row]
-            tubes = tubes[np.argsort(-tubes[:, RADIUS], kind="stable")]
-            leaves = leaves[np.argsort(leaves[:, HASH], kind="stable")]
+            prepared = _PREPARED.pop(view, None) if isinstance(view, GrowthView) else None
+            tubes, leaves = prepared if prepared is not None else _by_importance(view)
             tree.radii, tree.hashes = tubes[:, RADIUS].copy(), leaves[:, HASH].copy()
             tree.leaf_area = float(np.dot(view.leaves.data[:, LENGTH], view.leaves.data[:, LENGTH + 1]))
             self._write(tree, "tube", tubes)

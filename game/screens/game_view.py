@@ -13,7 +13,7 @@ from engine.life import seasons
 from engine.life.growth_view import GrowthView
 from game.render.falling import FALL_SECONDS, falling_view
 from game.render.garden import BARK, GardenRenderer, Placed
-from game.render.instanced import Detail, TreeBuffers
+from game.render.instanced import Detail, TreeBuffers, prepare_upload
 from game.render.roots import rocks_view, roots_view
 
 if TYPE_CHECKING:
@@ -24,6 +24,11 @@ WILT_STEP = 0.02  # a change of wilt this large rebuilds the tree (drooping angl
 ASYNC_MODULES = 60_000  # trees with more modules are rebuilt on a worker thread
 SMOOTH_DAY, STEADY_DAY = 20.0, 4.0  # real seconds per day of the sun: light starts to steady / is steady
 FALL_FRESH = 2.0  # physiological time: a branch shed earlier than this before it is first seen does not fall
+
+
+def _built(shown, clocks, const: dict) -> GrowthView:
+    """A big tree's records, built and sorted for upload on the worker thread."""
+    return prepare_upload(GrowthView(shown, clocks, const))
 
 
 class GameView:
@@ -117,7 +122,7 @@ class GameView:
         if entry is None or (entry[0] != key and len(shown) < ASYNC_MODULES):
             entry = self._adopt(world, entry, key, GrowthView(shown, clocks, const))
         elif entry[0] != key and id(world) not in self.pending:  # one rebuild at a time: never a backlog
-            self.pending[id(world)] = (key, self.worker.submit(GrowthView, shown, clocks, const))
+            self.pending[id(world)] = (key, self.worker.submit(_built, shown, clocks, const))
         entry[1].update(clocks)  # (a stale view keeps growing until its successor is ready)
         return entry
 
