@@ -2,8 +2,11 @@
 their shadows, the sky with the sun, antialiased.
 
 Costs are kept where they must be: the shadow map (1024 texels) is redrawn only when the sun moved or a
-tree changed enough; trees far away or small on screen use fewer sides per ring and fewer, larger
-leaves; the sky is a dome of vertices. Multisampling (4x) is resolved into the target framebuffer.
+tree changed enough; trees far away or small on screen use fewer sides per ring, leave out sub-pixel
+twigs and draw fewer, larger leaves; the sky is a dome of vertices. Multisampling (4x) is resolved into
+the target framebuffer. On a software GL (no multisampling) each tree keeps to a vertex budget, sky and
+ground are drawn once and copied while nothing they show changes, and a crown whose leaves would
+cover the screen many times over is drawn at a lower resolution (game/render/layer.py).
 """
 
 from __future__ import annotations
