@@ -282,23 +282,24 @@ class Overlay:
         import pygame
 
         if changed:
-            self.texture.write(pygame.image.tobytes(surface, "RGBA", True))
-            self._layout_tiles(surface)
+            pixels = pygame.image.tobytes(surface, "RGBA", True)
+            self.texture.write(pixels)
+            self._layout_tiles(np.frombuffer(pixels, np.uint8)[3::4].reshape(self.size[1], self.size[0]))
         if self.tile_vertices:
             self.ctx.viewport = (0, 0, *self.size)
             self._blend(self.tile_vao, self.tile_vertices)
 
-    def _layout_tiles(self, surface) -> None:
-        w, h = self.size
-        quads = []
-        for y in range(0, h, self.TILE):
-            for x in range(0, w, self.TILE):
-                rect = (x, y, min(self.TILE, w - x), min(self.TILE, h - y))
-                if surface.subsurface(rect).get_bounding_rect().width:
-                    x0, x1 = 2 * x / w - 1, 2 * (x + rect[2]) / w - 1
-                    y0, y1 = 1 - 2 * (y + rect[3]) / h, 1 - 2 * y / h
-                    quads.append([x0, y0, x1, y0, x1, y1, x0, y0, x1, y1, x0, y1])
-        data = np.array(quads, "f4").ravel()
+    def _layout_tiles(self, alpha: np.ndarray) -> None:
+        """Two triangles for each TILE-square of the overlay with a visible pixel (``alpha``: rows from
+        the bottom, as GL has them), found in one pass over the alpha channel."""
+        w, h, t = self.size[0], self.size[1], self.TILE
+        rows, cols = -(-h // t), -(-w // t)
+        padded = np.zeros((rows * t, cols * t), np.uint8)
+        padded[:h, :w] = alpha
+        ty, tx = np.nonzero(padded.reshape(rows, t, cols, t).max(axis=(1, 3)))
+        x0, x1 = 2 * tx * t / w - 1, 2 * np.minimum((tx + 1) * t, w) / w - 1
+        y0, y1 = 2 * ty * t / h - 1, 2 * np.minimum((ty + 1) * t, h) / h - 1
+        data = np.stack([x0, y0, x1, y0, x1, y1, x0, y0, x1, y1, x0, y1], axis=1).astype("f4").ravel()
         if len(data):
             self.tiles.orphan(data.nbytes)
             self.tiles.write(data.tobytes())

@@ -40,8 +40,8 @@ class GameHud:
         game.overlay.draw_surface(self.surface, changed)
 
     def _overlay_key(self, camera: OrbitCamera) -> tuple:
-        """Everything the HUD layer shows: repainted only when this changes, and at least 4 times a
-        second for what animates (rain, cursor, messages timing out)."""
+        """Everything the HUD layer shows: repainted only when this changes (a message timing out
+        changes it too), and 4 times a second while rain or the watering cloud animate."""
         game = self.game
         info = self.hud_info()
         menu = game.menu
@@ -54,7 +54,7 @@ class GameHud:
                 info.speed, info.message, info.watering, info.season, info.raining, info.hint, info.reminder,
                 menu.visible, menu.page, widgets, view, game.cursor3d, len(game.overlay_hooks),
                 tuple(w.status() for w in game.garden.worlds), game.garden.current, game.family.visible,
-                int(game.clock() * 4))
+                int(game.clock() * 4) if info.raining or info.watering else 0)  # (rain and cloud animate)
 
     def hud_info(self) -> HudInfo:
         """What the HUD shows now."""
