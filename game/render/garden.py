@@ -28,6 +28,7 @@ SHADOW_TURN = math.cos(math.radians(0.75))  # redraw shadows when the sun turned
 SHADOW_FRAMES = 30  # ... or at least every this many frames while trees grow
 LOD_PIXELS = (520, 260, 120)  # on-screen height (px) above which a tree gets level 0, 1, 2 (else 3)
 TWIG_PIXELS = (0.0, 0.1, 0.2, 0.35)  # per level: grown segments of a smaller radius (px) are left out
+SUN_STEP = 0.003  # the sky picture is redrawn when the sun moved this far (the disc moves ~3 px at 720 px)
 LEAF_PIXELS = 1_000_000  # leaf area (pixels, all layers) above which a software GL draws trees smaller
 BARK = (1.45, 1.35, 1.25)
 BLOSSOM = (1.2, 0.9, 1.0)
@@ -204,8 +205,9 @@ class GardenRenderer:
                     camera: OrbitCamera, sun: np.ndarray, radius: float) -> None:
         """Sky, sun disc and ground into ``target``. Without multisampling (a software GL, where they
         cost more than half a sapling's frame) they are drawn into a picture of their own and copied
-        from it while the camera, the sun (to 0.06 degrees) and the ground's size stay the same."""
-        key = (size, _gl(vp), tuple(np.round(sun, 3)), self.backdrop.cutaway, round(radius, 2))
+        from it while the camera, the sun (to SUN_STEP) and the ground's size stay the same."""
+        key = (size, _gl(vp), tuple(np.round(sun / SUN_STEP)), self.backdrop.cutaway,
+               round(math.log(max(radius, 1e-3)) / 0.02))  # (the ground's size in 2 % steps)
         if self.samples <= 1:
             if self._backdrop_picture is None or self._backdrop_picture.size != size:
                 if self._backdrop_picture is not None:
