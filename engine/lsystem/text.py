@@ -178,7 +178,7 @@ def _numbers(raw: np.ndarray, starts: np.ndarray, lengths: np.ndarray) -> np.nda
     for j in range(1, count):
         key = key * _GOLDEN + words[:, j]
     first, ids = groups(key)
-    if count > 1 and len(first) < len(ids) and not (words == words[first[ids]]).all():
+    if count > 1 and len(first) < len(ids) and not (words == words[first][ids]).all():
         return None  # two different numbers with one key: let the careful reader parse them
     texts = words[first].view(np.uint8)
     if not (CLASS[texts] & 4 | (texts == 0)).all():
