@@ -2,7 +2,7 @@
 (two moments), at night and a close-up of a joint, as the game draws them headless (EGL; on this
 machine Mesa llvmpipe, so with the software-GL budget).
 
-Run: python -m benchmarks.shots [OUT.png] [DAYS]   (default docs/renderer.png, a tree grown 25 days)
+Run: python -m benchmarks.shots [OUT.png] [DAYS]   (default docs/renderer.png, a tree grown 12 days)
 """
 
 from __future__ import annotations
@@ -29,7 +29,7 @@ def main() -> None:
     from game.screens.game import Game, GameConfig
 
     out = Path(sys.argv[1]) if len(sys.argv) > 1 else Path("docs/renderer.png")
-    days = float(sys.argv[2]) if len(sys.argv) > 2 else 25.0
+    days = float(sys.argv[2]) if len(sys.argv) > 2 else 12.0
     pygame.init()
     pygame.display.set_mode((64, 64))
     ctx = headless_context()

@@ -231,3 +231,16 @@ def frame_without_trees(game) -> np.ndarray:
         return frame(game)
     finally:
         game.renderer.trees.draw = drawn
+
+
+def test_growing_twigs_thinner_than_the_grown_ones_drawn_are_left_out_too(game, monkeypatch):
+    """A coarse level leaves out grown twigs under a thickness; growing ones that thin must go as well,
+    or they would float where their parents are not drawn."""
+    game.rules.wind.strength = 0.0
+    frame(game)
+    buffers = game.renderer.placed[0].buffers
+    assert buffers.parts["tube_young"].count > 0
+    monkeypatch.setattr(game.renderer, "_detail", lambda *a: Detail(3, 0, 0, 0.3, 1.0, 0.0))
+    with_young = frame(game)
+    monkeypatch.setattr(game.renderer, "_detail", lambda *a: Detail(3, 0, 0, 0.3, 1.0, 1e9))
+    assert (np.abs(frame(game) - with_young).sum(axis=2) > 30).sum() > 20

@@ -7,6 +7,7 @@ uniform mat4 u_light_mvp;
 uniform vec3 u_offset;
 uniform vec3 u_eye;
 uniform float u_pixel;  // size of a pixel at unit distance (0 in the shadow pass)
+uniform float u_thinnest = 0.0;  // segments thinner than this are left out (as the level's grown ones are)
 in vec4 in_ring;
 in float in_cap;
 in vec3 i_c0;
@@ -25,6 +26,11 @@ out vec2 v_uv;
 out vec4 v_light;
 out float v_extra;
 void main() {
+    if (max(i_r.x, i_r.y) < u_thinnest) {
+        gl_Position = vec4(2.0, 2.0, 2.0, 1.0);  // outside the clip volume: not drawn
+        v_pos = vec3(0.0); v_normal = vec3(0.0, 1.0, 0.0); v_uv = vec2(0.0); v_light = vec4(0.0); v_extra = 0.0;
+        return;
+    }
     float s = min(in_ring.z, 1.0);
     vec3 t = normalize(mix(i_t0, i_t1, s));
     vec3 x = mix(i_x0, i_x1, s);

@@ -133,8 +133,9 @@ class GardenRenderer:
         leaves = min(detail.leaves, max(self.vertex_budget - fixed, 0) // 8)  # half the rest for leaves
         share = float(buffers.hashes[leaves]) if leaves < len(buffers.hashes) else detail.leaf_share
         room = (self.vertex_budget - fixed - 4 * leaves) // TEMPLATE_VERTICES[lod]  # the rest for wood
-        share = min(share, detail.leaf_share)
-        return Detail(lod, min(detail.tubes, max(room, 0)), leaves, share, cover_grow(share))
+        share, tubes = min(share, detail.leaf_share), min(detail.tubes, max(room, 0))
+        thinnest = float(buffers.radii[tubes - 1]) if 0 < tubes < len(buffers.radii) else detail.thinnest
+        return Detail(lod, tubes, leaves, share, cover_grow(share), max(thinnest, detail.thinnest))
 
     def render(self, fbo: moderngl.Framebuffer, camera: OrbitCamera, sun_dir: np.ndarray,
                size: tuple[int, int]) -> None:

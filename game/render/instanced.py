@@ -49,13 +49,14 @@ class Detail:
     leaves: int = 0
     leaf_share: float = 1.0
     leaf_grow: float = 1.0  # how much larger than life the drawn leaves are (length and width)
+    thinnest: float = 0.0  # growing segments thinner than the grown ones drawn are left out too
 
     @classmethod
     def of(cls, tree: TreeBuffers, lod: int, thinnest: float = 0.0, leaf_share: float = 1.0) -> Detail:
         """Level ``lod`` drawing the grown segments at least ``thinnest`` thick and ``leaf_share``
         of the grown leaves, grown to cover the same area as all of them."""
         return cls(lod, tree.tubes_at_least(thinnest), tree.leaves_kept(leaf_share), leaf_share,
-                   cover_grow(leaf_share))
+                   cover_grow(leaf_share), thinnest)
 
     def vertices(self, tree: TreeBuffers) -> int:
         """Vertices this detail makes the GL shade for ``tree`` (the cost on a software GL)."""
@@ -251,7 +252,7 @@ class InstancedTrees:
             set_uniforms(prog, {k: v for k, v in uniforms.items() if k != "tints"})
             textures["bark" if kind in (0, 4) else "leaf" if kind == 1 else "blossom"].use(location=0)
             per_part = {"u_tex": 0, "u_fraction": share if kind == 1 else 1.0,
-                        "u_grow": detail.leaf_grow if kind == 1 else 1.0,
+                        "u_grow": detail.leaf_grow if kind == 1 else 1.0, "u_thinnest": detail.thinnest,
                         "u_keep": uniforms.get("u_keep", 1.0) if kind == 1 else 1.0, "u_ball": int(kind >= 3),
                         # far away, leaves skip the shadow lookup (their shade is the AO)
                         "u_shadowed": float(pass_ != "lit" or kind == 0 or lod < 2)}
