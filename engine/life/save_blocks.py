@@ -1,11 +1,13 @@
-"""Reading a save's TOML without making TOML walk its L-strings.
+"""Reading a save's TOML without making TOML (or the UTF-8 decoder) walk its L-strings.
 
 A save keeps each L-string in a multi-line literal string (``lstring = '''...'''``). A literal string
 holds its text as it is, but the TOML reader still checks it character by character (about 35 ms for
-a 100k-module tree). So the blocks are cut out first (the text between the quotes, which needs no
-unescaping), each replaced by a marker that keeps its line breaks (error positions stay right), the
-rest is read by TOML, and the blocks go back where the markers are. Anything unusual (a marker found
-elsewhere, a block TOML would end differently) and the whole text is read by TOML as it is.
+a 100k-module tree), and decoding a file with any non-ASCII character in it (an ``ε`` in the embedded
+.lsys) turns 2 MB of L-string into a wide string first. So the blocks are cut out of the file's bytes
+(the text between the quotes, which needs no unescaping), each replaced by a marker that keeps its line
+breaks (error positions stay right); the rest is decoded and read by TOML, and the blocks go back
+where the markers are, as text. Anything unusual (a marker found elsewhere, a block TOML would end
+differently, a block that is not ASCII) and the whole file is decoded and read by TOML as it is.
 """
 
 from __future__ import annotations
@@ -13,41 +15,46 @@ from __future__ import annotations
 import secrets
 import tomllib
 
-_KEYS = ("\nlstring = '''\n", "\nroots = '''\n")  # at a line start, as the writer puts them
+_KEYS = (b"\nlstring = '''\n", b"\nroots = '''\n")  # at a line start, as the writer puts them
 
 
-def loads(text: str) -> dict:
-    """``tomllib.loads(text)``, faster for saves with big L-strings (see module docstring)."""
-    lifted, blocks = _lift(text)
-    if not blocks:
-        return tomllib.loads(text)
-    try:
-        data = tomllib.loads(lifted)
-    except tomllib.TOMLDecodeError:
-        return tomllib.loads(text)  # let TOML name the problem in the text as written
-    if _put_back(data, blocks) != len(blocks):
-        return tomllib.loads(text)
-    return data
+def loads(raw: bytes) -> tuple[dict, str]:
+    """``tomllib.loads`` of the UTF-8 file ``raw``, faster for saves with big L-strings; also the text
+    that line numbers refer to (the L-strings' lines kept as empty lines). Raises UnicodeDecodeError
+    and TOMLDecodeError as decoding and reading the whole file would."""
+    lifted, blocks = _lift(raw)
+    if blocks:
+        try:
+            text = lifted.decode("utf-8")
+            data = tomllib.loads(text)
+            texts = {marker: block.decode("ascii") for marker, block in blocks.items()}
+        except (UnicodeDecodeError, tomllib.TOMLDecodeError):
+            pass  # let the whole file name the problem where it is
+        else:
+            if _put_back(data, texts) == len(blocks):
+                return data, text
+    text = raw.decode("utf-8")
+    return tomllib.loads(text), text
 
 
-def _lift(text: str) -> tuple[str, dict[str, str]]:
+def _lift(raw: bytes) -> tuple[bytes, dict[str, bytes]]:
     nonce = secrets.token_hex(8)
     out, blocks, pos = [], {}, 0
     while True:
-        found = [at for at in (text.find(key, pos) for key in _KEYS) if at >= 0]
+        found = [at for at in (raw.find(key, pos) for key in _KEYS) if at >= 0]
         if not found:
             break
-        body_at = text.index("\n", min(found) + 1) + 1  # after the key's line
-        end = text.find("'''", body_at)
-        if end < 0 or text.startswith("'", end + 3):
+        body_at = raw.index(b"\n", min(found) + 1) + 1  # after the key's line
+        end = raw.find(b"'''", body_at)
+        if end < 0 or raw.startswith(b"'", end + 3):
             break  # an unclosed block, or one ending in quotes: TOML decides
-        body = text[body_at:end]
+        body = raw[body_at:end]
         marker = f"@arbor-block-{nonce}-{len(blocks)}@"
         blocks[marker] = body
-        out += [text[pos:body_at], marker, "\n" * body.count("\n")]
+        out += [raw[pos:body_at], marker.encode("ascii"), b"\n" * body.count(b"\n")]
         pos = end
-    out.append(text[pos:])
-    return "".join(out), blocks
+    out.append(raw[pos:])
+    return b"".join(out), blocks
 
 
 def _put_back(data, blocks: dict[str, str]) -> int:
