@@ -51,7 +51,8 @@ def main() -> None:
         game.rules.wind.strength = 0.0
         shot()
         for lod in range(4):
-            per_pixel = renderer._per_pixel(renderer.placed[0], game.camera(), PANEL[1])
+            placed = renderer.placed[0]
+            per_pixel = renderer._per_pixel(placed.buffers, placed.offset, game.camera(), PANEL[1])
             renderer._detail = (lambda buffers, *a, lod=lod, px=per_pixel:
                                 Detail.of(buffers, lod, TWIG_PIXELS[lod] * px, LEAF_KEPT[lod]))
             panels.append((shot(), f"level {lod}"))

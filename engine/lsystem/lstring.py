@@ -148,8 +148,6 @@ def _zero_signs(values: np.ndarray) -> np.ndarray:
     return np.signbit(values) & (values == 0)
 
 
-
-
 _MODULE = re.compile(r"\s*([^\s(),])(?:\(([^()]*)\))?")
 _NUMBER = re.compile(r"\s*[+-]?(?:(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?|inf|nan)\s*")
 
@@ -158,7 +156,7 @@ def parse_lstring(text: str, file: str = "<string>", line: int = 1) -> LString:
     """Parse L-string text (numbers only as parameters) back into an :class:`LString`.
 
     The inverse of :meth:`LString.to_text`. Whitespace between modules is allowed. Text our writer
-    could have written is checked and read with whole-array operations and one C-level number parse;
+    could have written is checked and read with whole-array operations (engine/lsystem/text.py);
     anything else is read module by module to name the file, line and column of the first error
     (untrusted input: saves are shared between players).
     """

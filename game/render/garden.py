@@ -111,7 +111,7 @@ class GardenRenderer:
         at the coarsest level the thinnest segments and a share of the leaves go until it fits."""
         view = buffers.view
         size = float(np.linalg.norm(np.asarray(view.hi) - np.asarray(view.lo)))
-        per_pixel = self._per_pixel(Placed(buffers, offset), camera, height_px)
+        per_pixel = self._per_pixel(buffers, offset, camera, height_px)
         lod = next((k for k, limit in enumerate(LOD_PIXELS) if size / per_pixel >= limit), len(SIDES) - 1)
         detail = Detail.of(buffers, lod, TWIG_PIXELS[lod] * per_pixel, LEAF_KEPT[lod])
         while detail.vertices(buffers) > self.vertex_budget and detail.lod < len(SIDES) - 1:
@@ -165,10 +165,10 @@ class GardenRenderer:
         target.color_mask = (True, True, True, True)
         target.use()  # (the mask takes effect when the framebuffer is bound)
         self.shadow_map.use(location=1)
-        pad = np.array([1.5, 0.0, 1.5])  # leaves reach past the points the bounds were taken from
-        boxes = [(np.asarray(p.buffers.view.lo) + p.offset - pad, np.asarray(p.buffers.view.hi) + p.offset + pad)
+        boxes = [(np.asarray(p.buffers.view.lo) + p.offset, np.asarray(p.buffers.view.hi) + p.offset)
                  for p in self.placed if p.buffers.view is not None]
-        self.backdrop.draw_shadows(mvp, light_bytes, sun, boxes)
+        pad = np.array([1.5, 0.0, 1.5])  # leaves reach past the points the bounds were taken from
+        self.backdrop.draw_shadows(mvp, light_bytes, sun, [(lo - pad, hi + pad) for lo, hi in boxes])
         uniforms = self._lit_uniforms(mvp, light_bytes, sun, day)
         self.last_scale = scale = self._scale(details, camera, size[1])
         if scale < 1.0:
@@ -179,8 +179,6 @@ class GardenRenderer:
             uniforms["u_offset"] = tuple(placed.offset)
             self.trees.draw(placed.buffers, "lit", detail, uniforms, self.textures)
         if scale < 1.0:
-            boxes = [(np.asarray(p.buffers.view.lo) + p.offset, np.asarray(p.buffers.view.hi) + p.offset)
-                     for p in self.placed if p.buffers.view is not None]
             self.layer.composite(target, size, screen_rect(camera, size, boxes, margin=0.15))
         if target is not fbo:
             ctx.copy_framebuffer(fbo, target)
@@ -190,15 +188,16 @@ class GardenRenderer:
         their leaves would cover the screen many times over (their pixels are the frame's cost)."""
         if self.samples > 1:
             return 1.0
-        pixels = sum(p.buffers.leaf_area * d.leaf_share * d.leaf_grow**2 / self._per_pixel(p, camera, height_px) ** 2
+        pixels = sum(p.buffers.leaf_area * d.leaf_share * d.leaf_grow**2
+                     / self._per_pixel(p.buffers, p.offset, camera, height_px) ** 2
                      for p, d in zip(self.placed, details, strict=True) if p.buffers.view is not None)
         return min(max(math.sqrt(LEAF_PIXELS / max(pixels, 1.0)), MIN_SCALE), 1.0)
 
     @staticmethod
-    def _per_pixel(placed: Placed, camera: OrbitCamera, height_px: int) -> float:
-        """The size of a pixel (scene units) at the tree's distance."""
-        view = placed.buffers.view
-        centre = (np.asarray(view.lo) + np.asarray(view.hi)) / 2 + placed.offset
+    def _per_pixel(buffers: TreeBuffers, offset: np.ndarray, camera: OrbitCamera, height_px: int) -> float:
+        """The size of a pixel (scene units) at the distance of the tree standing at ``offset``."""
+        view = buffers.view
+        centre = (np.asarray(view.lo) + np.asarray(view.hi)) / 2 + offset
         distance = max(float(np.linalg.norm(centre - camera.eye)), 1e-3)
         return 2 * distance * math.tan(math.radians(camera.fov_y) / 2) / height_px
 

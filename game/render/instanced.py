@@ -60,13 +60,19 @@ class Detail:
 
     def vertices(self, tree: TreeBuffers) -> int:
         """Vertices this detail makes the GL shade for ``tree`` (the cost on a software GL)."""
-        young, small = _counts(tree, ("tube_young",)), _counts(tree, ("leaf_young", "blossom", "fruit"))
-        return TEMPLATE_VERTICES[self.lod] * (self.tubes + young) + 4 * (self.leaves + small)
+        tubes, quads = self._drawn(tree)
+        return TEMPLATE_VERTICES[self.lod] * tubes + 4 * quads
 
     def triangles(self, tree: TreeBuffers) -> int:
         """Triangles drawn for ``tree`` (3 per side of a segment, 2 per leaf)."""
-        young, small = _counts(tree, ("tube_young",)), _counts(tree, ("leaf_young", "blossom", "fruit"))
-        return 3 * SIDES[self.lod] * (self.tubes + young) + 2 * (self.leaves + small)
+        tubes, quads = self._drawn(tree)
+        return 3 * SIDES[self.lod] * tubes + 2 * quads
+
+    def _drawn(self, tree: TreeBuffers) -> tuple[int, int]:
+        """Segments and quads (leaves, blossoms, fruit) drawn: the grown prefixes and every young one."""
+        def counted(names: tuple[str, ...]) -> int:
+            return sum(tree.parts[name].count for name in names if name in tree.parts)
+        return self.tubes + counted(("tube_young",)), self.leaves + counted(("leaf_young", "blossom", "fruit"))
 
 
 _PREPARED: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()  # view -> its grown records, sorted
@@ -89,10 +95,6 @@ def _by_importance(view) -> tuple[np.ndarray, np.ndarray]:
 def cover_grow(share: float) -> float:
     """How much a share of the leaves grows to cover the area all of them cover (at most 4.5x)."""
     return 1.0 / math.sqrt(max(share, 0.05))
-
-
-def _counts(tree: TreeBuffers, names: tuple[str, ...]) -> int:
-    return sum(tree.parts[name].count for name in names if name in tree.parts)
 
 
 def tube_template(sides: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
