@@ -1,8 +1,10 @@
 """Geometry benchmark: a tree of >= 100k segments through the turtle and the mesher, then rendered.
 
 Run: python -m benchmarks.mesh
-Goal (issue 3): turtle + mesh <= 0.1 s together at n_surf = 8; also prints the headless frame time at
-1280x720 on whatever GL the machine has (llvmpipe in CI) and the triangle count of every LOD level.
+Goal (issues 3 and 17): turtle + mesh <= 0.1 s together at n_surf = 8. In the same run, the whole-array
+numpy turtle and mesher they replaced (benchmarks/numpy_geometry) on the same tree, the ratio, and the
+largest difference between the two results. Also prints the headless frame time at 1280x720 on
+whatever GL the machine has (llvmpipe in CI) and the triangle count of every LOD level.
 """
 
 from __future__ import annotations
@@ -12,6 +14,9 @@ from pathlib import Path
 
 import numpy as np
 
+from benchmarks.numpy_geometry import mesh as numpy_mesh
+from benchmarks.numpy_geometry import turtle as numpy_turtle
+from engine.base.memory import keep_freed_memory
 from engine.geometry.mesh import LOD_LEVELS, tree_mesh, wood_mesh
 from engine.geometry.turtle import TurtleConfig, interpret
 from engine.lsystem.derive import derive
@@ -37,19 +42,29 @@ def timed(fn, repeats: int) -> tuple[list[float], object]:
 
 
 def main() -> None:
-    """Print turtle/mesh timings, LOD triangle counts and render frame times."""
+    """Print turtle/mesh timings against the numpy peer, LOD triangle counts and render frame times."""
+    keep_freed_memory()
     system = load_lsystem(SOURCE)
     ls = derive(system, 10)
     cfg = TurtleConfig.from_system(system)
-    turtle_times, result = timed(lambda: interpret(ls, cfg), 9)
+    runs = {}
+    for name, turtle, mesher in (("compiled", interpret, wood_mesh),
+                                 ("numpy peer", numpy_turtle.interpret, numpy_mesh.wood_mesh)):
+        turtle_times, result = timed(lambda turtle=turtle: turtle(ls, cfg), 9)
+        mesh_times, wood = timed(lambda mesher=mesher, r=result: mesher(r.segments, n_surf=8, n_div=1), 9)
+        runs[name] = (turtle_times, mesh_times, result, wood)
+    turtle_times, mesh_times, result, wood = runs["compiled"]
     segs = result.segments
-    mesh_times, wood = timed(lambda: wood_mesh(segs, n_surf=8, n_div=1), 9)
-    both = [a + b for a, b in zip(turtle_times, mesh_times, strict=True)]
     print(f"tree: {len(ls):,} modules, {len(segs):,} segments, {len(result.leaves):,} leaves")
-    print("              best   median (9 runs)")
-    for name, times in (("turtle", turtle_times), ("wood mesh", mesh_times), ("together", both)):
-        print(f"{name:<10} {min(times) * 1e3:8.1f} {np.median(times) * 1e3:8.1f} ms")
+    print("                      best   median (9 runs)")
+    for name, (t_times, m_times, _, _) in runs.items():
+        both = [a + b for a, b in zip(t_times, m_times, strict=True)]
+        for part, times in (("turtle", t_times), ("wood mesh", m_times), ("together", both)):
+            print(f"{name:<10} {part:<10} {min(times) * 1e3:8.1f} {np.median(times) * 1e3:8.1f} ms")
+    best = {name: min(a + b for a, b in zip(r[0], r[1], strict=True)) for name, r in runs.items()}
+    print(f"compiled vs numpy peer: x{best['numpy peer'] / best['compiled']:.1f} (best together)")
     print(f"(n_surf=8, n_div=1: {wood.n_triangles:,} triangles; goal: together <= 100 ms)")
+    print_agreement(runs["compiled"][2:], runs["numpy peer"][2:])
     print("\nLOD levels (same tree):")
     header = ("level", "n_surf", "n_div", "min r", "leaves", "wood tris", "leaf tris", "ms")
     print("{:>5} {:>6} {:>5} {:>6} {:>6} {:>11} {:>10} {:>8}".format(*header))
@@ -60,6 +75,17 @@ def main() -> None:
         print(f"{i:>5} {level.n_surf:>6} {level.n_div:>5} {level.min_radius_fraction:>6.2f} "
               f"{level.leaf_fraction:>6.2f} {tm.wood.n_triangles:>11,} {tm.leaves.n_triangles:>10,} {t * 1e3:>8.1f}")
     render_frames(meshes)
+
+
+def print_agreement(compiled, peer) -> None:
+    """Largest differences between the compiled and the numpy results (they must draw the same tree)."""
+    (r1, w1), (r2, w2) = compiled, peer
+    rows = {"segment ends": (r1.segments.end, r2.segments.end), "frames": (r1.segments.frame, r2.segments.frame),
+            "leaf frames": (r1.leaves.frame, r2.leaves.frame), "vertices": (w1.positions, w2.positions),
+            "normals": (w1.normals, w2.normals)}
+    diffs = ", ".join(f"{name} {float(np.abs(a - b).max()):.1e}" for name, (a, b) in rows.items())
+    same = np.array_equal(w1.indices, w2.indices) and np.array_equal(w1.face_module, w2.face_module)
+    print(f"largest difference: {diffs}; triangles {'identical' if same else 'DIFFER'}")
 
 
 def render_frames(meshes) -> None:

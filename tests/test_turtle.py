@@ -64,7 +64,7 @@ def turtle_strings(draw):
 
 @given(turtle_strings())
 @settings(max_examples=200, deadline=None)
-def test_vectorised_turtle_matches_sequential_reference(text):
+def test_compiled_turtle_matches_sequential_reference(text):
     expected = reference_turtle(text, angle=30.0)
     segs = interpret(parse_lstring(text), TurtleConfig(angle=30.0)).segments
     assert len(segs) == len(expected)
