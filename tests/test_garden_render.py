@@ -191,10 +191,10 @@ def test_the_sky_and_ground_picture_follows_the_camera_and_the_sun(game):
                    lambda: setattr(game.world.sim.state, "sun_angle", game.world.sim.state.sun_angle + 0.3)):
         change()
         kept = frame(game)
-        game.renderer._backdrop_key = None  # what a fresh drawing shows
+        game.renderer.stage._backdrop_key = None  # what a fresh drawing shows
         fresh = frame(game)
         assert np.abs(kept - fresh).max() <= 2
-    assert game.renderer.samples > 1 or game.renderer._backdrop_key is not None  # (the copy was in use)
+    assert game.renderer.samples > 1 or game.renderer.stage._backdrop_key is not None  # (the copy was in use)
 
 
 def test_a_coarse_level_draws_a_prefix_of_the_grown_leaves_and_the_same_picture(game, monkeypatch):
@@ -215,13 +215,61 @@ def test_a_coarse_level_draws_a_prefix_of_the_grown_leaves_and_the_same_picture(
 def test_big_leafy_trees_are_drawn_at_a_lower_resolution_and_laid_over_the_frame(game, monkeypatch):
     game.rules.wind.strength = 0.0
     full = frame(game)
+    tree = np.abs(full - frame_without_trees(game)).sum(axis=2) > 30
     monkeypatch.setattr(game.renderer, "_scale", lambda *a: 0.5)
     half = frame(game)
-    assert game.renderer.last_scale == 0.5 and game.renderer.layer.size == (SIZE[0] // 2, SIZE[1] // 2)
-    tree = np.abs(full - frame_without_trees(game)).sum(axis=2) > 30
+    assert game.renderer.last_scale == 0.5 and game.renderer.pictures.front.size == (SIZE[0] // 2, SIZE[1] // 2)
     assert tree.sum() > 2000
     assert np.abs(half - full)[tree].mean() < 40  # the same tree, softer
     assert np.abs(half - full)[~tree].mean() < 3  # and nothing else changed
+
+
+def test_a_picture_drawn_over_several_frames_is_the_picture_drawn_at_once(game, monkeypatch):
+    """With the camera still, a layered frame draws only a step of the next picture (a share of the
+    leaves, the wood, or the shadow map) and shows the last whole one: the result must not differ."""
+    game.rules.wind.strength = 0.0
+    monkeypatch.setattr(game.renderer, "_scale", lambda *a: 0.5)
+    pictures = game.renderer.pictures
+    at_once = frame(game)  # the first picture is drawn whole
+    first = pictures.shown
+    assert sum(into for _, into in first.steps) == 1  # one step drew the trees
+    for _ in range(6):
+        over_frames = frame(game)
+    assert pictures.shown is not first and sum(into for _, into in pictures.shown.steps) == 3
+    assert np.abs(over_frames - at_once).max() <= 2
+
+
+def test_the_trees_follow_the_camera_at_once(game, monkeypatch):
+    """A picture drawn for one camera is not shown for another: when the camera turns, that frame
+    draws the trees whole for it."""
+    game.rules.wind.strength = 0.0
+    monkeypatch.setattr(game.renderer, "_scale", lambda *a: 0.5)
+    for _ in range(4):
+        frame(game)
+    game.control.yaw += 20.0  # degrees
+    turned = frame(game)
+    game.renderer.pictures.release()  # forget every picture: the next frame is drawn from scratch
+    fresh = frame(game)
+    assert np.abs(turned - fresh).max() <= 2
+
+
+def test_a_shadow_map_in_use_is_always_whole(gl_ctx):
+    """The shadow map is redrawn into a second map, piece by piece, and swapped in at the end."""
+    from game.render.instanced import WHOLE, Piece
+    from game.render.shadows import SHADOW_FRAMES, ShadowMaps
+
+    maps = ShadowMaps(gl_ctx)
+    sun, versions = np.array([0.0, 1.0, 0.0]), (1,)
+    assert maps.due(sun, versions)
+    front, drawn = maps.texture, []
+    steps = maps.steps(sun, versions, drawn.append, [Piece(frozenset({"leaf"})), WHOLE])
+    steps[0]()
+    assert maps.texture is front and maps.key is None and drawn == [Piece(frozenset({"leaf"}))]
+    steps[1]()
+    assert maps.texture is not front and drawn[-1] == WHOLE and not maps.due(sun, versions)
+    assert maps.due(np.array([0.0, 0.9, 0.436]), versions) and maps.due(sun, (2,))
+    maps.age = SHADOW_FRAMES
+    assert maps.due(sun, versions)
 
 
 def frame_without_trees(game) -> np.ndarray:

@@ -19,17 +19,29 @@ import numpy as np
 
 from game.render.backdrop import Backdrop, sky_colors
 from game.render.camera import OrbitCamera, look_at, orthographic
-from game.render.instanced import LEAF_KEPT, SIDES, TEMPLATE_VERTICES, Detail, InstancedTrees, TreeBuffers, cover_grow
-from game.render.layer import MIN_SCALE, TreeLayer, screen_rect
+from game.render.instanced import (
+    LEAF_KEPT,
+    SIDES,
+    TEMPLATE_VERTICES,
+    WHOLE,
+    Detail,
+    InstancedTrees,
+    Piece,
+    TreeBuffers,
+    cover_grow,
+)
+from game.render.layer import MIN_SCALE, Pictures, Step
 from game.render.renderer import _gl, _load_texture
+from game.render.shadows import SHADOW_SIZE, ShadowMaps
+from game.render.stage import Stage
 
-SHADOW_SIZE = 1024
-SHADOW_TURN = math.cos(math.radians(0.75))  # redraw shadows when the sun turned more than this
-SHADOW_FRAMES = 30  # ... or at least every this many frames while trees grow
 LOD_PIXELS = (520, 260, 120)  # on-screen height (px) above which a tree gets level 0, 1, 2 (else 3)
 TWIG_PIXELS = (0.0, 0.1, 0.2, 0.35)  # per level: grown segments of a smaller radius (px) are left out
-SUN_STEP = 0.003  # the sky picture is redrawn when the sun moved this far (the disc moves ~3 px at 720 px)
 LEAF_PIXELS = 1_000_000  # leaf area (pixels, all layers) above which a software GL draws trees smaller
+LEAF_SPLIT = 0.5  # a picture drawn over frames: this share of the leaves, the rest, then the wood
+LEAVES = Piece(frozenset({"leaf", "leaf_young", "blossom", "fruit"}))
+WOOD = Piece(frozenset({"tube", "tube_young", "stone"}))
+FIRST_LEAVES = Piece(frozenset({"leaf"}), 0.0, LEAF_SPLIT)
 BARK = (1.45, 1.35, 1.25)
 BLOSSOM = (1.2, 0.9, 1.0)
 
@@ -57,17 +69,10 @@ class GardenRenderer:
         self.backdrop = Backdrop(ctx)
         self.trees = InstancedTrees(ctx)
         self.textures = {name: _load_texture(ctx, name, name == "bark") for name in ("bark", "leaf", "blossom")}
-        self.shadow_map = ctx.depth_texture((SHADOW_SIZE, SHADOW_SIZE))
-        self.shadow_map.compare_func = "<="
-        self.shadow_map.filter = (moderngl.LINEAR, moderngl.LINEAR)
-        self.shadow_fbo = ctx.framebuffer(depth_attachment=self.shadow_map)
+        self.shadows = ShadowMaps(ctx)
         self.samples = samples if samples is not None else (1 if software_gl(ctx) else 4)
         self.vertex_budget = 60_000 if software_gl(ctx) else 10_000_000  # shaded per tree and frame
-        self._msaa: tuple | None = None
-        self._shadow_key: tuple | None = None
-        self._shadow_age = 0
-        self._backdrop_picture: moderngl.Framebuffer | None = None
-        self._backdrop_key: tuple | None = None
+        self.stage = Stage(ctx, self.backdrop, self.shadows, self.samples)
         self.placed: list[Placed] = []
         self.lo, self.hi = -np.ones(3), np.ones(3)
         self.leaf_tint, self.bark_tint, self.blossom_tint = (1.0, 1.0, 1.0), BARK, BLOSSOM
@@ -75,7 +80,7 @@ class GardenRenderer:
         self.wind = np.zeros(3)  # direction x strength (scene units at the outermost twigs)
         self.time = 0.0
         self.last_details: list[Detail] = []
-        self.layer = TreeLayer(ctx)
+        self.pictures = Pictures(ctx)
         self.last_scale = 1.0
 
     def place(self, placed: list[Placed], lo: np.ndarray, hi: np.ndarray) -> None:
@@ -140,48 +145,53 @@ class GardenRenderer:
     def render(self, fbo: moderngl.Framebuffer, camera: OrbitCamera, sun_dir: np.ndarray,
                size: tuple[int, int]) -> None:
         """Draw the scene into ``fbo`` (``size`` pixels)."""
-        ctx = self.ctx
         sun = np.asarray(sun_dir, float) / np.linalg.norm(sun_dir)
         light = self.light_matrix(sun)
         vp = camera.projection(size[0] / size[1]) @ camera.view()
         details = [self._detail(p.buffers, p.offset, camera, size[1]) if p.buffers.view else Detail(3)
                    for p in self.placed]
         self.last_details = details
-        self._shadows(light, sun, details)
-        target = self._target(fbo, size)
-        target.use()
-        ctx.viewport = (0, 0, *size)
-        day = sky_colors(sun)[2]
-        # The sky dome and the ground cover every pixel, behind everything: drawn first without any
-        # depth test (only the trees need depth), after a depth-only clear. On a software GL the depth
-        # test and write of a full-screen background cost as much as shading it.
-        ctx.disable(moderngl.DEPTH_TEST | moderngl.CULL_FACE)
-        mvp, light_bytes = _gl(vp), _gl(light)
+        self.last_scale = scale = self._scale(details, camera, size[1])
+        self.shadows.age += 1
+        target = self.stage.target(fbo, size)
         pixel = 2.0 * math.tan(math.radians(camera.fov_y) / 2) / size[1]
-        radius = self._scene_bounds()[1]
-        self._background(target, size, vp, camera, sun, radius)
-        target.color_mask = (False, False, False, False)
-        target.clear(depth=1.0)
-        target.color_mask = (True, True, True, True)
-        target.use()  # (the mask takes effect when the framebuffer is bound)
-        self.shadow_map.use(location=1)
+        uniforms = self._lit_uniforms(_gl(vp), _gl(light), sun, sky_colors(sun)[2])
+        uniforms.update(u_eye=tuple(camera.eye), u_pixel=pixel / scale)
         boxes = [(np.asarray(p.buffers.view.lo) + p.offset, np.asarray(p.buffers.view.hi) + p.offset)
                  for p in self.placed if p.buffers.view is not None]
-        pad = np.array([1.5, 0.0, 1.5])  # leaves reach past the points the bounds were taken from
-        self.backdrop.draw_shadows(mvp, light_bytes, sun, [(lo - pad, hi + pad) for lo, hi in boxes])
-        uniforms = self._lit_uniforms(mvp, light_bytes, sun, day)
-        self.last_scale = scale = self._scale(details, camera, size[1])
-        if scale < 1.0:
-            self.layer.begin(size, scale)
-        ctx.enable(moderngl.DEPTH_TEST)
-        uniforms.update(u_eye=tuple(camera.eye), u_pixel=pixel / scale)
-        for placed, detail in zip(self.placed, details, strict=True):
-            uniforms["u_offset"] = tuple(placed.offset)
-            self.trees.draw(placed.buffers, "lit", detail, uniforms, self.textures)
-        if scale < 1.0:
-            self.layer.composite(target, size, screen_rect(camera, size, boxes, margin=0.15))
+        if scale >= 1.0:
+            for step in self._shadow_steps(light, sun, details, [WHOLE]):
+                step()
+            self.stage.draw(target, size, vp, camera, sun, light, boxes, self._scene_bounds()[1])
+            self.ctx.enable(moderngl.DEPTH_TEST)
+            self._trees_step(details, uniforms, WHOLE)[0]()
+        else:
+            corners = np.array([[x, y, z] for lo, hi in boxes for x in (lo[0], hi[0]) for y in (lo[1], hi[1])
+                                for z in (lo[2], hi[2])]).reshape(-1, 3)
+            views = tuple((id(p.buffers), id(p.buffers.view)) for p in self.placed)
+            self.pictures.draw(size, scale, vp, corners, views,
+                               lambda whole: self._picture_steps(light, sun, details, uniforms, whole))
+            self.stage.layered(target, size, vp, camera, sun, light, boxes, self._scene_bounds()[1], self.pictures)
         if target is not fbo:
-            ctx.copy_framebuffer(fbo, target)
+            self.ctx.copy_framebuffer(fbo, target)
+
+    def _picture_steps(self, light: np.ndarray, sun: np.ndarray, details: list[Detail], uniforms: dict,
+                       whole: bool) -> list[Step]:
+        """What a picture of the trees takes, frame by frame (see layer.Pictures): the shadow map when
+        it is due, then shares of the leaves, then the rest of the leaves and the wood."""
+        shadows = self._shadow_steps(light, sun, details, [WHOLE] if whole else [LEAVES, WOOD])
+        pieces = [WHOLE] if whole else [FIRST_LEAVES, Piece(LEAVES.names, LEAF_SPLIT), WOOD]
+        return [(step, False) for step in shadows] + [self._trees_step(details, dict(uniforms), p) for p in pieces]
+
+    def _trees_step(self, details: list[Detail], uniforms: dict, piece: Piece) -> Step:
+        """Drawing ``piece`` of every tree, lit, into whatever framebuffer is bound."""
+        def run() -> None:
+            self.ctx.enable(moderngl.DEPTH_TEST)
+            self.shadows.texture.use(location=1)
+            for placed, detail in zip(self.placed, details, strict=True):
+                uniforms["u_offset"] = tuple(placed.offset)
+                self.trees.draw(placed.buffers, "lit", detail, uniforms, self.textures, piece)
+        return run, True
 
     def _scale(self, details: list[Detail], camera: OrbitCamera, height_px: int) -> float:
         """The resolution the trees are drawn at: the whole frame's, or on a software GL less when
@@ -201,46 +211,6 @@ class GardenRenderer:
         distance = max(float(np.linalg.norm(centre - camera.eye)), 1e-3)
         return 2 * distance * math.tan(math.radians(camera.fov_y) / 2) / height_px
 
-    def _background(self, target: moderngl.Framebuffer, size: tuple[int, int], vp: np.ndarray,
-                    camera: OrbitCamera, sun: np.ndarray, radius: float) -> None:
-        """Sky, sun disc and ground into ``target``. Without multisampling (a software GL, where they
-        cost more than half a sapling's frame) they are drawn into a picture of their own and copied
-        from it while the camera, the sun (to SUN_STEP) and the ground's size stay the same."""
-        key = (size, _gl(vp), tuple(np.round(sun / SUN_STEP)), self.backdrop.cutaway,
-               round(math.log(max(radius, 1e-3)) / 0.02))  # (the ground's size in 2 % steps)
-        if self.samples <= 1:
-            if self._backdrop_picture is None or self._backdrop_picture.size != size:
-                if self._backdrop_picture is not None:
-                    self._backdrop_picture.release()
-                self._backdrop_picture = self.ctx.framebuffer(color_attachments=[self.ctx.renderbuffer(size)])
-                self._backdrop_key = None
-            if key == self._backdrop_key:
-                self.ctx.copy_framebuffer(target, self._backdrop_picture)
-                return
-            self._backdrop_key = key
-            draw_into = self._backdrop_picture
-        else:
-            draw_into = target
-        draw_into.use()
-        self.ctx.viewport = (0, 0, *size)
-        self.backdrop.draw_sky(vp, camera.eye, camera.distance * 20.0, sun)
-        self.backdrop.set_ground(max(radius, 1.0) * 12)
-        self.backdrop.draw_ground(_gl(vp), sun, (radius * 3, radius * 11))
-        if draw_into is not target:
-            self.ctx.copy_framebuffer(target, draw_into)
-
-    def _target(self, fbo: moderngl.Framebuffer, size: tuple[int, int]) -> moderngl.Framebuffer:
-        """The multisampled framebuffer the scene is drawn into (resolved into ``fbo``)."""
-        if self.samples <= 1:
-            return fbo
-        if self._msaa is None or self._msaa[0] != size:
-            if self._msaa is not None:
-                self._msaa[1].release()
-            color = self.ctx.renderbuffer(size, samples=self.samples)
-            depth = self.ctx.depth_renderbuffer(size, samples=self.samples)
-            self._msaa = (size, self.ctx.framebuffer(color_attachments=[color], depth_attachment=depth))
-        return self._msaa[1]
-
     def _lit_uniforms(self, mvp: bytes, light: bytes, sun: np.ndarray, day: float) -> dict:
         zenith, _, _ = sky_colors(sun)
         elevation = max(float(sun[1]), 0.0)
@@ -256,26 +226,22 @@ class GardenRenderer:
                 "u_wind": (*self.wind, self.time), "u_autumn": self.autumn, "u_keep": self.leaf_keep,
                 "tints": (self.bark_tint, self.leaf_tint, self.blossom_tint)}
 
-    def _shadows(self, light: np.ndarray, sun: np.ndarray, details: list[Detail]) -> None:
-        """Redraw the shadow map if the sun turned, a tree changed, or it is simply old."""
+    def _shadow_steps(self, light: np.ndarray, sun: np.ndarray, details: list[Detail],
+                      pieces: list[Piece]) -> list:
+        """The shadow map's redraw as steps (none when it is not due); the trees one level coarser."""
         versions = (*((id(p.buffers.view), p.version) for p in self.placed), round(self.leaf_keep, 2))
-        old = self._shadow_key
-        self._shadow_age += 1
-        if (old is not None and old[1] == versions and float(np.dot(old[0], sun)) > SHADOW_TURN
-                and self._shadow_age < SHADOW_FRAMES):
-            return
-        self._shadow_key, self._shadow_age = (sun, versions), 0
-        ctx = self.ctx
-        self.shadow_fbo.use()
-        ctx.viewport = (0, 0, SHADOW_SIZE, SHADOW_SIZE)
-        self.shadow_fbo.clear(depth=1.0)
-        ctx.enable(moderngl.DEPTH_TEST)
+        if not self.shadows.due(sun, versions):
+            return []
         uniforms = {"u_mvp": _gl(light), "u_light_mvp": _gl(light), "u_wind": (*self.wind, self.time),
                     "u_eye": (0.0, 0.0, 0.0), "u_pixel": 0.0, "u_keep": self.leaf_keep}
-        for placed, detail in zip(self.placed, details, strict=True):
-            uniforms["u_offset"] = tuple(placed.offset)
-            coarser = replace(detail, lod=min(detail.lod + 1, len(SIDES) - 1))
-            self.trees.draw(placed.buffers, "shadow", coarser, uniforms, self.textures)
+        placed = list(zip(self.placed, details, strict=True))
+
+        def draw(piece: Piece) -> None:
+            for tree, detail in placed:
+                uniforms["u_offset"] = tuple(tree.offset)
+                coarser = replace(detail, lod=min(detail.lod + 1, len(SIDES) - 1))
+                self.trees.draw(tree.buffers, "shadow", coarser, uniforms, self.textures, piece)
+        return self.shadows.steps(sun, versions, draw, pieces)
 
     def release(self) -> None:
         """Free the trees' buffers (GL objects of the renderer itself live with the context)."""

@@ -75,6 +75,17 @@ class Detail:
         return self.tubes + counted(("tube_young",)), self.leaves + counted(("leaf_young", "blossom", "fruit"))
 
 
+@dataclass(frozen=True)
+class Piece:
+    """A share of a tree's drawing, for pictures drawn over several frames: the parts named, and of
+    the grown leaves a level draws only those from share ``lo`` to ``hi`` of them."""
+
+    names: frozenset[str] = frozenset(name for name, _ in PARTS)
+    lo: float = 0.0
+    hi: float = 1.0
+
+
+WHOLE = Piece()
 _PREPARED: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()  # view -> its grown records, sorted
 
 
@@ -238,17 +249,20 @@ class InstancedTrees:
             vao = part.vaos[key] = self.ctx.vertex_array(prog, content, tris, skip_errors=True)
         return vao
 
-    def draw(self, tree: TreeBuffers, pass_: str, detail: Detail, uniforms: dict, textures: dict) -> None:
+    def draw(self, tree: TreeBuffers, pass_: str, detail: Detail, uniforms: dict, textures: dict,
+             piece: Piece = WHOLE) -> None:
         """Draw one tree's wood, leaves, blossoms and fruit in ``pass_`` ('lit' or 'shadow') at
-        ``detail`` (fruit casts no shadow: too small to see in a 1024-texel map)."""
+        ``detail`` (fruit casts no shadow: too small to see in a 1024-texel map), or only ``piece``."""
         lod, share = detail.lod, detail.leaf_share
         for name, kind in PARTS:
             part = tree.parts.get(name)
-            if part is None or part.count == 0 or (kind >= 3 and pass_ != "lit"):
+            if part is None or part.count == 0 or (kind >= 3 and pass_ != "lit") or name not in piece.names:
                 continue
             count = min(detail.tubes if name == "tube" else detail.leaves if name == "leaf" else part.count,
                         part.count)
-            if count == 0:
+            first = round(count * piece.lo) if name == "leaf" else 0
+            count = round(count * piece.hi) if name == "leaf" else count
+            if count <= first:
                 continue
             prog = self.programs[("tube" if kind == 0 else "leaf", pass_)]
             set_uniforms(prog, {k: v for k, v in uniforms.items() if k != "tints"})
@@ -269,4 +283,4 @@ class InstancedTrees:
             if kind == 0:
                 vao.render(instances=count)
             else:
-                vao.render(vertices=6 * count)
+                vao.render(vertices=6 * (count - first), first=6 * first)

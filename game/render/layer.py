@@ -1,6 +1,11 @@
-"""The trees drawn at a reduced resolution and laid over the full-size frame (software GL only)."""
+"""The trees drawn at a reduced resolution and laid over the full-size frame (software GL only), and
+over a few frames while the camera holds still (:class:`Pictures`)."""
 
 from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass
 
 import moderngl
 import numpy as np
@@ -9,6 +14,9 @@ from game.render.backdrop import program
 from game.render.camera import OrbitCamera, project_points
 
 MIN_SCALE = 0.5  # never coarser than half the frame's resolution
+REUSE_PIXELS = 1.5  # a picture is shown while the camera keeps every corner of the trees this close
+MAX_AGE = 8  # frames: a picture older than this is redrawn whole (when restarts keep a new one from finishing)
+Step = tuple[Callable[[], None], bool]  # something to draw, and whether it draws into the picture
 
 
 class TreeLayer:
@@ -36,10 +44,14 @@ class TreeLayer:
             depth = self.ctx.depth_renderbuffer(small)
             self.fbo = self.ctx.framebuffer(color_attachments=[color], depth_attachment=depth)
             self.size = small
-        self.fbo.use()
-        self.ctx.viewport = (0, 0, *small)
+        self.use()
         self.fbo.clear(0.0, 0.0, 0.0, 0.0, depth=1.0)
         return small
+
+    def use(self) -> None:
+        """Draw into the layer (as it is: for the next share of a picture drawn over several frames)."""
+        self.fbo.use()
+        self.ctx.viewport = (0, 0, *self.size)
 
     def composite(self, target: moderngl.Framebuffer, size: tuple[int, int],
                   rect: tuple[int, int, int, int] | None = None) -> None:
@@ -64,6 +76,90 @@ class TreeLayer:
                 attachment.release()
             self.fbo.release()
             self.fbo = None
+
+
+@dataclass
+class _Cycle:
+    """A picture being drawn over several frames: the camera and scene it shows, and what is left."""
+
+    key: tuple  # frame size, scale and the trees' views: a change starts the picture again
+    vp: np.ndarray  # the camera's view-projection it is drawn with
+    steps: list[Step]
+    start: int  # the frame it was begun in
+    done: int = 0
+
+
+class Pictures:
+    """Big crowns on a software GL drawn over a few frames: the front picture is shown while the back
+    one is drawn a step per frame (each step a share of the leaves, the wood, or the shadow map), then
+    they swap. Once the camera has moved more than REUSE_PIXELS from the front picture's, a whole
+    picture is drawn in the frame (the trees never lag the ground); growth and wind show a frame or
+    two late."""
+
+    def __init__(self, ctx: moderngl.Context) -> None:
+        self.front, self.back = TreeLayer(ctx), TreeLayer(ctx)
+        self.cycle: _Cycle | None = None
+        self.shown: _Cycle | None = None  # the cycle that drew the front picture
+        self.frame = 0
+        self.version = 0  # counts the pictures shown
+
+    def draw(self, size: tuple[int, int], scale: float, vp: np.ndarray, points: np.ndarray, key: tuple,
+             steps: Callable[[bool], list[Step]]) -> None:
+        """Advance the back picture by a step, or draw a whole picture now when the front one does not
+        fit this frame. ``points``: the trees' box corners (to measure how far the camera moved);
+        ``key``: what the picture shows (a change starts it again); ``steps(whole)``: the steps of a
+        picture from this frame's state (``whole``: all of them in this frame)."""
+        self.frame += 1
+        key = (size, scale, key)
+        shown = self.shown
+        if (shown is None or shown.key[0] != size or self.frame - shown.start > MAX_AGE
+                or _moved(shown.vp, vp, points, size) > REUSE_PIXELS):
+            self._run(_Cycle(key, vp, steps(True), self.frame), size, scale, whole=True)
+            return
+        cycle = self.cycle
+        if cycle is None or cycle.key != key or _moved(cycle.vp, vp, points, size) > REUSE_PIXELS:
+            cycle = self.cycle = _Cycle(key, vp, steps(False), self.frame)
+        self._run(cycle, size, scale, whole=False)
+
+    def _run(self, cycle: _Cycle, size: tuple[int, int], scale: float, whole: bool) -> None:
+        """Run the cycle's next step (all that are left when ``whole``); swap pictures when it is done."""
+        todo = cycle.steps[cycle.done:] if whole else cycle.steps[cycle.done:cycle.done + 1]
+        if cycle.done == 0:
+            self.back.begin(size, scale)
+        for run, into_picture in todo:
+            if into_picture:
+                self.back.use()
+            run()
+            cycle.done += 1
+        if cycle.done == len(cycle.steps):
+            self.front, self.back = self.back, self.front
+            self.shown, self.cycle = cycle, None
+            self.version += 1
+
+    def composite(self, target: moderngl.Framebuffer, size: tuple[int, int],
+                  rect: tuple[int, int, int, int] | None) -> None:
+        """Lay the front picture over ``target`` (see :meth:`TreeLayer.composite`)."""
+        if self.shown is not None:
+            self.front.composite(target, size, rect)
+
+    def release(self) -> None:
+        """Free both pictures."""
+        self.front.release()
+        self.back.release()
+        self.cycle = self.shown = None
+
+
+def _moved(old: np.ndarray, new: np.ndarray, points: np.ndarray, size: tuple[int, int]) -> float:
+    """How far (pixels) any of ``points`` lies from where the view-projection ``old`` put it."""
+    if old is new or np.array_equal(old, new):
+        return 0.0
+    ends = []
+    for vp in (old, new):
+        clip = np.c_[points, np.ones(len(points))] @ vp.T
+        if np.any(clip[:, 3] <= 1e-9):
+            return math.inf
+        ends.append(clip[:, :2] / clip[:, 3:] * (0.5 * np.array(size)))
+    return float(np.abs(ends[0] - ends[1]).max())
 
 
 def screen_rect(camera: OrbitCamera, size: tuple[int, int], boxes: list[tuple[np.ndarray, np.ndarray]],

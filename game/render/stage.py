@@ -1,0 +1,121 @@
+"""What stands behind the garden's trees: sky, sun and ground with the trees' shadows on it, and the
+framebuffer a frame is drawn into (multisampled where that is cheap). On a software GL the backdrop is
+kept as a picture and copied while nothing it shows changed, and so is the whole scene while the trees
+are shown as a layer's picture (game/render/layer.py)."""
+
+from __future__ import annotations
+
+import math
+
+import moderngl
+import numpy as np
+
+from game.render.backdrop import Backdrop
+from game.render.camera import OrbitCamera
+from game.render.layer import Pictures, screen_rect
+from game.render.renderer import _gl
+from game.render.shadows import ShadowMaps
+
+SUN_STEP = 0.003  # the sky picture is redrawn when the sun moved this far (the disc moves ~3 px at 720 px)
+
+
+class Stage:
+    """Sky, ground and shadows behind the trees, and the frame's target (see module docstring)."""
+
+    def __init__(self, ctx: moderngl.Context, backdrop: Backdrop, shadows: ShadowMaps, samples: int) -> None:
+        self.ctx, self.backdrop, self.shadows, self.samples = ctx, backdrop, shadows, samples
+        self._msaa: tuple | None = None
+        self._backdrop_picture: moderngl.Framebuffer | None = None
+        self._backdrop_key: tuple | None = None
+        self._scene: moderngl.Framebuffer | None = None  # backdrop and trees' picture (layered frames)
+        self._scene_key: tuple | None = None
+
+    def _state(self, size: tuple[int, int], vp: np.ndarray, sun: np.ndarray, radius: float) -> tuple:
+        """What the sky and ground picture shows: frame, camera, the sun (to SUN_STEP), the cutaway and
+        the ground's size (in 2 % steps)."""
+        return (size, _gl(vp), tuple(np.round(sun / SUN_STEP)), self.backdrop.cutaway,
+                round(math.log(max(radius, 1e-3)) / 0.02))
+
+    def target(self, fbo: moderngl.Framebuffer, size: tuple[int, int]) -> moderngl.Framebuffer:
+        """The multisampled framebuffer the scene is drawn into (resolved into ``fbo``)."""
+        if self.samples <= 1:
+            return fbo
+        if self._msaa is None or self._msaa[0] != size:
+            if self._msaa is not None:
+                self._msaa[1].release()
+            color = self.ctx.renderbuffer(size, samples=self.samples)
+            depth = self.ctx.depth_renderbuffer(size, samples=self.samples)
+            self._msaa = (size, self.ctx.framebuffer(color_attachments=[color], depth_attachment=depth))
+        return self._msaa[1]
+
+    def draw(self, target: moderngl.Framebuffer, size: tuple[int, int], vp: np.ndarray, camera: OrbitCamera,
+             sun: np.ndarray, light: np.ndarray, boxes: list, radius: float) -> None:
+        """Sky, ground and the trees' shadows on it into ``target``, its depth cleared for the trees.
+
+        The sky dome and the ground cover every pixel, behind everything: drawn first without any depth
+        test (only the trees need depth), then a depth-only clear. On a software GL the depth test and
+        write of a full-screen background cost as much as shading it."""
+        ctx = self.ctx
+        target.use()
+        ctx.viewport = (0, 0, *size)
+        ctx.disable(moderngl.DEPTH_TEST | moderngl.CULL_FACE)
+        self._background(target, size, vp, camera, sun, radius)
+        target.color_mask = (False, False, False, False)
+        target.clear(depth=1.0)
+        target.color_mask = (True, True, True, True)
+        target.use()  # (the mask takes effect when the framebuffer is bound)
+        self.shadows.texture.use(location=1)
+        pad = np.array([1.5, 0.0, 1.5])  # leaves reach past the points the bounds were taken from
+        self.backdrop.draw_shadows(_gl(vp), _gl(light), sun, [(lo - pad, hi + pad) for lo, hi in boxes])
+
+    def layered(self, target: moderngl.Framebuffer, size: tuple[int, int], vp: np.ndarray, camera: OrbitCamera,
+                sun: np.ndarray, light: np.ndarray, boxes: list, radius: float, pictures: Pictures) -> None:
+        """Backdrop and the front picture of the trees laid over it, into ``target``: kept as a picture
+        of its own and copied while neither changed (the layer's composite is a full-screen pass)."""
+        rect = screen_rect(camera, size, boxes, margin=0.15)
+        key = (self._state(size, vp, sun, radius), self.shadows.version, pictures.version, rect)
+        if self._scene is None or self._scene.size != size:
+            if self._scene is not None:
+                self._scene.release()
+            self._scene = self.ctx.framebuffer(color_attachments=[self.ctx.renderbuffer(size)])
+            self._scene_key = None
+        if key != self._scene_key:
+            self.draw(target, size, vp, camera, sun, light, boxes, radius)
+            pictures.composite(target, size, rect)
+            self.ctx.copy_framebuffer(self._scene, target)
+            self._scene_key = key
+        else:
+            self.ctx.copy_framebuffer(target, self._scene)
+            target.color_mask = (False, False, False, False)
+            target.clear(depth=1.0)  # (as a frame drawn in full leaves it, for what is drawn over it)
+            target.color_mask = (True, True, True, True)
+            target.use()
+        self.ctx.enable(moderngl.DEPTH_TEST)
+
+    def _background(self, target: moderngl.Framebuffer, size: tuple[int, int], vp: np.ndarray,
+                    camera: OrbitCamera, sun: np.ndarray, radius: float) -> None:
+        """Sky, sun disc and ground into ``target``. Without multisampling (a software GL, where they
+        cost more than half a sapling's frame) they are drawn into a picture of their own and copied
+        from it while the camera, the sun (to SUN_STEP) and the ground's size stay the same."""
+        key = self._state(size, vp, sun, radius)
+        if self.samples <= 1:
+            if self._backdrop_picture is None or self._backdrop_picture.size != size:
+                if self._backdrop_picture is not None:
+                    self._backdrop_picture.release()
+                self._backdrop_picture = self.ctx.framebuffer(color_attachments=[self.ctx.renderbuffer(size)])
+                self._backdrop_key = None
+            if key == self._backdrop_key:
+                self.ctx.copy_framebuffer(target, self._backdrop_picture)
+                return
+            self._backdrop_key = key
+            draw_into = self._backdrop_picture
+        else:
+            draw_into = target
+        draw_into.use()
+        self.ctx.viewport = (0, 0, *size)
+        self.backdrop.draw_sky(vp, camera.eye, camera.distance * 20.0, sun)
+        self.backdrop.set_ground(max(radius, 1.0) * 12)
+        self.backdrop.draw_ground(_gl(vp), sun, (radius * 3, radius * 11))
+        if draw_into is not target:
+            self.ctx.copy_framebuffer(target, draw_into)
+
