@@ -38,7 +38,7 @@ from game.render.stage import Stage
 LOD_PIXELS = (520, 260, 120)  # on-screen height (px) above which a tree gets level 0, 1, 2 (else 3)
 TWIG_PIXELS = (0.0, 0.1, 0.2, 0.35)  # per level: grown segments of a smaller radius (px) are left out
 LEAF_PIXELS = 1_000_000  # leaf area (pixels, all layers) above which a software GL draws trees smaller
-LEAF_SPLIT = 0.5  # a picture drawn over frames: this share of the leaves, the rest, then the wood
+LEAF_SPLIT = 0.4  # a picture drawn over frames: this share of the leaves, the rest, then the wood
 LEAVES = Piece(frozenset({"leaf", "leaf_young", "blossom", "fruit"}))
 WOOD = Piece(frozenset({"tube", "tube_young", "stone"}))
 FIRST_LEAVES = Piece(frozenset({"leaf"}), 0.0, LEAF_SPLIT)
@@ -59,6 +59,18 @@ class Placed:
     buffers: TreeBuffers
     offset: np.ndarray
     version: int = 0  # changes when the tree changed enough to need new shadows
+
+
+@dataclass
+class _Scene:
+    """What a layered picture of the trees was drawn for (the frame that shows it shows this)."""
+
+    camera: OrbitCamera
+    vp: np.ndarray
+    sun: np.ndarray
+    light: np.ndarray
+    boxes: list
+    radius: float
 
 
 class GardenRenderer:
@@ -169,19 +181,28 @@ class GardenRenderer:
             corners = np.array([[x, y, z] for lo, hi in boxes for x in (lo[0], hi[0]) for y in (lo[1], hi[1])
                                 for z in (lo[2], hi[2])]).reshape(-1, 3)
             views = tuple((id(p.buffers), id(p.buffers.view)) for p in self.placed)
+            scene = _Scene(camera, vp, sun, light, boxes, self._scene_bounds()[1])
             self.pictures.draw(size, scale, vp, corners, views,
-                               lambda whole: self._picture_steps(light, sun, details, uniforms, whole))
-            self.stage.layered(target, size, vp, camera, sun, light, boxes, self._scene_bounds()[1], self.pictures)
+                               lambda whole: self._picture_steps(scene, details, uniforms, size, whole), scene)
+            shown = self.pictures.shown.scene
+            self.stage.layered(target, size, shown.vp, shown.camera, shown.sun, shown.light, shown.boxes,
+                               shown.radius, self.pictures)
         if target is not fbo:
             self.ctx.copy_framebuffer(fbo, target)
 
-    def _picture_steps(self, light: np.ndarray, sun: np.ndarray, details: list[Detail], uniforms: dict,
+    def _picture_steps(self, scene: _Scene, details: list[Detail], uniforms: dict, size: tuple[int, int],
                        whole: bool) -> list[Step]:
-        """What a picture of the trees takes, frame by frame (see layer.Pictures): the shadow map when
-        it is due, then shares of the leaves, then the rest of the leaves and the wood."""
-        shadows = self._shadow_steps(light, sun, details, [WHOLE] if whole else [LEAVES, WOOD])
+        """What a picture of the trees takes, frame by frame (see layer.Pictures): the backdrop's picture
+        and the shadow map when they are due, then shares of the leaves, then the rest and the wood, and
+        a frame for showing it."""
+        backdrop = []
+        if self.stage.stale(size, scene.vp, scene.sun, scene.radius):
+            backdrop.append((lambda: self.stage.refresh(size, scene.vp, scene.camera, scene.sun, scene.radius), False))
+        shadows = self._shadow_steps(scene.light, scene.sun, details, [WHOLE] if whole else [LEAVES, WOOD])
         pieces = [WHOLE] if whole else [FIRST_LEAVES, Piece(LEAVES.names, LEAF_SPLIT), WOOD]
-        return [(step, False) for step in shadows] + [self._trees_step(details, dict(uniforms), p) for p in pieces]
+        trees = [self._trees_step(details, dict(uniforms), p) for p in pieces]
+        show = [] if whole else [(lambda: None, False)]  # the new picture is laid over the scene in a frame of its own
+        return backdrop + [(step, False) for step in shadows] + trees + show
 
     def _trees_step(self, details: list[Detail], uniforms: dict, piece: Piece) -> Step:
         """Drawing ``piece`` of every tree, lit, into whatever framebuffer is bound."""

@@ -15,7 +15,7 @@ from game.render.camera import OrbitCamera, project_points
 
 MIN_SCALE = 0.5  # never coarser than half the frame's resolution
 REUSE_PIXELS = 1.5  # a picture is shown while the camera keeps every corner of the trees this close
-MAX_AGE = 8  # frames: a picture older than this is redrawn whole (when restarts keep a new one from finishing)
+MAX_AGE = 16  # frames: a picture begun longer ago is redrawn whole (when restarts keep a new one from finishing)
 Step = tuple[Callable[[], None], bool]  # something to draw, and whether it draws into the picture
 
 
@@ -86,6 +86,7 @@ class _Cycle:
     vp: np.ndarray  # the camera's view-projection it is drawn with
     steps: list[Step]
     start: int  # the frame it was begun in
+    scene: object = None  # the caller's state it shows (camera, sun...)
     done: int = 0
 
 
@@ -104,21 +105,22 @@ class Pictures:
         self.version = 0  # counts the pictures shown
 
     def draw(self, size: tuple[int, int], scale: float, vp: np.ndarray, points: np.ndarray, key: tuple,
-             steps: Callable[[bool], list[Step]]) -> None:
+             steps: Callable[[bool], list[Step]], scene: object = None) -> None:
         """Advance the back picture by a step, or draw a whole picture now when the front one does not
         fit this frame. ``points``: the trees' box corners (to measure how far the camera moved);
         ``key``: what the picture shows (a change starts it again); ``steps(whole)``: the steps of a
-        picture from this frame's state (``whole``: all of them in this frame)."""
+        picture from this frame's state (``whole``: all of them in this frame), ``scene`` that state
+        (kept with the picture: ``shown.scene``)."""
         self.frame += 1
         key = (size, scale, key)
         shown = self.shown
         if (shown is None or shown.key[0] != size or self.frame - shown.start > MAX_AGE
                 or _moved(shown.vp, vp, points, size) > REUSE_PIXELS):
-            self._run(_Cycle(key, vp, steps(True), self.frame), size, scale, whole=True)
+            self._run(_Cycle(key, vp, steps(True), self.frame, scene), size, scale, whole=True)
             return
         cycle = self.cycle
         if cycle is None or cycle.key != key or _moved(cycle.vp, vp, points, size) > REUSE_PIXELS:
-            cycle = self.cycle = _Cycle(key, vp, steps(False), self.frame)
+            cycle = self.cycle = _Cycle(key, vp, steps(False), self.frame, scene)
         self._run(cycle, size, scale, whole=False)
 
     def _run(self, cycle: _Cycle, size: tuple[int, int], scale: float, whole: bool) -> None:

@@ -274,17 +274,23 @@ class Overlay:
     def draw(self, rgba_bottom_up: bytes) -> None:
         """Upload the overlay pixels (RGBA rows bottom to top) and blend them over the framebuffer."""
         self.ctx.viewport = (0, 0, *self.size)
+        self.texture.swizzle = "RGBA"
         self.texture.write(rgba_bottom_up)
         self._blend(self.vao)
 
     def draw_surface(self, surface, changed: bool) -> None:
-        """Blend a pygame surface's non-empty tiles over the framebuffer; re-upload only if ``changed``."""
-        import pygame
+        """Blend a pygame surface's non-empty tiles over the framebuffer; re-upload only if ``changed``.
 
+        The surface's own pixel memory goes to the texture as it is (rows top first, channels in the
+        surface's byte order, put right by the texture's swizzle): converting 3.7 MB to RGBA rows
+        bottom first took 3.6 ms of every repaint."""
         if changed:
-            pixels = pygame.image.tobytes(surface, "RGBA", True)
-            self.texture.write(pixels)
-            self._layout_tiles(np.frombuffer(pixels, np.uint8)[3::4].reshape(self.size[1], self.size[0]))
+            order = [int(mask).bit_length() // 8 - 1 for mask in surface.get_masks()]  # byte of R, G, B, A
+            view = surface.get_view("1")  # (the surface stays locked while the view lives)
+            self.texture.swizzle = "".join("RGBA"[k] for k in order)
+            self.texture.write(view)
+            self._layout_tiles(np.frombuffer(view, np.uint8)[order[3]::4].reshape(self.size[1], self.size[0])[::-1])
+            del view
         if self.tile_vertices:
             self.ctx.viewport = (0, 0, *self.size)
             self._blend(self.tile_vao, self.tile_vertices)

@@ -70,10 +70,11 @@ class Stage:
 
     def layered(self, target: moderngl.Framebuffer, size: tuple[int, int], vp: np.ndarray, camera: OrbitCamera,
                 sun: np.ndarray, light: np.ndarray, boxes: list, radius: float, pictures: Pictures) -> None:
-        """Backdrop and the front picture of the trees laid over it, into ``target``: kept as a picture
-        of its own and copied while neither changed (the layer's composite is a full-screen pass)."""
+        """Backdrop and the front picture of the trees laid over it, into ``target``, as they were when
+        that picture was begun (camera, sun, shadows): kept as a picture of its own and copied until the
+        next picture is shown (the layer's composite is a full-screen pass)."""
         rect = screen_rect(camera, size, boxes, margin=0.15)
-        key = (self._state(size, vp, sun, radius), self.shadows.version, pictures.version, rect)
+        key = (self._state(size, vp, sun, radius), pictures.version, rect)
         if self._scene is None or self._scene.size != size:
             if self._scene is not None:
                 self._scene.release()
@@ -92,30 +93,39 @@ class Stage:
             target.use()
         self.ctx.enable(moderngl.DEPTH_TEST)
 
+    def stale(self, size: tuple[int, int], vp: np.ndarray, sun: np.ndarray, radius: float) -> bool:
+        """Whether the backdrop's picture does not show this camera, sun and ground."""
+        return self._state(size, vp, sun, radius) != self._backdrop_key
+
+    def refresh(self, size: tuple[int, int], vp: np.ndarray, camera: OrbitCamera, sun: np.ndarray,
+                radius: float) -> None:
+        """Redraw the backdrop's picture (software GL) if it does not show this camera, sun and ground."""
+        key = self._state(size, vp, sun, radius)
+        if self._backdrop_picture is None or self._backdrop_picture.size != size:
+            if self._backdrop_picture is not None:
+                self._backdrop_picture.release()
+            self._backdrop_picture = self.ctx.framebuffer(color_attachments=[self.ctx.renderbuffer(size)])
+            self._backdrop_key = None
+        if key != self._backdrop_key:
+            self._backdrop_key = key
+            self._draw_backdrop(self._backdrop_picture, size, vp, camera, sun, radius)
+
     def _background(self, target: moderngl.Framebuffer, size: tuple[int, int], vp: np.ndarray,
                     camera: OrbitCamera, sun: np.ndarray, radius: float) -> None:
         """Sky, sun disc and ground into ``target``. Without multisampling (a software GL, where they
         cost more than half a sapling's frame) they are drawn into a picture of their own and copied
         from it while the camera, the sun (to SUN_STEP) and the ground's size stay the same."""
-        key = self._state(size, vp, sun, radius)
         if self.samples <= 1:
-            if self._backdrop_picture is None or self._backdrop_picture.size != size:
-                if self._backdrop_picture is not None:
-                    self._backdrop_picture.release()
-                self._backdrop_picture = self.ctx.framebuffer(color_attachments=[self.ctx.renderbuffer(size)])
-                self._backdrop_key = None
-            if key == self._backdrop_key:
-                self.ctx.copy_framebuffer(target, self._backdrop_picture)
-                return
-            self._backdrop_key = key
-            draw_into = self._backdrop_picture
+            self.refresh(size, vp, camera, sun, radius)
+            self.ctx.copy_framebuffer(target, self._backdrop_picture)
         else:
-            draw_into = target
-        draw_into.use()
+            self._draw_backdrop(target, size, vp, camera, sun, radius)
+
+    def _draw_backdrop(self, into: moderngl.Framebuffer, size: tuple[int, int], vp: np.ndarray,
+                       camera: OrbitCamera, sun: np.ndarray, radius: float) -> None:
+        into.use()
         self.ctx.viewport = (0, 0, *size)
+        self.ctx.disable(moderngl.DEPTH_TEST | moderngl.CULL_FACE)
         self.backdrop.draw_sky(vp, camera.eye, camera.distance * 20.0, sun)
         self.backdrop.set_ground(max(radius, 1.0) * 12)
         self.backdrop.draw_ground(_gl(vp), sun, (radius * 3, radius * 11))
-        if draw_into is not target:
-            self.ctx.copy_framebuffer(target, draw_into)
-
