@@ -6,9 +6,10 @@ One run, three trees: a fresh sapling, a tree grown 25 simulated days by the liv
 (every bud woken, no light limits). Each frame = input + fixed steps + record updates + 3D render +
 HUD, timed to ctx.finish(). The big tree grows at full speed (its clocks advance every frame, a rewrite
 every physiological time unit); light readings are left out for it (the benchmark is about drawing).
-Then the cost per growth step against tree size: a full rebuild of the records (what a rewrite costs,
-on a worker thread for big trees) against the per-frame update of the growing parts, and the frame
-times with the old full-rebuild-per-frame path for the ratio.
+The big tree's crown is drawn at a reduced resolution and over several frames (game/render/layer.py);
+the run says how many pictures it showed. Then the cost per growth step against tree size: a full
+rebuild of the records (what a rewrite costs, on a worker thread for big trees) against the per-frame
+update of the growing parts, and the frame times with the old full-rebuild-per-frame path for the ratio.
 """
 
 from __future__ import annotations
@@ -140,7 +141,11 @@ def main() -> None:
             time.sleep(0.05)
             game.draw(fbo)
         view = game.view.views[id(world)][1]
+        shown = game.renderer.pictures.version
         _report(f"{len(view.tubes):,}-segment tree, growing", _frames(game, ctx, fbo, n, tick))
+        shown = game.renderer.pictures.version - shown
+        print(f"  (drawn at {game.renderer.last_scale:.2f} of the resolution, over several frames while the camera "
+              f"holds still: {shown} pictures in {n} frames, one per {n / max(shown, 1):.1f} frames)")
         detail = game.renderer.last_details[0]
         print(f"  (level of detail {detail.lod}: {detail.tubes:,} grown segments, {detail.leaves:,} grown leaves "
               f"(share {detail.leaf_share:.2f}), {detail.vertices(game.renderer.placed[0].buffers):,} vertices; "
