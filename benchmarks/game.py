@@ -9,7 +9,8 @@ every physiological time unit); light readings are left out for it (the benchmar
 The big tree's crown is drawn at a reduced resolution and over several frames (game/render/layer.py);
 the run says how many pictures it showed. Then the cost per growth step against tree size: a full
 rebuild of the records (what a rewrite costs, on a worker thread for big trees) against the per-frame
-update of the growing parts, and the frame times with the old full-rebuild-per-frame path for the ratio.
+update of the growing parts, and the frame times of two full-rebuild paths for the ratio: the records
+rebuilt every frame, and the game's old path (the whole tree meshed at LOD 0, uploaded and drawn twice).
 """
 
 from __future__ import annotations
@@ -98,6 +99,25 @@ def rebuild_costs(trees) -> None:
               f"per-frame update {np.median(updates) * 1e3:6.2f} ms  (ratio {build / (np.median(updates) * 1e3):.0f}x)")
 
 
+def _old_path(tree, t: float, ctx, fbo, camera, n: int) -> np.ndarray:
+    """Frame times of the path the game had before instanced records (issue 17's baseline): every
+    frame the whole tree through the turtle and the mesher at LOD 0, uploaded, and drawn with a shadow
+    pass and a lit pass by the mesh renderer."""
+    from engine.life.growth import Clocks
+    from game.render.renderer import TreeRenderer, sun_direction
+
+    renderer = TreeRenderer(ctx)
+    times = []
+    for k in range(n):
+        start = time.perf_counter()
+        renderer.set_tree(tree.geometry(Clocks(t + 0.01 * k, t), lod=0).mesh)
+        renderer.render(fbo, camera, sun_direction(), SIZE)
+        ctx.finish()
+        times.append(time.perf_counter() - start)
+    renderer.release_tree()
+    return np.array(times) * 1e3
+
+
 def main() -> None:
     """Run every scenario and print the figures."""
     import pygame
@@ -159,6 +179,8 @@ def main() -> None:
             ctx.finish()
             full.append(time.perf_counter() - start)
         _report("  same tree, full rebuild every frame", np.array(full) * 1e3)
+        _report("  same tree, old path: LOD 0 mesh, draw", _old_path(tree, t, ctx, fbo, game.camera(),
+                                                                               4 if quick else 8))
         sizes = [big_tree(s) for s in ((1_000, 3_000) if quick else (1_000, 3_000, 10_000, 25_000, 50_000))]
         rebuild_costs(sizes)
     ctx.release()
