@@ -129,21 +129,22 @@ class _Walk:
     frame: np.ndarray
     width: np.ndarray
     colour: np.ndarray
+    depth: np.ndarray  # bracket depth of each drawn piece
     parent: np.ndarray
     nearest_move: np.ndarray
+    recorded: np.ndarray  # (k,) the recorded modules, in string order
     position: np.ndarray  # (k, 3) going into each recorded module
     rec_frame: np.ndarray  # (k, 3, 3)
-    slot: np.ndarray  # (n,) row of each module among the recorded ones
 
     def states_in(self, idx: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """Position and frame going into the (recorded) modules ``idx``."""
-        rows = self.slot[idx]
+        rows = np.searchsorted(self.recorded, idx)
         return np.take(self.position, rows, axis=0), np.take(self.rec_frame, rows, axis=0)
 
 
-def _walk(ls: LString, cfg: TurtleConfig, depth: np.ndarray, record: np.ndarray) -> _Walk:
+def _walk(ls: LString, cfg: TurtleConfig, record: np.ndarray) -> _Walk:
     """Run the compiled turtle over the string (engine.geometry.turtle_kernel), recording the state
-    going into every module where ``record`` is True."""
+    going into every module where ``record`` is True; unbalanced brackets raise BracketError."""
     from engine.geometry.turtle_kernel import walk
 
     width0 = 1.0 if cfg.width is None else cfg.width
@@ -151,16 +152,16 @@ def _walk(ls: LString, cfg: TurtleConfig, depth: np.ndarray, record: np.ndarray)
     target = unit(np.asarray(cfg.tropism if bends else (0.0, -1.0, 0.0), float))
     defaults = np.array([cfg.angle, cfg.step, width0, cfg.width_factor, float(bends)])
     n_draw = int(np.count_nonzero(_DRAW[ls.sym]))
-    out = walk(ls.sym, ls.nparams, ls.offsets, ls.params, defaults, INITIAL_FRAME, target, record, n_draw,
-               int(depth.max(initial=0)))
-    return _Walk(*out, slot=np.cumsum(record) - 1)
+    *out, fault = walk(ls.sym, ls.nparams, ls.offsets, ls.params, defaults, INITIAL_FRAME, target, record, n_draw)
+    if fault[0]:
+        message = "']' without a matching '['" if fault[0] == 1 else "'[' is never closed"
+        raise brackets.BracketError(message, int(fault[1]))
+    return _Walk(*out)
 
 
 def module_positions(ls: LString, cfg: TurtleConfig | None = None) -> np.ndarray:
     """Where the turtle is when it reaches each module (n, 3): for regions, overlays and picking."""
-    cfg = cfg or TurtleConfig()
-    depth = brackets.check_balanced(ls.sym)
-    return _walk(ls, cfg, depth, np.ones(len(ls), bool)).position
+    return _walk(ls, cfg or TurtleConfig(), np.ones(len(ls), bool)).position
 
 
 def interpret(ls: LString, cfg: TurtleConfig | None = None, probes: np.ndarray | None = None) -> TurtleResult:
@@ -170,12 +171,11 @@ def interpret(ls: LString, cfg: TurtleConfig | None = None, probes: np.ndarray |
     (buds and apices, for light and phototropism) and what every module grows from.
     """
     cfg = cfg or TurtleConfig()
-    depth = brackets.check_balanced(ls.sym)
     record = _INSTANCE[ls.sym]
     idx = np.zeros(0, np.int64) if probes is None else np.asarray(probes, dtype=np.int64)
     record[idx] = True
-    walked = _walk(ls, cfg, depth, record)
-    segs = _segments(ls, walked, cfg, depth)
+    walked = _walk(ls, cfg, record)
+    segs = _segments(ls, walked, cfg)
     _radii(ls, segs, cfg)
     leaf_size = cfg.leaf_size if cfg.leaf_size is not None else _auto_leaf_size(segs)
     leaves = _instances(ls, LEAF, walked, leaf_size)
@@ -204,12 +204,11 @@ def unit(v: np.ndarray) -> np.ndarray:
     return v / np.maximum(np.linalg.norm(v, axis=-1, keepdims=True), 1e-300)
 
 
-def _segments(ls: LString, walked: _Walk, cfg: TurtleConfig, depths: np.ndarray) -> Segments:
+def _segments(ls: LString, walked: _Walk, cfg: TurtleConfig) -> Segments:
     """One row per drawn module, and whether it continues the axis of the piece it grows from."""
     idx = np.flatnonzero(_DRAW[ls.sym])
     radius = 0.5 * walked.width * cfg.width_scale
-    start, end, parent = walked.start, walked.end, walked.parent
-    depth = depths[idx]
+    start, end, parent, depth = walked.start, walked.end, walked.parent, walked.depth
     pp = np.maximum(parent, 0)
     continues = (parent >= 0) & (depth == depth[pp])
     if np.any(ls.sym == ord("f")):  # an 'f' between a piece and its parent leaves a gap: a new axis
@@ -256,8 +255,9 @@ def apply_pipe_model(ls: LString, segs: Segments, tip_radius: float, exponent: f
 
 def _instances(ls: LString, symbol: int, walked: _Walk, default_size: float) -> Leaves:
     """Leaf or blossom modules as instances at the turtle's state going into them."""
-    idx = np.flatnonzero(ls.sym == symbol)
-    position, frames = walked.states_in(idx)
+    rows = np.flatnonzero(ls.sym[walked.recorded] == symbol)
+    idx = walked.recorded[rows]
+    position, frames = np.take(walked.position, rows, axis=0), np.take(walked.rec_frame, rows, axis=0)
     return Leaves(position, frames, _first_param(ls, idx, default_size), idx)
 
 

@@ -72,13 +72,22 @@ def _bend(f: np.ndarray, target: np.ndarray, degrees: float) -> None:
 
 
 @numba.njit(cache=True, nogil=True)
-def walk(sym, nparams, offsets, params, defaults, initial, tropism, record, n_draw, max_depth):
+def _grown(stack: np.ndarray) -> np.ndarray:
+    bigger = np.empty((2 * len(stack), stack.shape[1]), stack.dtype)
+    bigger[: len(stack)] = stack
+    return bigger
+
+
+@numba.njit(cache=True, nogil=True)
+def walk(sym, nparams, offsets, params, defaults, initial, tropism, record, n_draw):
     """Interpret the string in one pass (see turtle.interpret for the symbols).
 
     ``defaults``: angle, step, initial width, bare-'!' factor, whether 'T' bends (1.0) or not;
     ``record``: modules whose incoming state (position, frame) is wanted (leaves, buds, picking).
-    Returns per drawn module: start, end, frame, width, colour, parent drawn segment on the path; per
-    module: the nearest move strictly before it on its path; per recorded module: position, frame.
+    Returns per drawn module: start, end, frame, width, colour, bracket depth and the drawn segment it
+    grows from; per module: the nearest move strictly before it on its path; per recorded module (in
+    string order): its index, position and frame; and (0, -1), or a bracket fault and where: (1, i)
+    for a ']' at i with no '[', (2, i) for the '[' at i never closed.
     """
     angle, step, width, factor, bends = defaults[0], defaults[1], defaults[2], defaults[3], defaults[4] > 0
     n = len(sym)
@@ -87,27 +96,24 @@ def walk(sym, nparams, offsets, params, defaults, initial, tropism, record, n_dr
         k += record[i]
     start, end = np.empty((n_draw, 3)), np.empty((n_draw, 3))
     frames, widths, colours = np.empty((n_draw, 3, 3)), np.empty(n_draw), np.empty(n_draw)
-    parent, nearest = np.empty(n_draw, np.int64), np.empty(n, np.int64)
-    rec_pos, rec_frame = np.empty((k, 3)), np.empty((k, 3, 3))
-    s_frame, s_pos = np.empty((max_depth + 1, 3, 3)), np.empty((max_depth + 1, 3))
-    s_scalar, s_index = np.empty((max_depth + 1, 2)), np.empty((max_depth + 1, 2), np.int64)
-    f, pos = initial.copy(), np.zeros(3)
+    parent, depth, nearest = np.empty(n_draw, np.int64), np.empty(n_draw, np.int64), np.empty(n, np.int64)
+    rec_module, rec_pos, rec_frame = np.empty(k, np.int64), np.empty((k, 3)), np.empty((k, 3, 3))
+    saved, saved_at = np.empty((16, 14)), np.empty((16, 3), np.int64)  # the state at each open '['
+    f, pos, fault = initial.copy(), np.zeros(3), np.array([0, -1])
     colour, last_move, last_draw, top, seg, rec = 0.0, -1, -1, 0, 0, 0
     for i in range(n):
         s = sym[i]
         nearest[i] = last_move
         if record[i]:
-            rec_pos[rec] = pos
-            rec_frame[rec] = f
+            rec_module[rec], rec_pos[rec], rec_frame[rec] = i, pos, f
             rec += 1
         has = nparams[i] > 0
         value = params[offsets[i]] if has else 0.0
         if IS_MOVE[s]:
             length = value if has else step
             if s != MOVE_F:
-                start[seg] = pos
-                frames[seg] = f
-                widths[seg], colours[seg], parent[seg] = width, colour, last_draw
+                start[seg], frames[seg] = pos, f
+                widths[seg], colours[seg], parent[seg], depth[seg] = width, colour, last_draw, top
             for r in range(3):
                 pos[r] += f[r, 0] * length
             if s != MOVE_F:
@@ -118,15 +124,20 @@ def walk(sym, nparams, offsets, params, defaults, initial, tropism, record, n_dr
         elif TURN_AXIS[s] >= 0:
             _rotate(f, TURN_AXIS[s], TURN_SIGN[s] * (value if has else angle))
         elif s == OPEN:
-            s_frame[top], s_pos[top] = f, pos
-            s_scalar[top, 0], s_scalar[top, 1] = width, colour
-            s_index[top, 0], s_index[top, 1] = last_move, last_draw
+            if top == len(saved):
+                saved, saved_at = _grown(saved), _grown(saved_at)
+            saved[top, :9], saved[top, 9:12] = f.ravel(), pos
+            saved[top, 12], saved[top, 13] = width, colour
+            saved_at[top, 0], saved_at[top, 1], saved_at[top, 2] = last_move, last_draw, i
             top += 1
         elif s == CLOSE:
+            if top == 0:
+                fault[0], fault[1] = 1, i
+                break
             top -= 1
-            f[:], pos[:] = s_frame[top], s_pos[top]
-            width, colour = s_scalar[top, 0], s_scalar[top, 1]
-            last_move, last_draw = s_index[top, 0], s_index[top, 1]
+            f[:], pos[:] = saved[top, :9].reshape(3, 3), saved[top, 9:12]
+            width, colour = saved[top, 12], saved[top, 13]
+            last_move, last_draw = saved_at[top, 0], saved_at[top, 1]
         elif s == AROUND:
             _rotate(f, 2, 180.0)
         elif s == ROLL_LEVEL:
@@ -137,7 +148,9 @@ def walk(sym, nparams, offsets, params, defaults, initial, tropism, record, n_dr
             width = value if has else width * factor
         elif s == COLOUR:
             colour = value if has else colour + 1.0
-    return start, end, frames, widths, colours, parent, nearest, rec_pos, rec_frame
+    if fault[0] == 0 and top > 0:
+        fault[0], fault[1] = 2, saved_at[top - 1, 2]
+    return start, end, frames, widths, colours, depth, parent, nearest, rec_module, rec_pos, rec_frame, fault
 
 
 @numba.njit(cache=True, nogil=True)
@@ -146,12 +159,15 @@ def tip_leaves(frame, end, module, tips, k):
     rolled (module * 37 deg + j/k of a turn) about the twig and pitched 40 deg away from it."""
     cp, sp = math.cos(math.radians(40.0)), math.sin(math.radians(40.0))
     position, out = np.empty((len(tips) * k, 3)), np.empty((len(tips) * k, 3, 3))
+    step_c, step_s = np.empty(k), np.empty(k)
+    for j in range(k):
+        step_c[j], step_s[j] = math.cos(2 * math.pi * j / k), math.sin(2 * math.pi * j / k)
     row = 0
     for t in tips:
         offset = math.radians(module[t] * 37 % 360)
-        for j in range(k):
-            roll = offset + 2 * math.pi * j / k
-            c, s = math.cos(roll), math.sin(roll)
+        co, so = math.cos(offset), math.sin(offset)
+        for j in range(k):  # roll = offset + j/k of a turn, by the angle-sum formulas
+            c, s = co * step_c[j] - so * step_s[j], so * step_c[j] + co * step_s[j]
             for r in range(3):
                 h, lft, up = frame[t, r, 0], frame[t, r, 1], frame[t, r, 2]
                 side = c * lft + s * up
