@@ -181,6 +181,27 @@ def test_a_branch_shed_just_now_falls_then_is_gone(game, grown):
     assert not game.view.falls
 
 
+def test_branches_fall_in_a_picture_drawn_over_frames(game, grown, monkeypatch):
+    """Falling branches are new buffers every frame (the old ones freed): a picture drawn over several
+    frames keeps going while they fall, draws them as they are when each step runs, and copes with
+    one landing mid-picture."""
+    from game.render.falling import FALL_SECONDS
+
+    monkeypatch.setattr(game.renderer, "_scale", lambda *a: 0.5)
+    game.world.tree.fallen = copy.deepcopy(grown.tree.fallen)
+    game.world.tree.last_rewrite_T = max(f.at for f in game.world.tree.fallen)
+    frame(game)
+    pictures, shown = game.renderer.pictures, game.renderer.pictures.version
+    while game.view.falls:
+        game.fake[0] += FALL_SECONDS / 12  # they land part-way through a picture
+        frame(game)
+    assert pictures.version >= shown + 1  # pictures kept coming while they fell
+    landed = pictures.version
+    for _ in range(8):
+        frame(game)
+    assert pictures.version > landed
+
+
 def test_the_sky_and_ground_picture_follows_the_camera_and_the_sun(game):
     """On a software GL the backdrop is drawn once and copied while nothing it shows changes: after
     turning the camera, tilting it or moving the sun, the frame must equal a fresh drawing."""

@@ -180,7 +180,8 @@ class GardenRenderer:
         else:
             corners = np.array([[x, y, z] for lo, hi in boxes for x in (lo[0], hi[0]) for y in (lo[1], hi[1])
                                 for z in (lo[2], hi[2])]).reshape(-1, 3)
-            views = tuple((id(p.buffers), id(p.buffers.view)) for p in self.placed)
+            # the trees a picture shows (falling branches are new buffers every frame: counted only)
+            views = (len(self.placed), tuple(id(p.buffers.view) for p in self.placed if p.version >= 0))
             scene = _Scene(camera, vp, sun, light, boxes, self._scene_bounds()[1])
             self.pictures.draw(size, scale, vp, corners, views,
                                lambda whole: self._picture_steps(scene, details, uniforms, size, whole), scene)
@@ -255,10 +256,8 @@ class GardenRenderer:
             return []
         uniforms = {"u_mvp": _gl(light), "u_light_mvp": _gl(light), "u_wind": (*self.wind, self.time),
                     "u_eye": (0.0, 0.0, 0.0), "u_pixel": 0.0, "u_keep": self.leaf_keep}
-        placed = list(zip(self.placed, details, strict=True))
-
-        def draw(piece: Piece) -> None:
-            for tree, detail in placed:
+        def draw(piece: Piece) -> None:  # (the trees placed when it runs: the same ones, see render)
+            for tree, detail in zip(self.placed, details, strict=True):
                 uniforms["u_offset"] = tuple(tree.offset)
                 coarser = replace(detail, lod=min(detail.lod + 1, len(SIDES) - 1))
                 self.trees.draw(tree.buffers, "shadow", coarser, uniforms, self.textures, piece)
