@@ -178,18 +178,24 @@ class GardenRenderer:
             self.ctx.enable(moderngl.DEPTH_TEST)
             self._trees_step(details, uniforms, WHOLE)[0]()
         else:
-            corners = np.array([[x, y, z] for lo, hi in boxes for x in (lo[0], hi[0]) for y in (lo[1], hi[1])
-                                for z in (lo[2], hi[2])]).reshape(-1, 3)
-            # the trees a picture shows (falling branches are new buffers every frame: counted only)
-            views = (len(self.placed), tuple(id(p.buffers.view) for p in self.placed if p.version >= 0))
-            scene = _Scene(camera, vp, sun, light, boxes, self._scene_bounds()[1])
-            self.pictures.draw(size, scale, vp, corners, views,
-                               lambda whole: self._picture_steps(scene, details, uniforms, size, whole), scene)
-            shown = self.pictures.shown.scene
-            self.stage.layered(target, size, shown.vp, shown.camera, shown.sun, shown.light, shown.boxes,
-                               shown.radius, self.pictures)
+            self._render_layered(target, size, _Scene(camera, vp, sun, light, boxes, self._scene_bounds()[1]),
+                                 details, uniforms, scale)
         if target is not fbo:
             self.ctx.copy_framebuffer(fbo, target)
+
+    def _render_layered(self, target: moderngl.Framebuffer, size: tuple[int, int], scene: _Scene,
+                        details: list[Detail], uniforms: dict, scale: float) -> None:
+        """The trees as a layer's picture (drawn over frames while the camera holds still, see
+        layer.Pictures) over the backdrop, all as they were when the picture shown was begun."""
+        corners = np.array([[x, y, z] for lo, hi in scene.boxes for x in (lo[0], hi[0]) for y in (lo[1], hi[1])
+                            for z in (lo[2], hi[2])]).reshape(-1, 3)
+        # the trees a picture shows (falling branches are new buffers every frame: counted only)
+        views = (len(self.placed), tuple(id(p.buffers.view) for p in self.placed if p.version >= 0))
+        self.pictures.draw(size, scale, scene.vp, corners, views,
+                           lambda whole: self._picture_steps(scene, details, uniforms, size, whole), scene)
+        shown = self.pictures.shown.scene
+        self.stage.layered(target, size, shown.vp, shown.camera, shown.sun, shown.light, shown.boxes, shown.radius,
+                           self.pictures)
 
     def _picture_steps(self, scene: _Scene, details: list[Detail], uniforms: dict, size: tuple[int, int],
                        whole: bool) -> list[Step]:
@@ -202,7 +208,7 @@ class GardenRenderer:
         shadows = self._shadow_steps(scene.light, scene.sun, details, [WHOLE] if whole else [LEAVES, WOOD])
         pieces = [WHOLE] if whole else [FIRST_LEAVES, Piece(LEAVES.names, LEAF_SPLIT), WOOD]
         trees = [self._trees_step(details, dict(uniforms), p) for p in pieces]
-        show = [] if whole else [(lambda: None, False)]  # the new picture is laid over the scene in a frame of its own
+        show = [] if whole else [(lambda: None, False)]  # the new picture is shown in a frame of its own
         return backdrop + [(step, False) for step in shadows] + trees + show
 
     def _trees_step(self, details: list[Detail], uniforms: dict, piece: Piece) -> Step:
