@@ -154,7 +154,7 @@ class _Topology:
         n = len(ls)
         is_move = _MOVE[ls.sym]
         is_turn = ~is_move & _TURNLIKE[ls.sym]
-        near = brackets.first_good(par, is_move | is_turn)
+        near = first_good(par, is_move | is_turn)
         after_turn = (near >= 0) & is_turn[np.maximum(near, 0)]
         nearest_turn = np.where(after_turn, near, -1)
         turn_idx, move_idx = np.flatnonzero(is_turn), np.flatnonzero(is_move)
@@ -350,7 +350,7 @@ def _segments(ls: LString, states: _States, cfg: TurtleConfig, depths: np.ndarra
     chain = np.where(states.move_parent < m, states.move_parent, -1)
     # the segment a piece grows from: the nearest drawing move before it ('f' moves are skipped)
     all_draw = bool(draw_col.all())
-    ancestor = chain[cols] if all_draw else brackets.first_good(chain, draw_col)[cols]
+    ancestor = chain[cols] if all_draw else first_good(chain, draw_col)[cols]
     parent = np.where(ancestor >= 0, seg_of_col[np.maximum(ancestor, 0)], -1)
     depth = depths[idx]
     pp = np.maximum(parent, 0)
@@ -418,3 +418,21 @@ def _concat_leaves(a: Leaves, b: Leaves) -> Leaves:
     if len(a) == 0 or len(b) == 0:
         return b if len(a) == 0 else a
     return Leaves(*(np.concatenate([getattr(a, f), getattr(b, f)]) for f in ("position", "frame", "size", "module")))
+
+
+def first_good(step: np.ndarray, good: np.ndarray) -> np.ndarray:
+    """Follow pointers ``step`` (-1 = none) from each index until an index where ``good`` holds.
+
+    Returns, for every i, the first good index among step[i], step[step[i]], ... (or -1).
+    Pointer jumping: each round doubles how far every pointer has looked, so O(n log n).
+    """
+    n = len(step)
+    good_ext = np.append(good, True)  # index n is the sentinel for "none"
+    p = np.append(np.where(step < 0, n, step), n)
+    while True:
+        bad = ~good_ext[p]
+        if not bad.any():
+            break
+        p = np.where(bad, p[p], p)
+    p = p[:n]
+    return np.where(p == n, -1, p)

@@ -2,10 +2,10 @@
 
 Wood is one tube per axis: one ring of ``n_surf`` vertices per joint, shared by the two segments that
 meet there, so there are no hidden caps inside the wood (seed 003, 6.7); only branch tips get a cap.
-Ring frames are parallel-transported along each axis (products of minimal rotations, one compiled
-pass: engine.geometry.mesh_kernel), so tubes do not twist when the turtle rolls. With ``n_div`` > 1 each segment is a
-cubic Bezier whose control points sit a third of the way along, bent to match the joint tangents
-(the form of seed 001 eq. 2). UVs: u around the branch, v along it, one unit per growth step.
+Ring frames are parallel-transported along each axis (products of minimal rotations, in one compiled
+pass: engine.geometry.mesh_kernel), so tubes do not twist when the turtle rolls. With ``n_div`` > 1
+each segment is a cubic Bezier whose control points sit a third of the way along, bent to match the
+joint tangents (the form of seed 001 eq. 2). UVs: u around the branch, v along it, one unit per growth step.
 """
 
 from __future__ import annotations

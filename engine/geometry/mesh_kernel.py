@@ -30,7 +30,12 @@ def directions(start, end, frame):
 
 @numba.njit(cache=True, nogil=True)
 def transported_x(d, frame, parent, cont):
-    """Ring reference directions parallel-transported along each axis (see mesh._transported_x)."""
+    """A ring reference direction per segment, parallel-transported along each axis.
+
+    With x = cos(phi) L + sin(phi) U in each segment's turtle frame, transport across a joint (the
+    shortest-arc rotation P from the parent's direction to the child's) only adds the twist
+    tau = angle of P(L_parent) in the child's (L, U): so phi is a sum of twists along the axis, one
+    number per joint, instead of a product of rotations (parents come before their children)."""
     m = len(d)
     phi, x = np.zeros(m), np.empty((m, 3))
     for j in range(m):

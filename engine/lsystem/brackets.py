@@ -1,7 +1,7 @@
 """Vectorised bracket structure of an L-string: depth, matching brackets, parents, context neighbours.
 
 All functions are O(n log n) numpy at most, with no Python loop over modules, so the derivation and
-the turtle can use them on million-module strings (context neighbours are in context.py, O(n)).
+the simulation can use them on million-module strings (context neighbours are in context.py, O(n)).
 """
 
 from __future__ import annotations
@@ -92,20 +92,3 @@ def rest_of_branches(sym: np.ndarray, starts: np.ndarray) -> np.ndarray:
     np.add.at(delta, branch_ends(sym, starts), -1)
     return np.cumsum(delta[:-1]) > 0
 
-
-def first_good(step: np.ndarray, good: np.ndarray) -> np.ndarray:
-    """Follow pointers ``step`` (-1 = none) from each index until an index where ``good`` holds.
-
-    Returns, for every i, the first good index among step[i], step[step[i]], ... (or -1).
-    Pointer jumping: each round doubles how far every pointer has looked, so O(n log n).
-    """
-    n = len(step)
-    good_ext = np.append(good, True)  # index n is the sentinel for "none"
-    p = np.append(np.where(step < 0, n, step), n)
-    while True:
-        bad = ~good_ext[p]
-        if not bad.any():
-            break
-        p = np.where(bad, p[p], p)
-    p = p[:n]
-    return np.where(p == n, -1, p)
