@@ -2,18 +2,11 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 import numpy as np
 
 from benchmarks.numpy_geometry.chains import chain_sum, tree_depths
 from benchmarks.numpy_geometry.turtle import Segments
-from engine.geometry.mesh import Mesh
-
-
-def _normalize(v: np.ndarray) -> np.ndarray:
-    n = np.sqrt(np.einsum("...i,...i->...", v, v))[..., None]
-    return v / np.where(n > 1e-12, n, 1.0)
+from engine.geometry.mesh import Mesh, WoodRings, _normalize, _Rings  # (unchanged: the engine's own)
 
 
 def _row_norms(rows: np.ndarray) -> np.ndarray:
@@ -35,17 +28,6 @@ def _directions(segs: Segments) -> np.ndarray:
     length = np.linalg.norm(d, axis=1)
     heading = segs.frame[:, :, 0]
     return np.where((length > 1e-12)[:, None], d / np.maximum(length, 1e-12)[:, None], heading)
-
-
-@dataclass
-class WoodRings:
-    """Every joint ring of the wood, shared by the segments that meet there: ring j (< m) is segment j's
-    end ring; ``start_ring[j]`` is its start ring (its parent's end ring when it continues that axis)."""
-
-    rings: _Rings
-    start_ring: np.ndarray  # (m,)
-    tips: np.ndarray  # segments whose end is a branch tip (they get a cone)
-    direction: np.ndarray  # (m, 3) unit direction of each segment
 
 
 def wood_rings(segs: Segments, tip_taper: float = 0.35) -> WoodRings:
@@ -86,21 +68,6 @@ def wood_mesh(segs: Segments, n_surf: int = 8, n_div: int = 1, tip_taper: float 
     rings, start_ring, d = wood.rings, wood.start_ring, wood.direction
     ring_seq = np.stack([start_ring, np.arange(m)], axis=1)  # n_div = 1 only
     return _tube_mesh(rings, ring_seq, segs.module, n_surf, tips=wood.tips, tip_dir=d)
-
-
-@dataclass
-class _Rings:
-    center: np.ndarray
-    tangent: np.ndarray
-    x: np.ndarray
-    radius: np.ndarray
-    v: np.ndarray
-
-    def extend(self, other: _Rings) -> int:
-        base = len(self.center)
-        for name in ("center", "tangent", "x", "radius", "v"):
-            setattr(self, name, np.concatenate([getattr(self, name), getattr(other, name)]))
-        return base
 
 
 def _transported_x(segs: Segments, d: np.ndarray) -> np.ndarray:

@@ -15,7 +15,18 @@ from benchmarks.numpy_geometry.chains import (
     rows_to_quat,
     to_rows,
 )
-from engine.geometry.turtle import Leaves, Segments, TurtleConfig, TurtleResult, apply_pipe_model, tip_segments
+from engine.geometry.turtle import (  # what did not change is the engine's own
+    Leaves,
+    Segments,
+    TurtleConfig,
+    TurtleResult,
+    _auto_leaf_size,
+    _concat_leaves,
+    _first_param,
+    _radii,
+    tip_segments,
+    unit,
+)
 from engine.lsystem import brackets
 from engine.lsystem.lstring import LString
 
@@ -48,13 +59,6 @@ def _axis_quaternions(axis: int, angles_deg: np.ndarray) -> np.ndarray:
     q[0] = np.cos(half)
     q[1 + axis] = np.sin(half)
     return q
-
-
-def _first_param(ls: LString, idx: np.ndarray, default: float) -> np.ndarray:
-    has = ls.nparams[idx] > 0
-    out = np.full(len(idx), default, dtype=np.float64)
-    out[has] = ls.params[ls.offsets[idx[has]]]
-    return out
 
 
 # Rows of a turn block: rotation as a quaternion (0-3), width map a, b (4, 5), colour map a, b (6, 7).
@@ -126,14 +130,6 @@ def interpret(ls: LString, cfg: TurtleConfig | None = None, probes: np.ndarray |
         frames = _world_frames(states.blocks_in(idx)[:4])
         result.probes = Leaves(states.positions_in(idx).T, frames, np.zeros(len(idx)), idx)
     return result
-
-
-def _radii(ls: LString, segs: Segments, cfg: TurtleConfig) -> None:
-    """Pipe-model radii where the config asks for them (by default when the string has no '!')."""
-    use_pipe = cfg.pipe_model if cfg.pipe_model is not None else not np.any(ls.sym == ord("!"))
-    if use_pipe:
-        tip_r = 0.5 * cfg.width * cfg.width_scale if cfg.width is not None else 0.08 * _mean_tip_length(segs)
-        apply_pipe_model(ls, segs, tip_r, cfg.pipe_exponent)
 
 
 @dataclass
@@ -318,11 +314,6 @@ def _level_rolls(frames_in: np.ndarray) -> np.ndarray:
     return _orthonormal(np.matmul(np.transpose(frames_in, (0, 2, 1)), target))
 
 
-def unit(v: np.ndarray) -> np.ndarray:
-    """Vectors along the last axis scaled to length 1 (zero vectors stay zero)."""
-    return v / np.maximum(np.linalg.norm(v, axis=-1, keepdims=True), 1e-300)
-
-
 def _orthonormal(m: np.ndarray) -> np.ndarray:
     """Gram-Schmidt on the columns: the nearest proper rotation for matrices that almost are."""
     c0 = unit(m[:, :, 0])
@@ -372,22 +363,6 @@ def _instances(ls: LString, symbol: int, states: _States, default_size: float) -
     return Leaves(states.positions_in(idx).T, frames, _first_param(ls, idx, default_size), idx)
 
 
-def _mean_tip_length(segs: Segments) -> float:
-    tips = tip_segments(segs)
-    if len(tips) == 0:
-        return 1.0
-    gap = np.take(segs.end, tips, axis=0) - np.take(segs.start, tips, axis=0)
-    length = float(np.sqrt(np.einsum("ij,ij->i", gap, gap)).mean())
-    return length if length > 0 else 1.0
-
-
-def _auto_leaf_size(segs: Segments) -> float:
-    """Leaves sized to the twigs that carry them, and never lost in a big crown."""
-    ys = segs.end[:, 1]
-    height = float(ys.max() - ys.min()) if len(segs) else 0.0
-    return max(0.8 * _mean_tip_length(segs), 0.025 * height)
-
-
 def _tip_leaves(segs: Segments, k: int, size: float) -> Leaves:
     """A cluster of ``k`` leaves at the end of every segment with no child (seed 003 added them at ']').
 
@@ -412,12 +387,6 @@ def _tip_leaves(segs: Segments, k: int, size: float) -> Leaves:
         frames[:, j, :, 2] = cp * side - sp * h
     position = np.repeat(segs.end[tips], k, axis=0)
     return Leaves(position, frames.reshape(-1, 3, 3), np.full(len(position), size), np.repeat(segs.module[tips], k))
-
-
-def _concat_leaves(a: Leaves, b: Leaves) -> Leaves:
-    if len(a) == 0 or len(b) == 0:
-        return b if len(a) == 0 else a
-    return Leaves(*(np.concatenate([getattr(a, f), getattr(b, f)]) for f in ("position", "frame", "size", "module")))
 
 
 def first_good(step: np.ndarray, good: np.ndarray) -> np.ndarray:

@@ -60,10 +60,7 @@ class Stage:
         ctx.viewport = (0, 0, *size)
         ctx.disable(moderngl.DEPTH_TEST | moderngl.CULL_FACE)
         self._background(target, size, vp, camera, sun, radius)
-        target.color_mask = (False, False, False, False)
-        target.clear(depth=1.0)
-        target.color_mask = (True, True, True, True)
-        target.use()  # (the mask takes effect when the framebuffer is bound)
+        _clear_depth(target)
         self.shadows.texture.use(location=1)
         pad = np.array([1.5, 0.0, 1.5])  # leaves reach past the points the bounds were taken from
         self.backdrop.draw_shadows(_gl(vp), _gl(light), sun, [(lo - pad, hi + pad) for lo, hi in boxes])
@@ -75,22 +72,15 @@ class Stage:
         next picture is shown (the layer's composite is a full-screen pass)."""
         rect = screen_rect(camera, size, boxes, margin=0.15)
         key = (self._state(size, vp, sun, radius), pictures.version, rect)
-        if self._scene is None or self._scene.size != size:
-            if self._scene is not None:
-                self._scene.release()
-            self._scene = self.ctx.framebuffer(color_attachments=[self.ctx.renderbuffer(size)])
-            self._scene_key = None
-        if key != self._scene_key:
+        self._scene = self._picture(self._scene, size)
+        if key != self._scene_key:  # (keys hold the size: a new picture never matches an old key)
             self.draw(target, size, vp, camera, sun, light, boxes, radius)
             pictures.composite(target, size, rect)
             self.ctx.copy_framebuffer(self._scene, target)
             self._scene_key = key
         else:
             self.ctx.copy_framebuffer(target, self._scene)
-            target.color_mask = (False, False, False, False)
-            target.clear(depth=1.0)  # (as a frame drawn in full leaves it, for what is drawn over it)
-            target.color_mask = (True, True, True, True)
-            target.use()
+            _clear_depth(target)  # (as a frame drawn in full leaves it, for what is drawn over it)
         self.ctx.enable(moderngl.DEPTH_TEST)
 
     def stale(self, size: tuple[int, int], vp: np.ndarray, sun: np.ndarray, radius: float) -> bool:
@@ -101,14 +91,18 @@ class Stage:
                 radius: float) -> None:
         """Redraw the backdrop's picture (software GL) if it does not show this camera, sun and ground."""
         key = self._state(size, vp, sun, radius)
-        if self._backdrop_picture is None or self._backdrop_picture.size != size:
-            if self._backdrop_picture is not None:
-                self._backdrop_picture.release()
-            self._backdrop_picture = self.ctx.framebuffer(color_attachments=[self.ctx.renderbuffer(size)])
-            self._backdrop_key = None
+        self._backdrop_picture = self._picture(self._backdrop_picture, size)
         if key != self._backdrop_key:
             self._backdrop_key = key
             self._draw_backdrop(self._backdrop_picture, size, vp, camera, sun, radius)
+
+    def _picture(self, picture: moderngl.Framebuffer | None, size: tuple[int, int]) -> moderngl.Framebuffer:
+        """``picture``, or a new colour framebuffer when there is none of ``size``."""
+        if picture is not None and picture.size == size:
+            return picture
+        if picture is not None:
+            picture.release()
+        return self.ctx.framebuffer(color_attachments=[self.ctx.renderbuffer(size)])
 
     def _background(self, target: moderngl.Framebuffer, size: tuple[int, int], vp: np.ndarray,
                     camera: OrbitCamera, sun: np.ndarray, radius: float) -> None:
@@ -129,3 +123,11 @@ class Stage:
         self.backdrop.draw_sky(vp, camera.eye, camera.distance * 20.0, sun)
         self.backdrop.set_ground(max(radius, 1.0) * 12)
         self.backdrop.draw_ground(_gl(vp), sun, (radius * 3, radius * 11))
+
+
+def _clear_depth(target: moderngl.Framebuffer) -> None:
+    """Clear only the depth of ``target`` (its colours stay) and leave it bound."""
+    target.color_mask = (False, False, False, False)
+    target.clear(depth=1.0)
+    target.color_mask = (True, True, True, True)
+    target.use()  # (the mask takes effect when the framebuffer is bound)
