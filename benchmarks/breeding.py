@@ -16,11 +16,11 @@ from pathlib import Path
 
 import numpy as np
 
-from engine.life.breed import cross
-from engine.life.lab import measure
-from engine.life.rules import load_rules
-from engine.life.world import World
-from engine.lsystem.lsys import load_lsystem
+from arbor.engine.life.breed import cross
+from arbor.engine.life.lab import measure
+from arbor.engine.life.rules import load_rules
+from arbor.engine.life.world import World
+from arbor.engine.lsystem.lsys import load_lsystem
 
 ASSETS = Path(__file__).resolve().parent.parent / "assets"
 DAYS = 10

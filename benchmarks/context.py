@@ -12,10 +12,10 @@ import time
 
 import numpy as np
 
+from arbor.engine.lsystem import context
+from arbor.engine.lsystem.lsys import load_lsystem
 from benchmarks import context_numpy
 from benchmarks.derive import ASSETS, TARGET, best_median, grown_to
-from engine.lsystem import context
-from engine.lsystem.lsys import load_lsystem
 
 
 def main() -> None:

@@ -15,7 +15,7 @@ from itertools import pairwise
 
 import numpy as np
 
-from engine.lsystem.brackets import CLOSE, OPEN, depths
+from arbor.engine.lsystem.brackets import CLOSE, OPEN, depths
 
 
 def neighbours(sym: np.ndarray, skip: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

@@ -22,7 +22,7 @@ SIZE = (640, 360)
 
 def brightness(ctx, speed: float, smooth: bool) -> np.ndarray:
     """Mean frame brightness, frame by frame, over two days of the sun at ``speed``."""
-    from game.screens.game import Game, GameConfig
+    from arbor.game.screens.game import Game, GameConfig
 
     fbo = ctx.framebuffer(color_attachments=[ctx.renderbuffer(SIZE)], depth_attachment=ctx.depth_renderbuffer(SIZE))
     clock = [0.0]
@@ -49,7 +49,7 @@ def main() -> None:
     os.environ.setdefault("SDL_VIDEODRIVER", "dummy")
     import pygame
 
-    from game.render.renderer import headless_context
+    from arbor.game.render.renderer import headless_context
 
     pygame.init()
     ctx = headless_context()  # (one context for every run)

@@ -25,9 +25,9 @@ from pathlib import Path
 
 import numpy as np
 
+from arbor.engine.lsystem.derive import MAX_BUDGET, Deriver
+from arbor.engine.lsystem.lsys import load_lsystem, parse_lsystem
 from benchmarks import peers
-from engine.lsystem.derive import MAX_BUDGET, Deriver
-from engine.lsystem.lsys import load_lsystem, parse_lsystem
 
 ASSETS = Path(__file__).resolve().parent.parent / "assets" / "lsystems"
 PARAMETRIC = """

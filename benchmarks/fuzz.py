@@ -21,13 +21,13 @@ from tempfile import TemporaryDirectory
 
 import numpy as np
 
-from engine.base.errors import LSysError
-from engine.geometry.tree import build_geometry
-from engine.life.rules import load_rules
-from engine.life.save import garden_text, load_garden
-from engine.life.world import World
-from engine.lsystem.derive import Deriver
-from engine.lsystem.lsys import load_lsystem, parse_lsystem
+from arbor.engine.base.errors import LSysError
+from arbor.engine.geometry.tree import build_geometry
+from arbor.engine.life.rules import load_rules
+from arbor.engine.life.save import garden_text, load_garden
+from arbor.engine.life.world import World
+from arbor.engine.lsystem.derive import Deriver
+from arbor.engine.lsystem.lsys import load_lsystem, parse_lsystem
 
 ROOT = Path(__file__).resolve().parent.parent
 LSYSTEMS = ROOT / "assets" / "lsystems"
@@ -142,7 +142,7 @@ def try_packet(parser, data: bytes) -> None:
 
 def campaign(n_saves: int, n_lsys: int, n_osc: int, seed: int = 0) -> int:
     """Run the whole campaign; prints the figures and returns the number of uncaught exceptions."""
-    from game.input.tuio import TuioParser
+    from arbor.game.input.tuio import TuioParser
 
     rng = random.Random(seed)
     failures, slow = [], 0

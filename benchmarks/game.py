@@ -48,10 +48,10 @@ def _report(name: str, ms: np.ndarray) -> None:
 
 def grown_tree(days: float):
     """A world grown ``days`` simulated days by a careful player (the living model)."""
-    from engine.life.rules import load_rules
-    from engine.life.world import World
-    from engine.lsystem.lsys import load_lsystem
-    from game.paths import ASSETS
+    from arbor.engine.life.rules import load_rules
+    from arbor.engine.life.world import World
+    from arbor.engine.lsystem.lsys import load_lsystem
+    from arbor.game.paths import ASSETS
 
     rules = load_rules(ASSETS / "rules.toml", pace="demo")
     world = World(load_lsystem(ASSETS / "lsystems" / "game_tree.lsys"), rules, seed=3)
@@ -65,9 +65,9 @@ def grown_tree(days: float):
 def big_tree(segments: int):
     """The game tree's rules with the budget raised, every bud woken: rewritten until ``segments``
     internodes exist. Returns the tree and its length time."""
-    from engine.life.growth import GrowingTree
-    from engine.lsystem.lsys import load_lsystem
-    from game.paths import ASSETS
+    from arbor.engine.life.growth import GrowingTree
+    from arbor.engine.lsystem.lsys import load_lsystem
+    from arbor.game.paths import ASSETS
 
     tree = GrowingTree(load_lsystem(ASSETS / "lsystems" / "game_tree.lsys"), seed=1, budget=5_000_000)
     t = 0.0
@@ -79,8 +79,8 @@ def big_tree(segments: int):
 
 def rebuild_costs(trees) -> None:
     """Full record build vs per-frame update of the growing parts, per tree size."""
-    from engine.life.growth import Clocks
-    from engine.life.growth_view import GrowthView
+    from arbor.engine.life.growth import Clocks
+    from arbor.engine.life.growth_view import GrowthView
 
     print("cost per growth step (records of the whole tree) vs per frame (only what grows):")
     for tree, t in trees:
@@ -103,8 +103,8 @@ def _old_path(tree, t: float, ctx, fbo, camera, n: int) -> np.ndarray:
     """Frame times of the path the game had before instanced records (issue 17's baseline): every
     frame the whole tree through the turtle and the mesher at LOD 0, uploaded, and drawn with a shadow
     pass and a lit pass by the mesh renderer."""
-    from engine.life.growth import Clocks
-    from game.render.renderer import TreeRenderer, sun_direction
+    from arbor.engine.life.growth import Clocks
+    from arbor.game.render.renderer import TreeRenderer, sun_direction
 
     renderer = TreeRenderer(ctx)
     times = []
@@ -122,10 +122,10 @@ def main() -> None:
     """Run every scenario and print the figures."""
     import pygame
 
-    from engine.life.growth import Clocks
-    from engine.life.growth_view import GrowthView
-    from game.render.renderer import headless_context
-    from game.screens.game import Game, GameConfig
+    from arbor.engine.life.growth import Clocks
+    from arbor.engine.life.growth_view import GrowthView
+    from arbor.game.render.renderer import headless_context
+    from arbor.game.screens.game import Game, GameConfig
 
     quick = "--quick" in sys.argv
     pygame.init()

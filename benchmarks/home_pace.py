@@ -14,12 +14,12 @@ import sys
 import time
 from pathlib import Path
 
-from engine.life.garden import Garden
-from engine.life.journal import METRE
-from engine.life.rules import load_rules
-from engine.life.sim import sun_angle_at
-from engine.life.world import World
-from engine.lsystem.lsys import load_lsystem
+from arbor.engine.life.garden import Garden
+from arbor.engine.life.journal import METRE
+from arbor.engine.life.rules import load_rules
+from arbor.engine.life.sim import sun_angle_at
+from arbor.engine.life.world import World
+from arbor.engine.lsystem.lsys import load_lsystem
 
 ASSETS = Path(__file__).resolve().parent.parent / "assets"
 STEP = 60.0

@@ -18,17 +18,17 @@ import time
 from pathlib import Path
 from tempfile import TemporaryDirectory
 
-from engine.base.errors import LSysError
-from engine.life.save import load_garden
-from game.screens.saves import remove_stale_temp_files
+from arbor.engine.base.errors import LSysError
+from arbor.engine.life.save import load_garden
+from arbor.game.screens.saves import remove_stale_temp_files
 
 ROOT = Path(__file__).resolve().parent.parent
 CHILD = """
 import sys
-from engine.life.save import save_garden
-from engine.life.rules import load_rules
-from engine.life.world import World
-from engine.lsystem.lsys import load_lsystem
+from arbor.engine.life.save import save_garden
+from arbor.engine.life.rules import load_rules
+from arbor.engine.life.world import World
+from arbor.engine.lsystem.lsys import load_lsystem
 system = load_lsystem("assets/lsystems/game_tree.lsys")
 rules = load_rules("assets/rules.toml", pace="demo")
 worlds = [World(system, rules, seed=k) for k in range(int(sys.argv[2]))]

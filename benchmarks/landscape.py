@@ -13,11 +13,11 @@ import time
 
 import numpy as np
 
-from engine.forest.landscape import scatter
-from engine.geometry.mesh import LOD_LEVELS
-from game.commands.landscape import build_presets, landscape_size, overview_camera
-from game.render.landscape import LandscapeRenderer
-from game.render.renderer import headless_context, sun_direction
+from arbor.engine.forest.landscape import scatter
+from arbor.engine.geometry.mesh import LOD_LEVELS
+from arbor.game.commands.landscape import build_presets, landscape_size, overview_camera
+from arbor.game.render.landscape import LandscapeRenderer
+from arbor.game.render.renderer import headless_context, sun_direction
 
 SIZE = (1280, 720)
 

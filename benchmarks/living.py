@@ -16,12 +16,12 @@ from pathlib import Path
 
 import numpy as np
 
+from arbor.engine.life.lab import measure
+from arbor.engine.life.light import exposure
+from arbor.engine.life.rules import load_rules
+from arbor.engine.life.world import World, sense_light
+from arbor.engine.lsystem.lsys import load_lsystem
 from benchmarks import median_ms
-from engine.life.lab import measure
-from engine.life.light import exposure
-from engine.life.rules import load_rules
-from engine.life.world import World, sense_light
-from engine.lsystem.lsys import load_lsystem
 
 ASSETS = Path(__file__).resolve().parent.parent / "assets"
 

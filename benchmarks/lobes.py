@@ -9,9 +9,9 @@ from __future__ import annotations
 
 import numpy as np
 
+from arbor.engine.modeling.crown import Skeleton, grow_into_lobes, skeleton_text
+from arbor.engine.modeling.lobes import Crossings, lobe_from_loops
 from benchmarks import median_ms
-from engine.modeling.crown import Skeleton, grow_into_lobes, skeleton_text
-from engine.modeling.lobes import Crossings, lobe_from_loops
 
 
 def _ring(center, radius: float, phase: int, n: int = 80) -> np.ndarray:

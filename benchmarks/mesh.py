@@ -14,13 +14,13 @@ from pathlib import Path
 
 import numpy as np
 
+from arbor.engine.base.memory import keep_freed_memory
+from arbor.engine.geometry.mesh import LOD_LEVELS, tree_mesh, wood_mesh
+from arbor.engine.geometry.turtle import TurtleConfig, interpret
+from arbor.engine.lsystem.derive import derive
+from arbor.engine.lsystem.lsys import load_lsystem
 from benchmarks.numpy_geometry import mesh as numpy_mesh
 from benchmarks.numpy_geometry import turtle as numpy_turtle
-from engine.base.memory import keep_freed_memory
-from engine.geometry.mesh import LOD_LEVELS, tree_mesh, wood_mesh
-from engine.geometry.turtle import TurtleConfig, interpret
-from engine.lsystem.derive import derive
-from engine.lsystem.lsys import load_lsystem
 
 SOURCE = Path(__file__).resolve().parent.parent / "assets" / "lsystems" / "abop_2_8_tree.lsys"
 
@@ -91,8 +91,8 @@ def print_agreement(compiled, peer) -> None:
 def render_frames(meshes) -> None:
     """Headless frame time at 1280x720 for each LOD level (median of 5 frames after a warm-up)."""
     try:
-        from game.render.camera import OrbitCamera
-        from game.render.renderer import TreeRenderer, headless_context, sun_direction
+        from arbor.game.render.camera import OrbitCamera
+        from arbor.game.render.renderer import TreeRenderer, headless_context, sun_direction
     except ImportError as exc:  # pragma: no cover - game extras missing
         print(f"render skipped: {exc}")
         return

@@ -13,11 +13,11 @@ from pathlib import Path
 
 import numpy as np
 
-from engine.forest.divisors import PropagationRule, children_function, children_table, sigma, sigma_alt
-from engine.geometry.mesh import wood_mesh
-from engine.geometry.turtle import TurtleConfig, interpret
-from engine.lsystem.derive import derive
-from engine.lsystem.lsys import parse_lsystem
+from arbor.engine.forest.divisors import PropagationRule, children_function, children_table, sigma, sigma_alt
+from arbor.engine.geometry.mesh import wood_mesh
+from arbor.engine.geometry.turtle import TurtleConfig, interpret
+from arbor.engine.lsystem.derive import derive
+from arbor.engine.lsystem.lsys import parse_lsystem
 
 SOURCE = Path(__file__).resolve().parent.parent / "assets" / "lsystems" / "divisor_tree.lsys"
 STEPS = 9

@@ -17,13 +17,13 @@ from pathlib import Path
 
 import numpy as np
 
-from engine.base.memory import keep_freed_memory
-from engine.life.rules import load_rules
-from engine.life.save import load_garden, save_world
-from engine.life.world import World
-from engine.lsystem.derive import Deriver
-from engine.lsystem.lstring import concat, parse_lstring
-from engine.lsystem.lsys import load_lsystem
+from arbor.engine.base.memory import keep_freed_memory
+from arbor.engine.life.rules import load_rules
+from arbor.engine.life.save import load_garden, save_world
+from arbor.engine.life.world import World
+from arbor.engine.lsystem.derive import Deriver
+from arbor.engine.lsystem.lstring import concat, parse_lstring
+from arbor.engine.lsystem.lsys import load_lsystem
 
 ASSETS = Path(__file__).resolve().parent.parent / "assets"
 TARGET = 100_000

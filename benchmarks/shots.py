@@ -21,12 +21,12 @@ def main() -> None:
     import pygame
     from PIL import Image, ImageDraw
 
+    from arbor.game.render.camera import OrbitCamera
+    from arbor.game.render.garden import TWIG_PIXELS
+    from arbor.game.render.instanced import LEAF_KEPT, Detail
+    from arbor.game.render.renderer import headless_context
+    from arbor.game.screens.game import Game, GameConfig
     from benchmarks.game import grown_tree
-    from game.render.camera import OrbitCamera
-    from game.render.garden import TWIG_PIXELS
-    from game.render.instanced import LEAF_KEPT, Detail
-    from game.render.renderer import headless_context
-    from game.screens.game import Game, GameConfig
 
     out = Path(sys.argv[1]) if len(sys.argv) > 1 else Path("docs/renderer.png")
     days = float(sys.argv[2]) if len(sys.argv) > 2 else 12.0

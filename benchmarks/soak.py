@@ -32,7 +32,7 @@ def rss_bytes() -> int:
 
 def gesture(rng, t: float) -> list:
     """A tap, a drag (sometimes corner to corner) or a two-finger pinch."""
-    from game.input.events import DOWN, MOVE, UP, InputEvent
+    from arbor.game.input.events import DOWN, MOVE, UP, InputEvent
 
     x, y = rng.uniform(0, SIZE[0]), rng.uniform(0, SIZE[1])
     kind = rng.integers(4)
@@ -55,10 +55,10 @@ def soak(minutes: float, seed: int = 3) -> float:
     """Run the soak; returns the RSS growth over the second half (a fraction)."""
     import pygame
 
-    from engine.base.memory import keep_freed_memory
-    from game.render.renderer import headless_context
-    from game.screens.game import Game, GameConfig
-    from game.screens.kiosk import Kiosk, KioskConfig
+    from arbor.engine.base.memory import keep_freed_memory
+    from arbor.game.render.renderer import headless_context
+    from arbor.game.screens.game import Game, GameConfig
+    from arbor.game.screens.kiosk import Kiosk, KioskConfig
 
     keep_freed_memory()  # as `arbor` does
     pygame.init()

@@ -10,11 +10,11 @@ from __future__ import annotations
 
 import numpy as np
 
+from arbor.engine.geometry.mesh import tree_mesh
+from arbor.engine.geometry.turtle import TurtleConfig, interpret
+from arbor.engine.modeling.modeler import Modeler
+from arbor.engine.modeling.strokes import Stroke
 from benchmarks import median_ms
-from engine.geometry.mesh import tree_mesh
-from engine.geometry.turtle import TurtleConfig, interpret
-from engine.modeling.modeler import Modeler
-from engine.modeling.strokes import Stroke
 
 RAW_POINTS = 2000
 

@@ -13,8 +13,8 @@ import tempfile
 import time
 from pathlib import Path
 
-from game.commands.sweep import run_sweep
-from game.paths import ASSETS
+from arbor.game.commands.sweep import run_sweep
+from arbor.game.paths import ASSETS
 
 DAY = 125.66667  # game seconds per day of the sun at the demo pace
 

@@ -10,9 +10,9 @@ from pathlib import Path
 
 import numpy as np
 
-from game.errors import NO_DISPLAY, UserError
-from game.render.renderer import save_png
-from game.watchdog import STAFF_EXIT
+from arbor.game.errors import NO_DISPLAY, UserError
+from arbor.game.render.renderer import save_png
+from arbor.game.watchdog import STAFF_EXIT
 
 WINDOW = (1280, 720)
 
@@ -109,7 +109,7 @@ def run_app(args: argparse.Namespace | None = None) -> int:
     """Open the game window and run until closed (Esc or the close button); saves on the way out."""
     import pygame
 
-    from game.screens.game import Game, GameConfig
+    from arbor.game.screens.game import Game, GameConfig
 
     ctx = open_window(WINDOW, "Arbor")
     config = GameConfig()
@@ -133,9 +133,9 @@ def run_kiosk(args: argparse.Namespace) -> int:
 
     import pygame
 
-    from game.paths import ASSETS
-    from game.screens.game import Game, GameConfig
-    from game.screens.kiosk import Kiosk, load_kiosk_config
+    from arbor.game.paths import ASSETS
+    from arbor.game.screens.game import Game, GameConfig
+    from arbor.game.screens.kiosk import Kiosk, load_kiosk_config
 
     config = GameConfig()
     saves = getattr(args, "saves", None) or os.environ.get("ARBOR_SAVES")
@@ -162,13 +162,13 @@ def run_kiosk(args: argparse.Namespace) -> int:
 
 def make_input_hub(args: argparse.Namespace | None, size: tuple[int, int], now: float):
     """The input layer for the window: HID trackers always, TUIO, recording and replay on request."""
-    from game.input.events import InputHub, Player, Recorder, load_recording
-    from game.input.hid import HidManager, load_profiles
-    from game.paths import ASSETS
+    from arbor.game.input.events import InputHub, Player, Recorder, load_recording
+    from arbor.game.input.hid import HidManager, load_profiles
+    from arbor.game.paths import ASSETS
 
     sources: list = [HidManager(profiles=load_profiles(ASSETS / "input" / "devices.toml"))]
     if getattr(args, "tuio", False):
-        from game.input.tuio import TuioListener
+        from arbor.game.input.tuio import TuioListener
 
         sources.append(TuioListener(size, args.tuio_host, args.tuio_port))
     if getattr(args, "replay", None):
@@ -184,9 +184,9 @@ def run_lab_window(experiment: Path) -> int:
     """The lab screen in a window: trees side by side, live charts, speed and export buttons."""
     import pygame
 
-    from game.commands.lab import new_lab
-    from game.input.events import InputHub
-    from game.screens.lab import LabScreen
+    from arbor.game.commands.lab import new_lab
+    from arbor.game.input.events import InputHub
+    from arbor.game.screens.lab import LabScreen
 
     lab = new_lab(experiment)
     ctx = open_window(WINDOW, f"Arbor lab - {lab.experiment.title}")
@@ -200,8 +200,8 @@ def run_viewer(source: Path) -> int:
     """Open the viewer window on an .lsys file."""
     import pygame
 
-    from game.input.events import InputHub
-    from game.screens.viewer import Viewer
+    from arbor.game.input.events import InputHub
+    from arbor.game.screens.viewer import Viewer
 
     ctx = open_window(WINDOW, f"Arbor - {source.name}")
     viewer = Viewer(ctx, WINDOW, source)

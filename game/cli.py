@@ -6,21 +6,21 @@ import argparse
 import sys
 from pathlib import Path
 
-from engine.base.errors import LSysError
-from engine.base.memory import keep_freed_memory
-from engine.lsystem.derive import DEFAULT_BUDGET, MAX_BUDGET
-from game.errors import UserError
-from game.paths import ASSETS
+from arbor.engine.base.errors import LSysError
+from arbor.engine.base.memory import keep_freed_memory
+from arbor.engine.lsystem.derive import DEFAULT_BUDGET, MAX_BUDGET
+from arbor.game.errors import UserError
+from arbor.game.paths import ASSETS
 
 
 def _source(args: argparse.Namespace):
-    from game.commands.trees import TreeSource
+    from arbor.game.commands.trees import TreeSource
 
     return TreeSource(args.source, args.steps, args.seed, args.budget, getattr(args, "tree", 0))
 
 
 def _cmd_derive(args: argparse.Namespace) -> int:
-    from game.commands.trees import derive_source
+    from arbor.game.commands.trees import derive_source
 
     _, result = derive_source(_source(args))
     print(result.to_text())
@@ -57,8 +57,8 @@ def _size(text: str) -> tuple[int, int]:
 
 
 def _cmd_render(args: argparse.Namespace) -> int:
-    from game.commands.trees import tree_geometry
-    from game.render.renderer import render_image, save_png
+    from arbor.game.commands.trees import tree_geometry
+    from arbor.game.render.renderer import render_image, save_png
 
     geometry, ls = tree_geometry(_source(args), args.lod)
     pixels = render_image(geometry.mesh, args.size, yaw=args.yaw, pitch=args.pitch)
@@ -69,8 +69,8 @@ def _cmd_render(args: argparse.Namespace) -> int:
 
 
 def _cmd_export(args: argparse.Namespace) -> int:
-    from engine.geometry.export import export_tree
-    from game.commands.trees import tree_geometry
+    from arbor.engine.geometry.export import export_tree
+    from arbor.game.commands.trees import tree_geometry
 
     fmt = (args.format or args.out.suffix.lstrip(".")).lower()
     if fmt not in ("glb", "obj"):
@@ -85,10 +85,10 @@ def _cmd_export(args: argparse.Namespace) -> int:
 
 def _cmd_lab(args: argparse.Namespace) -> int:
     if args.out is None:
-        from game.app import run_lab_window
+        from arbor.game.app import run_lab_window
 
         return run_lab_window(args.experiment)
-    from game.commands.lab import run_headless
+    from arbor.game.commands.lab import run_headless
 
     files = run_headless(args.experiment, args.out)
     print("\n".join(str(f) for f in files))
@@ -96,19 +96,19 @@ def _cmd_lab(args: argparse.Namespace) -> int:
 
 
 def _cmd_sweep(args: argparse.Namespace) -> int:
-    from game.commands.sweep import run_sweep
+    from arbor.game.commands.sweep import run_sweep
 
     return run_sweep(args.sweep, args.out, args.workers, args.scheduler, plots=not args.no_plots)
 
 
 def _cmd_landscape(args: argparse.Namespace) -> int:
-    from game.commands.landscape import parse_presets, render_landscape
+    from arbor.game.commands.landscape import parse_presets, render_landscape
 
     presets = render_landscape(args.trees, args.out, args.size, args.seed or 0, args.lod, parse_presets(args.presets))
     if args.glb:
-        from engine.forest.landscape import scatter
-        from engine.geometry.export import export_garden
-        from game.commands.landscape import landscape_size
+        from arbor.engine.forest.landscape import scatter
+        from arbor.engine.geometry.export import export_garden
+        from arbor.game.commands.landscape import landscape_size
 
         instances = scatter(args.trees, len(presets), landscape_size(args.trees), args.seed or 0)
         export_garden(presets, instances, args.glb, ASSETS / "textures")
@@ -117,7 +117,7 @@ def _cmd_landscape(args: argparse.Namespace) -> int:
 
 
 def _cmd_breed(args: argparse.Namespace) -> int:
-    from game.commands.family import breed_saves
+    from arbor.game.commands.family import breed_saves
 
     garden = breed_saves(args.a, args.b, args.seed, args.out, args.tree_a, args.tree_b)
     child = garden.world
@@ -127,7 +127,7 @@ def _cmd_breed(args: argparse.Namespace) -> int:
 
 
 def _cmd_lineage(args: argparse.Namespace) -> int:
-    from game.commands.family import lineage_text
+    from arbor.game.commands.family import lineage_text
 
     print(lineage_text(args.save))
     return 0
@@ -204,7 +204,7 @@ def build_parser() -> argparse.ArgumentParser:
     lineage.set_defaults(run=_cmd_lineage)
     view = sub.add_parser("view", help="open a window showing an .lsys tree (drag, wheel, space)")
     view.add_argument("source", type=Path)
-    view.set_defaults(run=lambda a: __import__("game.app", fromlist=["run_viewer"]).run_viewer(a.source))
+    view.set_defaults(run=lambda a: __import__("arbor.game.app", fromlist=["run_viewer"]).run_viewer(a.source))
     sub.add_parser("watchdog", help="arbor watchdog ARGS...: keep `arbor ARGS...` running (restarts it when it "
                    "crashes or hangs; for kiosks: arbor watchdog --kiosk)")
     parser.add_argument("--saves", type=Path, default=None, help="folder for save files (default: saves/)")
@@ -224,7 +224,7 @@ def main(argv: list[str] | None = None) -> int:
     """Entry point of the `arbor` console script: user errors end in one line naming what to fix."""
     argv = sys.argv[1:] if argv is None else argv
     if argv[:1] == ["watchdog"]:  # everything after it belongs to the watched app
-        from game.watchdog import main as watchdog
+        from arbor.game.watchdog import main as watchdog
 
         return watchdog(argv[1:])
     parser = build_parser()
@@ -232,7 +232,7 @@ def main(argv: list[str] | None = None) -> int:
     keep_freed_memory()
     try:
         if args.command is None:
-            from game.app import run_app, run_kiosk
+            from arbor.game.app import run_app, run_kiosk
 
             return run_kiosk(args) if args.kiosk else run_app(args)
         return args.run(args)

@@ -5,7 +5,7 @@ from __future__ import annotations
 import os
 from pathlib import Path
 
-from engine.base.assets import assets_dir
+from arbor.engine.base.assets import assets_dir
 
 ROOT = Path(__file__).resolve().parent.parent
 

@@ -5,7 +5,7 @@ from __future__ import annotations
 import tomllib
 from pathlib import Path
 
-from game.paths import ASSETS
+from arbor.game.paths import ASSETS
 
 STRINGS_DIR = ASSETS / "strings"
 _table: dict[str, dict[str, str]] = {}

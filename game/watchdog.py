@@ -32,7 +32,7 @@ CRASH_LOOP = 3  # young crashes in a row before the saved garden is moved aside
 
 def _saves_folder(args: list[str]) -> Path:
     """The kiosk's save folder the child will use (``--saves DIR``, ARBOR_SAVES, else the default)."""
-    from game.paths import default_saves
+    from arbor.game.paths import default_saves
 
     saves = os.environ.get("ARBOR_SAVES")
     for i, arg in enumerate(args):
@@ -103,4 +103,4 @@ def _move_garden_aside(folder: Path) -> None:
 def main(args: list[str]) -> int:
     """`arbor watchdog ARGS...`: keep `arbor ARGS...` alive."""
     logging.basicConfig(level=logging.INFO)
-    return watch([sys.executable, "-m", "game.cli", *args], saves=_saves_folder(args))
+    return watch([sys.executable, "-m", "arbor.game.cli", *args], saves=_saves_folder(args))

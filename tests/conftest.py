@@ -23,7 +23,7 @@ def gl_ctx():
     """One headless EGL context for the whole run, with a (dummy-driver) pygame display for events."""
     import pygame
 
-    from game.render.renderer import headless_context
+    from arbor.game.render.renderer import headless_context
 
     pygame.init()
     pygame.display.set_mode((64, 64))

@@ -1,7 +1,7 @@
 import numpy as np
 import pytest
 
-from engine.geometry.chains import chain_sum
+from arbor.engine.geometry.chains import chain_sum
 
 
 def random_forest(rng, n, deep=0):

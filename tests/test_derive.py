@@ -3,10 +3,10 @@ import hashlib
 import numpy as np
 import pytest
 
-from engine.lsystem import brackets, context
-from engine.lsystem.derive import Deriver, derive
-from engine.lsystem.lstring import parse_lstring
-from engine.lsystem.lsys import load_lsystem, parse_lsystem
+from arbor.engine.lsystem import brackets, context
+from arbor.engine.lsystem.derive import Deriver, derive
+from arbor.engine.lsystem.lstring import parse_lstring
+from arbor.engine.lsystem.lsys import load_lsystem, parse_lsystem
 
 
 def test_koch_island_has_8_to_the_n_edges_per_side(lsys_dir):

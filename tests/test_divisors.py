@@ -1,8 +1,8 @@
 import numpy as np
 import pytest
 
-from engine.base.errors import LSysError
-from engine.forest.divisors import (
+from arbor.engine.base.errors import LSysError
+from arbor.engine.forest.divisors import (
     PropagationRule,
     branch_differences,
     convolution,
@@ -58,8 +58,8 @@ def test_algorithm_2_counts():
 
 
 def test_host_functions_drive_an_lsystem(lsys_dir):
-    from engine.lsystem.derive import derive
-    from engine.lsystem.lsys import load_lsystem, parse_lsystem
+    from arbor.engine.lsystem.derive import derive
+    from arbor.engine.lsystem.lsys import load_lsystem, parse_lsystem
 
     counts = {0: 2, 1: 3, 2: 1}
     host = {"children": (lambda i: np.vectorize(lambda v: counts.get(int(v), 1))(i).astype(float), 1, 1)}
@@ -72,8 +72,8 @@ def test_host_functions_drive_an_lsystem(lsys_dir):
 
 
 def test_divisor_propagation_grows_far_slower_than_fixed_branching():
+    from arbor.engine.forest.divisors import children_function, children_table
     from benchmarks.propagation import counts
-    from engine.forest.divisors import children_function, children_table
 
     rules = [PropagationRule(lambda k: sigma(0, k)), PropagationRule(lambda k: sigma_alt(0, k), 2)]
     table = children_table(rules, 6, seed=3)

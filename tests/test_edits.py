@@ -4,19 +4,19 @@ from pathlib import Path
 
 import numpy as np
 
-from engine.geometry.turtle import TurtleConfig, interpret, module_positions
-from engine.life.growth import Clocks, grow_geometry, render_view
-from engine.lsystem.lstring import parse_lstring
-from engine.lsystem.lsys import load_lsystem
-from engine.modeling.edits import apply_edit, load_edit_sets
-from engine.modeling.regions import Sphere
+from arbor.engine.geometry.turtle import TurtleConfig, interpret, module_positions
+from arbor.engine.life.growth import Clocks, grow_geometry, render_view
+from arbor.engine.lsystem.lstring import parse_lstring
+from arbor.engine.lsystem.lsys import load_lsystem
+from arbor.engine.modeling.edits import apply_edit, load_edit_sets
+from arbor.engine.modeling.regions import Sphere
 
 ASSETS = Path(__file__).resolve().parents[1] / "assets"
 SETS = load_edit_sets(ASSETS / "edits")
 
 
 def game_tree(steps: int = 40):
-    from engine.life.growth import GrowingTree
+    from arbor.engine.life.growth import GrowingTree
 
     system = load_lsystem(ASSETS / "lsystems" / "game_tree.lsys")
     tree = GrowingTree(system)
@@ -57,7 +57,7 @@ def test_added_blossoms_grow_in_and_show_only_inside():
 
 
 def test_bend_turns_branches_down_only_inside():
-    from engine.modeling.bend import bend_region
+    from arbor.engine.modeling.bend import bend_region
 
     ls = parse_lstring("F(1)[&(30)F(1)F(1)]F(1)[&(30)F(1)F(1)]F(1)")
     pos = module_positions(ls)
@@ -89,7 +89,7 @@ def test_a_budget_holds_back_growing_edits_but_not_erasing():
 
 
 def test_prune_region_removes_the_subtrees_that_start_inside_and_nothing_else():
-    from engine.modeling.edits import prune_region
+    from arbor.engine.modeling.edits import prune_region
 
     tree, clocks = game_tree(60)
     ls, pos = tree.lstring, positions_of(tree, clocks)

@@ -6,11 +6,11 @@ import numpy as np
 import pytest
 import trimesh
 
-from engine.geometry.export import export_tree
-from engine.geometry.tree import build_geometry
-from engine.lsystem.derive import derive
-from engine.lsystem.lsys import load_lsystem
-from game.cli import main
+from arbor.engine.geometry.export import export_tree
+from arbor.engine.geometry.tree import build_geometry
+from arbor.engine.lsystem.derive import derive
+from arbor.engine.lsystem.lsys import load_lsystem
+from arbor.game.cli import main
 
 TEXTURES = Path(__file__).resolve().parent.parent / "assets" / "textures"
 

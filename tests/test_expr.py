@@ -3,8 +3,8 @@ import math
 import numpy as np
 import pytest
 
-from engine.base.errors import LSysError
-from engine.lsystem.expr import EvalContext, compile_expression, evaluate
+from arbor.engine.base.errors import LSysError
+from arbor.engine.lsystem.expr import EvalContext, compile_expression, evaluate
 
 
 def ev(text, **vars):

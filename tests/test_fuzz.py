@@ -12,6 +12,12 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
+from arbor.engine.life.rules import load_rules
+from arbor.engine.life.save import load_garden, save_garden
+from arbor.engine.life.save_check import SIM_FIELDS
+from arbor.engine.life.world import World
+from arbor.engine.lsystem.lsys import load_lsystem
+from arbor.game.input.tuio import TuioParser
 from benchmarks.fuzz import (
     mutate_text,
     random_packet,
@@ -21,12 +27,6 @@ from benchmarks.fuzz import (
     try_save,
     try_source,
 )
-from engine.life.rules import load_rules
-from engine.life.save import load_garden, save_garden
-from engine.life.save_check import SIM_FIELDS
-from engine.life.world import World
-from engine.lsystem.lsys import load_lsystem
-from game.input.tuio import TuioParser
 
 FAST = settings(max_examples=120, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
 
@@ -67,8 +67,8 @@ def test_tuio_packets_never_raise(seed):
 
 
 def test_a_hostile_nesting_is_refused_not_a_crash():
-    from engine.base.errors import LSysError
-    from engine.lsystem.lsys import parse_lsystem
+    from arbor.engine.base.errors import LSysError
+    from arbor.engine.lsystem.lsys import parse_lsystem
 
     for text in ("w: F(" + "-" * 495 + "1)", "w: F(" + "(" * 600 + "1" + ")" * 600 + ")",
                  "#extern x\nw: A(1)\np1: A(a) -> A(" + "+".join(["a"] * 3000) + ")"):

@@ -6,11 +6,11 @@ import numpy as np
 import pygame
 import pytest
 
-from engine.life.rules import load_rules
-from engine.life.world import replay
-from engine.lsystem.lsys import load_lsystem
-from game.input.gestures import MAX_TILT
-from game.screens.game import Game, GameConfig
+from arbor.engine.life.rules import load_rules
+from arbor.engine.life.world import replay
+from arbor.engine.lsystem.lsys import load_lsystem
+from arbor.game.input.gestures import MAX_TILT
+from arbor.game.screens.game import Game, GameConfig
 from tests.conftest import FakeClock
 
 SIZE = (1280, 720)

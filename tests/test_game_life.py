@@ -11,10 +11,10 @@ import numpy as np
 import pygame
 import pytest
 
-from engine.life.rules import load_rules
-from engine.life.world import World
-from engine.lsystem.lsys import load_lsystem
-from game.screens.game import Game, GameConfig
+from arbor.engine.life.rules import load_rules
+from arbor.engine.life.world import World
+from arbor.engine.lsystem.lsys import load_lsystem
+from arbor.game.screens.game import Game, GameConfig
 from tests.conftest import FakeClock
 from tests.test_game import tap
 from tests.test_seasons import careful

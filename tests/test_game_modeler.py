@@ -3,9 +3,9 @@
 import numpy as np
 import pytest
 
-from engine.life.save import load_world, save_world
-from game.input.events import DOWN, MOVE, UP, InputEvent
-from game.screens.game import Game, GameConfig
+from arbor.engine.life.save import load_world, save_world
+from arbor.game.input.events import DOWN, MOVE, UP, InputEvent
+from arbor.game.screens.game import Game, GameConfig
 
 SIZE = (1280, 720)
 
@@ -334,7 +334,7 @@ def test_tracker_arch_closes_the_ring_lobe_with_a_dome(game):
 
 
 def test_two_outlines_make_a_supertoroid_region_and_edits_stay_inside_it(game):
-    from engine.modeling.regions import Supertoroid
+    from arbor.engine.modeling.regions import Supertoroid
 
     press_menu(game, "modeler")
     x0, y0 = base_pixel(game)
@@ -393,7 +393,7 @@ def test_grow_edit_wakes_buds_in_the_region_and_starts_an_axis_in_an_empty_one(g
 
 
 def test_a_region_is_moved_by_dragging_inside_it_and_resized_from_its_rim(game):
-    from engine.modeling.regions import Sphere
+    from arbor.engine.modeling.regions import Sphere
 
     press_menu(game, "symbols")
     x0, y0 = base_pixel(game)

@@ -7,14 +7,14 @@ import math
 import numpy as np
 import pytest
 
-from engine.life.growth import Clocks
-from engine.life.growth_view import GrowthView
-from engine.life.rules import load_rules
-from engine.life.world import World
-from engine.lsystem.lsys import load_lsystem
-from game.render.camera import project_points
-from game.render.instanced import LEAF_KEPT, Detail
-from game.screens.game import Game, GameConfig
+from arbor.engine.life.growth import Clocks
+from arbor.engine.life.growth_view import GrowthView
+from arbor.engine.life.rules import load_rules
+from arbor.engine.life.world import World
+from arbor.engine.lsystem.lsys import load_lsystem
+from arbor.game.render.camera import project_points
+from arbor.game.render.instanced import LEAF_KEPT, Detail
+from arbor.game.screens.game import Game, GameConfig
 
 SIZE = (640, 360)
 
@@ -119,7 +119,7 @@ def test_the_rising_sun_shows_in_the_default_view(game):
 def test_blossoms_are_pink(game):
     import re
 
-    from engine.lsystem.lstring import parse_lstring
+    from arbor.engine.lsystem.lstring import parse_lstring
 
     text = game.world.tree.lstring.to_text().replace("L(", "K(")  # every leaf becomes a blossom, K(birth)
     game.world.tree.lstring = parse_lstring(re.sub(r"K\(([-0-9.e]+),[-0-9.e]+,[-0-9.e]+\)", r"K(\1)", text))
@@ -169,7 +169,7 @@ def test_a_frame_updates_records_without_rebuilding(game, monkeypatch):
 
 
 def test_a_branch_shed_just_now_falls_then_is_gone(game, grown):
-    from game.render.falling import FALL_SECONDS
+    from arbor.game.render.falling import FALL_SECONDS
 
     game.world.tree.fallen = copy.deepcopy(grown.tree.fallen)
     assert game.world.tree.fallen, "the grown tree has shed a branch lately"
@@ -185,7 +185,7 @@ def test_branches_fall_in_a_picture_drawn_over_frames(game, grown, monkeypatch):
     """Falling branches are new buffers every frame (the old ones freed): a picture drawn over several
     frames keeps going while they fall, draws them as they are when each step runs, and copes with
     one landing mid-picture."""
-    from game.render.falling import FALL_SECONDS
+    from arbor.game.render.falling import FALL_SECONDS
 
     monkeypatch.setattr(game.renderer, "_scale", lambda *a: 0.5)
     game.world.tree.fallen = copy.deepcopy(grown.tree.fallen)
@@ -276,8 +276,8 @@ def test_the_trees_follow_the_camera_at_once(game, monkeypatch):
 
 def test_a_shadow_map_in_use_is_always_whole(gl_ctx):
     """The shadow map is redrawn into a second map, piece by piece, and swapped in at the end."""
-    from game.render.instanced import WHOLE, Piece
-    from game.render.shadows import SHADOW_FRAMES, ShadowMaps
+    from arbor.game.render.instanced import WHOLE, Piece
+    from arbor.game.render.shadows import SHADOW_FRAMES, ShadowMaps
 
     maps = ShadowMaps(gl_ctx)
     sun, versions = np.array([0.0, 1.0, 0.0]), (1,)

@@ -1,10 +1,10 @@
 import numpy as np
 import pytest
 
-from engine.base.errors import LSysError
-from engine.forest.geomatree import Species, growth_system, load_species, seed_points
-from engine.geometry.tree import build_geometry
-from engine.lsystem.derive import derive
+from arbor.engine.base.errors import LSysError
+from arbor.engine.forest.geomatree import Species, growth_system, load_species, seed_points
+from arbor.engine.geometry.tree import build_geometry
+from arbor.engine.lsystem.derive import derive
 from tests.conftest import ROOT
 
 SOURCE = ROOT / "assets" / "lsystems" / "geomatree.lsys"

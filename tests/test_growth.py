@@ -1,10 +1,10 @@
 import numpy as np
 import pytest
 
-from engine.life.growth import Clocks, GrowingTree
-from engine.life.rules import load_rules
-from engine.life.world import World
-from engine.lsystem.lsys import load_lsystem
+from arbor.engine.life.growth import Clocks, GrowingTree
+from arbor.engine.life.rules import load_rules
+from arbor.engine.life.world import World
+from arbor.engine.lsystem.lsys import load_lsystem
 
 FPS = 60
 

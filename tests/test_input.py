@@ -9,10 +9,21 @@ import pytest
 from pythonosc.osc_bundle_builder import IMMEDIATELY, OscBundleBuilder
 from pythonosc.osc_message_builder import OscMessageBuilder
 
-from game.input.events import DEVICE, DOWN, MOVE, ROTATE, UP, InputEvent, InputHub, Player, Recorder, load_recording
-from game.input.hid import HidManager, SpaceMouseState, load_profiles, parse_spacemouse
-from game.input.tuio import TuioListener
-from game.screens.game import Game, GameConfig
+from arbor.game.input.events import (
+    DEVICE,
+    DOWN,
+    MOVE,
+    ROTATE,
+    UP,
+    InputEvent,
+    InputHub,
+    Player,
+    Recorder,
+    load_recording,
+)
+from arbor.game.input.hid import HidManager, SpaceMouseState, load_profiles, parse_spacemouse
+from arbor.game.input.tuio import TuioListener
+from arbor.game.screens.game import Game, GameConfig
 
 SIZE = (1280, 720)
 

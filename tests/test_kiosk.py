@@ -7,12 +7,12 @@ from pathlib import Path
 import pygame
 import pytest
 
-from engine.base.errors import LSysError
-from game import strings
-from game.input.events import DOWN, KEY_DOWN, MOVE, QUIT, UP, InputEvent
-from game.screens.game import Game, GameConfig
-from game.screens.kiosk import Kiosk, KioskConfig, load_kiosk_config
-from game.watchdog import STAFF_EXIT, watch
+from arbor.engine.base.errors import LSysError
+from arbor.game import strings
+from arbor.game.input.events import DOWN, KEY_DOWN, MOVE, QUIT, UP, InputEvent
+from arbor.game.screens.game import Game, GameConfig
+from arbor.game.screens.kiosk import Kiosk, KioskConfig, load_kiosk_config
+from arbor.game.watchdog import STAFF_EXIT, watch
 from tests.conftest import FakeClock
 
 SIZE = (1280, 720)
@@ -178,7 +178,7 @@ def test_kiosk_runs_fullscreen_in_a_real_window(tmp_path):
     shot = tmp_path / "kiosk.png"
     env = dict(os.environ, SDL_VIDEODRIVER="x11", SDL_AUDIODRIVER="dummy", ARBOR_MAX_FRAMES="5",
                ARBOR_SCREENSHOT=str(shot), ARBOR_SAVES=str(tmp_path / "saves"))
-    cmd = ["xvfb-run", "-a", "-s", "-screen 0 1024x768x24", sys.executable, "-m", "game.cli", "--kiosk"]
+    cmd = ["xvfb-run", "-a", "-s", "-screen 0 1024x768x24", sys.executable, "-m", "arbor.game.cli", "--kiosk"]
     proc = subprocess.run(cmd, env=env, capture_output=True, timeout=120)
     assert proc.returncode == 0, proc.stderr.decode()[-2000:]
     assert pygame.image.load(str(shot)).get_size() == (1024, 768)  # the whole screen

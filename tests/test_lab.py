@@ -3,10 +3,10 @@ import csv
 import numpy as np
 import pytest
 
-from engine.base.errors import LSysError
-from engine.life.lab import Lab, load_experiment
-from engine.life.rules import load_rules
-from game.commands.lab import run_headless
+from arbor.engine.base.errors import LSysError
+from arbor.engine.life.lab import Lab, load_experiment
+from arbor.engine.life.rules import load_rules
+from arbor.game.commands.lab import run_headless
 from tests.conftest import ROOT
 
 LSYS = ROOT / "assets" / "lsystems"
@@ -86,9 +86,9 @@ def test_bad_experiments_are_clear_errors(tmp_path, text, words):
 def test_lab_screen_draws_trees_side_by_side_and_exports(gl_ctx, tmp_path):
     import numpy as np
 
-    from game.commands.lab import new_lab
-    from game.input.events import DOWN, InputEvent
-    from game.screens.lab import LabScreen
+    from arbor.game.commands.lab import new_lab
+    from arbor.game.input.events import DOWN, InputEvent
+    from arbor.game.screens.lab import LabScreen
 
     lab = new_lab(short(EXPERIMENTS / "drought_vs_watered.toml", tmp_path, 900))
     size = (1280, 720)
@@ -126,7 +126,7 @@ def test_lab_window_opens(tmp_path):
     shot = tmp_path / "lab.png"
     env = dict(os.environ, SDL_VIDEODRIVER="x11", SDL_AUDIODRIVER="dummy", ARBOR_MAX_FRAMES="3",
                ARBOR_SCREENSHOT=str(shot))
-    cmd = ["xvfb-run", "-a", "-s", "-screen 0 1280x720x24", sys.executable, "-m", "game.cli", "lab",
+    cmd = ["xvfb-run", "-a", "-s", "-screen 0 1280x720x24", sys.executable, "-m", "arbor.game.cli", "lab",
            str(EXPERIMENTS / "sun_vs_shade.toml")]
     proc = subprocess.run(cmd, env=env, capture_output=True, timeout=120)
     assert proc.returncode == 0, proc.stderr.decode()[-2000:]

@@ -4,15 +4,15 @@ import struct
 import numpy as np
 import pytest
 
-from engine.forest.landscape import lod_levels, scatter, terrain_height, visible
-from engine.geometry.export import export_garden
-from game.render.camera import OrbitCamera
+from arbor.engine.forest.landscape import lod_levels, scatter, terrain_height, visible
+from arbor.engine.geometry.export import export_garden
+from arbor.game.render.camera import OrbitCamera
 from tests.conftest import ROOT
 
 
 @pytest.fixture(scope="module")
 def presets():
-    from game.commands.landscape import build_presets
+    from arbor.game.commands.landscape import build_presets
 
     return build_presets()
 
@@ -42,9 +42,9 @@ def test_frustum_culling_and_lod_by_distance():
 
 
 def test_landscape_renders_many_trees(gl_ctx, presets):
-    from game.commands.landscape import landscape_size, overview_camera
-    from game.render.landscape import LandscapeRenderer
-    from game.render.renderer import sun_direction
+    from arbor.game.commands.landscape import landscape_size, overview_camera
+    from arbor.game.render.landscape import LandscapeRenderer
+    from arbor.game.render.renderer import sun_direction
 
     side = landscape_size(300)
     renderer = LandscapeRenderer(gl_ctx, presets, side)
@@ -80,7 +80,7 @@ def test_garden_glb_shares_meshes_between_instances(tmp_path, presets):
 
 
 def test_cli_landscape_with_chosen_presets(tmp_path, capsys):
-    from game.cli import main
+    from arbor.game.cli import main
 
     out, glb = tmp_path / "land.png", tmp_path / "land.glb"
     assert main(["landscape", "40", "--size", "320x180", "--presets", "broadleaf,abop_2_8_tree:3", "--out",

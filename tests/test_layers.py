@@ -39,16 +39,21 @@ def _module_name(path: Path, root: Path = ROOT) -> str:
     return ".".join(parts)
 
 
+def _ours(name: str) -> str:
+    """An imported name as the checkout's folders name it (``arbor.engine.base`` -> ``engine.base``)."""
+    return name.removeprefix("arbor.")
+
+
 def imports_of(path: Path) -> list[tuple[str, int]]:
-    """Every module ``path`` imports, with the line of the import."""
+    """Every module ``path`` imports, with the line of the import (our own modules without ``arbor.``)."""
     tree = ast.parse(path.read_text(encoding="utf-8"), str(path))
     found = []
     for node in ast.walk(tree):
         if isinstance(node, ast.Import):
-            found += [(alias.name, node.lineno) for alias in node.names]
+            found += [(_ours(alias.name), node.lineno) for alias in node.names]
         elif isinstance(node, ast.ImportFrom) and node.module and node.level == 0:
-            found.append((node.module, node.lineno))
-            found += [(f"{node.module}.{alias.name}", node.lineno) for alias in node.names]
+            found.append((_ours(node.module), node.lineno))
+            found += [(_ours(f"{node.module}.{alias.name}"), node.lineno) for alias in node.names]
     return found
 
 
@@ -100,8 +105,8 @@ def test_the_rule_bites(tmp_path):
     """An upward import planted in a copy of a low layer is reported."""
     (tmp_path / "engine" / "base").mkdir(parents=True)
     (tmp_path / "engine" / "life").mkdir()
-    (tmp_path / "engine" / "base" / "x.py").write_text("def f():\n    from engine.life.sim import Rules\n")
-    (tmp_path / "engine" / "life" / "y.py").write_text("from engine.base import x\n")
+    (tmp_path / "engine" / "base" / "x.py").write_text("def f():\n    from arbor.engine.life.sim import Rules\n")
+    (tmp_path / "engine" / "life" / "y.py").write_text("from arbor.engine.base import x\n")
     bad = violations(tmp_path, ENGINE, "engine")
     assert len(bad) == 1 and "engine/base/x.py:2" in bad[0]
 
@@ -115,20 +120,23 @@ def test_no_class_is_over_250_lines():
 
 
 def test_pyproject_ships_every_package():
-    """`pip install .` (not only -e) must carry every sub-package; assets ship as arbor_assets."""
+    """`pip install .` (not only -e) must carry every sub-package under `arbor`; assets ship as arbor.assets;
+    benchmarks are never installed."""
     import tomllib
 
-    listed = set(tomllib.loads((ROOT / "pyproject.toml").read_text())["tool"]["setuptools"]["packages"])
-    for top in ("engine", "game", "benchmarks"):
+    setup = tomllib.loads((ROOT / "pyproject.toml").read_text())["tool"]["setuptools"]
+    listed = set(setup["packages"])
+    for top in ("engine", "game"):
         for init in (ROOT / top).rglob("__init__.py"):
-            name = ".".join(init.parent.relative_to(ROOT).parts)
+            name = "arbor." + ".".join(init.parent.relative_to(ROOT).parts)
             assert name in listed, f"{name} is missing from [tool.setuptools] packages in pyproject.toml"
-    assert "arbor_assets" in listed
+    assert "arbor.assets" in listed
+    assert all(name.startswith("arbor.") for name in listed), "only the arbor namespace is installed"
 
 
 def test_data_is_found_through_one_place():
     """Code that finds assets/ beside its own file breaks in an installed copy (assets ship as
-    arbor_assets): only engine/base/assets.py may look for them."""
+    arbor.assets): only engine/base/assets.py may look for them."""
     for path in list((ROOT / "engine").rglob("*.py")) + list((ROOT / "game").rglob("*.py")):
         if path.name == "assets.py" and path.parent.name == "base":
             continue

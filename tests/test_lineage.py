@@ -9,15 +9,15 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from engine.life.breed import cross
-from engine.life.collide import Obstacles, rocks
-from engine.life.garden import Garden
-from engine.life.lab import measure
-from engine.life.lineage import Family, lineage_from_row, new_lineage
-from engine.life.rules import load_rules
-from engine.life.save import read_garden, save_garden
-from engine.life.world import World
-from engine.lsystem.lsys import load_lsystem
+from arbor.engine.life.breed import cross
+from arbor.engine.life.collide import Obstacles, rocks
+from arbor.engine.life.garden import Garden
+from arbor.engine.life.lab import measure
+from arbor.engine.life.lineage import Family, lineage_from_row, new_lineage
+from arbor.engine.life.rules import load_rules
+from arbor.engine.life.save import read_garden, save_garden
+from arbor.engine.life.world import World
+from arbor.engine.lsystem.lsys import load_lsystem
 
 ASSETS = Path(__file__).resolve().parent.parent / "assets"
 
@@ -114,7 +114,7 @@ def test_family_rows_cut_impossible_links():
 
 
 def test_arbor_breed_and_lineage_on_the_command_line(parents, tmp_path, capsys):
-    from game.cli import main
+    from arbor.game.cli import main
 
     for name, system in zip(("a", "b"), parents, strict=True):
         world = World(system, rules(), seed=4)

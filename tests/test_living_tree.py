@@ -4,13 +4,13 @@ growing within its budget; garden trees shade each other."""
 import numpy as np
 import pytest
 
-from engine.life.garden import Garden
-from engine.life.growth import Clocks, GrowingTree
-from engine.life.lab import crown_shape
-from engine.life.light import LightRules, exposure, optical_depth
-from engine.life.rules import load_rules
-from engine.life.world import World, sense_light
-from engine.lsystem.lsys import load_lsystem
+from arbor.engine.life.garden import Garden
+from arbor.engine.life.growth import Clocks, GrowingTree
+from arbor.engine.life.lab import crown_shape
+from arbor.engine.life.light import LightRules, exposure, optical_depth
+from arbor.engine.life.rules import load_rules
+from arbor.engine.life.world import World, sense_light
+from arbor.engine.lsystem.lsys import load_lsystem
 
 DAY = 2 * np.pi / 0.05  # seconds of a simulated day at the default sun speed
 
@@ -187,9 +187,9 @@ def test_a_raised_tree_leaves_the_game_as_it_stands(system, tmp_path):
     """`arbor render` and `arbor export` take a save and show the tree exactly as saved."""
     import trimesh
 
-    from engine.geometry.mesh import tree_mesh
-    from engine.life.save import save_world
-    from game.cli import main
+    from arbor.engine.geometry.mesh import tree_mesh
+    from arbor.engine.life.save import save_world
+    from arbor.game.cli import main
 
     world = cared_for(system, 6)
     path = tmp_path / "mine.arbor"
@@ -207,7 +207,7 @@ def test_a_raised_tree_leaves_the_game_as_it_stands(system, tmp_path):
 
 
 def test_a_shed_branch_falls_to_the_ground(system):
-    from game.render.falling import falling_mesh
+    from arbor.game.render.falling import falling_mesh
 
     tree = grow_lit(system, lambda k: 1.0, rewrites=50)
     now = 50.0

@@ -5,12 +5,12 @@ import numpy as np
 import pytest
 import trimesh
 
-from engine.geometry.turtle import TurtleConfig, interpret
-from engine.lsystem.lstring import parse_lstring
-from engine.modeling.crown import Skeleton, grow_crown, grow_into_lobes, skeleton_text
-from engine.modeling.lobes import LobeEditor, lobe_from_loops, lobe_from_outline
-from engine.modeling.modeler import Modeler
-from engine.modeling.strokes import Stroke
+from arbor.engine.geometry.turtle import TurtleConfig, interpret
+from arbor.engine.lsystem.lstring import parse_lstring
+from arbor.engine.modeling.crown import Skeleton, grow_crown, grow_into_lobes, skeleton_text
+from arbor.engine.modeling.lobes import LobeEditor, lobe_from_loops, lobe_from_outline
+from arbor.engine.modeling.modeler import Modeler
+from arbor.engine.modeling.strokes import Stroke
 
 
 def circle(y: float, radius: float, n: int = 60, roll: int = 0, wobble: float = 0.0) -> np.ndarray:
@@ -291,7 +291,7 @@ def test_a_cluster_across_the_back_is_not_split_in_two():
     skeleton = Skeleton(np.zeros((1, 3)), np.array([-1]), np.array([[0.0, 1.0, 0.0]]), np.array([True]))
     a = np.radians(np.array([170.0, 175.0, -175.0, -170.0]))
     points = np.stack([np.cos(a), np.full(4, 0.3), np.sin(a)], 1) * 2.0
-    from engine.modeling.crown import _grow_step
+    from arbor.engine.modeling.crown import _grow_step
 
     nodes, directions, _ = _grow_step(skeleton, points, np.array([0]), np.zeros(4, np.int64), np.array([5.0]),
                                       np.radians(40.0), 0.5)
@@ -338,7 +338,7 @@ def test_hand_drawn_ring_sets_give_consistent_lobes_that_never_fold():
 
 
 def test_eq1_reads_a_shaky_stroke_by_its_shape_not_its_jitter():
-    from engine.modeling.strokes import adaptive_sample
+    from arbor.engine.modeling.strokes import adaptive_sample
 
     rng = np.random.default_rng(0)
     a = np.linspace(0, 2 * np.pi, 600)
@@ -354,7 +354,7 @@ def test_eq1_reads_a_shaky_stroke_by_its_shape_not_its_jitter():
 
 
 def test_squeeze_is_laplacian_editing_that_keeps_the_surface_detail():
-    from engine.modeling.lobes import laplacian_edit
+    from arbor.engine.modeling.lobes import laplacian_edit
 
     lobe = lobe_from_loops([circle(0.0, 1.0, wobble=0.2), circle(1.0, 1.5, wobble=0.2), circle(2.0, 1.0)])
     at, radius = lobe.vertices[lobe.ring_size + 3], 1.2

@@ -5,8 +5,8 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from engine.base.errors import LSysError
-from engine.lsystem.lstring import LString, parse_lstring
+from arbor.engine.base.errors import LSysError
+from arbor.engine.lsystem.lstring import LString, parse_lstring
 
 SYMBOLS = "FfAB+-&^/\\|$[]!'%XL"
 floats = st.floats(allow_nan=True, allow_infinity=True, width=64)
@@ -65,7 +65,7 @@ def test_random_text_only_raises_our_error(text):
 def test_the_array_reader_agrees_with_the_careful_reader_on_mangled_text():
     """Text the writer wrote, then mangled at random: wherever the whole-array reader accepts it, the
     module-by-module reader reads the same modules; wherever the careful reader refuses, so does it."""
-    from engine.lsystem.lstring import _parse_fast, _parse_slow
+    from arbor.engine.lsystem.lstring import _parse_fast, _parse_slow
 
     rng = np.random.default_rng(7)
     alphabet = [*list("FA+-[]()(),,,.5e-0 9infa\n"), "(1)", "1e5", "nan", "--", ")(", "é"]

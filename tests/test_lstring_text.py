@@ -2,8 +2,8 @@
 
 import numpy as np
 
-from engine.lsystem import text
-from engine.lsystem.lstring import LString, parse_lstring
+from arbor.engine.lsystem import text
+from arbor.engine.lsystem.lstring import LString, parse_lstring
 
 
 def _repetitive(n: int, pool: int, seed: int) -> LString:

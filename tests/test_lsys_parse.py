@@ -3,10 +3,10 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from engine.base.errors import LSysError
-from engine.lsystem.derive import derive
-from engine.lsystem.lstring import parse_lstring
-from engine.lsystem.lsys import load_lsystem, parse_lsystem
+from arbor.engine.base.errors import LSysError
+from arbor.engine.lsystem.derive import derive
+from arbor.engine.lsystem.lstring import parse_lstring
+from arbor.engine.lsystem.lsys import load_lsystem, parse_lsystem
 
 
 def test_headers_defines_and_ignore():

@@ -2,11 +2,11 @@ import numpy as np
 import pytest
 import trimesh
 
-from engine.geometry.mesh import LOD_LEVELS, leaf_mesh, tree_mesh, wood_mesh
-from engine.geometry.turtle import TurtleConfig, interpret
-from engine.lsystem.derive import derive
-from engine.lsystem.lstring import parse_lstring
-from engine.lsystem.lsys import load_lsystem
+from arbor.engine.geometry.mesh import LOD_LEVELS, leaf_mesh, tree_mesh, wood_mesh
+from arbor.engine.geometry.turtle import TurtleConfig, interpret
+from arbor.engine.lsystem.derive import derive
+from arbor.engine.lsystem.lstring import parse_lstring
+from arbor.engine.lsystem.lsys import load_lsystem
 
 
 def segs_of(text, **cfg):

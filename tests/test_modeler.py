@@ -3,10 +3,10 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from engine.geometry.turtle import TurtleConfig, interpret
-from engine.lsystem.lstring import parse_lstring
-from engine.modeling.modeler import Modeler, ModelerSettings, nearest_on_segments
-from engine.modeling.strokes import ArcLengthSpline, Stroke, adaptive_sample, curvature, sample_steps
+from arbor.engine.geometry.turtle import TurtleConfig, interpret
+from arbor.engine.lsystem.lstring import parse_lstring
+from arbor.engine.modeling.modeler import Modeler, ModelerSettings, nearest_on_segments
+from arbor.engine.modeling.strokes import ArcLengthSpline, Stroke, adaptive_sample, curvature, sample_steps
 
 
 def line(a, b, n=200, seconds=1.0):
@@ -25,7 +25,7 @@ def reconstruction_error(modeler, stroke):
     segs = interpret(modeler.lstring, TurtleConfig(pipe_model=False, leaves_at_tips=0)).segments
     trunk = segs.order == 0
     raw = stroke.points - stroke.points[0]
-    from engine.geometry.turtle import Segments
+    from arbor.engine.geometry.turtle import Segments
 
     main = Segments(**{k: getattr(segs, k)[trunk] for k in segs.__dataclass_fields__})
     return max(nearest_on_segments(p, main)[2] for p in raw) / stroke.length
@@ -119,8 +119,8 @@ def test_stroke_through_a_trunk_is_bent_around_it():
     segs = m.segments()
     trunk, new = segs.order == 0, segs.order == 2
     pts = np.concatenate([segs.start[new], segs.end[new]])
-    from engine.geometry.turtle import Segments
-    from engine.modeling.modeler import _segment_distances
+    from arbor.engine.geometry.turtle import Segments
+    from arbor.engine.modeling.modeler import _segment_distances
 
     main = Segments(**{k: getattr(segs, k)[trunk] for k in segs.__dataclass_fields__})
     dist, _ = _segment_distances(pts, main)
@@ -153,7 +153,7 @@ def test_bypass_goes_to_the_emptier_side_when_axes_meet():
 
 
 def test_undo_history_is_bounded():
-    from engine.lsystem.lstring import parse_lstring
+    from arbor.engine.lsystem.lstring import parse_lstring
 
     modeler = Modeler(lstring=parse_lstring("F"))
     for i in range(modeler.UNDO_LIMIT + 30):

@@ -7,13 +7,13 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from engine.geometry.turtle import TurtleConfig, module_positions
-from engine.life.growth import Clocks, new_axis_text, render_view
-from engine.life.rules import load_rules
-from engine.life.world import World
-from engine.lsystem.lsys import load_lsystem
-from engine.modeling.edits import apply_edit, load_edit_sets
-from engine.modeling.regions import Sphere
+from arbor.engine.geometry.turtle import TurtleConfig, module_positions
+from arbor.engine.life.growth import Clocks, new_axis_text, render_view
+from arbor.engine.life.rules import load_rules
+from arbor.engine.life.world import World
+from arbor.engine.lsystem.lsys import load_lsystem
+from arbor.engine.modeling.edits import apply_edit, load_edit_sets
+from arbor.engine.modeling.regions import Sphere
 
 ASSETS = Path(__file__).resolve().parent.parent / "assets"
 
@@ -74,8 +74,8 @@ def test_region_grow_keeps_new_growth_inside_the_region(grown, confined):
 
 def drawn_tree(rng):
     """A hand-drawn trunk and two branches, one curving in its own turn plane (jittered strokes)."""
-    from engine.modeling.modeler import Modeler
-    from engine.modeling.strokes import Stroke
+    from arbor.engine.modeling.modeler import Modeler
+    from arbor.engine.modeling.strokes import Stroke
 
     modeler = Modeler()
     u = np.linspace(0, 1, 120)
@@ -88,8 +88,8 @@ def drawn_tree(rng):
 
 
 def test_bend_turns_every_branch_down_in_world_terms_and_keeps_stored_frames(grown):
-    from engine.geometry.turtle import interpret
-    from engine.modeling.bend import bend_region
+    from arbor.engine.geometry.turtle import interpret
+    from arbor.engine.modeling.bend import bend_region
 
     cfg = TurtleConfig(pipe_model=False, leaves_at_tips=0)
     ls = drawn_tree(np.random.default_rng(1)).lstring
@@ -120,8 +120,8 @@ def test_bend_turns_every_branch_down_in_world_terms_and_keeps_stored_frames(gro
 
 def test_growth_points_wake_keeping_the_length_they_were_drawn_with(grown):
     """A growth point A(l, x, y, z, d) becomes an apex whose internodes are as long as its piece."""
-    from engine.lsystem.derive import Deriver
-    from engine.lsystem.lstring import parse_lstring
+    from arbor.engine.lsystem.derive import Deriver
+    from arbor.engine.lsystem.lstring import parse_lstring
 
     const = grown.tree.geometry_constants
     for length in (1.0, 0.75, 0.5625, 0.3):
@@ -136,10 +136,10 @@ def test_growth_points_wake_keeping_the_length_they_were_drawn_with(grown):
 
 
 def test_a_trunk_drawn_from_the_foot_of_the_sapling_becomes_its_trunk_without_a_step(grown):
-    from engine.geometry.turtle import interpret
-    from engine.life.growth import grow_geometry
-    from engine.modeling.modeler import Modeler
-    from engine.modeling.strokes import Stroke
+    from arbor.engine.geometry.turtle import interpret
+    from arbor.engine.life.growth import grow_geometry
+    from arbor.engine.modeling.modeler import Modeler
+    from arbor.engine.modeling.strokes import Stroke
 
     rules = grown.rules
     world = World(grown.system, rules, seed=5)  # a fresh sapling

@@ -1,11 +1,11 @@
 import numpy as np
 import pytest
 
-from engine.geometry.turtle import TurtleConfig, interpret, module_positions
-from engine.lsystem.derive import Deriver
-from engine.lsystem.lstring import parse_lstring
-from engine.lsystem.lsys import parse_lsystem
-from engine.modeling.regions import Sphere, Supertoroid, derive_in_region, fit_supertoroid, prune, seed_in_region
+from arbor.engine.geometry.turtle import TurtleConfig, interpret, module_positions
+from arbor.engine.lsystem.derive import Deriver
+from arbor.engine.lsystem.lstring import parse_lstring
+from arbor.engine.lsystem.lsys import parse_lsystem
+from arbor.engine.modeling.regions import Sphere, Supertoroid, derive_in_region, fit_supertoroid, prune, seed_in_region
 
 
 def test_sphere_inside():
@@ -58,7 +58,7 @@ def test_empty_region_gets_a_new_axis_there():
 
 def test_prune_removes_the_subtree_a_touch_picked():
     ls = parse_lstring("F(1)[+F(1)[-F(1)L]F(1)L]F(1)L")
-    from engine.geometry.mesh import wood_mesh
+    from arbor.engine.geometry.mesh import wood_mesh
 
     mesh = wood_mesh(interpret(ls, TurtleConfig(leaves_at_tips=0)).segments, n_surf=4)
     touched = int(mesh.face_module[np.flatnonzero(mesh.face_module == 3)[0]])  # a triangle of the branch
@@ -83,7 +83,7 @@ def test_fit_takes_depth_and_exponent_from_outlines_drawn_in_3d(e, a_z):
 
 
 def test_regions_move_and_resize():
-    from engine.modeling.regions import moved_region, scaled_region
+    from arbor.engine.modeling.regions import moved_region, scaled_region
 
     ball = moved_region(Sphere((0.0, 2.0, 0.0), 1.0), (1.0, 0.5, 0.0))
     assert ball.center == (1.0, 2.5, 0.0) and scaled_region(ball, 2.0).radius == 2.0

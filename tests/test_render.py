@@ -8,12 +8,12 @@ import sys
 import numpy as np
 import pytest
 
-from engine.geometry.mesh import Mesh, TreeMesh
-from engine.geometry.tree import build_geometry
-from engine.lsystem.derive import derive
-from engine.lsystem.lsys import load_lsystem
-from game.cli import main
-from game.render.renderer import render_image
+from arbor.engine.geometry.mesh import Mesh, TreeMesh
+from arbor.engine.geometry.tree import build_geometry
+from arbor.engine.lsystem.derive import derive
+from arbor.engine.lsystem.lsys import load_lsystem
+from arbor.game.cli import main
+from arbor.game.render.renderer import render_image
 
 SIZE = (480, 320)
 
@@ -93,7 +93,7 @@ def test_arbor_opens_a_window(tmp_path):
     shot = tmp_path / "window.png"
     env = dict(os.environ, SDL_VIDEODRIVER="x11", SDL_AUDIODRIVER="dummy", ARBOR_MAX_FRAMES="4",
                ARBOR_SCREENSHOT=str(shot), ARBOR_SAVES=str(tmp_path / "saves"))
-    cmd = ["xvfb-run", "-a", "-s", "-screen 0 1280x720x24", sys.executable, "-m", "game.cli"]
+    cmd = ["xvfb-run", "-a", "-s", "-screen 0 1280x720x24", sys.executable, "-m", "arbor.game.cli"]
     proc = subprocess.run(cmd, env=env, capture_output=True, timeout=120)
     assert proc.returncode == 0, proc.stderr.decode()[-2000:]
     import pygame
@@ -108,12 +108,12 @@ def test_arbor_opens_a_window(tmp_path):
 
 
 def test_wilting_turns_leaves_yellow_brown(ctx):
-    from engine.geometry.mesh import tree_mesh
-    from engine.geometry.turtle import TurtleConfig, interpret
-    from engine.lsystem.lstring import parse_lstring
-    from game.render.camera import OrbitCamera
-    from game.render.renderer import TreeRenderer, sun_direction
-    from game.screens.game_view import HEALTHY_LEAF, WILTED_LEAF
+    from arbor.engine.geometry.mesh import tree_mesh
+    from arbor.engine.geometry.turtle import TurtleConfig, interpret
+    from arbor.engine.lsystem.lstring import parse_lstring
+    from arbor.game.render.camera import OrbitCamera
+    from arbor.game.render.renderer import TreeRenderer, sun_direction
+    from arbor.game.screens.game_view import HEALTHY_LEAF, WILTED_LEAF
 
     ls = parse_lstring("!(0.2)F(3)" + "".join(f"[/({k * 137.5})&(60)L(1.2)]F(0.3)" for k in range(12)))
     renderer = TreeRenderer(ctx)

@@ -7,13 +7,13 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from engine.life import seasons
-from engine.life.away import away_seconds, live_away, tree_height
-from engine.life.garden import Garden
-from engine.life.rules import load_rules
-from engine.life.save import load_garden, load_seeds, save_garden
-from engine.life.world import World
-from engine.lsystem.lsys import load_lsystem
+from arbor.engine.life import seasons
+from arbor.engine.life.away import away_seconds, live_away, tree_height
+from arbor.engine.life.garden import Garden
+from arbor.engine.life.rules import load_rules
+from arbor.engine.life.save import load_garden, load_seeds, save_garden
+from arbor.engine.life.world import World
+from arbor.engine.lsystem.lsys import load_lsystem
 
 ASSETS = Path(__file__).resolve().parent.parent / "assets"
 RULES = ASSETS / "rules.toml"

@@ -3,9 +3,9 @@ import math
 import numpy as np
 import pytest
 
-from engine.base.errors import LSysError
-from engine.life.rules import GrowthRules, Rules, load_rules
-from engine.life.sim import GrowthCycle, SimState, Simulation
+from arbor.engine.base.errors import LSysError
+from arbor.engine.life.rules import GrowthRules, Rules, load_rules
+from arbor.engine.life.sim import GrowthCycle, SimState, Simulation
 
 
 def test_rules_file_loads_and_is_strict(tmp_path):

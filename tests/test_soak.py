@@ -5,9 +5,9 @@ import os
 import numpy as np
 import pytest
 
-from game.input.events import DOWN, MOVE, UP, InputEvent
-from game.screens.game import Game, GameConfig
-from game.screens.kiosk import Kiosk, KioskConfig
+from arbor.game.input.events import DOWN, MOVE, UP, InputEvent
+from arbor.game.screens.game import Game, GameConfig
+from arbor.game.screens.kiosk import Kiosk, KioskConfig
 
 SIZE = (960, 540)
 FRAME = 1 / 20  # real seconds per frame: 100x turns one simulated hour into 720 frames

@@ -15,10 +15,10 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from engine.base.errors import LSysError
-from engine.life.sweep_file import load_sweep
-from game.commands.sweep import run_sweep
-from game.paths import ASSETS
+from arbor.engine.base.errors import LSysError
+from arbor.engine.life.sweep_file import load_sweep
+from arbor.game.commands.sweep import run_sweep
+from arbor.game.paths import ASSETS
 
 ROOT = Path(__file__).resolve().parent.parent
 SWEEP = """
@@ -122,7 +122,7 @@ def test_ctrl_c_keeps_finished_runs_and_the_rerun_finishes(tmp_path):
     slow.write_text(text.split("[[factor]]\nname = \"Drain\"")[0], encoding="utf-8")
     out = tmp_path / "stopped"
     env = {**os.environ, "PYTHONPATH": str(ROOT)}
-    proc = subprocess.Popen([sys.executable, "-m", "game.cli", "sweep", str(slow), "--out", str(out),
+    proc = subprocess.Popen([sys.executable, "-m", "arbor.game.cli", "sweep", str(slow), "--out", str(out),
                              "--workers", "2", "--no-plots"], env=env, cwd=ROOT, preexec_fn=_like_a_terminal,
                             stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
     deadline = time.monotonic() + 120

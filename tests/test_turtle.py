@@ -5,8 +5,8 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from engine.geometry.turtle import INITIAL_FRAME, TurtleConfig, interpret
-from engine.lsystem.lstring import parse_lstring
+from arbor.engine.geometry.turtle import INITIAL_FRAME, TurtleConfig, interpret
+from arbor.engine.lsystem.lstring import parse_lstring
 
 AXES = {"+": (2, 1), "-": (2, -1), "&": (1, 1), "^": (1, -1), "/": (0, 1), "\\": (0, -1)}
 
@@ -112,8 +112,8 @@ def test_pipe_model_radii():
 
 
 def test_big_string_is_fine(lsys_dir):
-    from engine.lsystem.derive import derive
-    from engine.lsystem.lsys import load_lsystem
+    from arbor.engine.lsystem.derive import derive
+    from arbor.engine.lsystem.lsys import load_lsystem
 
     system = load_lsystem(lsys_dir / "abop_2_8_tree.lsys")
     result = interpret(derive(system, 8), TurtleConfig.from_system(system))

@@ -4,9 +4,9 @@ from __future__ import annotations
 
 import numpy as np
 
+from arbor.engine.geometry.mesh import Mesh, WoodRings, _normalize, _Rings  # (unchanged: the engine's own)
 from benchmarks.numpy_geometry.chains import chain_sum, tree_depths
 from benchmarks.numpy_geometry.turtle import Segments
-from engine.geometry.mesh import Mesh, WoodRings, _normalize, _Rings  # (unchanged: the engine's own)
 
 
 def _row_norms(rows: np.ndarray) -> np.ndarray:

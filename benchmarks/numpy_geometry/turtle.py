@@ -6,16 +6,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from benchmarks.numpy_geometry.chains import (
-    Levels,
-    compose_maps,
-    compose_turtle,
-    quat_entries,
-    quat_mul,
-    rows_to_quat,
-    to_rows,
-)
-from engine.geometry.turtle import (  # what did not change is the engine's own
+from arbor.engine.geometry.turtle import (  # what did not change is the engine's own
     Leaves,
     Segments,
     TurtleConfig,
@@ -27,8 +18,17 @@ from engine.geometry.turtle import (  # what did not change is the engine's own
     tip_segments,
     unit,
 )
-from engine.lsystem import brackets
-from engine.lsystem.lstring import LString
+from arbor.engine.lsystem import brackets
+from arbor.engine.lsystem.lstring import LString
+from benchmarks.numpy_geometry.chains import (
+    Levels,
+    compose_maps,
+    compose_turtle,
+    quat_entries,
+    quat_mul,
+    rows_to_quat,
+    to_rows,
+)
 
 WORLD_UP = np.array([0.0, 1.0, 0.0])
 # Initial frame: heading up (+Y), left -X, up +Z (H x L = U, right-handed).

@@ -1,4 +1,4 @@
-"""Where Arbor's data (assets/) is: beside the packages in a checkout, or the installed `arbor_assets`."""
+"""Where Arbor's data (assets/) is: beside engine/ in a checkout, the installed `arbor.assets` when installed."""
 
 from __future__ import annotations
 
@@ -13,7 +13,7 @@ def assets_dir() -> Path:
     here = CHECKOUT / "assets"
     if (here / "lsystems" / "game_tree.lsys").is_file():  # ours, not some other package's "assets"
         return here
-    spec = importlib.util.find_spec("arbor_assets")
+    spec = importlib.util.find_spec("arbor.assets")
     if spec is not None and spec.submodule_search_locations:
         return Path(next(iter(spec.submodule_search_locations)))
     return here

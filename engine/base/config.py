@@ -12,7 +12,7 @@ def fill_dataclass(target, data: dict, file: str, what: str = "setting") -> None
     Unknown keys, values of the wrong type and non-finite numbers raise an LSysError naming the file
     and the key; whole numbers are accepted where a float is expected.
     """
-    from engine.base.errors import LSysError
+    from arbor.engine.base.errors import LSysError
 
     kinds = {f.name: type(getattr(target, f.name)) for f in fields(target)}
     for key, value in data.items():

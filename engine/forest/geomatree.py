@@ -14,10 +14,10 @@ from pathlib import Path
 
 import numpy as np
 
-from engine.base.config import fill_dataclass
-from engine.base.errors import LSysError
-from engine.forest.divisors import FUNCTIONS, PropagationRule, children_function, children_table
-from engine.lsystem.lsys import LSystem, parse_lsystem
+from arbor.engine.base.config import fill_dataclass
+from arbor.engine.base.errors import LSysError
+from arbor.engine.forest.divisors import FUNCTIONS, PropagationRule, children_function, children_table
+from arbor.engine.lsystem.lsys import LSystem, parse_lsystem
 
 
 @dataclass

@@ -11,7 +11,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from engine.geometry.mesh import LOD_LEVELS, TreeMesh
+from arbor.engine.geometry.mesh import LOD_LEVELS, TreeMesh
 
 
 @dataclass

@@ -12,8 +12,8 @@ import numpy as np
 import trimesh
 from PIL import Image
 
-from engine.base.files import atomic_write
-from engine.geometry.mesh import Mesh, TreeMesh
+from arbor.engine.base.files import atomic_write
+from arbor.engine.geometry.mesh import Mesh, TreeMesh
 
 PARTS = (("wood", "bark", False), ("leaves", "leaf", True), ("blossoms", "blossom", True))
 

@@ -14,9 +14,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from engine.geometry.chains import chain_sum
-from engine.geometry.mesh import wood_rings
-from engine.geometry.turtle import Leaves, Segments
+from arbor.engine.geometry.chains import chain_sum
+from arbor.engine.geometry.mesh import wood_rings
+from arbor.engine.geometry.turtle import Leaves, Segments
 
 TUBE_FLOATS = 26  # c0 t0 x0 c1 t1 x1 (18), r0 r1, v0 v1, flex0 flex1, cap, order
 LEAF_FLOATS = 13  # base (3), axis (3), normal (3), length, width, flex, hash (which leaves a coarse level keeps)

@@ -14,8 +14,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from engine.geometry.chains import chain_sum
-from engine.geometry.turtle import Leaves, Segments, TurtleResult
+from arbor.engine.geometry.chains import chain_sum
+from arbor.engine.geometry.turtle import Leaves, Segments, TurtleResult
 
 
 @dataclass
@@ -104,7 +104,7 @@ class WoodRings:
 def wood_rings(segs: Segments, tip_taper: float = 0.35) -> WoodRings:
     """Joint rings with twist-free reference directions (see module docstring); the mesher and the
     game's instanced tubes both build on them."""
-    from engine.geometry.mesh_kernel import directions, joint_rings, transported_x
+    from arbor.engine.geometry.mesh_kernel import directions, joint_rings, transported_x
 
     d = directions(segs.start, segs.end, segs.frame)
     x_axis = transported_x(d, segs.frame, segs.parent, segs.continues)
@@ -166,7 +166,7 @@ def _bezier_rings(rings: _Rings, start_ring: np.ndarray, end_ring: np.ndarray, n
 
 def _tube_mesh(rings: _Rings, ring_seq: np.ndarray, module: np.ndarray, n_surf: int, tips, tip_dir) -> Mesh:
     """Vertices for every ring, quads between consecutive rings of each segment, cones at tips."""
-    from engine.geometry.mesh_kernel import ring_vertices, tube_faces
+    from arbor.engine.geometry.mesh_kernel import ring_vertices, tube_faces
 
     n_rings = len(rings.center)
     ring_end = n_rings * (n_surf + 1)

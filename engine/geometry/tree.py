@@ -4,10 +4,10 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from engine.geometry.mesh import LOD_LEVELS, LodLevel, TreeMesh, tree_mesh
-from engine.geometry.turtle import TurtleConfig, TurtleResult, interpret
-from engine.lsystem.lstring import LString
-from engine.lsystem.lsys import LSystem
+from arbor.engine.geometry.mesh import LOD_LEVELS, LodLevel, TreeMesh, tree_mesh
+from arbor.engine.geometry.turtle import TurtleConfig, TurtleResult, interpret
+from arbor.engine.lsystem.lstring import LString
+from arbor.engine.lsystem.lsys import LSystem
 
 
 @dataclass

@@ -18,8 +18,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from engine.lsystem import brackets
-from engine.lsystem.lstring import LString
+from arbor.engine.lsystem import brackets
+from arbor.engine.lsystem.lstring import LString
 
 # Initial frame: heading up (+Y), left -X, up +Z (H x L = U, right-handed).
 INITIAL_FRAME = np.array([[0.0, -1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]])
@@ -145,7 +145,7 @@ class _Walk:
 def _walk(ls: LString, cfg: TurtleConfig, record: np.ndarray) -> _Walk:
     """Run the compiled turtle over the string (engine.geometry.turtle_kernel), recording the state
     going into every module where ``record`` is True; unbalanced brackets raise BracketError."""
-    from engine.geometry.turtle_kernel import walk
+    from arbor.engine.geometry.turtle_kernel import walk
 
     width0 = 1.0 if cfg.width is None else cfg.width
     bends = cfg.tropism is not None
@@ -290,7 +290,7 @@ def _tip_leaves(segs: Segments, k: int, size: float) -> Leaves:
     away from it. With the twig's frame (H, L, U) and side = cos r L + sin r U, the leaf's frame is
     H' = cos p H + sin p side, U' = -sin p H + cos p side, L' = U' x H' = sin r L - cos r U.
     """
-    from engine.geometry.turtle_kernel import tip_leaves
+    from arbor.engine.geometry.turtle_kernel import tip_leaves
 
     tips = tip_segments(segs)
     position, frames = tip_leaves(segs.frame, segs.end, segs.module, tips, k)

@@ -23,8 +23,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from engine.base.errors import LSysError
-from engine.lsystem.lsys import LSystem, parse_lsystem
+from arbor.engine.base.errors import LSysError
+from arbor.engine.lsystem.lsys import LSystem, parse_lsystem
 
 MUTATION = 0.05  # standard deviation of the log-normal factor on every mixed constant
 _LABEL = re.compile(r"^\s*([pP]\d+)\s*:\s*([^\s(:<>]+)")

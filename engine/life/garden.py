@@ -11,12 +11,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from engine.life import collide
-from engine.life.breed import cross
-from engine.life.lineage import Family, new_lineage, species_of
-from engine.life.rules import Rules
-from engine.life.world import MAX_CATCH_UP_STEPS, World, catch_up_steps, sense_light
-from engine.lsystem.lsys import LSystem
+from arbor.engine.life import collide
+from arbor.engine.life.breed import cross
+from arbor.engine.life.lineage import Family, new_lineage, species_of
+from arbor.engine.life.rules import Rules
+from arbor.engine.life.world import MAX_CATCH_UP_STEPS, World, catch_up_steps, sense_light
+from arbor.engine.lsystem.lsys import LSystem
 
 MAX_GARDEN = 6  # trees in one garden
 MAX_SEEDS = 50  # seeds kept in the seed bag

@@ -25,9 +25,9 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from engine.geometry.mesh import LOD_LEVELS, tree_mesh
-from engine.geometry.tree import TreeGeometry
-from engine.geometry.turtle import (
+from arbor.engine.geometry.mesh import LOD_LEVELS, tree_mesh
+from arbor.engine.geometry.tree import TreeGeometry
+from arbor.engine.geometry.turtle import (
     Leaves,
     Segments,
     TurtleConfig,
@@ -37,12 +37,12 @@ from engine.geometry.turtle import (
     set_radii,
     subtree_sums,
 )
-from engine.life.collide import Obstacles, avoidance
-from engine.life.light import memory_weight
-from engine.lsystem import brackets
-from engine.lsystem.derive import Deriver, StepReport
-from engine.lsystem.lstring import LString, replace_modules
-from engine.lsystem.lsys import LSystem
+from arbor.engine.life.collide import Obstacles, avoidance
+from arbor.engine.life.light import memory_weight
+from arbor.engine.lsystem import brackets
+from arbor.engine.lsystem.derive import Deriver, StepReport
+from arbor.engine.lsystem.lstring import LString, replace_modules
+from arbor.engine.lsystem.lsys import LSystem
 
 INTERNODE, LEAF, BLOSSOM, PITCH, APEX, BUD, FRUIT, LEAF_BUD = (ord(c) for c in "ILK&ADOV")
 FRUIT_SIZE = 0.55  # a ripe fruit's diameter, in leaf lengths

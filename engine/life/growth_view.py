@@ -12,9 +12,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from engine.geometry.instances import LeafInstances, TubeInstances, leaf_instances, tube_instances
-from engine.geometry.turtle import Leaves, interpret, set_radii
-from engine.life.growth import (
+from arbor.engine.geometry.instances import LeafInstances, TubeInstances, leaf_instances, tube_instances
+from arbor.engine.geometry.turtle import Leaves, interpret, set_radii
+from arbor.engine.life.growth import (
     FRUIT,
     INTERNODE,
     LEAF,
@@ -29,7 +29,7 @@ from engine.life.growth import (
     leaf_clusters,
     render_view,
 )
-from engine.lsystem.lstring import LString
+from arbor.engine.lsystem.lstring import LString
 
 YOUNG = 3.5  # elongation time constants: a younger internode still visibly grows (97 % grown by then)
 

@@ -18,10 +18,10 @@ from pathlib import Path
 
 import numpy as np
 
-from engine.base.errors import LSysError
-from engine.life.rules import SECTIONS, Rules
-from engine.life.world import World
-from engine.lsystem.lsys import LSystem, load_lsystem
+from arbor.engine.base.errors import LSysError
+from arbor.engine.life.rules import SECTIONS, Rules
+from arbor.engine.life.world import World
+from arbor.engine.lsystem.lsys import LSystem, load_lsystem
 
 METRICS = ("height", "width", "offset", "girth", "modules", "leaves", "density", "shed", "roots", "sun", "water",
            "wilt", "alive", "fruit")

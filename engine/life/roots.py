@@ -12,11 +12,11 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from engine.base.assets import assets_dir
-from engine.geometry.turtle import Segments, TurtleConfig, TurtleResult, interpret
-from engine.lsystem.derive import Deriver
-from engine.lsystem.lstring import LString
-from engine.lsystem.lsys import LSystem, load_lsystem
+from arbor.engine.base.assets import assets_dir
+from arbor.engine.geometry.turtle import Segments, TurtleConfig, TurtleResult, interpret
+from arbor.engine.lsystem.derive import Deriver
+from arbor.engine.lsystem.lstring import LString
+from arbor.engine.lsystem.lsys import LSystem, load_lsystem
 
 ROOTS_LSYS = assets_dir() / "lsystems" / "roots.lsys"
 PIECE = ord("F")

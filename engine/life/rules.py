@@ -12,9 +12,9 @@ import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from engine.base.config import fill_dataclass
-from engine.base.errors import LSysError
-from engine.life.light import LightRules
+from arbor.engine.base.config import fill_dataclass
+from arbor.engine.base.errors import LSysError
+from arbor.engine.life.light import LightRules
 
 
 @dataclass

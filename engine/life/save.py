@@ -24,13 +24,13 @@ from pathlib import Path
 
 import numpy as np
 
-from engine.base.errors import LSysError
-from engine.base.files import atomic_write
-from engine.life import save_blocks
-from engine.life.garden import MAX_ROCKS, MAX_SEEDS, Garden, Seed
-from engine.life.journal import Journal
-from engine.life.lineage import Family, Lineage, lineage_from_row, new_lineage, species_of
-from engine.life.save_check import (
+from arbor.engine.base.errors import LSysError
+from arbor.engine.base.files import atomic_write
+from arbor.engine.life import save_blocks
+from arbor.engine.life.garden import MAX_ROCKS, MAX_SEEDS, Garden, Seed
+from arbor.engine.life.journal import Journal
+from arbor.engine.life.lineage import Family, Lineage, lineage_from_row, new_lineage, species_of
+from arbor.engine.life.save_check import (
     BIG,
     SaveError,
     Where,
@@ -42,11 +42,11 @@ from engine.life.save_check import (
     value,
     vector,
 )
-from engine.life.sim import GrowthCycle, Rules, SimState, Simulation
-from engine.life.world import World
-from engine.lsystem.lstring import LString, parse_lstring
-from engine.lsystem.lsys import parse_lsystem
-from engine.lsystem.text import format_number
+from arbor.engine.life.sim import GrowthCycle, Rules, SimState, Simulation
+from arbor.engine.life.world import World
+from arbor.engine.lsystem.lstring import LString, parse_lstring
+from arbor.engine.lsystem.lsys import parse_lsystem
+from arbor.engine.lsystem.text import format_number
 
 FORMAT = 2
 WRAP = 100

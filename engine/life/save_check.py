@@ -16,7 +16,7 @@ from pathlib import Path
 
 import numpy as np
 
-from engine.base.errors import LSysError
+from arbor.engine.base.errors import LSysError
 
 BIG = 1e12  # largest magnitude of any saved number (game time 30,000 years; coordinates far off-screen)
 
@@ -156,7 +156,7 @@ def restore_rng(rng: np.random.Generator, state_text: str, key: str, where: Wher
 
 def lstring_sane(ls, where: Where) -> None:
     """Brackets balance and every parameter is a finite number of sane size (before any geometry)."""
-    from engine.lsystem.brackets import BracketError, check_balanced
+    from arbor.engine.lsystem.brackets import BracketError, check_balanced
 
     try:
         check_balanced(ls.sym)

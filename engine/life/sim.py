@@ -15,9 +15,9 @@ from dataclasses import asdict, dataclass, field, fields
 
 import numpy as np
 
-from engine.life import seasons
-from engine.life.rules import GrowthRules, Rules, load_rules
-from engine.life.seasons import Season, raining, season_at
+from arbor.engine.life import seasons
+from arbor.engine.life.rules import GrowthRules, Rules, load_rules
+from arbor.engine.life.seasons import Season, raining, season_at
 
 __all__ = ["GrowthCycle", "Rules", "SimState", "Simulation", "load_rules"]
 

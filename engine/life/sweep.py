@@ -16,10 +16,10 @@ from pathlib import Path
 
 import numpy as np
 
-from engine.life.lab import METRICS, Experiment, Lab, Regime
-from engine.life.rules import Rules
-from engine.life.save import save_text
-from engine.lsystem.lsys import parse_lsystem
+from arbor.engine.life.lab import METRICS, Experiment, Lab, Regime
+from arbor.engine.life.rules import Rules
+from arbor.engine.life.save import save_text
+from arbor.engine.lsystem.lsys import parse_lsystem
 
 RESPONSES = METRICS
 REGIME_KEYS = ("orbit_height", "sun_speed", "watering.every", "watering.below")

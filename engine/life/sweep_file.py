@@ -23,10 +23,10 @@ import math
 import tomllib
 from pathlib import Path
 
-from engine.base.errors import LSysError
-from engine.life.lab import flag_value, number_value, pace_value, parse_regime, rule_target
-from engine.life.rules import Rules
-from engine.life.sweep import MAX_FACTORS, MAX_LEVELS, MAX_RUNS, MAX_SEEDS, REGIME_KEYS, RESPONSES, Factor, Sweep
+from arbor.engine.base.errors import LSysError
+from arbor.engine.life.lab import flag_value, number_value, pace_value, parse_regime, rule_target
+from arbor.engine.life.rules import Rules
+from arbor.engine.life.sweep import MAX_FACTORS, MAX_LEVELS, MAX_RUNS, MAX_SEEDS, REGIME_KEYS, RESPONSES, Factor, Sweep
 
 MAX_SAMPLES = 2000  # per run
 WEEK = 7 * 24 * 3600.0

@@ -10,15 +10,15 @@ from dataclasses import InitVar, dataclass, field
 
 import numpy as np
 
-from engine.life import collide, seasons
-from engine.life.collide import Obstacles
-from engine.life.growth import Clocks, GrowingTree
-from engine.life.journal import Journal
-from engine.life.light import exposure
-from engine.life.lineage import Lineage, new_lineage, species_of
-from engine.life.roots import Roots
-from engine.life.sim import Rules, SimState, Simulation
-from engine.lsystem.lsys import LSystem
+from arbor.engine.life import collide, seasons
+from arbor.engine.life.collide import Obstacles
+from arbor.engine.life.growth import Clocks, GrowingTree
+from arbor.engine.life.journal import Journal
+from arbor.engine.life.light import exposure
+from arbor.engine.life.lineage import Lineage, new_lineage, species_of
+from arbor.engine.life.roots import Roots
+from arbor.engine.life.sim import Rules, SimState, Simulation
+from arbor.engine.lsystem.lsys import LSystem
 
 ACTIONS = ("water", "orbit_height", "sun_speed", "replant")
 MAX_CATCH_UP_STEPS = 20_000  # a catch-up never takes more steps than this, whatever the rules say

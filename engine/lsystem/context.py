@@ -17,7 +17,7 @@ import numpy as np
 def neighbours(sym: np.ndarray, skip: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Left and right context neighbour of every module (-1 where there is none); ``skip`` is a
     boolean table indexed by symbol (the #ignore set)."""
-    from engine.lsystem.context_kernel import walk
+    from arbor.engine.lsystem.context_kernel import walk
 
     left = np.empty(len(sym), np.int64)
     right = np.empty(len(sym), np.int64)

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import re
 
-from engine.base.errors import LSysError
+from arbor.engine.base.errors import LSysError
 
 _NUMBER = re.compile(r"(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?")
 _NAME = re.compile(r"[A-Za-z_][A-Za-z_0-9]*")

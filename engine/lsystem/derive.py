@@ -13,11 +13,11 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from engine.lsystem import brackets, context
-from engine.lsystem.expr import EvalContext, evaluate
-from engine.lsystem.lstring import LString, ragged_arange
-from engine.lsystem.lsys import Alternative, LSystem, Pattern, Production
-from engine.lsystem.symbolic import SymbolRewriter
+from arbor.engine.lsystem import brackets, context
+from arbor.engine.lsystem.expr import EvalContext, evaluate
+from arbor.engine.lsystem.lstring import LString, ragged_arange
+from arbor.engine.lsystem.lsys import Alternative, LSystem, Pattern, Production
+from arbor.engine.lsystem.symbolic import SymbolRewriter
 
 CUT = ord("%")
 PRIORITIES = ("order", "position", "random")

@@ -16,7 +16,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from engine.lsystem.cursor import Cursor
+from arbor.engine.lsystem.cursor import Cursor
 
 Value = np.ndarray | float
 

@@ -17,8 +17,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from engine.base.errors import LSysError
-from engine.lsystem.text import lstring_text, parse_arrays
+from arbor.engine.base.errors import LSysError
+from arbor.engine.lsystem.text import lstring_text, parse_arrays
 
 MAX_PARAMS = 255
 _FORBIDDEN = set("(),")

@@ -28,10 +28,10 @@ from pathlib import Path
 
 import numpy as np
 
-from engine.base.errors import LSysError
-from engine.lsystem.cursor import Cursor
-from engine.lsystem.expr import EvalContext, Expr, HostFunctions, evaluate, parse_expression
-from engine.lsystem.lstring import MAX_PARAMS, LString, valid_symbol
+from arbor.engine.base.errors import LSysError
+from arbor.engine.lsystem.cursor import Cursor
+from arbor.engine.lsystem.expr import EvalContext, Expr, HostFunctions, evaluate, parse_expression
+from arbor.engine.lsystem.lstring import MAX_PARAMS, LString, valid_symbol
 
 HEADER_KEYS = {
     "n": "iterations",

@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from engine.lsystem.lsys import Alternative, LSystem
+from arbor.engine.lsystem.lsys import Alternative, LSystem
 
 PLACEHOLDERS = bytes(range(1, 33)) + bytes(range(127, 256))  # never valid module symbols
 

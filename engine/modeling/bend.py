@@ -12,9 +12,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from engine.geometry.turtle import TurtleConfig, interpret
-from engine.lsystem.lstring import LString, concat, parse_lstring
-from engine.lsystem.text import format_number
+from arbor.engine.geometry.turtle import TurtleConfig, interpret
+from arbor.engine.lsystem.lstring import LString, concat, parse_lstring
+from arbor.engine.lsystem.text import format_number
 
 DOWN = np.array([0.0, -1.0, 0.0])
 WOOD = (ord("F"), ord("I"))

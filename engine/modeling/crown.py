@@ -16,12 +16,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from engine.geometry.turtle import INITIAL_FRAME, unit
-from engine.lsystem import brackets
-from engine.lsystem.lstring import concat, parse_lstring
-from engine.lsystem.text import format_number
-from engine.modeling.lobes import Crossings, Lobe
-from engine.modeling.modeler import Modeler
+from arbor.engine.geometry.turtle import INITIAL_FRAME, unit
+from arbor.engine.lsystem import brackets
+from arbor.engine.lsystem.lstring import concat, parse_lstring
+from arbor.engine.lsystem.text import format_number
+from arbor.engine.modeling.lobes import Crossings, Lobe
+from arbor.engine.modeling.modeler import Modeler
 
 ALPHA, BETA = 0.8, -0.3
 GRAVITY = np.array([0.0, -1.0, 0.0])

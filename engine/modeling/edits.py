@@ -14,11 +14,11 @@ from pathlib import Path
 
 import numpy as np
 
-from engine.lsystem import brackets
-from engine.lsystem.derive import Deriver
-from engine.lsystem.lstring import LString
-from engine.lsystem.lsys import LSystem, load_lsystem
-from engine.modeling.regions import seed_in_region
+from arbor.engine.lsystem import brackets
+from arbor.engine.lsystem.derive import Deriver
+from arbor.engine.lsystem.lstring import LString
+from arbor.engine.lsystem.lsys import LSystem, load_lsystem
+from arbor.engine.modeling.regions import seed_in_region
 
 LSYS_EDITS = ("add_leaves", "erase_leaves", "add_blossoms", "erase_blossoms", "grow")
 EDIT_SETS = (*LSYS_EDITS[:4], "bend", "grow", "prune")  # bend and prune are not rewrites (bend.py, prune_region)

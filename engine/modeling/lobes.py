@@ -17,9 +17,9 @@ from functools import cached_property
 
 import numpy as np
 
-from engine.geometry.turtle import unit
-from engine.modeling.history import Undoable
-from engine.modeling.strokes import ArcLengthSpline, adaptive_sample
+from arbor.engine.geometry.turtle import unit
+from arbor.engine.modeling.history import Undoable
+from arbor.engine.modeling.strokes import ArcLengthSpline, adaptive_sample
 
 
 def resample_loop(points: np.ndarray, count: int) -> np.ndarray:

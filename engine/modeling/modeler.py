@@ -25,12 +25,12 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from engine.geometry.turtle import INITIAL_FRAME, Segments, TurtleConfig, interpret, unit
-from engine.lsystem import brackets
-from engine.lsystem.lstring import LString, concat, parse_lstring
-from engine.lsystem.text import format_number
-from engine.modeling.history import Undoable
-from engine.modeling.strokes import ArcLengthSpline, Stroke, adaptive_sample, curvature, speeds_at
+from arbor.engine.geometry.turtle import INITIAL_FRAME, Segments, TurtleConfig, interpret, unit
+from arbor.engine.lsystem import brackets
+from arbor.engine.lsystem.lstring import LString, concat, parse_lstring
+from arbor.engine.lsystem.text import format_number
+from arbor.engine.modeling.history import Undoable
+from arbor.engine.modeling.strokes import ArcLengthSpline, Stroke, adaptive_sample, curvature, speeds_at
 
 DRAWN = ord("F")
 GROWTH_POINT = ord("A")

@@ -15,10 +15,10 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from engine.geometry.turtle import INITIAL_FRAME
-from engine.lsystem import brackets
-from engine.lsystem.derive import Deriver
-from engine.lsystem.lstring import LString, concat, parse_lstring
+from arbor.engine.geometry.turtle import INITIAL_FRAME
+from arbor.engine.lsystem import brackets
+from arbor.engine.lsystem.derive import Deriver
+from arbor.engine.lsystem.lstring import LString, concat, parse_lstring
 
 
 @dataclass(frozen=True)
@@ -199,7 +199,7 @@ def seed_in_region(ls: LString, axiom: str, point) -> LString:
     The new axis is a bracket at the start of the string (where the turtle is at the base): a move to
     ``point`` without drawing, a turn back to vertical, then ``axiom``.
     """
-    from engine.modeling.modeler import ModelerSettings, path_modules
+    from arbor.engine.modeling.modeler import ModelerSettings, path_modules
 
     point = np.asarray(point, float)
     path = np.stack([np.zeros(3), point, point + np.array([0.0, 1e-6, 0.0])])

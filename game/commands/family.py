@@ -5,12 +5,12 @@ from __future__ import annotations
 import time
 from pathlib import Path
 
-from engine.base.errors import LSysError
-from engine.life.garden import Garden
-from engine.life.lineage import Family, Lineage
-from engine.life.rules import load_rules
-from engine.life.save import SavedGarden, read_garden, save_garden
-from game.paths import ASSETS
+from arbor.engine.base.errors import LSysError
+from arbor.engine.life.garden import Garden
+from arbor.engine.life.lineage import Family, Lineage
+from arbor.engine.life.rules import load_rules
+from arbor.engine.life.save import SavedGarden, read_garden, save_garden
+from arbor.game.paths import ASSETS
 
 
 def _tree(path: Path, index: int | None) -> tuple[SavedGarden, int]:

@@ -6,12 +6,12 @@ from pathlib import Path
 
 import numpy as np
 
-from engine.life.lab import Lab, load_experiment
-from engine.life.rules import load_rules
-from engine.life.save import save_world
-from game.paths import ASSETS
-from game.render.figures import lab_charts
-from game.render.renderer import headless_context, render_image, save_png
+from arbor.engine.life.lab import Lab, load_experiment
+from arbor.engine.life.rules import load_rules
+from arbor.engine.life.save import save_world
+from arbor.game.paths import ASSETS
+from arbor.game.render.figures import lab_charts
+from arbor.game.render.renderer import headless_context, render_image, save_png
 
 
 def new_lab(experiment_path: Path) -> Lab:

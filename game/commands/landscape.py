@@ -7,15 +7,15 @@ from pathlib import Path
 
 import numpy as np
 
-from engine.forest.landscape import Instances, Preset, scatter
-from engine.geometry.mesh import LOD_LEVELS
-from engine.geometry.tree import build_geometry
-from engine.lsystem.derive import derive
-from engine.lsystem.lsys import load_lsystem
-from game.errors import UserError
-from game.paths import ASSETS
-from game.render.camera import OrbitCamera
-from game.render.renderer import headless_context, save_png, sun_direction
+from arbor.engine.forest.landscape import Instances, Preset, scatter
+from arbor.engine.geometry.mesh import LOD_LEVELS
+from arbor.engine.geometry.tree import build_geometry
+from arbor.engine.lsystem.derive import derive
+from arbor.engine.lsystem.lsys import load_lsystem
+from arbor.game.errors import UserError
+from arbor.game.paths import ASSETS
+from arbor.game.render.camera import OrbitCamera
+from arbor.game.render.renderer import headless_context, save_png, sun_direction
 
 DEFAULT_PRESETS = (("abop_2_8_tree", 4), ("abop_2_6_monopodial", 7), ("abop_1_24e", 5))
 
@@ -45,7 +45,7 @@ def _grow_preset(name: str, steps: int | None):
     """A GeoMaTree species (assets/presets/NAME.toml) or an L-system (assets/lsystems/NAME.lsys)."""
     species = ASSETS / "presets" / f"{name}.toml"
     if species.exists():
-        from engine.forest.geomatree import growth_system, load_species
+        from arbor.engine.forest.geomatree import growth_system, load_species
 
         system = growth_system(load_species(species), ASSETS / "lsystems" / "geomatree.lsys", seed=1)
     else:
@@ -91,7 +91,7 @@ def overview_camera(size: float) -> OrbitCamera:
 def render_landscape(count: int, out: Path, size: tuple[int, int] = (1280, 720), seed: int = 0,
                      lod: int | None = None, specs=DEFAULT_PRESETS) -> list[Preset]:
     """Headless picture of a landscape of ``count`` trees; returns the presets used."""
-    from game.render.landscape import LandscapeRenderer
+    from arbor.game.render.landscape import LandscapeRenderer
 
     presets = build_presets(specs)
     side = landscape_size(count)

@@ -17,12 +17,12 @@ from pathlib import Path
 
 import numpy as np
 
-from engine.life.rules import load_rules
-from engine.life.save import load_world
-from engine.life.sweep import STATS, Outcome, Sweep, Task, cell, final_values, runs, summarize
-from engine.life.sweep_file import load_sweep
-from game.commands.sweep_runs import RunStore, outcomes, progress_bar, write_atomic
-from game.paths import ASSETS
+from arbor.engine.life.rules import load_rules
+from arbor.engine.life.save import load_world
+from arbor.engine.life.sweep import STATS, Outcome, Sweep, Task, cell, final_values, runs, summarize
+from arbor.engine.life.sweep_file import load_sweep
+from arbor.game.commands.sweep_runs import RunStore, outcomes, progress_bar, write_atomic
+from arbor.game.paths import ASSETS
 
 MAX_WORKERS = 256
 
@@ -86,7 +86,7 @@ def write_outputs(sweep: Sweep, store: RunStore, everything: list, plots: bool =
     write_atomic(out / "summary.csv", summary_csv(sweep, finals))
     files = [out / "tidy.csv", out / "summary.csv"]
     if plots:
-        from game.render import figures
+        from arbor.game.render import figures
 
         files += figures.dose_response(sweep, finals, out / "dose_response")
         files += figures.time_series(sweep, _series(sweep, rows), out / "time_series")
@@ -124,8 +124,8 @@ def _series(sweep: Sweep, rows: list[dict]) -> dict:
 
 def _thumbnails(sweep: Sweep, store: RunStore, everything: list, echo: Callable[[str], None]) -> list[Path]:
     """Render the kept final trees alike (same framing, so sizes compare) into a grid."""
-    from game.render import figures
-    from game.render.renderer import headless_context, render_image
+    from arbor.game.render import figures
+    from arbor.game.render.renderer import headless_context, render_image
 
     kept = {r.levels: store.trees_dir / f"{r.name}.arbor" for r in everything if r.seed == sweep.seeds[0]}
     rules = load_rules(ASSETS / "rules.toml", sweep.pace)

@@ -14,10 +14,10 @@ import traceback
 from collections.abc import Iterable, Iterator
 from pathlib import Path
 
-from engine.base.errors import LSysError
-from engine.base.files import atomic_write
-from engine.life.sweep import Outcome, Run, Sweep, Task, cell, execute
-from game.errors import UserError
+from arbor.engine.base.errors import LSysError
+from arbor.engine.base.files import atomic_write
+from arbor.engine.life.sweep import Outcome, Run, Sweep, Task, cell, execute
+from arbor.game.errors import UserError
 
 
 class RunStore:

@@ -8,13 +8,13 @@ from pathlib import Path
 
 import numpy as np
 
-from engine.base.errors import LSysError
-from engine.geometry.mesh import LOD_LEVELS, merge_trees, tree_mesh
-from engine.geometry.tree import TreeGeometry, build_geometry
-from engine.life.save import load_trees
-from engine.lsystem.derive import Deriver
-from engine.lsystem.lstring import LString
-from engine.lsystem.lsys import load_lsystem
+from arbor.engine.base.errors import LSysError
+from arbor.engine.geometry.mesh import LOD_LEVELS, merge_trees, tree_mesh
+from arbor.engine.geometry.tree import TreeGeometry, build_geometry
+from arbor.engine.life.save import load_trees
+from arbor.engine.lsystem.derive import Deriver
+from arbor.engine.lsystem.lstring import LString
+from arbor.engine.lsystem.lsys import load_lsystem
 
 
 @dataclass

@@ -19,7 +19,7 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from game.input.events import DEVICE, DOWN, MOVE, ROTATE, UP, InputEvent
+from arbor.game.input.events import DEVICE, DOWN, MOVE, ROTATE, UP, InputEvent
 
 THREEDCONNEXION = 0x256F
 LOGITECH = 0x046D

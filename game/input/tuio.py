@@ -16,7 +16,7 @@ import struct
 from pythonosc.osc_message import OscMessage
 from pythonosc.osc_packet import OscPacket, ParseError
 
-from game.input.events import DEVICE, DOWN, MOVE, UP, InputEvent
+from arbor.game.input.events import DEVICE, DOWN, MOVE, UP, InputEvent
 
 DEFAULT_PORT = 3333
 MAX_MESSAGES = 64  # messages used from one bundle

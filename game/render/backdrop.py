@@ -12,7 +12,7 @@ import math
 import moderngl
 import numpy as np
 
-from game.paths import ASSETS
+from arbor.game.paths import ASSETS
 
 SKY_ZENITH = (0.30, 0.52, 0.86)
 SKY_HORIZON = (0.78, 0.87, 0.95)

@@ -6,11 +6,11 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from engine.geometry.instances import LeafInstances, TubeInstances, leaf_instances, tube_instances
-from engine.geometry.mesh import TreeMesh, tree_mesh
-from engine.geometry.turtle import Leaves, Segments, TurtleResult
-from engine.life.growth import Fallen
-from engine.life.growth import leaf_clusters as leaves_clustered
+from arbor.engine.geometry.instances import LeafInstances, TubeInstances, leaf_instances, tube_instances
+from arbor.engine.geometry.mesh import TreeMesh, tree_mesh
+from arbor.engine.geometry.turtle import Leaves, Segments, TurtleResult
+from arbor.engine.life.growth import Fallen
+from arbor.engine.life.growth import leaf_clusters as leaves_clustered
 
 FALL_SECONDS = 2.5  # real seconds a shed branch takes to fall
 

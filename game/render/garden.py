@@ -17,9 +17,9 @@ from dataclasses import dataclass, replace
 import moderngl
 import numpy as np
 
-from game.render.backdrop import Backdrop, sky_colors
-from game.render.camera import OrbitCamera, look_at, orthographic
-from game.render.instanced import (
+from arbor.game.render.backdrop import Backdrop, sky_colors
+from arbor.game.render.camera import OrbitCamera, look_at, orthographic
+from arbor.game.render.instanced import (
     LEAF_KEPT,
     SIDES,
     TEMPLATE_VERTICES,
@@ -30,10 +30,10 @@ from game.render.instanced import (
     TreeBuffers,
     cover_grow,
 )
-from game.render.layer import MIN_SCALE, Pictures, Step
-from game.render.renderer import _gl, _load_texture
-from game.render.shadows import SHADOW_SIZE, ShadowMaps
-from game.render.stage import Stage
+from arbor.game.render.layer import MIN_SCALE, Pictures, Step
+from arbor.game.render.renderer import _gl, _load_texture
+from arbor.game.render.shadows import SHADOW_SIZE, ShadowMaps
+from arbor.game.render.stage import Stage
 
 LOD_PIXELS = (520, 260, 120)  # on-screen height (px) above which a tree gets level 0, 1, 2 (else 3)
 TWIG_PIXELS = (0.0, 0.1, 0.2, 0.35)  # per level: grown segments of a smaller radius (px) are left out

@@ -20,8 +20,8 @@ from dataclasses import dataclass, field
 import moderngl
 import numpy as np
 
-from engine.life.growth_view import GrowthView
-from game.render.backdrop import program, set_uniforms
+from arbor.engine.life.growth_view import GrowthView
+from arbor.game.render.backdrop import program, set_uniforms
 
 SIDES = (8, 6, 4, 3)  # ring sides per level of detail
 TEMPLATE_VERTICES = tuple(3 * (s + 1) + 1 for s in SIDES)  # two rings, the cap ring and the tip

@@ -7,11 +7,11 @@ from dataclasses import dataclass
 import moderngl
 import numpy as np
 
-from engine.forest.landscape import Instances, Preset, lod_levels, terrain_mesh, visible
-from engine.geometry.mesh import LOD_LEVELS, Mesh
-from game.paths import ASSETS
-from game.render.camera import OrbitCamera
-from game.render.renderer import BARK_TINT, GRASS, LEAF_TINT, SKY_HORIZON, SKY_ZENITH, _gl, _load_texture
+from arbor.engine.forest.landscape import Instances, Preset, lod_levels, terrain_mesh, visible
+from arbor.engine.geometry.mesh import LOD_LEVELS, Mesh
+from arbor.game.paths import ASSETS
+from arbor.game.render.camera import OrbitCamera
+from arbor.game.render.renderer import BARK_TINT, GRASS, LEAF_TINT, SKY_HORIZON, SKY_ZENITH, _gl, _load_texture
 
 PARTS = (("wood", "bark", 0), ("leaves", "leaf", 1), ("blossoms", "blossom", 2))
 

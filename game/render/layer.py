@@ -10,8 +10,8 @@ from dataclasses import dataclass
 import moderngl
 import numpy as np
 
-from game.render.backdrop import program
-from game.render.camera import OrbitCamera, project_points
+from arbor.game.render.backdrop import program
+from arbor.game.render.camera import OrbitCamera, project_points
 
 MIN_SCALE = 0.5  # never coarser than half the frame's resolution
 REUSE_PIXELS = 1.5  # a picture is shown while the camera keeps every corner of the trees this close

@@ -13,9 +13,9 @@ from pathlib import Path
 import moderngl
 import numpy as np
 
-from engine.geometry.mesh import Mesh, TreeMesh
-from game.paths import ASSETS
-from game.render.camera import OrbitCamera, look_at, orthographic
+from arbor.engine.geometry.mesh import Mesh, TreeMesh
+from arbor.game.paths import ASSETS
+from arbor.game.render.camera import OrbitCamera, look_at, orthographic
 
 SHADOW_SIZE = 2048
 SKY_ZENITH = (0.30, 0.52, 0.86)

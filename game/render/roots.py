@@ -4,9 +4,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from engine.geometry.instances import LEAF_FLOATS, LeafInstances, TubeInstances, tube_instances
-from engine.life.roots import Roots
-from game.render.falling import StaticView
+from arbor.engine.geometry.instances import LEAF_FLOATS, LeafInstances, TubeInstances, tube_instances
+from arbor.engine.life.roots import Roots
+from arbor.game.render.falling import StaticView
 
 
 def roots_view(roots: Roots) -> StaticView:

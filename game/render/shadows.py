@@ -8,7 +8,7 @@ from collections.abc import Callable
 import moderngl
 import numpy as np
 
-from game.render.instanced import Piece
+from arbor.game.render.instanced import Piece
 
 SHADOW_SIZE = 1024
 SHADOW_TURN = math.cos(math.radians(0.75))  # redraw shadows when the sun turned more than this

@@ -10,11 +10,11 @@ import math
 import moderngl
 import numpy as np
 
-from game.render.backdrop import Backdrop
-from game.render.camera import OrbitCamera
-from game.render.layer import Pictures, screen_rect
-from game.render.renderer import _gl
-from game.render.shadows import ShadowMaps
+from arbor.game.render.backdrop import Backdrop
+from arbor.game.render.camera import OrbitCamera
+from arbor.game.render.layer import Pictures, screen_rect
+from arbor.game.render.renderer import _gl
+from arbor.game.render.shadows import ShadowMaps
 
 SUN_STEP = 0.003  # the sky picture is redrawn when the sun moved this far (the disc moves ~3 px at 720 px)
 

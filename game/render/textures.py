@@ -9,7 +9,7 @@ from pathlib import Path
 
 import numpy as np
 
-from game.paths import ASSETS
+from arbor.game.paths import ASSETS
 
 TEXTURES = ASSETS / "textures"
 

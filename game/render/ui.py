@@ -14,8 +14,8 @@ from dataclasses import dataclass, field
 import numpy as np
 import pygame
 
-from game.render.icons import draw_icon
-from game.strings import text
+from arbor.game.render.icons import draw_icon
+from arbor.game.strings import text
 
 SUN_YELLOW = (250, 204, 40)
 WATER_BLUE = (60, 140, 240)

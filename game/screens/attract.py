@@ -6,8 +6,8 @@ the menu, a tap that closes it). Any session can be recorded with `arbor --recor
 
 from __future__ import annotations
 
-from game.input.events import DOWN, MOVE, UP, InputEvent, Recorder
-from game.paths import ASSETS
+from arbor.game.input.events import DOWN, MOVE, UP, InputEvent, Recorder
+from arbor.game.paths import ASSETS
 
 OUT = ASSETS / "attract" / "demo.jsonl"
 

@@ -6,15 +6,15 @@ import copy
 import math
 from typing import TYPE_CHECKING
 
-from engine.life.garden import MAX_GARDEN, MAX_ROCKS
-from engine.life.lineage import new_lineage
-from game.loop import SPEEDS
-from game.render.ui import range_to_slider, slider_to_range
-from game.screens.modeler import TOOLS
-from game.strings import text
+from arbor.engine.life.garden import MAX_GARDEN, MAX_ROCKS
+from arbor.engine.life.lineage import new_lineage
+from arbor.game.loop import SPEEDS
+from arbor.game.render.ui import range_to_slider, slider_to_range
+from arbor.game.screens.modeler import TOOLS
+from arbor.game.strings import text
 
 if TYPE_CHECKING:
-    from game.screens.game import Game
+    from arbor.game.screens.game import Game
 
 WORLD_ACTIONS = ("water", "orbit_height", "sun_speed", "replant")
 

@@ -11,11 +11,11 @@ from __future__ import annotations
 import math
 from typing import TYPE_CHECKING
 
-from engine.life.world import World
-from game.strings import text
+from arbor.engine.life.world import World
+from arbor.game.strings import text
 
 if TYPE_CHECKING:
-    from game.screens.game import Game
+    from arbor.game.screens.game import Game
 
 HINTS = ("open_menu", "water", "turn")
 ATTENTION = ("dead", "wilting", "drowning", "thirsty", "needs_light")  # statuses worth a reminder

@@ -9,13 +9,13 @@ from typing import TYPE_CHECKING
 import numpy as np
 import pygame
 
-from engine.life.lineage import Lineage
-from game.render.icons import draw_icon
-from game.strings import text
+from arbor.engine.life.lineage import Lineage
+from arbor.game.render.icons import draw_icon
+from arbor.game.strings import text
 
 if TYPE_CHECKING:
-    from engine.life.world import World
-    from game.screens.game import Game
+    from arbor.engine.life.world import World
+    from arbor.game.screens.game import Game
 
 THUMB = 112  # pixels: a thumbnail's side
 MAX_SHOWN = 24  # members drawn at most (the garden's trees first, then their nearest ancestors)

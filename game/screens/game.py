@@ -21,27 +21,27 @@ import moderngl
 import numpy as np
 import pygame
 
-from engine.life.growth import Clocks
-from engine.life.rules import load_rules
-from engine.life.world import World
-from engine.lsystem.lsys import load_lsystem
-from game.input.events import InputEvent, PygameTranslator
-from game.input.gestures import CameraControl, Gestures
-from game.loop import FixedStepLoop
-from game.paths import ASSETS, default_saves
-from game.render.camera import OrbitCamera
-from game.render.garden import GardenRenderer
-from game.render.renderer import Overlay
-from game.render.ui import HudInfo, Menu
-from game.screens.care import CareActions
-from game.screens.coach import Coach
-from game.screens.family import FamilyScreen
-from game.screens.game_hud import GameHud
-from game.screens.game_input import GameInput
-from game.screens.game_view import GameView
-from game.screens.modeler import ModelingMode
-from game.screens.picking import Picker
-from game.screens.saves import SaveKeeper
+from arbor.engine.life.growth import Clocks
+from arbor.engine.life.rules import load_rules
+from arbor.engine.life.world import World
+from arbor.engine.lsystem.lsys import load_lsystem
+from arbor.game.input.events import InputEvent, PygameTranslator
+from arbor.game.input.gestures import CameraControl, Gestures
+from arbor.game.loop import FixedStepLoop
+from arbor.game.paths import ASSETS, default_saves
+from arbor.game.render.camera import OrbitCamera
+from arbor.game.render.garden import GardenRenderer
+from arbor.game.render.renderer import Overlay
+from arbor.game.render.ui import HudInfo, Menu
+from arbor.game.screens.care import CareActions
+from arbor.game.screens.coach import Coach
+from arbor.game.screens.family import FamilyScreen
+from arbor.game.screens.game_hud import GameHud
+from arbor.game.screens.game_input import GameInput
+from arbor.game.screens.game_view import GameView
+from arbor.game.screens.modeler import ModelingMode
+from arbor.game.screens.picking import Picker
+from arbor.game.screens.saves import SaveKeeper
 
 BASE_PITCH = 8.0
 

@@ -8,13 +8,13 @@ from typing import TYPE_CHECKING
 import numpy as np
 import pygame
 
-from game.render.camera import OrbitCamera, project_points
-from game.render.icons import draw_icon
-from game.render.ui import HudInfo, draw_hud, draw_rain, draw_rain_cloud
-from game.strings import duration, text
+from arbor.game.render.camera import OrbitCamera, project_points
+from arbor.game.render.icons import draw_icon
+from arbor.game.render.ui import HudInfo, draw_hud, draw_rain, draw_rain_cloud
+from arbor.game.strings import duration, text
 
 if TYPE_CHECKING:
-    from game.screens.game import Game
+    from arbor.game.screens.game import Game
 
 NEEDS_ICON = {"thirsty": "can", "wilting": "can", "needs_light": "sun", "drowning": "can", "dead": "cross"}
 BADGE = 30  # pixels: a garden marker's size

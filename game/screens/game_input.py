@@ -6,11 +6,23 @@ from typing import TYPE_CHECKING
 
 import pygame
 
-from game.input.events import DEVICE, DOWN, FOCUS_LOST, KEY_DOWN, KEY_UP, MOVE, QUIT, ROTATE, UP, WHEEL, InputEvent
-from game.loop import SPEEDS
+from arbor.game.input.events import (
+    DEVICE,
+    DOWN,
+    FOCUS_LOST,
+    KEY_DOWN,
+    KEY_UP,
+    MOVE,
+    QUIT,
+    ROTATE,
+    UP,
+    WHEEL,
+    InputEvent,
+)
+from arbor.game.loop import SPEEDS
 
 if TYPE_CHECKING:
-    from game.screens.game import Game
+    from arbor.game.screens.game import Game
 
 KEY_YAW, KEY_TILT = 4.0, 3.0  # degrees per key press
 TAP_SECONDS, TAP_PIXELS = 0.3, 12

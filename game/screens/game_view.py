@@ -9,15 +9,15 @@ from typing import TYPE_CHECKING
 import moderngl
 import numpy as np
 
-from engine.life import seasons
-from engine.life.growth_view import GrowthView
-from game.render.falling import FALL_SECONDS, falling_view
-from game.render.garden import BARK, GardenRenderer, Placed
-from game.render.instanced import Detail, TreeBuffers, prepare_upload
-from game.render.roots import rocks_view, roots_view
+from arbor.engine.life import seasons
+from arbor.engine.life.growth_view import GrowthView
+from arbor.game.render.falling import FALL_SECONDS, falling_view
+from arbor.game.render.garden import BARK, GardenRenderer, Placed
+from arbor.game.render.instanced import Detail, TreeBuffers, prepare_upload
+from arbor.game.render.roots import rocks_view, roots_view
 
 if TYPE_CHECKING:
-    from game.screens.game import Game
+    from arbor.game.screens.game import Game
 
 HEALTHY_LEAF, WILTED_LEAF = np.array([1.0, 1.0, 1.0]), np.array([2.6, 0.85, 0.45])  # green -> yellow-brown
 WILT_STEP = 0.02  # a change of wilt this large rebuilds the tree (drooping angles change its shape)

@@ -20,12 +20,12 @@ from pathlib import Path
 
 import pygame
 
-from engine.base.config import fill_dataclass
-from engine.base.errors import LSysError
-from engine.life.save import save_world
-from game.input.events import DOWN, KEY_DOWN, KEY_UP, MOVE, QUIT, UP, InputEvent, Player, load_recording
-from game.paths import ASSETS
-from game.strings import set_language, text
+from arbor.engine.base.config import fill_dataclass
+from arbor.engine.base.errors import LSysError
+from arbor.engine.life.save import save_world
+from arbor.game.input.events import DOWN, KEY_DOWN, KEY_UP, MOVE, QUIT, UP, InputEvent, Player, load_recording
+from arbor.game.paths import ASSETS
+from arbor.game.strings import set_language, text
 
 CORNER = 90  # px: the staff corner
 PAD_BUTTON = 96

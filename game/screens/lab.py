@@ -13,14 +13,14 @@ import moderngl
 import numpy as np
 import pygame
 
-from engine.life.lab import Lab
-from engine.life.save import save_world
-from game.input.events import DOWN, KEY_DOWN, QUIT, InputEvent
-from game.loop import SPEEDS, FixedStepLoop
-from game.render.camera import OrbitCamera
-from game.render.charts import COLORS, draw_charts
-from game.render.figures import lab_charts
-from game.render.renderer import Overlay, TreeRenderer, save_png
+from arbor.engine.life.lab import Lab
+from arbor.engine.life.save import save_world
+from arbor.game.input.events import DOWN, KEY_DOWN, QUIT, InputEvent
+from arbor.game.loop import SPEEDS, FixedStepLoop
+from arbor.game.render.camera import OrbitCamera
+from arbor.game.render.charts import COLORS, draw_charts
+from arbor.game.render.figures import lab_charts
+from arbor.game.render.renderer import Overlay, TreeRenderer, save_png
 
 SCENE_FRACTION = 0.55
 BUTTON_H = 56

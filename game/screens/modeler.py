@@ -12,18 +12,18 @@ from __future__ import annotations
 import numpy as np
 import pygame
 
-from engine.life.growth import grow_geometry
-from engine.lsystem.lstring import LString
-from engine.modeling.edits import EDIT_SETS, load_edit_sets
-from engine.modeling.modeler import Modeler
-from engine.modeling.regions import prune
-from engine.modeling.strokes import Stroke
-from game.paths import ASSETS
-from game.render.camera import OrbitCamera, project_points, unproject_to_plane
-from game.render.ui import draw_joint
-from game.strings import text
-from game.tools.crown import CrownTool
-from game.tools.region import RegionTool
+from arbor.engine.life.growth import grow_geometry
+from arbor.engine.lsystem.lstring import LString
+from arbor.engine.modeling.edits import EDIT_SETS, load_edit_sets
+from arbor.engine.modeling.modeler import Modeler
+from arbor.engine.modeling.regions import prune
+from arbor.engine.modeling.strokes import Stroke
+from arbor.game.paths import ASSETS
+from arbor.game.render.camera import OrbitCamera, project_points, unproject_to_plane
+from arbor.game.render.ui import draw_joint
+from arbor.game.strings import text
+from arbor.game.tools.crown import CrownTool
+from arbor.game.tools.region import RegionTool
 
 PICK_PIXELS = 18.0  # how close a tap must be to a branch to cut it
 WORK_SIZE = 150.0  # scene units: strokes and the modeler's view stay inside +-this (a runaway view cannot grow)

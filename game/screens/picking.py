@@ -6,11 +6,11 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from game.render.camera import OrbitCamera, project_points
-from game.strings import text
+from arbor.game.render.camera import OrbitCamera, project_points
+from arbor.game.strings import text
 
 if TYPE_CHECKING:
-    from game.screens.game import Game
+    from arbor.game.screens.game import Game
 
 FRUIT_PIXELS = 28  # a tap this close to a ripe fruit picks it (a finger, not a mouse pointer)
 TRUNK_PIXELS = 40  # a tap this close to another tree's trunk line chooses it

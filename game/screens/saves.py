@@ -14,17 +14,17 @@ import time
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from engine.base.errors import LSysError
-from engine.life.away import AwaySummary, away_seconds, live_away
-from engine.life.garden import MAX_GARDEN, Garden
-from engine.life.lineage import new_lineage, species_of
-from engine.life.save import load_garden, read_garden, save_garden
-from engine.life.sim import sun_angle_at
-from engine.life.world import World
-from game.strings import text
+from arbor.engine.base.errors import LSysError
+from arbor.engine.life.away import AwaySummary, away_seconds, live_away
+from arbor.engine.life.garden import MAX_GARDEN, Garden
+from arbor.engine.life.lineage import new_lineage, species_of
+from arbor.engine.life.save import load_garden, read_garden, save_garden
+from arbor.engine.life.sim import sun_angle_at
+from arbor.engine.life.world import World
+from arbor.game.strings import text
 
 if TYPE_CHECKING:
-    from game.screens.game import Game
+    from arbor.game.screens.game import Game
 
 
 class SaveKeeper:

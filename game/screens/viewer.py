@@ -7,13 +7,13 @@ from pathlib import Path
 import numpy as np
 import pygame
 
-from engine.geometry.tree import build_geometry
-from engine.lsystem.derive import Deriver
-from engine.lsystem.lsys import load_lsystem
-from game.errors import UserError
-from game.input.events import DOWN, KEY_DOWN, MOVE, QUIT, WHEEL
-from game.render.camera import OrbitCamera
-from game.render.renderer import TreeRenderer, sun_direction
+from arbor.engine.geometry.tree import build_geometry
+from arbor.engine.lsystem.derive import Deriver
+from arbor.engine.lsystem.lsys import load_lsystem
+from arbor.game.errors import UserError
+from arbor.game.input.events import DOWN, KEY_DOWN, MOVE, QUIT, WHEEL
+from arbor.game.render.camera import OrbitCamera
+from arbor.game.render.renderer import TreeRenderer, sun_direction
 
 MAX_VIEW_STEPS = 9
 VIEW_BUDGET = 300_000  # modules: the viewer stays interactive (a few hundred MB at most)

@@ -17,14 +17,14 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 import pygame
 
-from engine.lsystem.lstring import LString
-from engine.lsystem.text import format_number
-from engine.modeling.crown import grow_crown
-from engine.modeling.lobes import Lobe, lobe_from_loops, lobe_from_outline
-from engine.modeling.modeler import Modeler
-from game.render.camera import OrbitCamera, project_points, unproject_to_plane
-from game.render.ui import draw_polyline
-from game.strings import text
+from arbor.engine.lsystem.lstring import LString
+from arbor.engine.lsystem.text import format_number
+from arbor.engine.modeling.crown import grow_crown
+from arbor.engine.modeling.lobes import Lobe, lobe_from_loops, lobe_from_outline
+from arbor.engine.modeling.modeler import Modeler
+from arbor.game.render.camera import OrbitCamera, project_points, unproject_to_plane
+from arbor.game.render.ui import draw_polyline
+from arbor.game.strings import text
 
 MAX_CROWN_MODULES = 24000  # one crown's bound even without a tree budget
 MAX_CROWN_STATES = 32  # crown steps whose lobes undo/redo can bring back

@@ -12,16 +12,16 @@ from __future__ import annotations
 import numpy as np
 import pygame
 
-from engine.geometry.turtle import TurtleConfig, module_positions
-from engine.life.growth import new_axis_text, render_view
-from engine.lsystem.lstring import LString
-from engine.modeling.bend import bend_region
-from engine.modeling.edits import apply_edit, prune_region
-from engine.modeling.regions import Sphere, Supertoroid, fit_supertoroid, moved_region, scaled_region
-from game.render.camera import OrbitCamera, project_ball, project_points
-from game.render.ui import draw_polyline
-from game.strings import text
-from game.tools.symbols import draw_symbols
+from arbor.engine.geometry.turtle import TurtleConfig, module_positions
+from arbor.engine.life.growth import new_axis_text, render_view
+from arbor.engine.lsystem.lstring import LString
+from arbor.engine.modeling.bend import bend_region
+from arbor.engine.modeling.edits import apply_edit, prune_region
+from arbor.engine.modeling.regions import Sphere, Supertoroid, fit_supertoroid, moved_region, scaled_region
+from arbor.game.render.camera import OrbitCamera, project_ball, project_points
+from arbor.game.render.ui import draw_polyline
+from arbor.game.strings import text
+from arbor.game.tools.symbols import draw_symbols
 
 CONTOUR_PIXELS = 80.0  # a drag at least this tall, and twice as tall as wide, is a contour
 GROUPS = {"grow": "grown", "prune": "pruned_region"}  # edits with their own message

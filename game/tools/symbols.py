@@ -10,9 +10,9 @@ from __future__ import annotations
 import numpy as np
 import pygame
 
-from engine.lsystem.lstring import LString
-from engine.modeling.regions import Sphere
-from game.render.camera import OrbitCamera, project_ball, project_points
+from arbor.engine.lsystem.lstring import LString
+from arbor.engine.modeling.regions import Sphere
+from arbor.game.render.camera import OrbitCamera, project_ball, project_points
 
 MAX_ROWS = 160
 ROW_SYMBOLS = 10  # symbols shown at one spot before an ellipsis
