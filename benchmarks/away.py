@@ -14,10 +14,10 @@ import tempfile
 import time
 from pathlib import Path
 
-from arbor.engine.life.away import away_seconds, live_away
-from arbor.engine.life.garden import Garden
-from arbor.engine.life.rules import load_rules
-from arbor.engine.life.save import load_garden, save_garden
+from arbor.engine.life.keep.away import away_seconds, live_away
+from arbor.engine.life.keep.save import load_garden, save_garden
+from arbor.engine.life.rules.rules import load_rules
+from arbor.engine.life.world.garden import Garden
 from benchmarks.home_pace import ASSETS, play
 
 DAYS = 11  # grown into summer: the time away covers summer and autumn (and winter, for 14 days)

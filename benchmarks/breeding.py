@@ -16,10 +16,10 @@ from pathlib import Path
 
 import numpy as np
 
-from arbor.engine.life.breed import cross
-from arbor.engine.life.lab import measure
-from arbor.engine.life.rules import load_rules
-from arbor.engine.life.world import World
+from arbor.engine.life.experiment.lab import measure
+from arbor.engine.life.lineage.breed import cross
+from arbor.engine.life.rules.rules import load_rules
+from arbor.engine.life.world.world import World
 from arbor.engine.lsystem.lsys import load_lsystem
 
 ASSETS = Path(__file__).resolve().parent.parent / "assets"

@@ -23,9 +23,9 @@ import numpy as np
 
 from arbor.engine.base.errors import LSysError
 from arbor.engine.geometry.tree import build_geometry
-from arbor.engine.life.rules import load_rules
-from arbor.engine.life.save import garden_text, load_garden
-from arbor.engine.life.world import World
+from arbor.engine.life.keep.save import garden_text, load_garden
+from arbor.engine.life.rules.rules import load_rules
+from arbor.engine.life.world.world import World
 from arbor.engine.lsystem.derive import Deriver
 from arbor.engine.lsystem.lsys import load_lsystem, parse_lsystem
 

@@ -48,8 +48,8 @@ def _report(name: str, ms: np.ndarray) -> None:
 
 def grown_tree(days: float):
     """A world grown ``days`` simulated days by a careful player (the living model)."""
-    from arbor.engine.life.rules import load_rules
-    from arbor.engine.life.world import World
+    from arbor.engine.life.rules.rules import load_rules
+    from arbor.engine.life.world.world import World
     from arbor.engine.lsystem.lsys import load_lsystem
     from arbor.game.paths import ASSETS
 
@@ -65,7 +65,7 @@ def grown_tree(days: float):
 def big_tree(segments: int):
     """The game tree's rules with the budget raised, every bud woken: rewritten until ``segments``
     internodes exist. Returns the tree and its length time."""
-    from arbor.engine.life.growth import GrowingTree
+    from arbor.engine.life.plant.growth import GrowingTree
     from arbor.engine.lsystem.lsys import load_lsystem
     from arbor.game.paths import ASSETS
 
@@ -79,8 +79,8 @@ def big_tree(segments: int):
 
 def rebuild_costs(trees) -> None:
     """Full record build vs per-frame update of the growing parts, per tree size."""
-    from arbor.engine.life.growth import Clocks
-    from arbor.engine.life.growth_view import GrowthView
+    from arbor.engine.life.form.growth_view import GrowthView
+    from arbor.engine.life.form.interpret import Clocks
 
     print("cost per growth step (records of the whole tree) vs per frame (only what grows):")
     for tree, t in trees:
@@ -103,7 +103,7 @@ def _old_path(tree, t: float, ctx, fbo, camera, n: int) -> np.ndarray:
     """Frame times of the path the game had before instanced records (issue 17's baseline): every
     frame the whole tree through the turtle and the mesher at LOD 0, uploaded, and drawn with a shadow
     pass and a lit pass by the mesh renderer."""
-    from arbor.engine.life.growth import Clocks
+    from arbor.engine.life.form.interpret import Clocks
     from arbor.game.render.renderer import TreeRenderer, sun_direction
 
     renderer = TreeRenderer(ctx)
@@ -122,8 +122,8 @@ def main() -> None:
     """Run every scenario and print the figures."""
     import pygame
 
-    from arbor.engine.life.growth import Clocks
-    from arbor.engine.life.growth_view import GrowthView
+    from arbor.engine.life.form.growth_view import GrowthView
+    from arbor.engine.life.form.interpret import Clocks
     from arbor.game.render.renderer import headless_context
     from arbor.game.screens.game import Game, GameConfig
 

@@ -14,11 +14,11 @@ import sys
 import time
 from pathlib import Path
 
-from arbor.engine.life.garden import Garden
-from arbor.engine.life.journal import METRE
-from arbor.engine.life.rules import load_rules
-from arbor.engine.life.sim import sun_angle_at
-from arbor.engine.life.world import World
+from arbor.engine.life.plant.journal import METRE
+from arbor.engine.life.plant.sim import sun_angle_at
+from arbor.engine.life.rules.rules import load_rules
+from arbor.engine.life.world.garden import Garden
+from arbor.engine.life.world.world import World
 from arbor.engine.lsystem.lsys import load_lsystem
 
 ASSETS = Path(__file__).resolve().parent.parent / "assets"

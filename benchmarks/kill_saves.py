@@ -19,15 +19,15 @@ from pathlib import Path
 from tempfile import TemporaryDirectory
 
 from arbor.engine.base.errors import LSysError
-from arbor.engine.life.save import load_garden
+from arbor.engine.life.keep.save import load_garden
 from arbor.game.screens.saves import remove_stale_temp_files
 
 ROOT = Path(__file__).resolve().parent.parent
 CHILD = """
 import sys
-from arbor.engine.life.save import save_garden
-from arbor.engine.life.rules import load_rules
-from arbor.engine.life.world import World
+from arbor.engine.life.keep.save import save_garden
+from arbor.engine.life.rules.rules import load_rules
+from arbor.engine.life.world.world import World
 from arbor.engine.lsystem.lsys import load_lsystem
 system = load_lsystem("assets/lsystems/game_tree.lsys")
 rules = load_rules("assets/rules.toml", pace="demo")

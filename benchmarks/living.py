@@ -16,10 +16,10 @@ from pathlib import Path
 
 import numpy as np
 
-from arbor.engine.life.lab import measure
-from arbor.engine.life.light import exposure
-from arbor.engine.life.rules import load_rules
-from arbor.engine.life.world import World, sense_light
+from arbor.engine.life.experiment.lab import measure
+from arbor.engine.life.plant.light import exposure
+from arbor.engine.life.rules.rules import load_rules
+from arbor.engine.life.world.world import World, sense_light
 from arbor.engine.lsystem.lsys import load_lsystem
 from benchmarks import median_ms
 

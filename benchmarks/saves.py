@@ -18,9 +18,9 @@ from pathlib import Path
 import numpy as np
 
 from arbor.engine.base.memory import keep_freed_memory
-from arbor.engine.life.rules import load_rules
-from arbor.engine.life.save import load_garden, save_world
-from arbor.engine.life.world import World
+from arbor.engine.life.keep.save import load_garden, save_world
+from arbor.engine.life.rules.rules import load_rules
+from arbor.engine.life.world.world import World
 from arbor.engine.lsystem.derive import Deriver
 from arbor.engine.lsystem.lstring import concat, parse_lstring
 from arbor.engine.lsystem.lsys import load_lsystem

@@ -5,7 +5,7 @@ from pathlib import Path
 import numpy as np
 
 from arbor.engine.geometry.turtle import TurtleConfig, interpret, module_positions
-from arbor.engine.life.growth import Clocks, grow_geometry, render_view
+from arbor.engine.life.form.interpret import Clocks, grow_geometry, render_view
 from arbor.engine.lsystem.lstring import parse_lstring
 from arbor.engine.lsystem.lsys import load_lsystem
 from arbor.engine.modeling.edits import apply_edit, load_edit_sets
@@ -16,7 +16,7 @@ SETS = load_edit_sets(ASSETS / "edits")
 
 
 def game_tree(steps: int = 40):
-    from arbor.engine.life.growth import GrowingTree
+    from arbor.engine.life.plant.growth import GrowingTree
 
     system = load_lsystem(ASSETS / "lsystems" / "game_tree.lsys")
     tree = GrowingTree(system)

@@ -12,10 +12,10 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from arbor.engine.life.rules import load_rules
-from arbor.engine.life.save import load_garden, save_garden
-from arbor.engine.life.save_check import SIM_FIELDS
-from arbor.engine.life.world import World
+from arbor.engine.life.keep.save import load_garden, save_garden
+from arbor.engine.life.keep.save_check import SIM_FIELDS
+from arbor.engine.life.rules.rules import load_rules
+from arbor.engine.life.world.world import World
 from arbor.engine.lsystem.lsys import load_lsystem
 from arbor.game.input.tuio import TuioParser
 from benchmarks.fuzz import (

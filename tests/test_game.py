@@ -6,8 +6,8 @@ import numpy as np
 import pygame
 import pytest
 
-from arbor.engine.life.rules import load_rules
-from arbor.engine.life.world import replay
+from arbor.engine.life.rules.rules import load_rules
+from arbor.engine.life.world.world import replay
 from arbor.engine.lsystem.lsys import load_lsystem
 from arbor.game.input.gestures import MAX_TILT
 from arbor.game.screens.game import Game, GameConfig

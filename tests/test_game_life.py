@@ -11,8 +11,8 @@ import numpy as np
 import pygame
 import pytest
 
-from arbor.engine.life.rules import load_rules
-from arbor.engine.life.world import World
+from arbor.engine.life.rules.rules import load_rules
+from arbor.engine.life.world.world import World
 from arbor.engine.lsystem.lsys import load_lsystem
 from arbor.game.screens.game import Game, GameConfig
 from tests.conftest import FakeClock

@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from arbor.engine.life.save import load_world, save_world
+from arbor.engine.life.keep.save import load_world, save_world
 from arbor.game.input.events import DOWN, MOVE, UP, InputEvent
 from arbor.game.screens.game import Game, GameConfig
 

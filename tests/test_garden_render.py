@@ -7,10 +7,10 @@ import math
 import numpy as np
 import pytest
 
-from arbor.engine.life.growth import Clocks
-from arbor.engine.life.growth_view import GrowthView
-from arbor.engine.life.rules import load_rules
-from arbor.engine.life.world import World
+from arbor.engine.life.form.growth_view import GrowthView
+from arbor.engine.life.form.interpret import Clocks
+from arbor.engine.life.rules.rules import load_rules
+from arbor.engine.life.world.world import World
 from arbor.engine.lsystem.lsys import load_lsystem
 from arbor.game.render.camera import project_points
 from arbor.game.render.instanced import LEAF_KEPT, Detail

@@ -1,9 +1,10 @@
 import numpy as np
 import pytest
 
-from arbor.engine.life.growth import Clocks, GrowingTree
-from arbor.engine.life.rules import load_rules
-from arbor.engine.life.world import World
+from arbor.engine.life.form.interpret import Clocks
+from arbor.engine.life.plant.growth import GrowingTree
+from arbor.engine.life.rules.rules import load_rules
+from arbor.engine.life.world.world import World
 from arbor.engine.lsystem.lsys import load_lsystem
 
 FPS = 60

@@ -4,8 +4,8 @@ import numpy as np
 import pytest
 
 from arbor.engine.base.errors import LSysError
-from arbor.engine.life.lab import Lab, load_experiment
-from arbor.engine.life.rules import load_rules
+from arbor.engine.life.experiment.lab import Lab, load_experiment
+from arbor.engine.life.rules.rules import load_rules
 from arbor.game.commands.lab import run_headless
 from tests.conftest import ROOT
 

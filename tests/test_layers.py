@@ -15,7 +15,10 @@ ROOT = Path(__file__).resolve().parent.parent
 
 # package -> rank; a module may import its own package or a package of a strictly lower rank.
 ENGINE = {"engine.base": 0, "engine.lsystem": 1, "engine.geometry": 2, "engine.forest": 3,
-          "engine.modeling": 3, "engine.life": 4}
+          "engine.modeling": 3, "engine.life": 4,
+          # engine/life by job, in ranks of their own (4.0 .. 4.5)
+          "engine.life.rules": 4.0, "engine.life.form": 4.1, "engine.life.lineage": 4.1, "engine.life.plant": 4.2,
+          "engine.life.world": 4.3, "engine.life.keep": 4.4, "engine.life.experiment": 4.5}
 GAME = {"game.paths": 0, "game.errors": 0, "game.strings": 1, "game.loop": 1, "game.watchdog": 1, "game.render": 2,
         "game.input": 2, "game.tools": 3, "game.screens": 4, "game.commands": 4, "game.app": 5, "game.cli": 6}
 GUI = ("pygame", "moderngl", "glcontext", "OpenGL")
@@ -105,7 +108,7 @@ def test_the_rule_bites(tmp_path):
     """An upward import planted in a copy of a low layer is reported."""
     (tmp_path / "engine" / "base").mkdir(parents=True)
     (tmp_path / "engine" / "life").mkdir()
-    (tmp_path / "engine" / "base" / "x.py").write_text("def f():\n    from arbor.engine.life.sim import Rules\n")
+    (tmp_path / "engine" / "base" / "x.py").write_text("def f():\n    from arbor.engine.life.plant.sim import Rules\n")
     (tmp_path / "engine" / "life" / "y.py").write_text("from arbor.engine.base import x\n")
     bad = violations(tmp_path, ENGINE, "engine")
     assert len(bad) == 1 and "engine/base/x.py:2" in bad[0]

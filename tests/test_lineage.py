@@ -9,14 +9,14 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from arbor.engine.life.breed import cross
-from arbor.engine.life.collide import Obstacles, rocks
-from arbor.engine.life.garden import Garden
-from arbor.engine.life.lab import measure
-from arbor.engine.life.lineage import Family, lineage_from_row, new_lineage
-from arbor.engine.life.rules import load_rules
-from arbor.engine.life.save import read_garden, save_garden
-from arbor.engine.life.world import World
+from arbor.engine.life.experiment.lab import measure
+from arbor.engine.life.keep.save import read_garden, save_garden
+from arbor.engine.life.lineage.breed import cross
+from arbor.engine.life.lineage.lineage import Family, lineage_from_row, new_lineage
+from arbor.engine.life.plant.collide import Obstacles, rocks
+from arbor.engine.life.rules.rules import load_rules
+from arbor.engine.life.world.garden import Garden
+from arbor.engine.life.world.world import World
 from arbor.engine.lsystem.lsys import load_lsystem
 
 ASSETS = Path(__file__).resolve().parent.parent / "assets"

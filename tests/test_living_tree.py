@@ -4,12 +4,13 @@ growing within its budget; garden trees shade each other."""
 import numpy as np
 import pytest
 
-from arbor.engine.life.garden import Garden
-from arbor.engine.life.growth import Clocks, GrowingTree
-from arbor.engine.life.lab import crown_shape
-from arbor.engine.life.light import LightRules, exposure, optical_depth
-from arbor.engine.life.rules import load_rules
-from arbor.engine.life.world import World, sense_light
+from arbor.engine.life.experiment.lab import crown_shape
+from arbor.engine.life.form.interpret import Clocks
+from arbor.engine.life.plant.growth import GrowingTree
+from arbor.engine.life.plant.light import exposure, optical_depth
+from arbor.engine.life.rules.rules import LightRules, load_rules
+from arbor.engine.life.world.garden import Garden
+from arbor.engine.life.world.world import World, sense_light
 from arbor.engine.lsystem.lsys import load_lsystem
 
 DAY = 2 * np.pi / 0.05  # seconds of a simulated day at the default sun speed
@@ -188,7 +189,7 @@ def test_a_raised_tree_leaves_the_game_as_it_stands(system, tmp_path):
     import trimesh
 
     from arbor.engine.geometry.mesh import tree_mesh
-    from arbor.engine.life.save import save_world
+    from arbor.engine.life.keep.save import save_world
     from arbor.game.cli import main
 
     world = cared_for(system, 6)

@@ -8,9 +8,10 @@ import numpy as np
 import pytest
 
 from arbor.engine.geometry.turtle import TurtleConfig, module_positions
-from arbor.engine.life.growth import Clocks, new_axis_text, render_view
-from arbor.engine.life.rules import load_rules
-from arbor.engine.life.world import World
+from arbor.engine.life.form.interpret import Clocks, render_view
+from arbor.engine.life.plant.growth import new_axis_text
+from arbor.engine.life.rules.rules import load_rules
+from arbor.engine.life.world.world import World
 from arbor.engine.lsystem.lsys import load_lsystem
 from arbor.engine.modeling.edits import apply_edit, load_edit_sets
 from arbor.engine.modeling.regions import Sphere
@@ -137,7 +138,7 @@ def test_growth_points_wake_keeping_the_length_they_were_drawn_with(grown):
 
 def test_a_trunk_drawn_from_the_foot_of_the_sapling_becomes_its_trunk_without_a_step(grown):
     from arbor.engine.geometry.turtle import interpret
-    from arbor.engine.life.growth import grow_geometry
+    from arbor.engine.life.form.interpret import grow_geometry
     from arbor.engine.modeling.modeler import Modeler
     from arbor.engine.modeling.strokes import Stroke
 

@@ -8,9 +8,9 @@ import time
 import numpy as np
 import pytest
 
-from arbor.engine.life.rules import load_rules
-from arbor.engine.life.save import SaveError, load_world, save_text, save_world
-from arbor.engine.life.world import World
+from arbor.engine.life.keep.save import SaveError, load_world, save_text, save_world
+from arbor.engine.life.rules.rules import load_rules
+from arbor.engine.life.world.world import World
 from arbor.engine.lsystem.lsys import load_lsystem
 
 
@@ -98,9 +98,9 @@ def test_error_in_lstring_points_at_its_line(world, tmp_path):
 CHILD = """
 import sys
 from arbor.engine.lsystem.lsys import load_lsystem
-from arbor.engine.life.rules import load_rules
-from arbor.engine.life.world import World
-from arbor.engine.life.save import save_world
+from arbor.engine.life.rules.rules import load_rules
+from arbor.engine.life.world.world import World
+from arbor.engine.life.keep.save import save_world
 w = World(load_lsystem("assets/lsystems/game_tree.lsys"), load_rules("assets/rules.toml", pace="demo"), seed=1)
 w.sim.state.sun_meter = w.sim.state.water_meter = 0.9
 print("ready", flush=True)
@@ -129,7 +129,7 @@ def test_killed_while_saving_leaves_a_loadable_save(tmp_path, world):
 
 
 def test_saves_with_the_older_wrapped_string_still_load(world, tmp_path):
-    from arbor.engine.life.save import _toml_basic_block
+    from arbor.engine.life.keep.save import _toml_basic_block
 
     text = save_text(world, "game_tree.lsys")
     start = text.index("lstring = '''")
@@ -145,7 +145,7 @@ def test_saves_with_the_older_wrapped_string_still_load(world, tmp_path):
 def test_lstring_blocks_read_past_toml_give_what_toml_gives(world):
     import tomllib
 
-    from arbor.engine.life import save_blocks
+    from arbor.engine.life.keep import save_blocks
 
     text = save_text(world, "game_tree.lsys")
     assert save_blocks.loads(text.encode())[0] == tomllib.loads(text)

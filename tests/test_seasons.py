@@ -7,12 +7,12 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from arbor.engine.life import seasons
-from arbor.engine.life.away import away_seconds, live_away, tree_height
-from arbor.engine.life.garden import Garden
-from arbor.engine.life.rules import load_rules
-from arbor.engine.life.save import load_garden, load_seeds, save_garden
-from arbor.engine.life.world import World
+from arbor.engine.life.keep.away import away_seconds, live_away, tree_height
+from arbor.engine.life.keep.save import load_garden, load_seeds, save_garden
+from arbor.engine.life.plant import seasons
+from arbor.engine.life.rules.rules import load_rules
+from arbor.engine.life.world.garden import Garden
+from arbor.engine.life.world.world import World
 from arbor.engine.lsystem.lsys import load_lsystem
 
 ASSETS = Path(__file__).resolve().parent.parent / "assets"

@@ -4,8 +4,8 @@ import numpy as np
 import pytest
 
 from arbor.engine.base.errors import LSysError
-from arbor.engine.life.rules import GrowthRules, Rules, load_rules
-from arbor.engine.life.sim import GrowthCycle, SimState, Simulation
+from arbor.engine.life.plant.sim import GrowthCycle, SimState, Simulation
+from arbor.engine.life.rules.rules import GrowthRules, Rules, load_rules
 
 
 def test_rules_file_loads_and_is_strict(tmp_path):

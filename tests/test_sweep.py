@@ -16,7 +16,7 @@ import numpy as np
 import pytest
 
 from arbor.engine.base.errors import LSysError
-from arbor.engine.life.sweep_file import load_sweep
+from arbor.engine.life.experiment.sweep_file import load_sweep
 from arbor.game.commands.sweep import run_sweep
 from arbor.game.paths import ASSETS
 

@@ -1,1 +1,1 @@
-"""Layer 4, life: the sun/water simulation, the growing tree, saves and the lab; may import every lower layer."""
+"""Layer 4, life: rules, the plant and its form, the world and garden, saves, lineage and the lab, by job."""

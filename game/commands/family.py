@@ -6,10 +6,10 @@ import time
 from pathlib import Path
 
 from arbor.engine.base.errors import LSysError
-from arbor.engine.life.garden import Garden
-from arbor.engine.life.lineage import Family, Lineage
-from arbor.engine.life.rules import load_rules
-from arbor.engine.life.save import SavedGarden, read_garden, save_garden
+from arbor.engine.life.keep.save import SavedGarden, read_garden, save_garden
+from arbor.engine.life.lineage.lineage import Family, Lineage
+from arbor.engine.life.rules.rules import load_rules
+from arbor.engine.life.world.garden import Garden
 from arbor.game.paths import ASSETS
 
 

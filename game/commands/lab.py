@@ -6,9 +6,9 @@ from pathlib import Path
 
 import numpy as np
 
-from arbor.engine.life.lab import Lab, load_experiment
-from arbor.engine.life.rules import load_rules
-from arbor.engine.life.save import save_world
+from arbor.engine.life.experiment.lab import Lab, load_experiment
+from arbor.engine.life.keep.save import save_world
+from arbor.engine.life.rules.rules import load_rules
 from arbor.game.paths import ASSETS
 from arbor.game.render.figures import lab_charts
 from arbor.game.render.renderer import headless_context, render_image, save_png

@@ -17,10 +17,10 @@ from pathlib import Path
 
 import numpy as np
 
-from arbor.engine.life.rules import load_rules
-from arbor.engine.life.save import load_world
-from arbor.engine.life.sweep import STATS, Outcome, Sweep, Task, cell, final_values, runs, summarize
-from arbor.engine.life.sweep_file import load_sweep
+from arbor.engine.life.experiment.sweep import STATS, Outcome, Sweep, Task, cell, final_values, runs, summarize
+from arbor.engine.life.experiment.sweep_file import load_sweep
+from arbor.engine.life.keep.save import load_world
+from arbor.engine.life.rules.rules import load_rules
 from arbor.game.commands.sweep_runs import RunStore, outcomes, progress_bar, write_atomic
 from arbor.game.paths import ASSETS
 

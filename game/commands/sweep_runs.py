@@ -16,7 +16,7 @@ from pathlib import Path
 
 from arbor.engine.base.errors import LSysError
 from arbor.engine.base.files import atomic_write
-from arbor.engine.life.sweep import Outcome, Run, Sweep, Task, cell, execute
+from arbor.engine.life.experiment.sweep import Outcome, Run, Sweep, Task, cell, execute
 from arbor.game.errors import UserError
 
 

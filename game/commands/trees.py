@@ -11,7 +11,7 @@ import numpy as np
 from arbor.engine.base.errors import LSysError
 from arbor.engine.geometry.mesh import LOD_LEVELS, merge_trees, tree_mesh
 from arbor.engine.geometry.tree import TreeGeometry, build_geometry
-from arbor.engine.life.save import load_trees
+from arbor.engine.life.keep.save import load_trees
 from arbor.engine.lsystem.derive import Deriver
 from arbor.engine.lsystem.lstring import LString
 from arbor.engine.lsystem.lsys import load_lsystem

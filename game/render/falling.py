@@ -9,8 +9,8 @@ import numpy as np
 from arbor.engine.geometry.instances import LeafInstances, TubeInstances, leaf_instances, tube_instances
 from arbor.engine.geometry.mesh import TreeMesh, tree_mesh
 from arbor.engine.geometry.turtle import Leaves, Segments, TurtleResult
-from arbor.engine.life.growth import Fallen
-from arbor.engine.life.growth import leaf_clusters as leaves_clustered
+from arbor.engine.life.form.interpret import leaf_clusters as leaves_clustered
+from arbor.engine.life.plant.growth import Fallen
 
 FALL_SECONDS = 2.5  # real seconds a shed branch takes to fall
 

@@ -20,7 +20,7 @@ from dataclasses import dataclass, field
 import moderngl
 import numpy as np
 
-from arbor.engine.life.growth_view import GrowthView
+from arbor.engine.life.form.growth_view import GrowthView
 from arbor.game.render.backdrop import program, set_uniforms
 
 SIDES = (8, 6, 4, 3)  # ring sides per level of detail

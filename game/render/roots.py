@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from arbor.engine.geometry.instances import LEAF_FLOATS, LeafInstances, TubeInstances, tube_instances
-from arbor.engine.life.roots import Roots
+from arbor.engine.life.plant.roots import Roots
 from arbor.game.render.falling import StaticView
 
 

@@ -6,8 +6,8 @@ import copy
 import math
 from typing import TYPE_CHECKING
 
-from arbor.engine.life.garden import MAX_GARDEN, MAX_ROCKS
-from arbor.engine.life.lineage import new_lineage
+from arbor.engine.life.lineage.lineage import new_lineage
+from arbor.engine.life.world.garden import MAX_GARDEN, MAX_ROCKS
 from arbor.game.loop import SPEEDS
 from arbor.game.render.ui import range_to_slider, slider_to_range
 from arbor.game.screens.modeler import TOOLS

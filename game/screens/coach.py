@@ -11,7 +11,7 @@ from __future__ import annotations
 import math
 from typing import TYPE_CHECKING
 
-from arbor.engine.life.world import World
+from arbor.engine.life.world.world import World
 from arbor.game.strings import text
 
 if TYPE_CHECKING:

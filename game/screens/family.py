@@ -9,12 +9,12 @@ from typing import TYPE_CHECKING
 import numpy as np
 import pygame
 
-from arbor.engine.life.lineage import Lineage
+from arbor.engine.life.lineage.lineage import Lineage
 from arbor.game.render.icons import draw_icon
 from arbor.game.strings import text
 
 if TYPE_CHECKING:
-    from arbor.engine.life.world import World
+    from arbor.engine.life.world.world import World
     from arbor.game.screens.game import Game
 
 THUMB = 112  # pixels: a thumbnail's side

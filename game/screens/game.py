@@ -21,9 +21,9 @@ import moderngl
 import numpy as np
 import pygame
 
-from arbor.engine.life.growth import Clocks
-from arbor.engine.life.rules import load_rules
-from arbor.engine.life.world import World
+from arbor.engine.life.form.interpret import Clocks
+from arbor.engine.life.rules.rules import load_rules
+from arbor.engine.life.world.world import World
 from arbor.engine.lsystem.lsys import load_lsystem
 from arbor.game.input.events import InputEvent, PygameTranslator
 from arbor.game.input.gestures import CameraControl, Gestures

@@ -9,8 +9,8 @@ from typing import TYPE_CHECKING
 import moderngl
 import numpy as np
 
-from arbor.engine.life import seasons
-from arbor.engine.life.growth_view import GrowthView
+from arbor.engine.life.form.growth_view import GrowthView
+from arbor.engine.life.plant import seasons
 from arbor.game.render.falling import FALL_SECONDS, falling_view
 from arbor.game.render.garden import BARK, GardenRenderer, Placed
 from arbor.game.render.instanced import Detail, TreeBuffers, prepare_upload

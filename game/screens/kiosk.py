@@ -22,7 +22,7 @@ import pygame
 
 from arbor.engine.base.config import fill_dataclass
 from arbor.engine.base.errors import LSysError
-from arbor.engine.life.save import save_world
+from arbor.engine.life.keep.save import save_world
 from arbor.game.input.events import DOWN, KEY_DOWN, KEY_UP, MOVE, QUIT, UP, InputEvent, Player, load_recording
 from arbor.game.paths import ASSETS
 from arbor.game.strings import set_language, text

@@ -13,8 +13,8 @@ import moderngl
 import numpy as np
 import pygame
 
-from arbor.engine.life.lab import Lab
-from arbor.engine.life.save import save_world
+from arbor.engine.life.experiment.lab import Lab
+from arbor.engine.life.keep.save import save_world
 from arbor.game.input.events import DOWN, KEY_DOWN, QUIT, InputEvent
 from arbor.game.loop import SPEEDS, FixedStepLoop
 from arbor.game.render.camera import OrbitCamera

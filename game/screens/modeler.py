@@ -12,7 +12,7 @@ from __future__ import annotations
 import numpy as np
 import pygame
 
-from arbor.engine.life.growth import grow_geometry
+from arbor.engine.life.form.interpret import grow_geometry
 from arbor.engine.lsystem.lstring import LString
 from arbor.engine.modeling.edits import EDIT_SETS, load_edit_sets
 from arbor.engine.modeling.modeler import Modeler

@@ -15,12 +15,12 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from arbor.engine.base.errors import LSysError
-from arbor.engine.life.away import AwaySummary, away_seconds, live_away
-from arbor.engine.life.garden import MAX_GARDEN, Garden
-from arbor.engine.life.lineage import new_lineage, species_of
-from arbor.engine.life.save import load_garden, read_garden, save_garden
-from arbor.engine.life.sim import sun_angle_at
-from arbor.engine.life.world import World
+from arbor.engine.life.keep.away import AwaySummary, away_seconds, live_away
+from arbor.engine.life.keep.save import load_garden, read_garden, save_garden
+from arbor.engine.life.lineage.lineage import new_lineage, species_of
+from arbor.engine.life.plant.sim import sun_angle_at
+from arbor.engine.life.world.garden import MAX_GARDEN, Garden
+from arbor.engine.life.world.world import World
 from arbor.game.strings import text
 
 if TYPE_CHECKING:

@@ -13,7 +13,8 @@ import numpy as np
 import pygame
 
 from arbor.engine.geometry.turtle import TurtleConfig, module_positions
-from arbor.engine.life.growth import new_axis_text, render_view
+from arbor.engine.life.form.interpret import render_view
+from arbor.engine.life.plant.growth import new_axis_text
 from arbor.engine.lsystem.lstring import LString
 from arbor.engine.modeling.bend import bend_region
 from arbor.engine.modeling.edits import apply_edit, prune_region

@@ -14,20 +14,20 @@ import numpy as np
 
 from arbor.engine.geometry.instances import LeafInstances, TubeInstances, leaf_instances, tube_instances
 from arbor.engine.geometry.turtle import Leaves, interpret, set_radii
-from arbor.engine.life.growth import (
+from arbor.engine.life.form.interpret import (
     FRUIT,
     INTERNODE,
     LEAF,
     LEAF_ASPECT,
     Clocks,
-    _leaf_keep,
-    _leaf_sizes,
-    _radii,
-    _saturate,
-    _turtle_config,
     cluster_scales,
     leaf_clusters,
+    leaf_keep,
+    leaf_sizes,
+    radii,
     render_view,
+    saturate,
+    turtle_config,
 )
 from arbor.engine.lsystem.lstring import LString
 
@@ -42,10 +42,10 @@ class GrowthView:
         self.lstring, self.const, self.wilt = ls, const, clocks.wilt
         self._built_T = clocks.length_time
         view = render_view(ls, clocks, const)
-        turtle = interpret(view, _turtle_config(const))
+        turtle = interpret(view, turtle_config(const))
         segs = turtle.segments
         if len(segs):
-            set_radii(segs, _radii(ls, segs, clocks, const))
+            set_radii(segs, radii(ls, segs, clocks, const))
         self.tubes: TubeInstances = tube_instances(segs)
         flex = self.tubes.data[:, 23] if len(segs) else np.zeros(0)
         leaves = leaf_clusters(turtle.leaves)
@@ -165,7 +165,7 @@ class GrowthView:
                 par = self.parent[level]
                 base = np.where((par >= 0)[:, None], self.end[np.maximum(par, 0)], 0.0)
                 self.start[level] = base + self.offset[level]
-                length = np.where(self.grown[level], full[level] * _saturate(now - self.birth[level], const["TAU"]),
+                length = np.where(self.grown[level], full[level] * saturate(now - self.birth[level], const["TAU"]),
                                   self.built_length[level])  # drawn pieces do not grow
                 self.end[level] = self.start[level] + self.heading[level] * length[:, None]
             data[self.young_row:, 0:3] = self.start[self.young]
@@ -175,8 +175,8 @@ class GrowthView:
             lv = self.leaves.data
             moved = self.young_leaves
             lv[moved, 0:3] = self.end[self.leaf_carrier[moved]] + self.leaf_offset[moved]
-            size = (_leaf_sizes(self.lstring, self.leaf_module[k0:], now, const)
-                    * _leaf_keep(self.leaf_birth[k0:], clocks.wilt) * self.leaf_scale[k0:])
+            size = (leaf_sizes(self.lstring, self.leaf_module[k0:], now, const)
+                    * leaf_keep(self.leaf_birth[k0:], clocks.wilt) * self.leaf_scale[k0:])
             lv[k0:, 9] = size
             lv[k0:, 10] = size * LEAF_ASPECT
 

@@ -19,8 +19,8 @@ from pathlib import Path
 import numpy as np
 
 from arbor.engine.base.errors import LSysError
-from arbor.engine.life.rules import SECTIONS, Rules
-from arbor.engine.life.world import World
+from arbor.engine.life.rules.rules import SECTIONS, Rules
+from arbor.engine.life.world.world import World
 from arbor.engine.lsystem.lsys import LSystem, load_lsystem
 
 METRICS = ("height", "width", "offset", "girth", "modules", "leaves", "density", "shed", "roots", "sun", "water",

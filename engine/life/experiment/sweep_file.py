@@ -24,9 +24,18 @@ import tomllib
 from pathlib import Path
 
 from arbor.engine.base.errors import LSysError
-from arbor.engine.life.lab import flag_value, number_value, pace_value, parse_regime, rule_target
-from arbor.engine.life.rules import Rules
-from arbor.engine.life.sweep import MAX_FACTORS, MAX_LEVELS, MAX_RUNS, MAX_SEEDS, REGIME_KEYS, RESPONSES, Factor, Sweep
+from arbor.engine.life.experiment.lab import flag_value, number_value, pace_value, parse_regime, rule_target
+from arbor.engine.life.experiment.sweep import (
+    MAX_FACTORS,
+    MAX_LEVELS,
+    MAX_RUNS,
+    MAX_SEEDS,
+    REGIME_KEYS,
+    RESPONSES,
+    Factor,
+    Sweep,
+)
+from arbor.engine.life.rules.rules import Rules
 
 MAX_SAMPLES = 2000  # per run
 WEEK = 7 * 24 * 3600.0

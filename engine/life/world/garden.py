@@ -11,11 +11,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from arbor.engine.life import collide
-from arbor.engine.life.breed import cross
-from arbor.engine.life.lineage import Family, new_lineage, species_of
-from arbor.engine.life.rules import Rules
-from arbor.engine.life.world import MAX_CATCH_UP_STEPS, World, catch_up_steps, sense_light
+from arbor.engine.life.lineage.breed import cross
+from arbor.engine.life.lineage.lineage import Family, new_lineage, species_of
+from arbor.engine.life.plant import collide
+from arbor.engine.life.rules.rules import Rules
+from arbor.engine.life.world.world import MAX_CATCH_UP_STEPS, World, catch_up_steps, sense_light
 from arbor.engine.lsystem.lsys import LSystem
 
 MAX_GARDEN = 6  # trees in one garden

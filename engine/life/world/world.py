@@ -10,14 +10,15 @@ from dataclasses import InitVar, dataclass, field
 
 import numpy as np
 
-from arbor.engine.life import collide, seasons
-from arbor.engine.life.collide import Obstacles
-from arbor.engine.life.growth import Clocks, GrowingTree
-from arbor.engine.life.journal import Journal
-from arbor.engine.life.light import exposure
-from arbor.engine.life.lineage import Lineage, new_lineage, species_of
-from arbor.engine.life.roots import Roots
-from arbor.engine.life.sim import Rules, SimState, Simulation
+from arbor.engine.life.form.interpret import Clocks
+from arbor.engine.life.lineage.lineage import Lineage, new_lineage, species_of
+from arbor.engine.life.plant import collide, seasons
+from arbor.engine.life.plant.collide import Obstacles
+from arbor.engine.life.plant.growth import GrowingTree
+from arbor.engine.life.plant.journal import Journal
+from arbor.engine.life.plant.light import exposure
+from arbor.engine.life.plant.roots import Roots
+from arbor.engine.life.plant.sim import Rules, SimState, Simulation
 from arbor.engine.lsystem.lsys import LSystem
 
 ACTIONS = ("water", "orbit_height", "sun_speed", "replant")

@@ -16,9 +16,9 @@ from pathlib import Path
 
 import numpy as np
 
-from arbor.engine.life.lab import METRICS, Experiment, Lab, Regime
-from arbor.engine.life.rules import Rules
-from arbor.engine.life.save import save_text
+from arbor.engine.life.experiment.lab import METRICS, Experiment, Lab, Regime
+from arbor.engine.life.keep.save import save_text
+from arbor.engine.life.rules.rules import Rules
 from arbor.engine.lsystem.lsys import parse_lsystem
 
 RESPONSES = METRICS

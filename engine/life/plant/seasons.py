@@ -12,7 +12,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from arbor.engine.life.rules import Rules
+from arbor.engine.life.rules.rules import Rules
 
 SEASONS = ("spring", "summer", "autumn", "winter")
 BLEND = 0.1  # share of a season over which its values blend into the next season's

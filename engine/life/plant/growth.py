@@ -25,7 +25,6 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from arbor.engine.geometry.mesh import LOD_LEVELS, tree_mesh
 from arbor.engine.geometry.tree import TreeGeometry
 from arbor.engine.geometry.turtle import (
     Leaves,
@@ -34,44 +33,38 @@ from arbor.engine.geometry.turtle import (
     TurtleResult,
     interpret,
     module_positions,
-    set_radii,
     subtree_sums,
 )
-from arbor.engine.life.collide import Obstacles, avoidance
-from arbor.engine.life.light import memory_weight
+from arbor.engine.life.form.interpret import (
+    APEX,
+    BUD,
+    CLUSTER_AREA,
+    CONSTANT_DEFAULTS,
+    INTERNODE,
+    LEAF,
+    LEAF_ASPECT,
+    LEAF_BUD,
+    Clocks,
+    grow_geometry,
+    pipe_area,
+    render_view,
+    turtle_config,
+)
+from arbor.engine.life.plant.collide import Obstacles, avoidance
+from arbor.engine.life.plant.light import memory_weight
 from arbor.engine.lsystem import brackets
 from arbor.engine.lsystem.derive import Deriver, StepReport
-from arbor.engine.lsystem.lstring import LString, replace_modules
+from arbor.engine.lsystem.lstring import LString
 from arbor.engine.lsystem.lsys import LSystem
 
-INTERNODE, LEAF, BLOSSOM, PITCH, APEX, BUD, FRUIT, LEAF_BUD = (ord(c) for c in "ILK&ADOV")
-FRUIT_SIZE = 0.55  # a ripe fruit's diameter, in leaf lengths
-CONSTANT_DEFAULTS = {
-    "IL": 1.0, "IO": 0.72, "LS": 1.2, "TIP": 0.012, "GMAX": 3.0, "GT": 200.0, "TAU": 4.0, "LFADE": 3.0,
-    "SHED": 14.0, "SHQ": 0.25, "PHOTO": 7.0, "PHOTOB": 12.0, "UPW": 1.2, "UPB": 0.15, "RING": 0.012,
-    "STRAIGHT": 1.0, "SUNW": 0.35, "LIGHTW": 1.2, "RIPEN": 12.0,
-}
-GEOMETRY_DEFAULTS = CONSTANT_DEFAULTS  # older name, kept for callers outside the engine
-DROOP = 0.6  # branch and leaf angles grow by this fraction at full wilt
-LEAF_ASPECT = 0.5  # leaf quads are half as wide as long (engine/geometry/mesh.py)
 FALL_KEEP = 40.0  # physiological time a shed branch stays in `fallen` for the game to show its fall
 AROUND = np.array([[1.0, 0, 0], [-1, 0, 0], [0, 1, 0], [0, -1, 0], [0, 0, 1], [0, 0, -1]])  # light probes
 GRADIENT_REACH = 1.5  # internode lengths from an apex to its light probes
 AVOID_WEIGHT, AVOID_TURN = 4.0, 35.0  # how hard an obstacle ahead pushes, and the turn it allows (degrees)
-CLUSTER_ANGLES = (0.0, 38.0, -38.0)  # degrees the blades of one leaf cluster fan out
-CLUSTER_SIZES = (1.0, 0.8, 0.8)
-CLUSTER_AREA = sum(s * s for s in CLUSTER_SIZES)
 _TURNLIKE = np.zeros(256, bool)
 _TURNLIKE[[ord(c) for c in "+-&^/\\|$!'T%"]] = True
 
 
-@dataclass
-class Clocks:
-    """The tree's two growth clocks and its wilt, as the renderer sees them (possibly interpolated)."""
-
-    length_time: float
-    girth_time: float
-    wilt: float = 0.0
 
 
 @dataclass
@@ -189,7 +182,7 @@ class GrowingTree:
         ls, const = self.lstring, self.geometry_constants
         view = render_view(ls, Clocks(clocks.length_time, clocks.girth_time, 0.0), const)
         probes = np.flatnonzero(((ls.sym == APEX) & (ls.nparams == 6)) | ((ls.sym == BUD) & (ls.nparams == 3)))
-        turtle = interpret(view, _turtle_config(const), probes=probes)
+        turtle = interpret(view, turtle_config(const), probes=probes)
         ends = turtle.segments.end
         self.height = float(ends[:, 1].max()) if len(ends) else 0.0
         leaves = turtle.leaves
@@ -291,7 +284,7 @@ class GrowingTree:
             return np.zeros(0, bool)
         grown = (ls.sym[segs.module] == INTERNODE) & (ls.nparams[segs.module] == 5)
         off = ls.offsets[segs.module[grown]]
-        pipes = _pipe_area(ls, segs, const)[grown]
+        pipes = pipe_area(ls, segs, const)[grown]
         params[off + 4] = np.maximum(params[off + 4], pipes) + const["RING"] * dg * pipes
         if count and dt > 0:
             carrier = scene.turtle.carriers(scene.leaf_idx)
@@ -351,34 +344,10 @@ class GrowingTree:
                                                       leaves.module[lv])))
 
 
-def leaf_clusters(leaves: Leaves) -> Leaves:
-    """Every leaf module as a small cluster of blades fanned around its stalk (denser, more natural
-    foliage for the same modules), each blade a little different in size and angle."""
-    k = len(leaves)
-    if k == 0:
-        return leaves
-    jitter = _cluster_jitter(leaves.module)
-    h, lft = leaves.frame[:, :, 0], leaves.frame[:, :, 1]
-    frames = []
-    for angle in CLUSTER_ANGLES:
-        a = np.radians(angle * (1.0 + 0.4 * jitter))[:, None]
-        frame = leaves.frame.copy()
-        frame[:, :, 0] = h * np.cos(a) + lft * np.sin(a)
-        frame[:, :, 1] = lft * np.cos(a) - h * np.sin(a)
-        frames.append(frame)
-    n = len(CLUSTER_ANGLES)
-    return Leaves(np.tile(leaves.position, (n, 1)), np.concatenate(frames),
-                  np.tile(leaves.size, n) * cluster_scales(leaves.module), np.tile(leaves.module, n))
 
 
-def cluster_scales(modules: np.ndarray) -> np.ndarray:
-    """Size factor of every blade :func:`leaf_clusters` makes from leaves ``modules`` (same order)."""
-    jitter = _cluster_jitter(modules)
-    return np.concatenate([scale * (1.0 + 0.25 * jitter) for scale in CLUSTER_SIZES])
 
 
-def _cluster_jitter(modules: np.ndarray) -> np.ndarray:
-    return np.modf(np.abs(np.sin(modules * 78.233 + 0.5) * 43758.5453))[0] - 0.5  # -0.5..0.5
 
 
 def new_axis_text(system: LSystem, now: float, girth: float) -> str:
@@ -397,91 +366,20 @@ def _unit(v: np.ndarray) -> np.ndarray:
     return v / n if n > 1e-12 else np.array([0.0, 1.0, 0.0])
 
 
-def _turtle_config(const: dict[str, float]) -> TurtleConfig:
-    return TurtleConfig(pipe_model=False, leaves_at_tips=0, leaf_size=const["LS"], width=0.0)
 
 
-def _saturate(age: np.ndarray, tau: float) -> np.ndarray:
-    return 1.0 - np.exp(-np.maximum(age, 0.0) / tau)
 
 
-def _leaf_keep(birth: np.ndarray, wilt: float) -> np.ndarray:
-    """1 for leaves still on the tree; falls continuously to 0 as wilt passes each leaf's own threshold."""
-    h = np.modf(np.abs(np.sin(birth * 12.9898 + 1.0) * 43758.5453))[0]
-    return np.clip((h + 0.1 - 1.1 * wilt) / 0.1, 0.0, 1.0)
 
 
-def _leaf_sizes(ls: LString, idx: np.ndarray, now: float, const: dict[str, float]) -> np.ndarray:
-    """Leaf length without wilt: unfolding from zero, times its vigour, withering once it falls."""
-    off, count = ls.offsets[idx], ls.nparams[idx]
-    birth = ls.params[off]
-    vigour = np.where(count >= 2, ls.params[np.where(count >= 2, off + 1, off)], 1.0)
-    falling = np.where(count >= 3, ls.params[np.where(count >= 3, off + 2, off)], 0.0)
-    wither = np.where(falling > 0, np.clip(1.0 - (now - falling) / const["LFADE"], 0.0, 1.0), 1.0)
-    return const["LS"] * vigour * _saturate(now - birth, const["TAU"]) * wither
 
 
-def render_view(ls: LString, clocks: Clocks, const: dict[str, float]) -> LString:
-    """Map I -> F(length), L(...) -> L(size), K(birth) -> K(size) and O(birth) -> O(size) at the given
-    clocks; droop pitch angles with wilt."""
-    now = clocks.length_time
-    idx = np.flatnonzero((ls.sym == INTERNODE) & (ls.nparams >= 3))
-    birth, order = ls.params[ls.offsets[idx]], ls.params[ls.offsets[idx] + 2]
-    length = const["IL"] * const["IO"] ** order * _saturate(now - birth, const["TAU"])
-    view = replace_modules(ls, idx, ord("F"), length[:, None])
-    leaves = np.flatnonzero((ls.sym == LEAF) & (ls.nparams >= 1))
-    size = _leaf_sizes(ls, leaves, now, const) * _leaf_keep(ls.params[ls.offsets[leaves]], clocks.wilt)
-    view = replace_modules(view, leaves, LEAF, size[:, None])
-    blossoms = np.flatnonzero((view.sym == BLOSSOM) & (view.nparams == 1))  # K(birth) from region edits
-    kb = view.params[view.offsets[blossoms]]
-    opened = _saturate(now - kb, const["TAU"]) * _leaf_keep(kb, clocks.wilt)
-    view.params[view.offsets[blossoms]] = 0.4 * const["LS"] * opened
-    fruits = np.flatnonzero((view.sym == FRUIT) & (view.nparams == 1))  # O(birth): swelling to full size
-    view.params[view.offsets[fruits]] = FRUIT_SIZE * const["LS"] * _saturate(now - view.params[view.offsets[fruits]],
-                                                                              const["RIPEN"] / 3)
-    if clocks.wilt > 0:
-        view.params[view.offsets[_droop_angles(view)]] *= 1.0 + DROOP * clocks.wilt
-    return view
 
 
-def _pipe_area(ls: LString, segs: Segments, const: dict[str, float]) -> np.ndarray:
-    """Pipe-model cross-section of every segment: TIP^2 per leaf carried, each internode counting one
-    leaf as far as it has grown; a drawn tip (a stroke's or a crown's) feeds one leaf's pipes."""
-    grown = (ls.sym[segs.module] == INTERNODE) & (ls.nparams[segs.module] >= 3)
-    offsets = ls.offsets[segs.module]
-    seg_len = np.linalg.norm(segs.end - segs.start, axis=1)
-    order = np.where(grown, ls.params[np.where(grown, offsets + 2, 0)], 0.0)
-    full = const["IL"] * const["IO"] ** order
-    weight = np.where(grown, seg_len / full, 0.0)
-    drawn = ~grown & (ls.sym[segs.module] == ord("F")) & (ls.nparams[segs.module] == 11)
-    drawn_below = np.bincount(segs.parent[drawn & (segs.parent >= 0)], minlength=len(segs)) > 0
-    weight[drawn & ~drawn_below] = 1.0
-    return const["TIP"] ** 2 * np.maximum(subtree_sums(ls, segs, weight), 1e-6)
 
 
-def _radii(ls: LString, segs: Segments, clocks: Clocks, const: dict[str, float]) -> np.ndarray:
-    """Radii: the built wood or the pipe area, whichever is larger; drawn pieces keep at least their
-    drawn width. Internodes from before the living tree (three parameters) thicken with age instead."""
-    module = segs.module
-    count = ls.nparams[module]
-    grown = (ls.sym[module] == INTERNODE) & (count >= 3)
-    pipes = _pipe_area(ls, segs, const)
-    offsets = ls.offsets[module]
-    wood = np.where(grown & (count >= 5), ls.params[np.where(grown & (count >= 5), offsets + 4, 0)], 0.0)
-    girth_birth = np.where(grown, ls.params[np.where(grown, offsets + 1, 0)], 0.0)
-    legacy = grown & (count < 5)
-    rings = np.where(legacy, const["GMAX"] * _saturate(clocks.girth_time - girth_birth, const["GT"]), 0.0)
-    radius = np.sqrt(np.maximum(pipes * (1.0 + rings), wood))
-    return np.where(grown, radius, np.maximum(radius, segs.radius))
 
 
-def _droop_angles(ls: LString) -> np.ndarray:
-    """The branch and leaf angles that droop with wilt: a '&' right before a bud, a leaf or a grown
-    apex. Drawn (modeler) geometry keeps its shape."""
-    pitch = np.flatnonzero((ls.sym[:-1] == PITCH) & (ls.nparams[:-1] == 1))
-    nxt = pitch + 1
-    carried = (ls.sym[nxt] == BUD) | (ls.sym[nxt] == LEAF) | ((ls.sym[nxt] == APEX) & (ls.nparams[nxt] != 5))
-    return pitch[carried]
 
 
 def remove_empty_branches(ls: LString) -> LString:
@@ -502,16 +400,6 @@ def remove_empty_branches(ls: LString) -> LString:
     return ls.select(np.cumsum(delta[:-1]) == 0)
 
 
-def grow_geometry(ls: LString, clocks: Clocks, const: dict[str, float], lod: int = 0) -> TreeGeometry:
-    """Turtle and meshes of the growing tree, with continuous radii (see module docstring)."""
-    view = render_view(ls, clocks, const)
-    turtle = interpret(view, _turtle_config(const))
-    segs = turtle.segments
-    if len(segs):
-        set_radii(segs, _radii(ls, segs, clocks, const))
-    turtle.leaves = leaf_clusters(turtle.leaves)
-    level = LOD_LEVELS[max(0, min(lod, len(LOD_LEVELS) - 1))]
-    return TreeGeometry(turtle, tree_mesh(turtle, level))
 
 
 def falling_pieces(tree: GrowingTree, now: float, seconds: float) -> list[tuple[Fallen, float]]:

@@ -15,9 +15,9 @@ from dataclasses import asdict, dataclass, field, fields
 
 import numpy as np
 
-from arbor.engine.life import seasons
-from arbor.engine.life.rules import GrowthRules, Rules, load_rules
-from arbor.engine.life.seasons import Season, raining, season_at
+from arbor.engine.life.plant import seasons
+from arbor.engine.life.plant.seasons import Season, raining, season_at
+from arbor.engine.life.rules.rules import GrowthRules, Rules, load_rules
 
 __all__ = ["GrowthCycle", "Rules", "SimState", "Simulation", "load_rules"]
 

@@ -14,7 +14,17 @@ from pathlib import Path
 
 from arbor.engine.base.config import fill_dataclass
 from arbor.engine.base.errors import LSysError
-from arbor.engine.life.light import LightRules
+
+
+@dataclass
+class LightRules:
+    """How light is measured (assets/rules.toml [light])."""
+
+    cell: float = 0.9  # side of a shadow cell across the sun's rays, scene units (about a leaf)
+    extinction: float = 0.55  # Beer-Lambert coefficient per leaf area per cell area
+    sky: float = 0.3  # share of the light that comes from the open sky above rather than the sun disc
+    interval: float = 6.0  # seconds of game time between two light measurements (scaled by the pace)
+    memory: float = 12.0  # physiological time over which buds and leaves remember their light
 
 
 @dataclass

@@ -16,22 +16,12 @@ the far side of the crown) with no 3D grid to allocate or clear.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
 import numpy as np
 
+from arbor.engine.life.rules.rules import LightRules
+
 UP = np.array([0.0, 1.0, 0.0])
-
-
-@dataclass
-class LightRules:
-    """How light is measured (assets/rules.toml [light])."""
-
-    cell: float = 0.9  # side of a shadow cell across the sun's rays, scene units (about a leaf)
-    extinction: float = 0.55  # Beer-Lambert coefficient per leaf area per cell area
-    sky: float = 0.3  # share of the light that comes from the open sky above rather than the sun disc
-    interval: float = 6.0  # seconds of game time between two light measurements (scaled by the pace)
-    memory: float = 12.0  # physiological time over which buds and leaves remember their light
 
 
 def _basis(direction: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:

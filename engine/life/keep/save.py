@@ -26,11 +26,8 @@ import numpy as np
 
 from arbor.engine.base.errors import LSysError
 from arbor.engine.base.files import atomic_write
-from arbor.engine.life import save_blocks
-from arbor.engine.life.garden import MAX_ROCKS, MAX_SEEDS, Garden, Seed
-from arbor.engine.life.journal import Journal
-from arbor.engine.life.lineage import Family, Lineage, lineage_from_row, new_lineage, species_of
-from arbor.engine.life.save_check import (
+from arbor.engine.life.keep import save_blocks
+from arbor.engine.life.keep.save_check import (
     BIG,
     SaveError,
     Where,
@@ -42,8 +39,11 @@ from arbor.engine.life.save_check import (
     value,
     vector,
 )
-from arbor.engine.life.sim import GrowthCycle, Rules, SimState, Simulation
-from arbor.engine.life.world import World
+from arbor.engine.life.lineage.lineage import Family, Lineage, lineage_from_row, new_lineage, species_of
+from arbor.engine.life.plant.journal import Journal
+from arbor.engine.life.plant.sim import GrowthCycle, Rules, SimState, Simulation
+from arbor.engine.life.world.garden import MAX_ROCKS, MAX_SEEDS, Garden, Seed
+from arbor.engine.life.world.world import World
 from arbor.engine.lsystem.lstring import LString, parse_lstring
 from arbor.engine.lsystem.lsys import parse_lsystem
 from arbor.engine.lsystem.text import format_number

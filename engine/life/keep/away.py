@@ -15,9 +15,9 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from arbor.engine.life.garden import Garden
-from arbor.engine.life.journal import METRE
-from arbor.engine.life.world import MAX_CATCH_UP_STEPS, catch_up_steps
+from arbor.engine.life.plant.journal import METRE
+from arbor.engine.life.world.garden import Garden
+from arbor.engine.life.world.world import MAX_CATCH_UP_STEPS, catch_up_steps
 
 SAMPLES = 40  # times the garden is looked at while it catches up (for blossoms, fruit, thirst)
 

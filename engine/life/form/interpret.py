@@ -1,0 +1,171 @@
+"""The interpretation stage of the living tree: ages in the L-string turned into lengths, sizes and radii.
+
+The living L-string stores birth times and states (see engine/life/plant/growth.py); this stage maps
+them, at given clocks, to the lengths, leaf sizes and radii the turtle draws (L-Py's interpretation
+step), and builds the turtle output and meshes from them. The plant uses it to see itself (light,
+regions); the renderer uses it, through GrowthView, to draw.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from arbor.engine.geometry.mesh import LOD_LEVELS, tree_mesh
+from arbor.engine.geometry.tree import TreeGeometry
+from arbor.engine.geometry.turtle import Leaves, Segments, TurtleConfig, interpret, set_radii, subtree_sums
+from arbor.engine.lsystem.lstring import LString, replace_modules
+
+INTERNODE, LEAF, BLOSSOM, PITCH, APEX, BUD, FRUIT, LEAF_BUD = (ord(c) for c in "ILK&ADOV")
+FRUIT_SIZE = 0.55  # a ripe fruit's diameter, in leaf lengths
+CONSTANT_DEFAULTS = {
+    "IL": 1.0, "IO": 0.72, "LS": 1.2, "TIP": 0.012, "GMAX": 3.0, "GT": 200.0, "TAU": 4.0, "LFADE": 3.0,
+    "SHED": 14.0, "SHQ": 0.25, "PHOTO": 7.0, "PHOTOB": 12.0, "UPW": 1.2, "UPB": 0.15, "RING": 0.012,
+    "STRAIGHT": 1.0, "SUNW": 0.35, "LIGHTW": 1.2, "RIPEN": 12.0,
+}
+DROOP = 0.6  # branch and leaf angles grow by this fraction at full wilt
+LEAF_ASPECT = 0.5  # leaf quads are half as wide as long (engine/geometry/mesh.py)
+CLUSTER_ANGLES = (0.0, 38.0, -38.0)  # degrees the blades of one leaf cluster fan out
+CLUSTER_SIZES = (1.0, 0.8, 0.8)
+CLUSTER_AREA = sum(s * s for s in CLUSTER_SIZES)
+
+
+@dataclass
+class Clocks:
+    """The tree's two growth clocks and its wilt, as the renderer sees them (possibly interpolated)."""
+
+    length_time: float
+    girth_time: float
+    wilt: float = 0.0
+
+
+def leaf_clusters(leaves: Leaves) -> Leaves:
+    """Every leaf module as a small cluster of blades fanned around its stalk (denser, more natural
+    foliage for the same modules), each blade a little different in size and angle."""
+    k = len(leaves)
+    if k == 0:
+        return leaves
+    jitter = _cluster_jitter(leaves.module)
+    h, lft = leaves.frame[:, :, 0], leaves.frame[:, :, 1]
+    frames = []
+    for angle in CLUSTER_ANGLES:
+        a = np.radians(angle * (1.0 + 0.4 * jitter))[:, None]
+        frame = leaves.frame.copy()
+        frame[:, :, 0] = h * np.cos(a) + lft * np.sin(a)
+        frame[:, :, 1] = lft * np.cos(a) - h * np.sin(a)
+        frames.append(frame)
+    n = len(CLUSTER_ANGLES)
+    return Leaves(np.tile(leaves.position, (n, 1)), np.concatenate(frames),
+                  np.tile(leaves.size, n) * cluster_scales(leaves.module), np.tile(leaves.module, n))
+
+
+def cluster_scales(modules: np.ndarray) -> np.ndarray:
+    """Size factor of every blade :func:`leaf_clusters` makes from leaves ``modules`` (same order)."""
+    jitter = _cluster_jitter(modules)
+    return np.concatenate([scale * (1.0 + 0.25 * jitter) for scale in CLUSTER_SIZES])
+
+
+def _cluster_jitter(modules: np.ndarray) -> np.ndarray:
+    return np.modf(np.abs(np.sin(modules * 78.233 + 0.5) * 43758.5453))[0] - 0.5  # -0.5..0.5
+
+
+def turtle_config(const: dict[str, float]) -> TurtleConfig:
+    """The turtle settings the living tree is drawn with: radii come from :func:`radii`, leaves are modules."""
+    return TurtleConfig(pipe_model=False, leaves_at_tips=0, leaf_size=const["LS"], width=0.0)
+
+
+def saturate(age: np.ndarray, tau: float) -> np.ndarray:
+    """Share of its full size a part of this age has reached: 0 at birth, 1 - 1/e after ``tau``, never 1."""
+    return 1.0 - np.exp(-np.maximum(age, 0.0) / tau)
+
+
+def leaf_keep(birth: np.ndarray, wilt: float) -> np.ndarray:
+    """1 for leaves still on the tree; falls continuously to 0 as wilt passes each leaf's own threshold."""
+    h = np.modf(np.abs(np.sin(birth * 12.9898 + 1.0) * 43758.5453))[0]
+    return np.clip((h + 0.1 - 1.1 * wilt) / 0.1, 0.0, 1.0)
+
+
+def leaf_sizes(ls: LString, idx: np.ndarray, now: float, const: dict[str, float]) -> np.ndarray:
+    """Leaf length without wilt: unfolding from zero, times its vigour, withering once it falls."""
+    off, count = ls.offsets[idx], ls.nparams[idx]
+    birth = ls.params[off]
+    vigour = np.where(count >= 2, ls.params[np.where(count >= 2, off + 1, off)], 1.0)
+    falling = np.where(count >= 3, ls.params[np.where(count >= 3, off + 2, off)], 0.0)
+    wither = np.where(falling > 0, np.clip(1.0 - (now - falling) / const["LFADE"], 0.0, 1.0), 1.0)
+    return const["LS"] * vigour * saturate(now - birth, const["TAU"]) * wither
+
+
+def render_view(ls: LString, clocks: Clocks, const: dict[str, float]) -> LString:
+    """Map I -> F(length), L(...) -> L(size), K(birth) -> K(size) and O(birth) -> O(size) at the given
+    clocks; droop pitch angles with wilt."""
+    now = clocks.length_time
+    idx = np.flatnonzero((ls.sym == INTERNODE) & (ls.nparams >= 3))
+    birth, order = ls.params[ls.offsets[idx]], ls.params[ls.offsets[idx] + 2]
+    length = const["IL"] * const["IO"] ** order * saturate(now - birth, const["TAU"])
+    view = replace_modules(ls, idx, ord("F"), length[:, None])
+    leaves = np.flatnonzero((ls.sym == LEAF) & (ls.nparams >= 1))
+    size = leaf_sizes(ls, leaves, now, const) * leaf_keep(ls.params[ls.offsets[leaves]], clocks.wilt)
+    view = replace_modules(view, leaves, LEAF, size[:, None])
+    blossoms = np.flatnonzero((view.sym == BLOSSOM) & (view.nparams == 1))  # K(birth) from region edits
+    kb = view.params[view.offsets[blossoms]]
+    opened = saturate(now - kb, const["TAU"]) * leaf_keep(kb, clocks.wilt)
+    view.params[view.offsets[blossoms]] = 0.4 * const["LS"] * opened
+    fruits = np.flatnonzero((view.sym == FRUIT) & (view.nparams == 1))  # O(birth): swelling to full size
+    view.params[view.offsets[fruits]] = FRUIT_SIZE * const["LS"] * saturate(now - view.params[view.offsets[fruits]],
+                                                                              const["RIPEN"] / 3)
+    if clocks.wilt > 0:
+        view.params[view.offsets[droop_angles(view)]] *= 1.0 + DROOP * clocks.wilt
+    return view
+
+
+def pipe_area(ls: LString, segs: Segments, const: dict[str, float]) -> np.ndarray:
+    """Pipe-model cross-section of every segment: TIP^2 per leaf carried, each internode counting one
+    leaf as far as it has grown; a drawn tip (a stroke's or a crown's) feeds one leaf's pipes."""
+    grown = (ls.sym[segs.module] == INTERNODE) & (ls.nparams[segs.module] >= 3)
+    offsets = ls.offsets[segs.module]
+    seg_len = np.linalg.norm(segs.end - segs.start, axis=1)
+    order = np.where(grown, ls.params[np.where(grown, offsets + 2, 0)], 0.0)
+    full = const["IL"] * const["IO"] ** order
+    weight = np.where(grown, seg_len / full, 0.0)
+    drawn = ~grown & (ls.sym[segs.module] == ord("F")) & (ls.nparams[segs.module] == 11)
+    drawn_below = np.bincount(segs.parent[drawn & (segs.parent >= 0)], minlength=len(segs)) > 0
+    weight[drawn & ~drawn_below] = 1.0
+    return const["TIP"] ** 2 * np.maximum(subtree_sums(ls, segs, weight), 1e-6)
+
+
+def radii(ls: LString, segs: Segments, clocks: Clocks, const: dict[str, float]) -> np.ndarray:
+    """Radii: the built wood or the pipe area, whichever is larger; drawn pieces keep at least their
+    drawn width. Internodes from before the living tree (three parameters) thicken with age instead."""
+    module = segs.module
+    count = ls.nparams[module]
+    grown = (ls.sym[module] == INTERNODE) & (count >= 3)
+    pipes = pipe_area(ls, segs, const)
+    offsets = ls.offsets[module]
+    wood = np.where(grown & (count >= 5), ls.params[np.where(grown & (count >= 5), offsets + 4, 0)], 0.0)
+    girth_birth = np.where(grown, ls.params[np.where(grown, offsets + 1, 0)], 0.0)
+    legacy = grown & (count < 5)
+    rings = np.where(legacy, const["GMAX"] * saturate(clocks.girth_time - girth_birth, const["GT"]), 0.0)
+    radius = np.sqrt(np.maximum(pipes * (1.0 + rings), wood))
+    return np.where(grown, radius, np.maximum(radius, segs.radius))
+
+
+def droop_angles(ls: LString) -> np.ndarray:
+    """The branch and leaf angles that droop with wilt: a '&' right before a bud, a leaf or a grown
+    apex. Drawn (modeler) geometry keeps its shape."""
+    pitch = np.flatnonzero((ls.sym[:-1] == PITCH) & (ls.nparams[:-1] == 1))
+    nxt = pitch + 1
+    carried = (ls.sym[nxt] == BUD) | (ls.sym[nxt] == LEAF) | ((ls.sym[nxt] == APEX) & (ls.nparams[nxt] != 5))
+    return pitch[carried]
+
+
+def grow_geometry(ls: LString, clocks: Clocks, const: dict[str, float], lod: int = 0) -> TreeGeometry:
+    """Turtle and meshes of the growing tree, with continuous radii (see module docstring)."""
+    view = render_view(ls, clocks, const)
+    turtle = interpret(view, turtle_config(const))
+    segs = turtle.segments
+    if len(segs):
+        set_radii(segs, radii(ls, segs, clocks, const))
+    turtle.leaves = leaf_clusters(turtle.leaves)
+    level = LOD_LEVELS[max(0, min(lod, len(LOD_LEVELS) - 1))]
+    return TreeGeometry(turtle, tree_mesh(turtle, level))
