@@ -8,7 +8,7 @@ import trimesh
 from arbor.engine.geometry.turtle import TurtleConfig, interpret
 from arbor.engine.lsystem.lstring import parse_lstring
 from arbor.engine.modeling.crown import Skeleton, grow_crown, grow_into_lobes, skeleton_text
-from arbor.engine.modeling.lobes import LobeEditor, lobe_from_loops, lobe_from_outline
+from arbor.engine.modeling.lobes import lobe_from_loops, lobe_from_outline
 from arbor.engine.modeling.modeler import Modeler
 from arbor.engine.modeling.strokes import Stroke
 
@@ -217,19 +217,6 @@ def test_lobe_editing_moves_scales_turns_squeezes_and_drags_and_stays_closed():
     assert np.linalg.norm(neighbours[1]) > np.linalg.norm(neighbours[0])  # less the farther along
     other_rings = np.delete(shift[: lobe.rings * lobe.ring_size].reshape(lobe.rings, -1), 1, axis=0)
     assert other_rings.max() > 1e-3  # the surface around follows too, not just the one stroke
-
-
-def test_lobe_edits_undo_and_redo():
-    editor = LobeEditor()
-    first = lobe_from_outline(silhouette())
-    editor.set(0, first)
-    editor.set(0, first.transformed(scale=0.5))
-    editor.set(1, first.transformed(move=(4.0, 0.0, 0.0)))
-    assert len(editor.lobes) == 2
-    assert editor.undo() and editor.undo() and editor.lobes == [first]
-    assert editor.redo() and editor.lobes[0] is not first and len(editor.lobes) == 1
-    editor.set(0, None)
-    assert editor.lobes == [] and not editor.redo()
 
 
 def test_crown_on_a_string_that_draws_nothing_keeps_its_modules():

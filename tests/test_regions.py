@@ -5,7 +5,7 @@ from arbor.engine.geometry.turtle import TurtleConfig, interpret, module_positio
 from arbor.engine.lsystem.derive import Deriver
 from arbor.engine.lsystem.lstring import parse_lstring
 from arbor.engine.lsystem.lsys import parse_lsystem
-from arbor.engine.modeling.regions import Sphere, Supertoroid, derive_in_region, fit_supertoroid, prune, seed_in_region
+from arbor.engine.modeling.regions import Sphere, Supertoroid, fit_supertoroid, prune, seed_in_region
 
 
 def test_sphere_inside():
@@ -42,7 +42,7 @@ def test_rules_apply_only_inside_the_region():
     ls = parse_lstring("F(1)[+(90)F(1)A]F(1)[-(90)F(1)A]F(1)A")
     positions = module_positions(ls)
     region = Sphere((1.0, 2.0, 0.0), 0.5)  # around the tip of the '-' branch (towards +x)
-    grown = derive_in_region(Deriver(system), ls, positions, region)
+    grown, _ = Deriver(system).step(ls, None, only=region.contains(positions))
     assert grown.to_text() == "F(1)[+(90)F(1)A]F(1)[-(90)F(1)AB]F(1)A"  # only the A inside the sphere changed
 
 

@@ -146,16 +146,6 @@ def _grow_step(skeleton: Skeleton, points, active, owner_local, to_surface, t, s
     return nodes, directions, lengths
 
 
-def pipe_diameters(skeleton: Skeleton, root_diameter: float, root: int = 0) -> np.ndarray:
-    """Diameter of the piece into every node by the pipe model (area preserving): proportional to the
-    square root of the number of tips it carries, ``root_diameter`` at ``root``."""
-    tips = (np.bincount(skeleton.parent[skeleton.parent >= 0], minlength=len(skeleton.parent)) == 0).astype(float)
-    for node in range(len(tips) - 1, 0, -1):  # children always come after their parents
-        if skeleton.parent[node] >= 0:
-            tips[skeleton.parent[node]] += tips[node]
-    return root_diameter * np.sqrt(tips / max(tips[root], 1.0))
-
-
 def skeleton_text(skeleton: Skeleton, root: int = 0, frame: np.ndarray = INITIAL_FRAME,
                   diameters: np.ndarray | None = None, tip: str = "") -> str:
     """The skeleton from node ``root`` on, for a turtle standing there with ``frame``, as ordinary

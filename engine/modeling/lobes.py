@@ -12,13 +12,12 @@ squeezed and have stroke points dragged, with undo; ``Crossings`` tests points a
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from functools import cached_property
 
 import numpy as np
 
 from arbor.engine.geometry.turtle import unit
-from arbor.engine.modeling.history import Undoable
 from arbor.engine.modeling.strokes import ArcLengthSpline, adaptive_sample
 
 
@@ -132,28 +131,6 @@ class Lobe:
             if sum(len(f) for f in found) >= count:
                 break
         return np.concatenate(found)[:count]
-
-
-@dataclass
-class LobeEditor(Undoable):
-    """The crown's lobes while they are being drawn and edited, with undo and redo."""
-
-    HISTORY_OF = "lobes"
-
-    lobes: list[Lobe] = field(default_factory=list)
-    undo_stack: list[list[Lobe]] = field(default_factory=list)
-    redo_stack: list[list[Lobe]] = field(default_factory=list)
-
-    def set(self, index: int, lobe: Lobe | None) -> None:
-        """Replace lobe ``index`` (``len(lobes)`` adds one, None removes it), undoably."""
-        lobes = list(self.lobes)
-        if lobe is None:
-            del lobes[index]
-        elif index == len(lobes):
-            lobes.append(lobe)
-        else:
-            lobes[index] = lobe
-        self.commit(lobes)
 
 
 class Crossings:

@@ -17,7 +17,6 @@ import numpy as np
 
 from arbor.engine.geometry.turtle import INITIAL_FRAME
 from arbor.engine.lsystem import brackets
-from arbor.engine.lsystem.derive import Deriver
 from arbor.engine.lsystem.lstring import LString, concat, parse_lstring
 
 
@@ -172,17 +171,6 @@ def scaled_region(region: Sphere | Supertoroid, factor: float) -> Sphere | Super
     if isinstance(region, Sphere):
         return Sphere(region.center, region.radius * factor)
     return replace(region, a_x=region.a_x * factor, a_y=region.a_y * factor, a_z=region.a_z * factor)
-
-
-def derive_in_region(deriver: Deriver, ls: LString, positions: np.ndarray, region,
-                     extern: dict[str, float] | None = None) -> LString:
-    """One rewrite where only modules whose position lies in ``region`` may change (seed 000 4.2).
-
-    ``positions`` holds every module's turtle position (turtle.module_positions).
-    """
-    inside = region.contains(positions)
-    new, _ = deriver.step(ls, extern, only=inside)
-    return new
 
 
 def prune(ls: LString, module: int) -> LString:

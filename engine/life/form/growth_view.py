@@ -150,11 +150,6 @@ class GrowthView:
         carrier = self.leaf_carrier[rows]
         self.young_leaves = rows[(carrier >= 0) & on_young[np.maximum(carrier, 0)]]
 
-    @property
-    def built_T(self) -> float:  # noqa: N802 (T is the length clock's name everywhere)
-        """The length time the records were built at."""
-        return self._built_T
-
     def update(self, clocks: Clocks) -> None:
         """Move the young segments and leaves to ``clocks`` (no-op for a tree that has stopped growing)."""
         const, now = self.const, clocks.length_time
