@@ -313,3 +313,19 @@ def test_growing_twigs_thinner_than_the_grown_ones_drawn_are_left_out_too(game, 
     with_young = frame(game)
     monkeypatch.setattr(game.renderer, "_detail", lambda *a: Detail(3, 0, 0, 0.3, 1.0, 1e9))
     assert (np.abs(frame(game) - with_young).sum(axis=2) > 30).sum() > 20
+
+
+def test_a_nearer_tree_gets_finer_detail_and_a_far_one_coarser(game):
+    """The level of detail follows the tree's height on screen (not the vertex budget, set out of reach
+    here): the finest level close up, the coarsest far away, never coarser as the camera comes nearer."""
+    frame(game)  # the trees placed
+    game.renderer.vertex_budget = 10**9
+    camera = game.camera()
+    lods = []
+    for factor in (0.25, 0.6, 1.0, 2.5, 6.0):
+        near = copy.deepcopy(camera)
+        near.distance = camera.distance * factor
+        game.renderer.render(game.fbo, near, game.world.sim.sun_direction(), SIZE)
+        lods.append(game.renderer.last_details[0].lod)
+    assert lods[0] == 0 and lods[-1] == 3
+    assert lods == sorted(lods)
