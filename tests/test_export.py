@@ -86,7 +86,7 @@ def test_cli_export(tmp_path, lsys_dir, capsys):
 def test_cli_reports_bad_source(tmp_path, capsys):
     bad = tmp_path / "bad.lsys"
     bad.write_text("w: F\np1: F -> F(\n")
-    assert main(["export", str(bad), "--out", str(tmp_path / "x.glb")]) == 2
+    assert main(["export", str(bad), "--out", str(tmp_path / "x.glb")]) == 1  # a runtime failure, not usage
     assert f"{bad}:2:" in capsys.readouterr().err
 
 

@@ -128,7 +128,7 @@ def test_arbor_breed_and_lineage_on_the_command_line(parents, tmp_path, capsys):
     assert main(["lineage", str(tmp_path / "c1.arbor")]) == 0
     out = capsys.readouterr().out
     assert "generation 1" in out and out.count("generation 0") == 2 and " a, " in out and " b, " in out
-    assert main(["breed", str(tmp_path / "nothere.arbor"), str(tmp_path / "b.arbor")]) == 2
+    assert main(["breed", str(tmp_path / "nothere.arbor"), str(tmp_path / "b.arbor")]) == 1
 
 
 def test_roots_grow_on_water_and_spare_it():

@@ -1,10 +1,11 @@
-"""Error types raised by the engine for bad (possibly hostile) input."""
+"""Error types raised by the engine for bad (possibly hostile) input, one per kind of file."""
 
 from __future__ import annotations
 
 
 class LSysError(Exception):
-    """A problem in an .lsys source, an L-string text or a save file.
+    """A problem in a file the engine reads: an .lsys source, an L-string text, a save file, or one of
+    the kinds below (every caller that reports a bad file catches this one).
 
     Carries the file name, 1-based line and column so a player who shared a broken file can be told
     exactly where it is broken. ``str()`` gives ``file:line:col: message``.
@@ -17,3 +18,18 @@ class LSysError(Exception):
         self.col = col
         super().__init__(f"{file}:{line}:{col}: {message}")
 
+
+class RulesError(LSysError):
+    """A problem in the game rules (assets/rules.toml, a pace's overrides)."""
+
+
+class ExperimentError(LSysError):
+    """A problem in a lab experiment file (its trees, regimes and rule overrides)."""
+
+
+class SweepError(LSysError):
+    """A problem in a sweep file (its factors, levels, seeds and responses)."""
+
+
+class SettingsError(LSysError):
+    """A problem in a settings file read into a dataclass (kiosk.toml, a species preset)."""

@@ -1,0 +1,151 @@
+"""Every game rule declared once: its default, its physical range, its unit and what it means.
+
+The rule dataclasses (rules.py), the validation of assets/rules.toml and of lab and sweep overrides,
+the table in docs/rules.md and the units on the sweep figures' axes are all made from this list, so a
+rule's default or range is written here and nowhere else. Defaults are seed 003's numbers at the demo
+pace; ``scales`` says what a pace does to a rule: ``"time"`` is multiplied by its time scale,
+``"rate"`` (per second) divided by it, None left alone (the watering can is held for seconds at any pace).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+
+@dataclass(frozen=True)
+class Rule:
+    """One rule: ``key`` is ``"section.name"``; ``low``..``high`` its physical limits (None for a switch)."""
+
+    key: str
+    default: float | bool
+    low: float | None
+    high: float | None
+    unit: str
+    meaning: str
+    scales: str | None = None
+
+    @property
+    def section(self) -> str:
+        """The table of rules.toml the rule lives in."""
+        return self.key.partition(".")[0]
+
+    @property
+    def name(self) -> str:
+        """The rule's key inside its table."""
+        return self.key.partition(".")[2]
+
+
+# section -> (dataclass name, what the section is about), in the order of the Rules dataclass.
+SECTION_DOCS = {
+    "growth": ("GrowthRules", "When a meter earns growth, and how fast the tree's two clocks run."),
+    "sun": ("SunRules", "The sun's orbit (slider defaults and ranges) and how it fills the sun meter."),
+    "water": ("WaterRules", "How the water meter drains, fills and drowns the roots."),
+    "health": ("HealthRules", "Neglect, wilting and death."),
+    "replant": ("ReplantRules", "The sapling button's meter refill range."),
+    "light": ("LightRules", "How light is measured: a shadow grid across the sun's rays (Beer-Lambert)."),
+    "wind": ("WindRules", "The wind that sways the tree (it never changes the L-string): strength 0 is still air."),
+    "seasons": ("SeasonRules", "A year of seasons counted in days of the sun: spring flush and blossoms, summer "
+                               "growth, autumn colours and leaf fall, winter rest."),
+    "weather": ("WeatherRules", "Rain showers that fill the water meter (one chance a day, by season) and the wind."),
+    "away": ("TimeAwayRules", "What happens while the player is away."),
+    "roots": ("RootRules", "Roots: how fast they grow on water and how much they spare it."),
+}
+
+METER = "meter (0..1)"
+PHYS = "physiological time"
+PER_S = "meter per s"
+
+SCHEMA: tuple[Rule, ...] = (
+    Rule("growth.threshold", 0.5, 0.01, 0.99, METER, "a meter counts as full enough above this"),
+    Rule("growth.hold_time", 20.0, 0.0, 1e7, "s", "time above the threshold needed to earn growth", "time"),
+    Rule("growth.deadline", 40.0, 0.0, 1e7, "s", "a growth cycle longer than this grows less ...", "time"),
+    Rule("growth.penalty_time", 40.0, 1e-3, 1e7, "s", "... by exp(-(cycle - deadline) / penalty_time)", "time"),
+    Rule("growth.length_rate", 0.06, 0.0, 100.0, f"{PHYS} per s", "length clock at full sun growth (new internodes)",
+         "rate"),
+    Rule("growth.girth_rate", 0.1, 0.0, 100.0, "girth time per s", "girth clock at full water growth (thickening)",
+         "rate"),
+    Rule("growth.rewrite_step", 1.0, 0.01, 100.0, PHYS, "time between two L-system rewrites"),
+    Rule("growth.sapling_age", 12.0, 0.0, 1000.0, PHYS, "age of a newly planted sapling (a few internodes)"),
+    Rule("sun.orbit_height", 0.35, -1.0, 1.0, "orbit radii", "slider: height of the orbit's centre (-1 always night, "
+         "1 always day)"),
+    Rule("sun.orbit_height_min", -1.0, -1.0, 1.0, "orbit radii", "the orbit height slider's lowest setting"),
+    Rule("sun.orbit_height_max", 1.0, -1.0, 1.0, "orbit radii", "the orbit height slider's highest setting"),
+    Rule("sun.speed", 0.05, 1e-7, 10.0, "rad per s", "slider: the sun's angular speed (one day ~ 126 s)", "rate"),
+    Rule("sun.speed_min", 0.005, 1e-7, 10.0, "rad per s", "the sun speed slider's lowest setting", "rate"),
+    Rule("sun.speed_max", 0.5, 1e-7, 10.0, "rad per s", "the sun speed slider's highest setting", "rate"),
+    Rule("sun.fill_rate", 0.04, 0.0, 100.0, PER_S, "sun meter filled with the sun at the zenith", "rate"),
+    Rule("sun.drain_rate", 0.006, 0.0, 100.0, PER_S, "sun meter drained while the sun is down", "rate"),
+    Rule("sun.side", 0.45, -10.0, 10.0, "orbit radii", "how far to one side (+z, south) the sun's path lies"),
+    Rule("water.drain_rate", 0.004, 0.0, 100.0, PER_S, "water meter drained, always", "rate"),
+    Rule("water.sun_drain_rate", 0.008, 0.0, 100.0, PER_S, "water meter drained extra at full sunshine", "rate"),
+    Rule("water.fill_rate", 0.12, 0.0, 100.0, PER_S, "water meter filled while the can is held (any pace)"),
+    Rule("water.drown_level", 0.95, 0.0, 1.0, METER, "above this for longer than drown_time the roots drown"),
+    Rule("water.drown_time", 30.0, 0.0, 1e7, "s", "time above drown_level before the roots drown", "time"),
+    Rule("water.leaf_min", 0.45, 0.0, 1.0, "share (0..1)", "leaf vigour (size, how long leaves stay) with an empty "
+         "water meter"),
+    Rule("water.drought_level", 0.35, 0.0, 1.0, METER, "below this shaded branches die up to 3x faster (drought)"),
+    Rule("health.neglect_level", 0.15, 0.0, 1.0, METER, "a meter below this counts as neglect"),
+    Rule("health.wilt_rate", 0.02, 0.0, 100.0, "wilt per s", "wilt while neglected or drowning (1 = fully wilted)",
+         "rate"),
+    Rule("health.recover_rate", 0.01, 0.0, 100.0, "wilt per s", "wilt recovered otherwise", "rate"),
+    Rule("health.death_time", 120.0, 0.0, 1e8, "s", "time at full wilt before the tree dies", "time"),
+    Rule("replant.meter_min", 0.25, 0.0, 1.0, METER, "the sapling button refills both meters to at least this"),
+    Rule("replant.meter_max", 1.0, 0.0, 1.0, METER, "... and at most this"),
+    Rule("light.cell", 0.9, 0.05, 100.0, "scene units", "side of a shadow cell across the sun's rays (about a leaf)"),
+    Rule("light.extinction", 0.55, 0.0, 100.0, "per leaf area per cell area", "Beer-Lambert coefficient"),
+    Rule("light.sky", 0.3, 0.0, 1.0, "share (0..1)", "share of the light from the open sky rather than the sun disc"),
+    Rule("light.interval", 6.0, 0.01, 1e6, "s", "time between two light measurements", "time"),
+    Rule("light.memory", 12.0, 0.01, 1e6, PHYS, "time over which buds and leaves remember their light"),
+    Rule("wind.strength", 0.35, 0.0, 5.0, "tree height x 0.1", "sway at the outermost twigs"),
+    Rule("wind.direction", 60.0, -360.0, 360.0, "degrees", "from +x toward +z, where the wind blows to"),
+    Rule("wind.gusts", 0.5, 0.0, 1.0, "share (0..1)", "how much the strength rises and falls (0 steady, 1 calm to "
+         "twice)"),
+    Rule("seasons.enabled", True, None, None, "true/false", "false: an endless summer (to study light or water alone)"),
+    Rule("seasons.year_days", 28.0, 1.0, 1000.0, "days of the sun", "a year (a season is a quarter of it)"),
+    Rule("seasons.start", 0.05, 0.0, 1.0, "share of a year", "where a new garden starts (0 = first day of spring)"),
+    Rule("seasons.sun_swing", 0.25, 0.0, 1.0, "orbit radii", "the sun stands this much higher in summer, lower in "
+         "winter"),
+    Rule("seasons.spring_growth", 1.2, 0.0, 10.0, "x", "growth clocks times this in spring"),
+    Rule("seasons.summer_growth", 1.0, 0.0, 10.0, "x", "growth clocks times this in summer"),
+    Rule("seasons.autumn_growth", 0.5, 0.0, 10.0, "x", "growth clocks times this in autumn"),
+    Rule("seasons.winter_growth", 0.0, 0.0, 10.0, "x", "growth clocks times this in winter (0: winter rest)"),
+    Rule("seasons.winter_water", 0.3, 0.0, 10.0, "x", "the water meter drains this much as fast in winter"),
+    Rule("seasons.flush", 3.0, 0.0, 100.0, "x", "buds wake this many times as eagerly in spring"),
+    Rule("seasons.leaf_fall", 0.08, 0.0, 100.0, f"per {PHYS}", "chance in autumn that a leaf starts to fall"),
+    Rule("seasons.mature_age", 80.0, 0.0, 1e6, PHYS, "age from which a healthy tree blossoms in spring"),
+    Rule("weather.spring_rain", 0.5, 0.0, 1.0, "chance a day", "a rain shower on a spring day"),
+    Rule("weather.summer_rain", 0.3, 0.0, 1.0, "chance a day", "a rain shower on a summer day"),
+    Rule("weather.autumn_rain", 0.45, 0.0, 1.0, "chance a day", "a rain shower on an autumn day"),
+    Rule("weather.winter_rain", 0.2, 0.0, 1.0, "chance a day", "a rain shower on a winter day"),
+    Rule("weather.shower", 0.08, 0.0, 1.0, "share of a day", "how long a shower lasts"),
+    Rule("weather.rain_fill", 0.02, 0.0, 100.0, PER_S, "water meter filled while it rains", "rate"),
+    Rule("weather.rain_wind", 2.0, 0.0, 10.0, "x", "the wind blows this much harder during a shower"),
+    Rule("away.cap_days", 14.0, 0.0, 3650.0, "real days", "absence that the garden lives at most"),
+    Rule("away.fast_light", 4.0, 0.5, 100.0, "readings a day", "light readings while catching up (fewer: it is "
+         "quick)"),
+    Rule("roots.growth_rate", 0.06, 0.0, 100.0, "root time per s", "root growth with a full water meter", "rate"),
+    Rule("roots.step", 0.5, 0.01, 100.0, "root time", "time between two rewrites of the roots' L-string"),
+    Rule("roots.drain_relief", 0.35, 0.0, 0.9, "share (0..1)", "a full root system drains the water meter this much "
+         "more slowly"),
+    Rule("roots.full_length", 150.0, 1.0, 1e5, "scene units", "roots that count as a full root system"),
+)
+
+
+def find_rule(key: str, schema: tuple[Rule, ...] = SCHEMA) -> Rule | None:
+    """The rule a ``"section.name"`` key names, or None."""
+    return next((r for r in schema if r.key == key), None)
+
+
+def rules_table_markdown(schema: tuple[Rule, ...] = SCHEMA) -> str:
+    """docs/rules.md's table of every rule: one row per rule, a heading per section of rules.toml."""
+    lines = []
+    for section, (_, doc) in SECTION_DOCS.items():
+        lines += [f"### [{section}]", "", doc, "", "| rule | default | range | unit | meaning | pace |",
+                  "|---|---|---|---|---|---|"]
+        for r in (r for r in schema if r.section == section):
+            span = "" if r.low is None else f"{r.low:g} .. {r.high:g}"
+            default = str(r.default).lower() if isinstance(r.default, bool) else f"{r.default:g}"
+            pace = {"time": "x time_scale", "rate": "/ time_scale"}.get(r.scales or "", "")
+            lines.append(f"| `{r.name}` | {default} | {span} | {r.unit} | {r.meaning} | {pace} |")
+        lines.append("")
+    return "\n".join(lines)
