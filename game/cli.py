@@ -217,11 +217,46 @@ def build_parser() -> argparse.ArgumentParser:
                         help="home: a day of the sun lasts a day (default); demo: seed 003's 2-minute days")
     parser.add_argument("--kiosk", action="store_true", help="unattended touchscreen mode (see assets/kiosk.toml)")
     parser.add_argument("--windowed", action="store_true", help="with --kiosk: a window instead of fullscreen")
+    parser.add_argument("--version", action="version", version=f"arbor {_version()}")
     return parser
 
 
+EXIT_OK, EXIT_FAILED, EXIT_USAGE = 0, 1, 2  # argparse exits with EXIT_USAGE for bad arguments
+
+
+def _version() -> str:
+    """The installed distribution's version (what `arbor --version` prints)."""
+    from importlib.metadata import PackageNotFoundError, version
+
+    try:
+        return version("arbor")
+    except PackageNotFoundError:  # run from a checkout that was never installed
+        return "unknown (not installed)"
+
+
+def _failure(err: BaseException) -> str:
+    """The one line a user sees for a failure they can fix (a bad file, a folder, a size too large)."""
+    if isinstance(err, OSError) and not isinstance(err, LSysError):
+        return f"arbor: {err.filename or ''}: {err.strerror}"
+    if isinstance(err, MemoryError):
+        return "arbor: not enough memory for that: ask for fewer steps, a smaller budget or fewer trees"
+    return f"arbor: {err}"
+
+
+def _quiet_broken_pipe() -> int:
+    """The reader of our output went away (``arbor derive ... | head``): end without a word."""
+    import os
+
+    devnull = os.open(os.devnull, os.O_WRONLY)
+    os.dup2(devnull, sys.stdout.fileno())  # Python's own flush at exit would fail again
+    return EXIT_FAILED
+
+
 def main(argv: list[str] | None = None) -> int:
-    """Entry point of the `arbor` console script: user errors end in one line naming what to fix."""
+    """Entry point of the `arbor` console script: user errors end in one line naming what to fix.
+
+    Exit status: 0 done, 1 a failure at run time (bad or missing file, no memory, broken pipe), 2 a usage
+    error (bad arguments; argparse's own status); the kiosk's staff quit is 3 (game/watchdog.py)."""
     argv = sys.argv[1:] if argv is None else argv
     if argv[:1] == ["watchdog"]:  # everything after it belongs to the watched app
         from arbor.game.watchdog import main as watchdog
@@ -235,20 +270,14 @@ def main(argv: list[str] | None = None) -> int:
             from arbor.game.app import run_app, run_kiosk
 
             return run_kiosk(args) if args.kiosk else run_app(args)
-        return args.run(args)
-    except LSysError as err:
-        print(f"arbor: {err}", file=sys.stderr)
-        return 2
-    except OSError as err:  # e.g. an output folder that cannot be written
-        print(f"arbor: {err.filename or ''}: {err.strerror}", file=sys.stderr)
-        return 2
-    except UserError as err:
-        print(f"arbor: {err}", file=sys.stderr)
-        return 2
-    except MemoryError:
-        print("arbor: not enough memory for that: ask for fewer steps, a smaller budget or fewer trees",
-              file=sys.stderr)
-        return 2
+        status = args.run(args)
+        sys.stdout.flush()  # a broken pipe shows here, inside the try, not at interpreter exit
+        return status
+    except BrokenPipeError:
+        return _quiet_broken_pipe()
+    except (LSysError, OSError, UserError, MemoryError) as err:
+        print(_failure(err), file=sys.stderr)
+        return EXIT_FAILED
 
 
 if __name__ == "__main__":

@@ -2,9 +2,11 @@
 
 `arbor watchdog --kiosk` keeps `arbor --kiosk` running:
 
-* the child exits with STAFF_EXIT only when staff entered the PIN: then the watchdog stops too; any
-  other end (a crash, a kill, even status 0) is restarted after a pause that grows while crashes come
-  quickly (1 s, 2 s, 4 s, ... at most 30 s) and shrinks back after a good long run;
+* the child exits with STAFF_EXIT only when staff entered the PIN: then the watchdog stops too, and so it
+  does when the child refused its arguments (USAGE_EXIT: restarting would only repeat the refusal) and for
+  `arbor watchdog --help` / `--version` (run once); any other end (a crash, a kill, even status 0) is
+  restarted after a pause that grows while crashes come quickly (1 s, 2 s, 4 s, ... at most 30 s) and
+  shrinks back after a good long run;
 * the child touches a heartbeat file (``ARBOR_HEARTBEAT``) every second; if it stays silent for
   HANG_SECONDS it is killed and restarted (a hung app is never left on screen);
 * when the child dies young CRASH_LOOP times in a row, the kiosk's saved garden is moved aside
@@ -23,7 +25,9 @@ from collections.abc import Callable
 from pathlib import Path
 
 log = logging.getLogger("arbor.watchdog")
-STAFF_EXIT = 3  # the only status that stops the watchdog: staff quit with the PIN
+STAFF_EXIT = 3  # staff quit with the PIN: the watchdog stops
+USAGE_EXIT = 2  # the child refused its arguments (argparse): the watchdog stops, a restart would repeat it
+ONCE = ("-h", "--help", "--version")  # arguments that only print: the child runs once
 HANG_SECONDS = 30.0  # no heartbeat for this long (after the start-up grace) = hung
 START_GRACE = 60.0  # seconds a starting app may take before its first heartbeat
 YOUNG = 20.0  # a run shorter than this counts as a crash at start
@@ -78,6 +82,9 @@ def watch(command: list[str], sleep: Callable[[float], None] = time.sleep, clock
             if status == STAFF_EXIT:
                 log.info("staff quit the kiosk: the watchdog stops")
                 return status
+            if status == USAGE_EXIT:
+                log.error("arbor refused its arguments (status %d): the watchdog stops", status)
+                return status
             lived = clock() - started
             young = young + 1 if lived < YOUNG else 0
             if young >= CRASH_LOOP and saves is not None:
@@ -101,6 +108,10 @@ def _move_garden_aside(folder: Path) -> None:
 
 
 def main(args: list[str]) -> int:
-    """`arbor watchdog ARGS...`: keep `arbor ARGS...` alive."""
+    """`arbor watchdog ARGS...`: keep `arbor ARGS...` alive. Returns the status the watchdog stopped on:
+    STAFF_EXIT, USAGE_EXIT, or the child's own for --help / --version."""
     logging.basicConfig(level=logging.INFO)
-    return watch([sys.executable, "-m", "arbor.game.cli", *args], saves=_saves_folder(args))
+    command = [sys.executable, "-m", "arbor.game.cli", *args]
+    if any(arg in ONCE for arg in args):
+        return subprocess.call(command)
+    return watch(command, saves=_saves_folder(args))
