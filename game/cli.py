@@ -8,6 +8,7 @@ from pathlib import Path
 
 from arbor.engine.base.errors import LSysError
 from arbor.engine.base.memory import keep_freed_memory
+from arbor.engine.base.units import METRE
 from arbor.engine.lsystem.derive import DEFAULT_BUDGET, MAX_BUDGET
 from arbor.game.errors import UserError
 from arbor.game.paths import ASSETS
@@ -46,6 +47,20 @@ def _bounded(low: int, high: int, what: str):
     return parse
 
 
+def _metres(what: str):
+    """An argparse type: a length in metres (or metres per unit), finite, above 0 and at most 10 km."""
+    def parse(text: str) -> float:
+        try:
+            value = float(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"{what} must be a number of metres") from None
+        if not 0.0 < value <= 10_000.0:
+            raise argparse.ArgumentTypeError(f"{what} must be above 0 and at most 10,000 metres (got {text})")
+        return value
+
+    return parse
+
+
 def _size(text: str) -> tuple[int, int]:
     try:
         w, h = (int(v) for v in text.lower().split("x"))
@@ -69,7 +84,7 @@ def _cmd_render(args: argparse.Namespace) -> int:
 
 
 def _cmd_export(args: argparse.Namespace) -> int:
-    from arbor.engine.geometry.export import export_tree
+    from arbor.engine.geometry.export import export_tree, tree_height
     from arbor.game.commands.trees import tree_geometry
 
     fmt = (args.format or args.out.suffix.lstrip(".")).lower()
@@ -78,8 +93,13 @@ def _cmd_export(args: argparse.Namespace) -> int:
                         "(or --format glb|obj)")
     args.format = fmt
     geometry, _ = tree_geometry(_source(args), args.lod, roots=True)
-    files = export_tree(geometry.mesh, args.out, ASSETS / "textures", args.format)
-    print(f"{args.out}: {geometry.mesh.n_triangles:,} triangles (lod {args.lod}); wrote {len(files)} file(s)")
+    height = tree_height(geometry.mesh)
+    if args.height is not None and height <= 0:
+        raise UserError("--height needs a tree with some height: this one has none (more --steps?)")
+    metres = args.height / height if args.height is not None else args.scale or 1.0 / METRE
+    files = export_tree(geometry.mesh, args.out, ASSETS / "textures", args.format, metres)
+    print(f"{args.out}: {geometry.mesh.n_triangles:,} triangles (lod {args.lod}), {height * metres:.2f} m tall; "
+          f"wrote {len(files)} file(s)")
     return 0
 
 
@@ -164,6 +184,11 @@ def build_parser() -> argparse.ArgumentParser:
     export.add_argument("--format", choices=("glb", "obj"), default=None, help="default: from --out's suffix")
     export.add_argument("--lod", type=_bounded(0, MAX_LOD, "--lod"), default=0, help="level of detail 0-3")
     export.add_argument("--out", type=Path, default=Path("tree.glb"))
+    size = export.add_mutually_exclusive_group()
+    size.add_argument("--height", type=_metres("--height"), default=None, metavar="METRES",
+                      help="scale the tree to this height in metres (for L-system sources of any unit)")
+    size.add_argument("--scale", type=_metres("--scale"), default=None, metavar="METRES",
+                      help=f"metres per scene unit (default {1 / METRE:g}: the game's {METRE:g} units = 1 m)")
     export.set_defaults(run=_cmd_export)
     lab = sub.add_parser("lab", help="educators' lab: run an experiment (window, or --out DIR headless)")
     lab.add_argument("experiment", type=Path, help="experiment .toml (see assets/experiments)")

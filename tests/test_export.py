@@ -111,3 +111,41 @@ def test_glb_passes_khronos_validator(tree, tmp_path):
     out = subprocess.run([node, "-e", VALIDATE_JS, str(VALIDATOR), str(path)], capture_output=True, timeout=120)
     report = json.loads(out.stdout.decode().strip().splitlines()[-1])
     assert report == {"errors": 0, "warnings": 0}, out.stdout.decode()
+
+
+def _glb_json(path: Path) -> dict:
+    data = path.read_bytes()
+    length = struct.unpack_from("<I", data, 12)[0]
+    return json.loads(data[20:20 + length])
+
+
+def test_exports_arrive_at_their_height_in_metres(tmp_path, lsys_dir, capsys):
+    from arbor.engine.base.units import METRE
+    from arbor.engine.geometry.export import tree_height
+
+    source = lsys_dir / "abop_2_8_tree.lsys"
+    system = load_lsystem(source)
+    height = tree_height(build_geometry(derive(system, 4), system, lod=0).mesh)  # scene units
+    out = tmp_path / "scene.glb"
+    assert main(["export", str(source), "--steps", "4", "--out", str(out)]) == 0
+    loaded = trimesh.load(out, process=False)
+    assert loaded.bounds[1][1] == pytest.approx(height / METRE, rel=1e-3)  # the scene's metre by default
+    assert f"{height / METRE:.2f} m tall" in capsys.readouterr().out
+    asset = _glb_json(out)["asset"]
+    assert asset["version"] == "2.0" and asset["extras"]["unit"] == "metre"
+    assert asset["extras"]["height_m"] == pytest.approx(height / METRE, rel=1e-3)
+    for flag, value, metres in (("--height", "12", 12.0), ("--scale", "0.01", height * 0.01)):
+        out = tmp_path / f"{flag[2:]}.glb"
+        assert main(["export", str(source), "--steps", "4", flag, value, "--out", str(out)]) == 0
+        assert trimesh.load(out, process=False).bounds[1][1] == pytest.approx(metres, rel=1e-3)
+    obj = tmp_path / "tree.obj"
+    assert main(["export", str(source), "--steps", "4", "--height", "3", "--out", str(obj)]) == 0
+    ys = [float(line.split()[2]) for line in obj.read_text().splitlines() if line.startswith("v ")]
+    assert max(ys) == pytest.approx(3.0, rel=1e-3)
+
+
+@pytest.mark.parametrize("value", ["0", "-2", "nan", "inf", "1e9", "tall"])
+def test_export_sizes_are_checked(tmp_path, lsys_dir, value, capsys):
+    with pytest.raises(SystemExit) as exit_:
+        main(["export", str(lsys_dir / "abop_2_8_tree.lsys"), "--height", value, "--out", str(tmp_path / "x.glb")])
+    assert exit_.value.code == 2 and "--height" in capsys.readouterr().err

@@ -10,9 +10,10 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
+from arbor.engine.base.units import METRE
+
 KINDS = ("planted", "branch", "flower", "fruit", "height", "season", "harvest")
 MAX_ENTRIES = 400
-METRE = 10.0  # scene units per metre of the tree's height
 
 
 @dataclass
