@@ -15,7 +15,7 @@ import time
 from pathlib import Path
 
 from arbor.engine.life.keep.away import away_seconds, live_away
-from arbor.engine.life.keep.save import load_garden, save_garden
+from arbor.engine.life.keep.save import SavedGarden, read_garden, write_garden
 from arbor.engine.life.rules.rules import load_rules
 from arbor.engine.life.world.garden import Garden
 from benchmarks.home_pace import ASSETS, play
@@ -33,10 +33,10 @@ def main() -> None:
     with tempfile.TemporaryDirectory() as folder:
         path = Path(folder) / "autosave.arbor"
         for days in (3, 14, 30):
-            save_garden(garden.worlds, path, 0, "game_tree.lsys", 0.0, garden.seeds)
+            write_garden(SavedGarden(garden.worlds, 0, 0.0, garden.seeds), path)
             start = time.perf_counter()
-            worlds, current, saved_at = load_garden(path, rules)
-            away = Garden(worlds, current)
+            saved = read_garden(path, rules)
+            away, saved_at = Garden(saved.worlds, saved.current), saved.saved_at
             seconds = away_seconds(days * 86400.0, saved_at, rules.away.cap_days)
             summary = live_away(away, seconds)
             ms = (time.perf_counter() - start) * 1e3

@@ -23,7 +23,7 @@ import numpy as np
 
 from arbor.engine.base.errors import LSysError
 from arbor.engine.geometry.tree import build_geometry
-from arbor.engine.life.keep.save import garden_text, load_garden
+from arbor.engine.life.keep.save import SavedGarden, garden_text, read_garden
 from arbor.engine.life.rules.rules import load_rules
 from arbor.engine.life.world.world import World
 from arbor.engine.lsystem.derive import Deriver
@@ -76,7 +76,7 @@ def sample_garden_text(trees: int = 2) -> str:
             world.step(0.5)
         world.position = (7.0 * k, 0.0)
         worlds.append(world)
-    return garden_text(worlds, 0, "game_tree.lsys", 1.7e9)
+    return garden_text(SavedGarden(worlds, 0, 1.7e9))
 
 
 def try_save(text: str, folder: Path) -> None:
@@ -85,7 +85,7 @@ def try_save(text: str, folder: Path) -> None:
     path = folder / "fuzz.arbor"
     path.write_text(text, encoding="utf-8", errors="surrogatepass")
     try:
-        worlds, _, _ = load_garden(path, load_rules(ROOT / "assets" / "rules.toml", pace="demo"))
+        worlds = read_garden(path, load_rules(ROOT / "assets" / "rules.toml", pace="demo")).worlds
     except LSysError:
         return
     for world in worlds:

@@ -19,13 +19,13 @@ from pathlib import Path
 from tempfile import TemporaryDirectory
 
 from arbor.engine.base.errors import LSysError
-from arbor.engine.life.keep.save import load_garden
+from arbor.engine.life.keep.save import read_garden
 from arbor.game.screens.saves import remove_stale_temp_files
 
 ROOT = Path(__file__).resolve().parent.parent
 CHILD = """
 import sys
-from arbor.engine.life.keep.save import save_garden
+from arbor.engine.life.keep.save import SavedGarden, write_garden
 from arbor.engine.life.rules.rules import load_rules
 from arbor.engine.life.world.world import World
 from arbor.engine.lsystem.lsys import load_lsystem
@@ -40,7 +40,7 @@ while True:
         for _ in range(20):
             w.apply("water", float(w.sim.state.water_meter < 0.6))
             w.step(0.5)
-    save_garden(worlds, sys.argv[1])
+    write_garden(SavedGarden(worlds), sys.argv[1])
 """
 
 
@@ -64,7 +64,7 @@ def run(kills: int, trees: int, seed: int = 0) -> tuple[int, int, int, int]:
             if not path.exists():
                 continue  # killed before its first save finished: nothing to lose yet
             try:
-                worlds, _, _ = load_garden(path)
+                worlds = read_garden(path).worlds
             except LSysError:
                 corrupt += 1
                 continue

@@ -18,7 +18,7 @@ from pathlib import Path
 import numpy as np
 
 from arbor.engine.base.memory import keep_freed_memory
-from arbor.engine.life.keep.save import load_garden, save_world
+from arbor.engine.life.keep.save import SavedGarden, read_garden, write_garden
 from arbor.engine.life.rules.rules import load_rules
 from arbor.engine.life.world.world import World
 from arbor.engine.lsystem.derive import Deriver
@@ -81,12 +81,12 @@ def main() -> None:
                             ("abop 2.8", abop_world(rules))):
             ls = world.tree.lstring
             path = Path(folder) / f"{name}.arbor"
-            save = _times(lambda world=world, path=path: save_world(world, path))
+            save = _times(lambda world=world, path=path: write_garden(SavedGarden([world]), path))
             slack = 2 * len(ls) / (world.system.budget or len(ls))  # (past the tree's own budget: allowed here)
             start = time.perf_counter()
-            load_garden(path, rules, budget_slack=slack)  # the first load parses the embedded .lsys too
+            read_garden(path, rules, budget_slack=slack)  # the first load parses the embedded .lsys too
             first = (time.perf_counter() - start) * 1e3
-            load = _times(lambda path=path, slack=slack: load_garden(path, rules, budget_slack=slack))
+            load = _times(lambda path=path, slack=slack: read_garden(path, rules, budget_slack=slack))
             text = ls.to_text()
             write = _times(ls.to_text)
             read = _times(lambda text=text: parse_lstring(text))

@@ -12,7 +12,7 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from arbor.engine.life.keep.save import load_garden, save_garden
+from arbor.engine.life.keep.save import SavedGarden, read_garden, write_garden
 from arbor.engine.life.keep.save_check import SIM_FIELDS
 from arbor.engine.life.rules.rules import load_rules
 from arbor.engine.life.world.world import World
@@ -106,12 +106,13 @@ def test_whatever_the_game_saves_it_loads(system, tmp_path, values, trees, posit
         world.position = position
         worlds.append(world)
     path = tmp_path / "garden.arbor"
-    save_garden(worlds, path, trees - 1)
-    back, current, _ = load_garden(path, rules)
+    write_garden(SavedGarden(worlds, trees - 1), path)
+    saved = read_garden(path, rules)
+    back, current = saved.worlds, saved.current
     assert current == trees - 1 and len(back) == trees
     for a, b in zip(worlds, back, strict=True):
         for name in ("sun_meter", "water_meter", "wilt", "length_time", "girth_time", "time", "alive"):
             assert getattr(a.sim.state, name) == getattr(b.sim.state, name)
         assert b.tree.lstring.equals(a.tree.lstring) and b.position == a.position
-    save_garden(back, path, current)  # and what was loaded saves again
-    load_garden(path, rules)
+    write_garden(SavedGarden(back, current), path)  # and what was loaded saves again
+    read_garden(path, rules)

@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from arbor.engine.life.keep.save import load_world, save_world
+from arbor.engine.life.keep.save import SavedGarden, read_garden, write_garden
 from arbor.game.input.events import DOWN, MOVE, UP, InputEvent
 from arbor.game.screens.game import Game, GameConfig
 
@@ -121,8 +121,8 @@ def test_modeled_tree_saves_reloads_and_keeps_growing(game, tmp_path):
     press_menu(game, "modeler")
     assert not game.modeling.active and game.loop.speed == 1.0
     path = tmp_path / "modeled.arbor"
-    save_world(game.world, path)
-    back, _ = load_world(path, game.rules)
+    write_garden(SavedGarden([game.world]), path)
+    back = read_garden(path, game.rules).world
     assert back.tree.lstring.equals(game.world.tree.lstring)
     apices = back.tree.lstring.count("A")
     back.sim.state.orbit_height, back.sim.state.sun_meter, back.sim.state.water_meter = 1.0, 0.9, 0.9

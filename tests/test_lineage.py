@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 from arbor.engine.life.experiment.lab import measure
-from arbor.engine.life.keep.save import read_garden, save_garden
+from arbor.engine.life.keep.save import SavedGarden, read_garden, write_garden
 from arbor.engine.life.lineage.breed import cross
 from arbor.engine.life.lineage.lineage import Family, lineage_from_row, new_lineage
 from arbor.engine.life.plant.collide import Obstacles, rocks
@@ -80,7 +80,7 @@ def test_lineage_survives_a_save_and_hostile_entries_are_dropped(parents, tmp_pa
     child = garden.breed(garden.worlds[0], garden.worlds[1], 5, rules(), now=1.7e9 + 60)
     assert child.lineage.generation == 1 and set(child.lineage.parents) == {w.lineage.id for w in garden.worlds[:2]}
     path = tmp_path / "g.arbor"
-    save_garden(garden.worlds, path, 2, "game_tree.lsys", 1.7e9, (), garden.family)
+    write_garden(SavedGarden(garden.worlds, 2, 1.7e9, [], garden.family), path)
     saved = read_garden(path, rules())
     assert [w.lineage for w in saved.worlds] == [w.lineage for w in garden.worlds]
     assert saved.family.members == garden.family.members and saved.dropped == 0
@@ -119,7 +119,7 @@ def test_arbor_breed_and_lineage_on_the_command_line(parents, tmp_path, capsys):
     for name, system in zip(("a", "b"), parents, strict=True):
         world = World(system, rules(), seed=4)
         world.lineage = new_lineage(4, 1.7e9, name)
-        save_garden([world], tmp_path / f"{name}.arbor", 0, f"{name}.lsys", 1.7e9)
+        write_garden(SavedGarden([world], 0, 1.7e9, lsystem_name=f"{name}.lsys"), tmp_path / f"{name}.arbor")
     for out in ("c1", "c2"):
         assert main(["breed", str(tmp_path / "a.arbor"), str(tmp_path / "b.arbor"), "--seed", "9",
                      "--out", str(tmp_path / f"{out}.arbor")]) == 0

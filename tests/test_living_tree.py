@@ -189,12 +189,12 @@ def test_a_raised_tree_leaves_the_game_as_it_stands(system, tmp_path):
     import trimesh
 
     from arbor.engine.geometry.mesh import tree_mesh
-    from arbor.engine.life.keep.save import save_world
+    from arbor.engine.life.keep.save import SavedGarden, write_garden
     from arbor.game.cli import main
 
     world = cared_for(system, 6)
     path = tmp_path / "mine.arbor"
-    save_world(world, path)
+    write_garden(SavedGarden([world]), path)
     expected = world.tree.geometry(world.clocks()).mesh
     roots = tree_mesh(world.roots.turtle())
     assert roots.n_triangles > 100  # the tree grew roots

@@ -8,7 +8,7 @@ import time
 import numpy as np
 import pytest
 
-from arbor.engine.life.keep.save import SaveError, load_world, save_text, save_world
+from arbor.engine.life.keep.save import SavedGarden, SaveError, read_garden, save_text, write_garden
 from arbor.engine.life.rules.rules import load_rules
 from arbor.engine.life.world.world import World
 from arbor.engine.lsystem.lsys import load_lsystem
@@ -26,12 +26,13 @@ def world(lsys_dir):
 
 def test_round_trip_is_exact_and_continues_identically(world, tmp_path):
     path = tmp_path / "tree.arbor"
-    save_world(world, path)
-    back, saved_at = load_world(path, world.rules)
+    write_garden(SavedGarden([world]), path)
+    saved = read_garden(path, world.rules)
+    back, saved_at = saved.world, saved.saved_at
     assert abs(saved_at - time.time()) < 60
     assert back.tree.lstring.equals(world.tree.lstring)
     assert back.sim.state == world.sim.state
-    save_world(back, tmp_path / "again.arbor")
+    write_garden(SavedGarden([back]), tmp_path / "again.arbor")
     for w in (world, back):
         for _ in range(300):
             w.step(0.5)
@@ -76,7 +77,7 @@ def test_bad_saves_give_clear_errors_and_stay_untouched(world, tmp_path, mutate,
     path = tmp_path / "bad.arbor"
     before = write(path, mutate(save_text(world, "game_tree.lsys")))
     with pytest.raises(SaveError) as info:
-        load_world(path, world.rules)
+        read_garden(path, world.rules)
     err = info.value
     assert words in err.message and err.file.startswith(str(path)) and err.line >= 1 and err.col >= 1
     assert path.read_bytes() == before
@@ -91,7 +92,7 @@ def test_error_in_lstring_points_at_its_line(world, tmp_path):
     path = tmp_path / "bad.arbor"
     path.write_text("\n".join(lines))
     with pytest.raises(SaveError) as info:
-        load_world(path, world.rules)
+        read_garden(path, world.rules)
     assert (info.value.line, info.value.col) == (start + 4, col + 1)  # 1-based line and column of the bad char
 
 
@@ -100,7 +101,7 @@ import sys
 from arbor.engine.lsystem.lsys import load_lsystem
 from arbor.engine.life.rules.rules import load_rules
 from arbor.engine.life.world.world import World
-from arbor.engine.life.keep.save import save_world
+from arbor.engine.life.keep.save import SavedGarden, write_garden
 w = World(load_lsystem("assets/lsystems/game_tree.lsys"), load_rules("assets/rules.toml", pace="demo"), seed=1)
 w.sim.state.sun_meter = w.sim.state.water_meter = 0.9
 print("ready", flush=True)
@@ -108,13 +109,13 @@ while True:
     for _ in range(40):
         w.apply("water", float(w.sim.state.water_meter < 0.6))
         w.step(0.5)
-    save_world(w, sys.argv[1])
+    write_garden(SavedGarden([w]), sys.argv[1])
 """
 
 
 def test_killed_while_saving_leaves_a_loadable_save(tmp_path, world):
     path = tmp_path / "tree.arbor"
-    save_world(world, path)
+    write_garden(SavedGarden([world]), path)
     for delay in (0.05, 0.13, 0.31, 0.52, 0.77):
         proc = subprocess.Popen([sys.executable, "-c", CHILD, str(path)], stdout=subprocess.PIPE,
                                 cwd=os.path.dirname(os.path.dirname(__file__)))
@@ -122,7 +123,7 @@ def test_killed_while_saving_leaves_a_loadable_save(tmp_path, world):
         time.sleep(delay)
         proc.send_signal(signal.SIGKILL)
         proc.wait()
-        loaded, _ = load_world(path, world.rules)
+        loaded = read_garden(path, world.rules).world
         assert len(loaded.tree.lstring) >= 2
     leftovers = [p.name for p in tmp_path.iterdir() if p.name != "tree.arbor"]
     assert all(name.endswith(".tmp") for name in leftovers)  # at most a stray temp file, never a torn save
@@ -138,7 +139,7 @@ def test_saves_with_the_older_wrapped_string_still_load(world, tmp_path):
     assert 'lstring = """\\\nI(0,0,0,' in old
     path = tmp_path / "old.arbor"
     path.write_text(old)
-    back, _ = load_world(path, world.rules)
+    back = read_garden(path, world.rules).world
     assert back.tree.lstring.equals(world.tree.lstring)
 
 

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from arbor.engine.life.keep.away import away_seconds, live_away, tree_height
-from arbor.engine.life.keep.save import load_garden, load_seeds, save_garden
+from arbor.engine.life.keep.save import SavedGarden, read_garden, write_garden
 from arbor.engine.life.plant import seasons
 from arbor.engine.life.rules.rules import load_rules
 from arbor.engine.life.world.garden import Garden
@@ -170,8 +170,9 @@ def test_journal_and_seeds_survive_a_save(tmp_path, year):
     ripe = fruit[garden.world.sim.state.length_time - born >= garden.world.tree.geometry_constants["RIPEN"]]
     garden.harvest(garden.world, int(ripe[0]))
     path = tmp_path / "g.arbor"
-    save_garden(garden.worlds, path, 0, "game_tree.lsys", 1000.0, garden.seeds)
-    worlds, _, saved_at = load_garden(path, world.rules)
+    write_garden(SavedGarden(garden.worlds, 0, 1000.0, garden.seeds), path)
+    saved = read_garden(path, world.rules)
+    worlds, saved_at = saved.worlds, saved.saved_at
     assert saved_at == 1000.0
     assert worlds[0].journal.entries == garden.world.journal.entries
-    assert load_seeds(path) == garden.seeds
+    assert saved.seeds == garden.seeds

@@ -4,7 +4,8 @@ import numpy as np
 import pytest
 
 from arbor.engine.base.errors import LSysError
-from arbor.engine.life.plant.sim import GrowthCycle, SimState, Simulation
+from arbor.engine.life.keep.save_check import sim_state
+from arbor.engine.life.plant.sim import GrowthCycle, Simulation
 from arbor.engine.life.rules.rules import GrowthRules, Rules, load_rules
 
 
@@ -113,7 +114,7 @@ def test_replant_resets_meters_into_range():
 def test_state_round_trips_through_plain_data():
     sim = sim_with(orbit_height=0.7)
     step_for(sim, 30)
-    back = SimState.from_dict(sim.state.to_dict())
+    back = sim_state(sim.state.to_dict())
     assert back == sim.state
     with pytest.raises(ValueError):
-        SimState.from_dict({**sim.state.to_dict(), "wilt": float("nan")})
+        sim_state({**sim.state.to_dict(), "wilt": float("nan")})

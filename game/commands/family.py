@@ -6,7 +6,7 @@ import time
 from pathlib import Path
 
 from arbor.engine.base.errors import LSysError
-from arbor.engine.life.keep.save import SavedGarden, read_garden, save_garden
+from arbor.engine.life.keep.save import SavedGarden, read_garden, write_garden
 from arbor.engine.life.lineage.lineage import Family, Lineage
 from arbor.engine.life.rules.rules import load_rules
 from arbor.engine.life.world.garden import Garden
@@ -33,7 +33,7 @@ def breed_saves(a: Path, b: Path, seed: int, out: Path, tree_a: int | None = Non
     child = garden.breed(mother, father, seed, mother.rules, time.time() if now is None else now)
     child.position = (0.0, 0.0)
     out.parent.mkdir(parents=True, exist_ok=True)
-    save_garden([child], out, 0, f"{child.lineage.species}.lsys", now, (), garden.family)
+    write_garden(SavedGarden([child], 0, now, [], garden.family, lsystem_name=f"{child.lineage.species}.lsys"), out)
     return garden
 
 

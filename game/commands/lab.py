@@ -7,7 +7,7 @@ from pathlib import Path
 import numpy as np
 
 from arbor.engine.life.experiment.lab import Lab, load_experiment
-from arbor.engine.life.keep.save import save_world
+from arbor.engine.life.keep.save import SavedGarden, write_garden
 from arbor.engine.life.rules.rules import load_rules
 from arbor.game.paths import ASSETS
 from arbor.game.render.figures import lab_charts
@@ -55,6 +55,6 @@ def run_headless(experiment_path: Path, out: Path) -> list[Path]:
     for world, regime in zip(lab.worlds, lab.experiment.regimes, strict=True):
         name = "".join(c if c.isalnum() else "_" for c in regime.name).strip("_").lower() or "tree"
         path = out / f"{name}.arbor"
-        save_world(world, path, lab.experiment.lsystem.name)
+        write_garden(SavedGarden([world], lsystem_name=lab.experiment.lsystem.name), path)
         files.append(path)
     return files

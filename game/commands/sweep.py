@@ -19,7 +19,7 @@ import numpy as np
 
 from arbor.engine.life.experiment.sweep import STATS, Outcome, Sweep, Task, cell, final_values, runs, summarize
 from arbor.engine.life.experiment.sweep_file import load_sweep
-from arbor.engine.life.keep.save import load_world
+from arbor.engine.life.keep.save import read_garden
 from arbor.engine.life.rules.rules import load_rules
 from arbor.game.commands.sweep_runs import RunStore, outcomes, progress_bar, write_atomic
 from arbor.game.paths import ASSETS
@@ -132,7 +132,7 @@ def _thumbnails(sweep: Sweep, store: RunStore, everything: list, echo: Callable[
     meshes = {}
     for levels, path in kept.items():
         if path.is_file():
-            world, _ = load_world(path, rules)
+            world = read_garden(path, rules).world
             meshes[levels] = world.tree.geometry(world.clocks())
     try:
         ctx = headless_context()

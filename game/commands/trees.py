@@ -11,7 +11,7 @@ import numpy as np
 from arbor.engine.base.errors import LSysError
 from arbor.engine.geometry.mesh import LOD_LEVELS, merge_trees, tree_mesh
 from arbor.engine.geometry.tree import TreeGeometry, build_geometry
-from arbor.engine.life.keep.save import load_trees
+from arbor.engine.life.keep.save import read_garden
 from arbor.engine.lsystem.derive import Deriver
 from arbor.engine.lsystem.lstring import LString
 from arbor.engine.lsystem.lsys import load_lsystem
@@ -54,7 +54,7 @@ def tree_geometry(source: TreeSource, lod: int, roots: bool = False) -> tuple[Tr
     if is_save(source.path):
         if source.steps is not None or source.budget is not None:
             raise LSysError("--steps and --budget grow an .lsys source; a save holds a grown tree", str(source.path))
-        worlds = load_trees(source.path)
+        worlds = read_garden(source.path).worlds
         if not 0 <= source.tree < len(worlds):
             raise LSysError(f"--tree {source.tree}: this save holds {len(worlds)} tree(s), numbered from 0",
                             str(source.path))

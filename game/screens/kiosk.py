@@ -22,7 +22,7 @@ import pygame
 
 from arbor.engine.base.config import fill_dataclass
 from arbor.engine.base.errors import LSysError
-from arbor.engine.life.keep.save import save_world
+from arbor.engine.life.keep.save import SavedGarden, write_garden
 from arbor.game.input.events import DOWN, KEY_DOWN, KEY_UP, MOVE, QUIT, UP, InputEvent, Player, load_recording
 from arbor.game.paths import ASSETS
 from arbor.game.strings import set_language, text
@@ -250,7 +250,7 @@ class Kiosk:
         folder = self.saves  # the kiosk's own folder (saves/kiosk/)
         folder.mkdir(parents=True, exist_ok=True)
         stamp = time.strftime("%Y%m%d-%H%M%S")
-        save_world(self.game.world, folder / f"visitor-{stamp}.arbor")
+        write_garden(SavedGarden([self.game.world]), folder / f"visitor-{stamp}.arbor")
         self.game.act("replant", 1.0)
         self.game.coach.first_run()
         self.game.say(text("messages.visitor_reset"), 5)

@@ -14,7 +14,7 @@ import numpy as np
 import pygame
 
 from arbor.engine.life.experiment.lab import Lab
-from arbor.engine.life.keep.save import save_world
+from arbor.engine.life.keep.save import SavedGarden, write_garden
 from arbor.game.input.events import DOWN, KEY_DOWN, QUIT, InputEvent
 from arbor.game.loop import SPEEDS, FixedStepLoop
 from arbor.game.render.camera import OrbitCamera
@@ -145,5 +145,6 @@ class LabScreen:
         fbo.release()
         for world, regime in zip(self.lab.worlds, self.lab.experiment.regimes, strict=True):
             tree = "".join(c if c.isalnum() else "_" for c in regime.name).strip("_").lower() or "tree"
-            save_world(world, folder / f"{tree}.arbor", self.lab.experiment.lsystem.name)
+            write_garden(SavedGarden([world], lsystem_name=self.lab.experiment.lsystem.name),
+                         folder / f"{tree}.arbor")
         return folder

@@ -16,7 +16,7 @@ from typing import TYPE_CHECKING
 
 from arbor.engine.base.errors import LSysError
 from arbor.engine.life.keep.away import AwaySummary, away_seconds, live_away
-from arbor.engine.life.keep.save import load_garden, read_garden, save_garden
+from arbor.engine.life.keep.save import SavedGarden, read_garden, write_garden
 from arbor.engine.life.lineage.lineage import new_lineage, species_of
 from arbor.engine.life.plant.sim import sun_angle_at
 from arbor.engine.life.world.garden import MAX_GARDEN, Garden
@@ -93,13 +93,13 @@ class SaveKeeper:
         out = []
         for legacy in sorted(path.parent.glob("garden-*.arbor"))[: MAX_GARDEN - have]:
             try:
-                worlds, current, _ = load_garden(legacy, self.game.rules)
+                world = read_garden(legacy, self.game.rules).world
             except LSysError as err:  # one bad neighbour does not lose the garden: keep it aside
                 legacy.replace(legacy.with_name(legacy.name + ".broken"))
                 self.game.say(text("messages.load_failed", name=legacy.name, error=err.message,
                                    kept=legacy.name + ".broken"), 12)
                 continue
-            out.append(worlds[current])
+            out.append(world)
         return out
 
     def save(self, path: Path | None = None) -> bool:
@@ -109,8 +109,7 @@ class SaveKeeper:
         try:
             path.parent.mkdir(parents=True, exist_ok=True)
             garden = game.garden
-            save_garden(garden.worlds, path, garden.current, game.config.lsystem.name, game.wall_clock(),
-                        garden.seeds, garden.family, garden.rocks)
+            write_garden(SavedGarden.of(garden, game.config.lsystem.name, game.wall_clock()), path)
             if path == self.autosave_path:
                 for legacy in path.parent.glob("garden-*.arbor"):
                     legacy.unlink()

@@ -5,7 +5,7 @@ garden is one file written atomically (temp file, fsync, rename), so a crash nev
 of mixed generations. Saves are shared between players, so loading treats them as hostile: only a
 regular file of bounded size is read, TOML is parsed by the standard library (no eval), the embedded
 .lsys source by our own parser, the L-string by ``parse_lstring``, and every field is checked for type,
-range and finiteness (engine/life/save_check.py); every problem is a :class:`SaveError` naming the
+range and finiteness (keep/save_check.py); every problem is a :class:`SaveError` naming the
 file, line and column. Format 1 (one tree per file) still loads.
 """
 
@@ -33,7 +33,7 @@ from arbor.engine.life.keep.save_check import (
     Where,
     lstring_sane,
     restore_rng,
-    sim_values,
+    sim_state,
     table,
     text_value,
     value,
@@ -41,7 +41,7 @@ from arbor.engine.life.keep.save_check import (
 )
 from arbor.engine.life.lineage.lineage import Family, Lineage, lineage_from_row, new_lineage, species_of
 from arbor.engine.life.plant.journal import Journal
-from arbor.engine.life.plant.sim import GrowthCycle, Rules, SimState, Simulation
+from arbor.engine.life.plant.sim import Rules, Simulation
 from arbor.engine.life.world.garden import MAX_ROCKS, MAX_SEEDS, Garden, Seed
 from arbor.engine.life.world.world import World
 from arbor.engine.lsystem.lstring import LString, parse_lstring
@@ -182,45 +182,72 @@ def _family_lines(family: Family | None) -> list[str]:
     return ["family = [", *("{" + ", ".join(_lineage_pairs(m)) + "}," for m in family.members.values()), "]"]
 
 
-def garden_text(worlds: list[World], current: int = 0, lsystem_name: str = "game_tree.lsys",
-                saved_at: float | None = None, seeds: list[Seed] = (), family: Family | None = None,
-                rocks: list[tuple] = ()) -> str:
-    """The text of a save file holding ``worlds`` (a garden; the tree cared for is ``current``), the
-    seed bag and the family of every tree the garden has known."""
+@dataclass
+class SavedGarden:
+    """Everything a save holds, the one value both written (:func:`write_garden`) and read
+    (:func:`read_garden`): the trees, which one is cared for, when it was saved, the seed bag, the
+    family, the rocks and the name of the L-system; reading also counts the lineage entries it dropped
+    as malformed or hostile (told to the player, never trusted)."""
+
+    worlds: list[World]
+    current: int = 0
+    saved_at: float | None = None  # wall-clock seconds; None writes "now"; NaN when read and unreadable
+    seeds: list[Seed] = field(default_factory=list)
+    family: Family = field(default_factory=Family)
+    rocks: list[tuple[float, float, float, float]] = field(default_factory=list)
+    lsystem_name: str = "game_tree.lsys"
+    dropped: int = 0
+
+    @classmethod
+    def of(cls, garden: Garden, lsystem_name: str = "game_tree.lsys", saved_at: float | None = None
+           ) -> SavedGarden:
+        """What saving ``garden`` writes (the inverse of :meth:`garden`)."""
+        return cls(garden.worlds, garden.current, saved_at, list(garden.seeds), garden.family, list(garden.rocks),
+                   lsystem_name)
+
+    @property
+    def world(self) -> World:
+        """The tree cared for."""
+        return self.worlds[self.current]
+
+    def garden(self) -> Garden:
+        """The garden these make."""
+        garden = Garden(self.worlds, self.current, self.seeds, self.family)
+        garden.rocks = list(self.rocks)
+        return garden
+
+
+def garden_text(saved: SavedGarden) -> str:
+    """The text of a save file holding ``saved``: its trees (the cared-for one is ``current``), the seed
+    bag, the rocks and the family of every tree the garden has known."""
+    worlds = saved.worlds
     if not 1 <= len(worlds) <= MAX_TREES:
         raise ValueError(f"a save holds 1 to {MAX_TREES} trees")
     lines = [
         "# Arbor save file: a garden of trees, their rules and their state. Each tree's L-string ends its part.",
         f"format = {FORMAT}",
-        f"saved_at = {time.time() if saved_at is None else saved_at!r}",
-        f"current = {min(max(current, 0), len(worlds) - 1)}",
-        "seeds = [" + ", ".join(f"[{s.parent_seed}, {_toml_string(s.parent_sha)}, {s.number}]" for s in seeds) + "]",
-        "rocks = [" + ", ".join(_numbers(r) for r in rocks) + "]",
-        *_family_lines(family),
+        f"saved_at = {time.time() if saved.saved_at is None else saved.saved_at!r}",
+        f"current = {min(max(saved.current, 0), len(worlds) - 1)}",
+        "seeds = [" + ", ".join(f"[{s.parent_seed}, {_toml_string(s.parent_sha)}, {s.number}]"
+                                for s in saved.seeds) + "]",
+        "rocks = [" + ", ".join(_numbers(r) for r in saved.rocks) + "]",
+        *_family_lines(saved.family),
         "",
     ]
     for world in worlds:
-        lines += _tree_lines(world, lsystem_name)
+        lines += _tree_lines(world, saved.lsystem_name)
     return "\n".join(lines)
 
 
 def save_text(world: World, lsystem_name: str, saved_at: float | None = None) -> str:
-    """The text of a save file holding the one tree ``world``."""
-    return garden_text([world], 0, lsystem_name, saved_at)
+    """The text of a save file holding the one tree ``world`` (for sweeps that keep a tree as text)."""
+    return garden_text(SavedGarden([world], saved_at=saved_at, lsystem_name=lsystem_name))
 
 
-def save_garden(worlds: list[World], path: str | Path, current: int = 0, lsystem_name: str = "game_tree.lsys",
-                saved_at: float | None = None, seeds: list[Seed] = (), family: Family | None = None,
-                rocks: list[tuple] = ()) -> None:
-    """Write a whole garden to ``path`` as one atomic unit (temp file, fsync, rename)."""
-    text = garden_text(worlds, current, lsystem_name, saved_at, seeds, family, rocks)
-    atomic_write(path, text.encode("utf-8"))
-
-
-def save_world(world: World, path: str | Path, lsystem_name: str = "game_tree.lsys",
-               saved_at: float | None = None) -> None:
-    """Write one tree to ``path`` atomically."""
-    save_garden([world], path, 0, lsystem_name, saved_at)
+def write_garden(saved: SavedGarden, path: str | Path) -> None:
+    """Write ``saved`` to ``path`` as one atomic unit (temp file, fsync, rename): a crash leaves the
+    old save or the new one, never a mix."""
+    atomic_write(path, garden_text(saved).encode("utf-8"))
 
 
 def _read(path: Path) -> tuple[dict, str]:
@@ -259,17 +286,22 @@ def _table_lines(text: str, header: str) -> list[int]:
     return out
 
 
-def _tree_parts(data: dict, path: Path, text: str) -> list[tuple[dict, Where]]:
-    """Each tree's table with where its text is (format 1: the whole file is one tree)."""
-    where = Where(path, text)
+def _upgraded(data: dict, where: Where) -> dict:
+    """The save in today's layout, whatever format wrote it: format 1 (one tree per file, the whole file
+    that tree, its growth in [tree]) becomes a garden of that one tree."""
     version = value(data, "format", "int", 0, 2**31, where)
     if version > FORMAT:
         raise where.error(f"saved by a newer Arbor (format {version}); this one reads up to {FORMAT}", "format")
     if version < 1:
         raise where.error(f"format {version} is too old to read", "format")
     if version == 1:
-        growth = table(data, "tree", where)
-        return [({**data, "growth": growth}, where)]
+        return {**data, "format": FORMAT, "trees": [{**data, "growth": table(data, "tree", where)}]}
+    return data
+
+
+def _tree_parts(data: dict, path: Path, text: str) -> list[tuple[dict, Where]]:
+    """Each tree's table (of an upgraded save) with where its text is."""
+    where = Where(path, text)
     trees = data.get("trees")
     if not isinstance(trees, list) or not 1 <= len(trees) <= MAX_TREES:
         raise where.error(f"a save holds 1 to {MAX_TREES} [[trees]]")
@@ -308,9 +340,7 @@ def _load_tree(data: dict, where: Where, rules: Rules, budget_slack: float) -> W
     world = World(system, rules, seed=value(data, "seed", "int", 0, 2**63 - 1, where), plant=False)
     world.steps = value(data, "steps", "int", 0, 2**53, where)
     world.position = tuple(vector(data, "position", 2, where, [0.0, 0.0], limit=1e4))
-    sim = sim_values(table(data, "sim", where), where)
-    cycles = {k: GrowthCycle(**sim.pop(k)) for k in ("sun_cycle", "water_cycle")}
-    state = SimState(**sim, **cycles)
+    state = sim_state(table(data, "sim", where), where)
     state.sun_angle %= 2 * math.pi
     state.orbit_height = min(max(state.orbit_height, rules.sun.orbit_height_min), rules.sun.orbit_height_max)
     state.sun_speed = min(max(state.sun_speed, rules.sun.speed_min), rules.sun.speed_max)
@@ -320,7 +350,7 @@ def _load_tree(data: dict, where: Where, rules: Rules, budget_slack: float) -> W
     world.journal, _ = Journal.from_rows(table(data, "journal", where, required=False).get("entries", []))
     saved = data.get("lineage")
     lineage = lineage_from_row(saved) if saved is not None else None
-    world.dropped_lineage = int(saved is not None and lineage is None)  # told to the player, never trusted
+    world.dropped_lineage = int(saved is not None and lineage is None)
     if lineage is None:  # an older save, or a lineage that cannot be trusted: the tree starts a line
         name = data.get("lsystem") if isinstance(data.get("lsystem"), str) else "tree"
         lineage = new_lineage(world.seed, 0.0, species_of(name))
@@ -381,61 +411,25 @@ def _restore_roots(world: World, growth: dict, where: Where) -> None:
     world.sync_roots()
 
 
-def load_garden(path: str | Path, rules: Rules | None = None, budget_slack: float = 1.0
-                ) -> tuple[list[World], int, float]:
-    """Every tree of a save (planting order), which one is cared for, and when it was saved (NaN when
-    the save's clock cannot be read: the caller then counts no time away)."""
+def read_garden(path: str | Path, rules: Rules | None = None, budget_slack: float = 1.0) -> SavedGarden:
+    """The save at ``path``, checked (see save_check) and upgraded from any older format: every tree in
+    planting order, the cared-for one, when it was saved (NaN when its clock cannot be read: the caller
+    then counts no time away), seeds, rocks and family. ``budget_slack`` widens the trees' size limit."""
     path = Path(path)
     data, text = _read(path)
-    return _garden(data, text, path, rules, budget_slack)
-
-
-def _garden(data: dict, text: str, path: Path, rules: Rules | None, budget_slack: float
-            ) -> tuple[list[World], int, float]:
     where = Where(path, text)
+    data = _upgraded(data, where)
     parts = _tree_parts(data, path, text)
     saved_at = data.get("saved_at")  # lenient: a clock that cannot be read only means no time away
     if isinstance(saved_at, bool) or not isinstance(saved_at, int | float) or not math.isfinite(saved_at):
         saved_at = float("nan")
     current = value(data, "current", "int", 0, len(parts) - 1, where, default=0)
     worlds = [_load_tree(tree, part, rules or Rules(), budget_slack) for tree, part in parts]
-    return worlds, current, saved_at
-
-
-@dataclass
-class SavedGarden:
-    """Everything a save holds: trees, which one is cared for, when it was saved, seeds, family, and how
-    many lineage entries were dropped as malformed or hostile."""
-
-    worlds: list[World]
-    current: int
-    saved_at: float
-    seeds: list[Seed]
-    family: Family
-    dropped: int = 0
-    rocks: list[tuple[float, float, float, float]] = field(default_factory=list)
-
-    def garden(self) -> Garden:
-        """The garden these make."""
-        garden = Garden(self.worlds, self.current, self.seeds, self.family)
-        garden.rocks = list(self.rocks)
-        return garden
-
-
-def read_garden(path: str | Path, rules: Rules | None = None, budget_slack: float = 1.0) -> SavedGarden:
-    """Read a whole save once (see :func:`load_garden` for the trees)."""
-    path = Path(path)
-    data, text = _read(path)
-    worlds, current, saved_at = _garden(data, text, path, rules, budget_slack)
     family, dropped = Family.from_rows(data.get("family", []))
-    dropped += sum(getattr(w, "dropped_lineage", 0) for w in worlds)
-    return SavedGarden(worlds, current, saved_at, _seeds(data), family, dropped, _rocks(data))
-
-
-def load_seeds(path: str | Path) -> list[Seed]:
-    """The seed bag of a save; entries that are not [parent seed, parent hash, number] are dropped."""
-    data, _ = _read(Path(path))
-    return _seeds(data)
+    dropped += sum(w.dropped_lineage for w in worlds)
+    name = parts[current][0].get("lsystem")
+    return SavedGarden(worlds, current, saved_at, _seeds(data), family, _rocks(data),
+                       name if isinstance(name, str) else "game_tree.lsys", dropped)
 
 
 def _rocks(data: dict) -> list[tuple[float, float, float, float]]:
@@ -458,14 +452,3 @@ def _seeds(data: dict) -> list[Seed]:
                 and 0 <= row[0] < 2**63 and 0 <= row[2] < 2**31 and len(out) < MAX_SEEDS):
             out.append(Seed(row[0], row[1], row[2]))
     return out
-
-
-def load_world(path: str | Path, rules: Rules | None = None, budget_slack: float = 1.0) -> tuple[World, float]:
-    """The cared-for tree of a save and the wall-clock time it was saved at."""
-    worlds, current, saved_at = load_garden(path, rules, budget_slack)
-    return worlds[current], saved_at
-
-
-def load_trees(path: str | Path, rules: Rules | None = None) -> list[World]:
-    """Every tree in a save, in planting order (a single-tree save gives one)."""
-    return load_garden(path, rules)[0]

@@ -17,12 +17,14 @@ from pathlib import Path
 import numpy as np
 
 from arbor.engine.base.errors import LSysError
+from arbor.engine.life.plant.sim import GrowthCycle, SimState
 
 BIG = 1e12  # largest magnitude of any saved number (game time 30,000 years; coordinates far off-screen)
 
 
-class SaveError(LSysError):
-    """A save file that cannot be loaded; the file itself is left untouched."""
+class SaveError(LSysError, ValueError):
+    """A save file that cannot be loaded; the file itself is left untouched. Also a ValueError: plain
+    data checked outside a file (:func:`sim_state`) fails as bad values do."""
 
 
 # field -> (kind, low, high): kind "float" (int accepted), "int", "bool"
@@ -59,13 +61,6 @@ class Where:
         """A SaveError about ``key`` (its line), or about this part when no key is given."""
         line = self.line(key) if key else self.text.count("\n", 0, self.start) + 1
         return SaveError(message, str(self.path), line, col)
-
-    def table_error(self, message: str, table: str) -> SaveError:
-        """A SaveError at the header of ``[table]`` in this part."""
-        region = self.text[self.start:self.end]
-        m = re.search(rf"^\s*\[{re.escape(table)}\]", region, re.MULTILINE)
-        at = self.start + (m.start() if m else 0)
-        return SaveError(message, str(self.path), self.text.count("\n", 0, at) + 1, 1)
 
 
 def value(data: dict, key: str, kind: str, low: float, high: float, where: Where, default=None):
@@ -122,19 +117,23 @@ def vector(data: dict, key: str, n: int, where: Where, default: list[float], lim
     return [float(x) for x in v]
 
 
-def sim_values(data: dict, where: Where) -> dict:
-    """The [sim] table, checked field by field (unknown fields are errors: a typo must not pass)."""
+def sim_state(data: dict, where: Where | None = None) -> SimState:
+    """The simulation state a [sim] table (or :meth:`SimState.to_dict`) describes, checked field by field
+    against SIM_FIELDS and CYCLE_FIELDS, the one place a saved field's range is said. Unknown fields are
+    errors (a typo must not pass); ``where`` places errors in a save file (None: plain data)."""
+    where = where or Where(Path("<sim state>"), "")
     unknown = set(data) - set(SIM_FIELDS) - {"sun_cycle", "water_cycle"}
     if unknown:
         raise where.error(f"unknown field '{sorted(unknown)[0]}' in [sim]", sorted(unknown)[0])
-    out = {k: value(data, k, *spec, where, default=OPTIONAL_SIM.get(k)) for k, spec in SIM_FIELDS.items()}
+    values = {k: value(data, k, *spec, where, default=OPTIONAL_SIM.get(k)) for k, spec in SIM_FIELDS.items()}
+    cycles = {}
     for name in ("sun_cycle", "water_cycle"):
         cycle = table(data, name, where)
         bad = set(cycle) - set(CYCLE_FIELDS)
         if bad:
             raise where.error(f"unknown field '{sorted(bad)[0]}' in [sim.{name}]", sorted(bad)[0])
-        out[name] = {k: value(cycle, k, *spec, where) for k, spec in CYCLE_FIELDS.items()}
-    return out
+        cycles[name] = GrowthCycle(**{k: value(cycle, k, *spec, where) for k, spec in CYCLE_FIELDS.items()})
+    return SimState(**values, **cycles)
 
 
 def restore_rng(rng: np.random.Generator, state_text: str, key: str, where: Where) -> None:

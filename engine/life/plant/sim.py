@@ -11,7 +11,7 @@ All constants come from assets/rules.toml (see :func:`load_rules`).
 from __future__ import annotations
 
 import math
-from dataclasses import asdict, dataclass, field, fields
+from dataclasses import asdict, dataclass, field
 
 import numpy as np
 
@@ -72,21 +72,6 @@ class SimState:
     def to_dict(self) -> dict:
         """Plain data (numbers and booleans) for save files."""
         return asdict(self)
-
-    @classmethod
-    def from_dict(cls, data: dict) -> SimState:
-        """Inverse of :meth:`to_dict`; raises ValueError on missing or mistyped fields."""
-        values = dict(data)
-        values["sun_cycle"] = GrowthCycle(**values.get("sun_cycle", {}))
-        values["water_cycle"] = GrowthCycle(**values.get("water_cycle", {}))
-        state = cls(**values)
-        for f in fields(state):
-            if f.name.endswith("_cycle"):
-                continue
-            value = getattr(state, f.name)
-            if not isinstance(value, int | float) or not math.isfinite(float(value)):
-                raise ValueError(f"{f.name} must be a finite number")
-        return state
 
 
 def sun_angle_at(seconds_after_midnight: float) -> float:

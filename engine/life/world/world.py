@@ -43,6 +43,9 @@ class World:
     bare_at: float = -1.0  # the day of the sun winter last stripped the leaves
     lineage: Lineage = field(init=False)  # parents, generation, planting (engine/life/lineage.py)
     roots: Roots = field(init=False)  # grown below ground on water (engine/life/roots.py)
+    # 1 when the save this tree was read from held a lineage that could not be trusted (so it starts a
+    # line of its own): told to the player by the loader, never written back
+    dropped_lineage: int = field(default=0, init=False)
 
     plant: InitVar[bool] = True  # False: an empty tree, for a save to fill in (loading plants nothing)
 
