@@ -156,3 +156,31 @@ def test_lstring_blocks_read_past_toml_give_what_toml_gives(world):
     # a block that is not ASCII: read as TOML reads it (the L-string reader then names the problem)
     odd = text.replace("lstring = '''\n", "lstring = '''\né", 1)
     assert save_blocks.loads(odd.encode())[0] == tomllib.loads(odd)
+
+
+def test_what_is_read_writes_back_the_same_file(world, tmp_path):
+    from arbor.engine.life.keep.save import garden_text
+    from arbor.engine.life.lineage.lineage import Family, new_lineage
+    from arbor.engine.life.world.garden import Seed
+
+    family = Family([new_lineage(3, 1.7e9, "elm")])
+    saved = SavedGarden([world, World(world.system, world.rules, seed=9)], 1, 1.7e9, [Seed(5, "a" * 64, 2)],
+                        family, [(1.0, 0.0, 2.0, 0.5)], "elm.lsys")
+    path = tmp_path / "garden.arbor"
+    write_garden(saved, path)
+    back = read_garden(path, world.rules)
+    assert (back.current, back.saved_at, back.seeds, back.rocks, back.lsystem_name, back.dropped) == (
+        1, 1.7e9, saved.seeds, saved.rocks, "elm.lsys", 0)
+    assert back.family.members == family.members and back.world.seed == 9
+    assert garden_text(back) == path.read_text()  # every field the save holds comes back
+
+
+def test_a_format_1_save_reads_as_a_garden_of_its_one_tree(world, tmp_path):
+    text = save_text(world, "game_tree.lsys", saved_at=5.0).replace("format = 2", "format = 1")
+    text = text.replace("[[trees]]\n", "").replace("[trees.growth]", "[tree]").replace("[trees.", "[")
+    assert "\n[tree]\n" in text and "[trees" not in text  # one tree per file, its growth in [tree]
+    path = tmp_path / "old.arbor"
+    path.write_text(text)
+    back = read_garden(path, world.rules)
+    assert len(back.worlds) == 1 and back.current == 0 and back.saved_at == 5.0
+    assert back.world.tree.lstring.equals(world.tree.lstring) and back.world.sim.state == world.sim.state
