@@ -12,11 +12,14 @@ matplotlib.use("Agg")  # files only: never a window, never a display
 import matplotlib.pyplot as plt
 import numpy as np
 
+from arbor.engine.life.rules.schema import find_rule
+
 TITLES = {"height": "Height", "width": "Crown width", "offset": "Lean toward the sun", "girth": "Trunk girth",
           "modules": "Modules", "leaves": "Leaf clusters", "density": "Leaf density (per unit of crown box)",
           "shed": "Branches shed", "roots": "Root length",
           "sun": "Sun meter", "water": "Water meter", "wilt": "Wilt", "alive": "Alive (share)",
           "fruit": "Fruit"}
+REGIME_RULES = {"orbit_height": "sun.orbit_height", "sun_speed": "sun.speed"}  # the rule a regime key sets
 plt.rcParams.update({"font.size": 13, "axes.titlesize": 15, "axes.titleweight": "bold", "lines.linewidth": 2.5,
                      "svg.hashsalt": "arbor", "axes.spines.top": False, "axes.spines.right": False})
 
@@ -70,7 +73,7 @@ def dose_response(sweep, finals: dict, path: Path) -> list[Path]:
                 ax.plot(sx, mean, "-o", color=color, label=label, markersize=5)
         _limits(ax, response)
         ax.set_title(TITLES.get(response, response))
-        ax.set_xlabel(first.name)
+        ax.set_xlabel(axis_label(first))
         if labels:
             ax.set_xticks(x, labels)
         ax.grid(alpha=0.3)
@@ -141,6 +144,13 @@ def lab_charts(series: list, path: Path, title: str = "", colors=((230, 90, 60),
     if title:
         fig.suptitle(title, fontsize=16)
     return save_both(fig, path)
+
+
+def axis_label(factor) -> str:
+    """A factor's name for its axis, with the unit of the rule it varies (from the rule schema, e.g.
+    "Drain (meter per s)"), so a figure says what its numbers count."""
+    rule = find_rule(REGIME_RULES.get(factor.key, factor.key))
+    return f"{factor.name} ({rule.unit})" if rule else factor.name
 
 
 def _limits(ax, response: str) -> None:

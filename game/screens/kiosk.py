@@ -20,8 +20,8 @@ from pathlib import Path
 
 import pygame
 
-from arbor.engine.base.config import fill_dataclass
-from arbor.engine.base.errors import LSysError
+from arbor.engine.base.config import fill_dataclass, toml_position
+from arbor.engine.base.errors import SettingsError
 from arbor.engine.life.keep.save import SavedGarden, write_garden
 from arbor.game.input.events import DOWN, KEY_DOWN, KEY_UP, MOVE, QUIT, UP, InputEvent, Player, load_recording
 from arbor.game.paths import ASSETS
@@ -48,11 +48,11 @@ class KioskConfig:
 
 
 def load_kiosk_config(path: str | Path) -> KioskConfig:
-    """Read kiosk settings; unknown keys or wrong types are errors naming the file and key."""
-    config = KioskConfig()
-    fill_dataclass(config, tomllib.loads(Path(path).read_text(encoding="utf-8")), str(path), "kiosk setting")
+    """Read kiosk settings; unknown keys or wrong types are SettingsErrors naming the file, key, line and column."""
+    config, text = KioskConfig(), Path(path).read_text(encoding="utf-8")
+    fill_dataclass(config, tomllib.loads(text), str(path), "kiosk setting", SettingsError, text)
     if not config.pin.isdigit() or not 4 <= len(config.pin) <= 8:
-        raise LSysError("the kiosk PIN must be 4 to 8 digits", str(path))
+        raise SettingsError("the kiosk PIN must be 4 to 8 digits", str(path), *toml_position(text, "", "pin"))
     return config
 
 

@@ -13,13 +13,13 @@ import copy
 import csv
 import math
 import tomllib
-from dataclasses import dataclass, field, fields
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 
-from arbor.engine.base.errors import LSysError
-from arbor.engine.life.rules.rules import SECTIONS, Rules
+from arbor.engine.base.errors import ExperimentError
+from arbor.engine.life.rules.rules import Rules, check_rules, set_rule
 from arbor.engine.life.world.world import World
 from arbor.engine.lsystem.lsys import LSystem, load_lsystem
 
@@ -54,7 +54,7 @@ class Regime:
     orbit_height: float | None = None
     sun_speed: float | None = None
     watering: Watering = field(default_factory=Watering)
-    rules: dict[str, float] = field(default_factory=dict)
+    rules: dict[str, float | bool] = field(default_factory=dict)
 
 
 @dataclass
@@ -77,9 +77,9 @@ def number_value(data: dict, key: str, file: str, default=None, positive: bool =
     """``data[key]`` as a finite number (``default`` when missing); an error naming the key otherwise."""
     value = data.get(key, default)
     if value is None or isinstance(value, bool) or not isinstance(value, int | float) or not math.isfinite(value):
-        raise LSysError(f"'{key}' must be a number", file)
+        raise ExperimentError(f"'{key}' must be a number", file)
     if positive and value <= 0:
-        raise LSysError(f"'{key}' must be above 0", file)
+        raise ExperimentError(f"'{key}' must be above 0", file)
     return float(value)
 
 
@@ -90,19 +90,19 @@ def load_experiment(path: str | Path, lsystem_dir: Path) -> Experiment:
     try:
         data = tomllib.loads(path.read_text(encoding="utf-8"))
     except (OSError, UnicodeDecodeError) as exc:
-        raise LSysError(f"cannot read: {exc}", file) from None
+        raise ExperimentError(f"cannot read: {exc}", file) from None
     except tomllib.TOMLDecodeError as exc:
-        raise LSysError(f"not valid TOML: {exc}", file) from None
+        raise ExperimentError(f"not valid TOML: {exc}", file) from None
     trees = data.get("tree", [])
     if not isinstance(trees, list) or not 1 <= len(trees) <= MAX_TREES:
-        raise LSysError(f"an experiment needs 1 to {MAX_TREES} [[tree]] tables", file)
+        raise ExperimentError(f"an experiment needs 1 to {MAX_TREES} [[tree]] tables", file)
     regimes = [parse_regime(t, i, file) for i, t in enumerate(trees)]
     duration = number_value(data, "duration", file, positive=True)
     if duration > 7 * 24 * 3600:
-        raise LSysError("'duration' is at most a week of game time", file)
+        raise ExperimentError("'duration' is at most a week of game time", file)
     lsys_name = str(data.get("lsystem", "game_tree.lsys"))
     if "/" in lsys_name or "\\" in lsys_name or lsys_name.startswith("."):
-        raise LSysError("'lsystem' must be a file name in assets/lsystems", file)
+        raise ExperimentError("'lsystem' must be a file name in assets/lsystems", file)
     return Experiment(
         title=str(data.get("title", path.stem)),
         seed=int(number_value(data, "seed", file, 0)),
@@ -120,7 +120,7 @@ def flag_value(data: dict, key: str, file: str) -> bool:
     """``data[key]`` as true or false (true when missing)."""
     value = data.get(key, True)
     if not isinstance(value, bool):
-        raise LSysError(f"'{key}' must be true or false", file)
+        raise ExperimentError(f"'{key}' must be true or false", file)
     return value
 
 
@@ -128,7 +128,7 @@ def pace_value(data: dict, file: str) -> str:
     """The pace a file asks for (default demo)."""
     pace = data.get("pace", "demo")
     if not isinstance(pace, str) or not pace.isidentifier():
-        raise LSysError("'pace' must be the name of a pace in rules.toml (demo or home)", file)
+        raise ExperimentError("'pace' must be the name of a pace in rules.toml (demo or home)", file)
     return pace
 
 
@@ -136,7 +136,7 @@ def parse_regime(t: dict, i: int, file: str) -> Regime:
     """One tree's regime from its table (sun, watering, rule overrides), checked."""
     where = f"{file} [[tree]] #{i + 1}"
     if not isinstance(t, dict) or "name" not in t:
-        raise LSysError("every [[tree]] needs a name", where)
+        raise ExperimentError("every [[tree]] needs a name", where)
     water = t.get("watering", "never")
     if water == "never":
         watering = Watering()
@@ -148,39 +148,29 @@ def parse_regime(t: dict, i: int, file: str) -> Regime:
             seconds=number_value(water, "seconds", where, 5.0, positive=True),
         )
     else:
-        raise LSysError("'watering' is \"never\" or a table like { below = 0.5, until = 0.7 }", where)
+        raise ExperimentError("'watering' is \"never\" or a table like { below = 0.5, until = 0.7 }", where)
     rules = t.get("rules", {})
     if not isinstance(rules, dict):
-        raise LSysError("'rules' must be a table of \"section.key\" = number", where)
-    for key in rules:
-        rule_target(Rules(), key, where)
-        number_value(rules, key, where)
+        raise ExperimentError("'rules' must be a table of \"section.key\" = number", where)
+    probe = Rules()
+    for key, value in rules.items():
+        set_rule(probe, key, value, where, ExperimentError)  # a known rule, within its range
     return Regime(
         name=str(t["name"]),
         orbit_height=number_value(t, "orbit_height", where) if "orbit_height" in t else None,
         sun_speed=number_value(t, "sun_speed", where, positive=True) if "sun_speed" in t else None,
         watering=watering,
-        rules={k: float(v) for k, v in rules.items()},
+        rules=dict(rules),
     )
 
 
-def rule_target(rules: Rules, key: str, where: str):
-    """The rules section object and field name a ``"section.key"`` names; an error if it names none."""
-    section, _, name = key.partition(".")
-    if section not in SECTIONS:
-        raise LSysError(f"unknown rule section in {key!r}", where)
-    target = getattr(rules, section)
-    if name not in {f.name for f in fields(target)}:
-        raise LSysError(f"unknown rule {key!r}", where)
-    return target, name
-
-
 def regime_rules(base: Rules, regime: Regime) -> Rules:
-    """The base rules with the regime's overrides."""
+    """The base rules with the regime's overrides, each within its range and the sliders' ranges the right
+    way round (an override is at the pace's own scale, like a pace's overrides in rules.toml)."""
     rules = copy.deepcopy(base)
     for key, value in regime.rules.items():
-        target, name = rule_target(rules, key, regime.name)
-        setattr(target, name, value)
+        set_rule(rules, key, value, regime.name, ExperimentError)
+    check_rules(rules, regime.name, ExperimentError)
     return rules
 
 

@@ -104,9 +104,7 @@ def set_rule(rules: Rules, key: str, value, file: str, error: type[LSysError] = 
     schema (a known rule, the rule's type, within its range); ``error`` at ``at`` otherwise."""
     rule = find_rule(key, type(rules).SCHEMA)
     if rule is None:
-        section, _, name = key.partition(".")
-        problem = f"unknown key {name!r} in [{section}]" if section in SECTIONS else f"unknown rule {key!r}"
-        raise error(what + problem, file, *at)
+        raise error(f"{what}unknown rule {key!r}", file, *at)
     setattr(getattr(rules, rule.section), rule.name, checked_value(rule, value, file, error, at))
 
 

@@ -1,0 +1,132 @@
+"""The rule schema: every rule declared once, and the files that set rules checked against it with the
+real line and column of the offending key; the docs' table and the figures' units come from it too."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from arbor.engine.base.errors import ExperimentError, LSysError, RulesError, SettingsError, SweepError
+from arbor.engine.life.experiment.lab import Lab, load_experiment
+from arbor.engine.life.experiment.sweep import Factor
+from arbor.engine.life.experiment.sweep_file import load_sweep
+from arbor.engine.life.rules.rules import RATES, TIMES, Rules, load_rules
+from arbor.engine.life.rules.schema import SCHEMA, TABLE_MARKERS, Rule, rules_table_markdown
+
+ROOT = Path(__file__).resolve().parent.parent
+ASSETS = ROOT / "assets"
+DEMO = "pace = \"demo\"\n"
+
+
+def write(tmp_path: Path, text: str, name: str = "rules.toml") -> Path:
+    path = tmp_path / name
+    path.write_text(text, encoding="utf-8")
+    return path
+
+
+def test_docs_table_is_the_schema():
+    text = (ROOT / "docs" / "rules.md").read_text(encoding="utf-8")
+    start, end = TABLE_MARKERS
+    documented = text.partition(start)[2].partition(end)[0]
+    assert documented == rules_table_markdown(), (
+        "docs/rules.md is out of date: python -c \"from arbor.engine.life.rules.schema import write_rules_doc; "
+        "write_rules_doc('docs/rules.md')\"")
+    assert "(docs/rules.md)" in (ROOT / "README.md").read_text(encoding="utf-8")
+
+
+def test_a_rule_added_to_the_schema_is_read_checked_scaled_and_documented(tmp_path):
+    bloom = Rule("growth.bloom_time", 5.0, 1.0, 9.0, "s", "how long blossoms stay", "time")
+    schema = (*SCHEMA, bloom)
+    rules = load_rules(write(tmp_path, DEMO), schema=schema)
+    assert rules.growth.bloom_time == 5.0  # its default
+    assert load_rules(write(tmp_path, DEMO + "[growth]\nbloom_time = 7\n"), schema=schema).growth.bloom_time == 7.0
+    assert load_rules(ASSETS / "rules.toml", "home", schema=schema).growth.bloom_time == 5.0 * 687.5  # a time
+    with pytest.raises(RulesError, match="'bloom_time' in \\[growth\\] must be from 1 to 9 s") as err:
+        load_rules(write(tmp_path, DEMO + "[growth]\nthreshold = 0.5\n  bloom_time = 12\n"), schema=schema)
+    assert (err.value.line, err.value.col) == (4, 3)
+    with pytest.raises(RulesError, match=r"unknown rule 'growth\.bloom_time'"):
+        load_rules(write(tmp_path, DEMO + "[growth]\nbloom_time = 7\n"))  # not in the game's own schema
+    row = "| `bloom_time` | 5 | 1 .. 9 | s | how long blossoms stay | x time_scale |"
+    assert row in rules_table_markdown(schema) and row not in rules_table_markdown()
+
+
+@pytest.mark.parametrize("text, words, line, col", [
+    (DEMO + "\n[growth]\nthreshold = 0.5\nhold_tme = 3\n", "unknown rule 'growth.hold_tme'", 5, 1),
+    (DEMO + "[growth]\nthreshold = 0.5\n\n[sunshine]\nspeed = 1\n", "unknown table [sunshine]", 5, 1),
+    (DEMO + "[water]\ndrain_rate = 0.001\ndrown_level = 1.5   # too much\n", "must be from 0 to 1 meter", 4, 1),
+    (DEMO + "[sun]\nside = 0.4\n    speed = 'fast'\n", "'speed' in [sun] must be a finite number", 4, 5),
+    (DEMO + "[seasons]\nenabled = 1\n", "'enabled' in [seasons] must be true or false", 3, 1),
+    ("pace = \"home\"\n[paces.home]\ntime_scale = 10\n\"seasons.year_days\" = 0\n", "from 1 to 1000", 4, 1),
+    ("pace = \"home\"\n[paces.home]\n\"replant.meter_min\" = 0.9\n\"replant.meter_max\" = 0.5\n",
+     "meter_min must not be above meter_max", 1, 1),
+    ("pace = \"home\"\n[paces.home]\ntime_scale = 10\n\"sun.glare\" = 1\n", "[paces.home]: unknown rule", 4, 1),
+    ("pace = \"slow\"\n[paces.home]\ntime_scale = 10\n", "unknown pace 'slow'", 1, 1),
+])
+def test_bad_rules_files_name_the_key_where_it_is(tmp_path, text, words, line, col):
+    path = write(tmp_path, text)
+    with pytest.raises(RulesError) as err:
+        load_rules(path)
+    assert words in err.value.message and err.value.file == str(path)
+    assert (err.value.line, err.value.col) == (line, col)
+
+
+def test_the_schema_is_what_the_rules_and_paces_use():
+    assert all(r.low is None or r.low <= r.default <= r.high for r in SCHEMA)
+    assert Rules().sun.speed == 0.05 and Rules().seasons.enabled is True
+    assert {r.key for r in SCHEMA} == {f"{s}.{k}" for s, section in vars(Rules()).items()
+                                       if not isinstance(section, str | float) for k in vars(section)}
+    assert TIMES == ("growth.hold_time", "growth.deadline", "growth.penalty_time", "water.drown_time",
+                     "health.death_time", "light.interval")
+    assert "water.fill_rate" not in RATES and len(RATES) == 13  # the watering can is held for seconds at any pace
+
+
+LAB = """duration = 60
+[[tree]]
+name = "a"
+rules = {{ {rule} }}
+"""
+
+
+def test_lab_overrides_are_range_checked_like_the_rules_file(tmp_path):
+    path = write(tmp_path, LAB.format(rule='"water.drain_rate" = -0.5'), "lab.toml")
+    with pytest.raises(ExperimentError, match="'drain_rate' in \\[water\\] must be from 0 to 100"):
+        load_experiment(path, ASSETS / "lsystems")
+    slow = load_experiment(write(tmp_path, LAB.format(rule='"sun.speed" = 0.9'), "lab.toml"), ASSETS / "lsystems")
+    with pytest.raises(ExperimentError, match="speed must lie between speed_min and speed_max"):
+        Lab(slow, load_rules(ASSETS / "rules.toml", pace="demo"))
+
+
+def test_sweep_rule_levels_are_range_checked_and_sweep_files_raise_sweep_errors(tmp_path):
+    sweep = """duration = 60
+seeds = 2
+[[factor]]
+key = "seasons.year_days"
+levels = [{levels}]
+"""
+    lsystems = ASSETS / "lsystems"
+    assert load_sweep(write(tmp_path, sweep.format(levels="7, 28"), "s.toml"), lsystems).factors[0].levels == (7, 28)
+    with pytest.raises(SweepError, match="'year_days' in \\[seasons\\] must be from 1 to 1000"):
+        load_sweep(write(tmp_path, sweep.format(levels="7, 0"), "s.toml"), lsystems)
+    with pytest.raises(SweepError, match="'duration' must be a number"):  # found by the lab's shared reader
+        load_sweep(write(tmp_path, sweep.format(levels="7").replace("duration = 60", "duration = 'x'"), "s.toml"),
+                   lsystems)
+
+
+def test_kiosk_settings_errors_are_settings_errors_with_the_line(tmp_path):
+    from arbor.game.screens.kiosk import load_kiosk_config
+
+    with pytest.raises(SettingsError, match="unknown kiosk setting 'pinn'") as err:
+        load_kiosk_config(write(tmp_path, "language = \"en\"\npinn = \"1234\"\n", "kiosk.toml"))
+    assert err.value.line == 2 and isinstance(err.value, LSysError)
+    with pytest.raises(SettingsError, match="4 to 8 digits") as err:
+        load_kiosk_config(write(tmp_path, "speed = 10.0\n\npin = \"12\"\n", "kiosk.toml"))
+    assert err.value.line == 3
+
+
+def test_sweep_figures_label_rule_axes_with_the_rules_unit():
+    from arbor.game.render.figures import axis_label
+
+    assert axis_label(Factor("Drain", "water.drain_rate", (0.001, 0.01))) == "Drain (meter per s)"
+    assert axis_label(Factor("Sun orbit height", "orbit_height", (0.0, 1.0))) == "Sun orbit height (orbit radii)"
+    assert axis_label(Factor("Species", "species", ("a.lsys",))) == "Species"
