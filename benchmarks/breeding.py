@@ -19,6 +19,7 @@ import numpy as np
 from arbor.engine.life.experiment.lab import measure
 from arbor.engine.life.lineage.breed import cross
 from arbor.engine.life.rules.rules import load_rules
+from arbor.engine.life.world.actions import Action
 from arbor.engine.life.world.world import World
 from arbor.engine.lsystem.lsys import load_lsystem
 
@@ -34,7 +35,7 @@ def grown(system, seed: int) -> dict[str, float]:
     world.sim.state.sun_meter = world.sim.state.water_meter = 0.9
     for _ in range(int(DAYS * 2 * math.pi / world.sim.state.sun_speed / 0.5)):
         s = world.sim.state
-        world.apply("water", float(s.water_meter < 0.75 if s.watering else s.water_meter < 0.55))
+        world.apply(Action.WATER, float(s.water_meter < 0.75 if s.watering else s.water_meter < 0.55))
         world.step(0.5)
     out = measure(world)
     out["alive"] = float(world.sim.state.alive)

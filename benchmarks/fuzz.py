@@ -25,6 +25,7 @@ from arbor.engine.base.errors import LSysError
 from arbor.engine.geometry.tree import build_geometry
 from arbor.engine.life.keep.save import SavedGarden, garden_text, read_garden
 from arbor.engine.life.rules.rules import load_rules
+from arbor.engine.life.world.actions import Action
 from arbor.engine.life.world.world import World
 from arbor.engine.lsystem.derive import Deriver
 from arbor.engine.lsystem.lsys import load_lsystem, parse_lsystem
@@ -72,7 +73,7 @@ def sample_garden_text(trees: int = 2) -> str:
         world = World(system, rules, seed=k + 1)
         world.sim.state.sun_meter = world.sim.state.water_meter = 0.9
         for _ in range(400):
-            world.apply("water", float(world.sim.state.water_meter < 0.6))
+            world.apply(Action.WATER, float(world.sim.state.water_meter < 0.6))
             world.step(0.5)
         world.position = (7.0 * k, 0.0)
         worlds.append(world)

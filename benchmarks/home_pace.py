@@ -17,6 +17,7 @@ from pathlib import Path
 from arbor.engine.life.plant.journal import METRE
 from arbor.engine.life.plant.sim import sun_angle_at
 from arbor.engine.life.rules.rules import load_rules
+from arbor.engine.life.world.actions import Action
 from arbor.engine.life.world.garden import Garden
 from arbor.engine.life.world.world import World
 from arbor.engine.lsystem.lsys import load_lsystem
@@ -29,10 +30,10 @@ HOLD = 8.0  # seconds the can is held at each watering
 def water(garden: Garden) -> None:
     """Hold the can over the cared-for tree for HOLD seconds (1 s steps: the meter fills fast)."""
     world = garden.world
-    world.apply("water", 1.0)
+    world.apply(Action.WATER, 1.0)
     for _ in range(int(HOLD)):
         garden.step(1.0)
-    world.apply("water", 0.0)
+    world.apply(Action.WATER, 0.0)
 
 
 def play(days: int, waterings: int = 2) -> Garden:

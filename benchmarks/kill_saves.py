@@ -27,6 +27,7 @@ CHILD = """
 import sys
 from arbor.engine.life.keep.save import SavedGarden, write_garden
 from arbor.engine.life.rules.rules import load_rules
+from arbor.engine.life.world.actions import Action
 from arbor.engine.life.world.world import World
 from arbor.engine.lsystem.lsys import load_lsystem
 system = load_lsystem("assets/lsystems/game_tree.lsys")
@@ -38,7 +39,7 @@ print("ready", flush=True)
 while True:
     for w in worlds:  # one generation: every tree the same number of steps
         for _ in range(20):
-            w.apply("water", float(w.sim.state.water_meter < 0.6))
+            w.apply(Action.WATER, float(w.sim.state.water_meter < 0.6))
             w.step(0.5)
     write_garden(SavedGarden(worlds), sys.argv[1])
 """

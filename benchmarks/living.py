@@ -19,6 +19,7 @@ import numpy as np
 from arbor.engine.life.experiment.lab import measure
 from arbor.engine.life.plant.light import exposure
 from arbor.engine.life.rules.rules import load_rules
+from arbor.engine.life.world.actions import Action
 from arbor.engine.life.world.world import World, sense_light
 from arbor.engine.lsystem.lsys import load_lsystem
 from benchmarks import median_ms
@@ -42,7 +43,7 @@ def careful_player(days: float, seasons: bool = False) -> World:
     for d in range(1, int(days) + 1):
         for _ in range(per_day):
             s = world.sim.state
-            world.apply("water", float(s.water_meter < 0.75 if s.watering else s.water_meter < 0.55))
+            world.apply(Action.WATER, float(s.water_meter < 0.75 if s.watering else s.water_meter < 0.55))
             world.step(0.5)
             peak = max(peak, len(world.tree.lstring))
         now = measure(world)

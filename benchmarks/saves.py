@@ -20,6 +20,7 @@ import numpy as np
 from arbor.engine.base.memory import keep_freed_memory
 from arbor.engine.life.keep.save import SavedGarden, read_garden, write_garden
 from arbor.engine.life.rules.rules import load_rules
+from arbor.engine.life.world.actions import Action
 from arbor.engine.life.world.world import World
 from arbor.engine.lsystem.derive import Deriver
 from arbor.engine.lsystem.lstring import concat, parse_lstring
@@ -42,7 +43,7 @@ def game_world(rules) -> World:
     """The game tree after 3,000 steps of a careful player, its string repeated to TARGET modules."""
     world = World(load_lsystem(ASSETS / "lsystems" / "game_tree.lsys"), rules, seed=3)
     for _ in range(3000):
-        world.apply("water", float(world.sim.state.water_meter < 0.6))
+        world.apply(Action.WATER, float(world.sim.state.water_meter < 0.6))
         world.step(0.5)
     ls = world.tree.lstring
     world.tree.lstring = concat(*([ls] * (TARGET // len(ls) + 1)))

@@ -10,6 +10,7 @@ import pytest
 from arbor.engine.life.form.growth_view import GrowthView
 from arbor.engine.life.form.interpret import Clocks
 from arbor.engine.life.rules.rules import load_rules
+from arbor.engine.life.world.actions import Action
 from arbor.engine.life.world.world import World
 from arbor.engine.lsystem.lsys import load_lsystem
 from arbor.game.render.camera import project_points
@@ -24,7 +25,7 @@ def grown(lsys_dir):
     world = World(load_lsystem(lsys_dir / "game_tree.lsys"), load_rules("assets/rules.toml", pace="demo"), seed=3)
     world.sim.state.sun_meter = world.sim.state.water_meter = 0.9
     for _ in range(2000):  # about 8 simulated days
-        world.apply("water", float(world.sim.state.water_meter < 0.6))
+        world.apply(Action.WATER, float(world.sim.state.water_meter < 0.6))
         world.step(0.5)
     return world
 

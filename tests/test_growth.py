@@ -4,6 +4,7 @@ import pytest
 from arbor.engine.life.form.interpret import Clocks
 from arbor.engine.life.plant.growth import GrowingTree
 from arbor.engine.life.rules.rules import load_rules
+from arbor.engine.life.world.actions import Action
 from arbor.engine.life.world.world import World
 from arbor.engine.lsystem.lsys import load_lsystem
 
@@ -21,7 +22,7 @@ def grown_world(system, seconds, seed=3, dt=0.5):
     world = World(system, rules, seed=seed)
     world.sim.state.sun_meter = world.sim.state.water_meter = 0.9
     for _ in range(round(seconds / dt)):
-        world.apply("water", float(world.sim.state.water_meter < 0.6))
+        world.apply(Action.WATER, float(world.sim.state.water_meter < 0.6))
         world.step(dt)
     return world
 
@@ -85,7 +86,7 @@ def test_stays_in_budget_forever_and_never_freezes(system):
     world = World(system, rules, seed=3)
     world.sim.state.sun_meter = world.sim.state.water_meter = 0.9
     for i in range(round(2 * 3600 / 2.0)):  # two hours: 57 simulated days
-        world.apply("water", float(world.sim.state.water_meter < 0.6))
+        world.apply(Action.WATER, float(world.sim.state.water_meter < 0.6))
         world.step(2.0)
         if i % 300 == 299:
             sizes.append(len(world.tree.lstring))
@@ -100,11 +101,11 @@ def test_world_is_deterministic(system):
         world = World(system, load_rules("assets/rules.toml", pace="demo"), seed=11)
         for i in range(3000):
             if i % 500 == 0:
-                world.apply("water", 1.0)
+                world.apply(Action.WATER, 1.0)
             if i % 500 == 100:
-                world.apply("water", 0.0)
+                world.apply(Action.WATER, 0.0)
             if i == 1500:
-                world.apply("orbit_height", 0.8)
+                world.apply(Action.ORBIT_HEIGHT, 0.8)
             world.step(0.2)
         return world
 

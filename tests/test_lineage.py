@@ -15,6 +15,7 @@ from arbor.engine.life.lineage.breed import cross
 from arbor.engine.life.lineage.lineage import Family, lineage_from_row, new_lineage
 from arbor.engine.life.plant.collide import Obstacles, rocks
 from arbor.engine.life.rules.rules import load_rules
+from arbor.engine.life.world.actions import Action
 from arbor.engine.life.world.garden import Garden
 from arbor.engine.life.world.world import World
 from arbor.engine.lsystem.lsys import load_lsystem
@@ -39,7 +40,7 @@ def grow(world: World, days: float, garden: Garden | None = None) -> World:
     for _ in range(int(days * 2 * math.pi / world.sim.state.sun_speed / 0.5)):
         for w in garden.worlds:
             s = w.sim.state
-            w.apply("water", float(s.water_meter < 0.75 if s.watering else s.water_meter < 0.55))
+            w.apply(Action.WATER, float(s.water_meter < 0.75 if s.watering else s.water_meter < 0.55))
         garden.step(0.5)
     return world
 
@@ -170,7 +171,7 @@ def test_shoots_grow_around_a_rock_not_into_it():
     rock = (0.0, 8.0, 0.0, 2.0)
     for with_rock in (False, True):
         world = World(load_lsystem(ASSETS / "lsystems" / "game_tree.lsys"), rules(), seed=3)
-        world.apply("orbit_height", 0.9)
+        world.apply(Action.ORBIT_HEIGHT, 0.9)
         garden = Garden([world])
         garden.rocks = [rock] if with_rock else []
         grow(world, 7, garden)

@@ -9,6 +9,7 @@ from arbor.engine.life.form.interpret import Clocks
 from arbor.engine.life.plant.growth import GrowingTree
 from arbor.engine.life.plant.light import exposure, optical_depth
 from arbor.engine.life.rules.rules import LightRules, load_rules
+from arbor.engine.life.world.actions import Action
 from arbor.engine.life.world.garden import Garden
 from arbor.engine.life.world.world import World, sense_light
 from arbor.engine.lsystem.lsys import load_lsystem
@@ -32,12 +33,12 @@ def cared_for(system, days, seed=3, orbit=None, side=None, below=0.55, until=0.7
     if budget is not None:
         world.tree.deriver.budget = budget
     if orbit is not None:
-        world.apply("orbit_height", orbit)
+        world.apply(Action.ORBIT_HEIGHT, orbit)
     world.sim.state.sun_meter, world.sim.state.water_meter = 0.9, start
     steps_per_day = round(DAY / 0.5)
     for i in range(round(days * steps_per_day)):
         s = world.sim.state
-        world.apply("water", float(s.water_meter < until if s.watering else s.water_meter < below))
+        world.apply(Action.WATER, float(s.water_meter < until if s.watering else s.water_meter < below))
         world.step(0.5)
         if each_day and (i + 1) % steps_per_day == 0:
             each_day(world)

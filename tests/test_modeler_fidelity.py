@@ -11,6 +11,7 @@ from arbor.engine.geometry.turtle import TurtleConfig, module_positions
 from arbor.engine.life.form.interpret import Clocks, render_view
 from arbor.engine.life.plant.growth import new_axis_text
 from arbor.engine.life.rules.rules import load_rules
+from arbor.engine.life.world.actions import Action
 from arbor.engine.life.world.world import World
 from arbor.engine.lsystem.lsys import load_lsystem
 from arbor.engine.modeling.edits import apply_edit, load_edit_sets
@@ -26,7 +27,7 @@ def grown():
     world = World(load_lsystem(ASSETS / "lsystems" / "game_tree.lsys"), rules, seed=3)
     world.sim.state.sun_meter = world.sim.state.water_meter = 0.9
     for _ in range(1500):
-        world.apply("water", float(world.sim.state.water_meter < 0.6))
+        world.apply(Action.WATER, float(world.sim.state.water_meter < 0.6))
         world.step(0.5)
     return world
 
@@ -40,7 +41,7 @@ def positions(world: World) -> np.ndarray:
 def grow_steps(world: World, rewrites: int) -> None:
     target = world.tree.last_rewrite_T + rewrites * world.rules.growth.rewrite_step
     while world.tree.last_rewrite_T < target - 1e-9:
-        world.apply("water", float(world.sim.state.water_meter < 0.6))
+        world.apply(Action.WATER, float(world.sim.state.water_meter < 0.6))
         world.step(0.5)
 
 

@@ -11,6 +11,7 @@ from arbor.engine.life.keep.away import away_seconds, live_away, tree_height
 from arbor.engine.life.keep.save import SavedGarden, read_garden, write_garden
 from arbor.engine.life.plant import seasons
 from arbor.engine.life.rules.rules import load_rules
+from arbor.engine.life.world.actions import Action
 from arbor.engine.life.world.garden import Garden
 from arbor.engine.life.world.world import World
 from arbor.engine.lsystem.lsys import load_lsystem
@@ -25,7 +26,7 @@ def careful(world: World, until_turns: float, snaps: dict | None = None, every: 
     s = world.sim.state
     next_snap = s.sun_turns
     while s.sun_turns < until_turns:
-        world.apply("water", float(s.water_meter < 0.75 if s.watering else s.water_meter < 0.55))
+        world.apply(Action.WATER, float(s.water_meter < 0.75 if s.watering else s.water_meter < 0.55))
         world.step(0.5)
         if snaps is not None and s.sun_turns >= next_snap:
             ls = world.tree.lstring
@@ -151,9 +152,9 @@ def test_a_well_kept_tree_lives_three_days_away_at_home_and_grows():
     garden = Garden([world])
     world.sim.state.water_meter = 0.9
     for _ in range(48 * 60):  # two days of watering every evening and morning
-        world.apply("water", float(world.sim.state.water_meter < 0.6))
+        world.apply(Action.WATER, float(world.sim.state.water_meter < 0.6))
         garden.step(60.0)
-    world.apply("water", 0.0)
+    world.apply(Action.WATER, 0.0)
     before = tree_height(world)
     summary = live_away(garden, 3 * 86400.0)
     assert world.sim.state.alive and summary.grown > 0 and not summary.died

@@ -20,6 +20,7 @@ import numpy as np
 
 from arbor.engine.base.errors import ExperimentError
 from arbor.engine.life.rules.rules import Rules, check_rules, set_rule
+from arbor.engine.life.world.actions import Action
 from arbor.engine.life.world.world import World
 from arbor.engine.lsystem.lsys import LSystem, load_lsystem
 
@@ -195,9 +196,9 @@ class Lab:
         for regime in experiment.regimes:
             world = World(self.system, regime_rules(base_rules, regime), seed=experiment.seed)
             if regime.orbit_height is not None:
-                world.apply("orbit_height", regime.orbit_height)
+                world.apply(Action.ORBIT_HEIGHT, regime.orbit_height)
             if regime.sun_speed is not None:
-                world.apply("sun_speed", regime.sun_speed)
+                world.apply(Action.SUN_SPEED, regime.sun_speed)
             self.worlds.append(world)
         self.series = [Series(r.name) for r in experiment.regimes]
         self.time = 0.0
@@ -213,7 +214,7 @@ class Lab:
             s = world.sim.state
             wanted = regime.watering.wants_water(s.time, s.water_meter, s.watering)
             if wanted != s.watering:
-                world.apply("water", float(wanted))
+                world.apply(Action.WATER, float(wanted))
             world.step(dt)
         self.time += dt
 

@@ -15,6 +15,7 @@ from arbor.engine.life.lineage.breed import cross
 from arbor.engine.life.lineage.lineage import Family, new_lineage, species_of
 from arbor.engine.life.plant import collide
 from arbor.engine.life.rules.rules import Rules
+from arbor.engine.life.world.actions import Action
 from arbor.engine.life.world.world import MAX_CATCH_UP_STEPS, World, catch_up_steps, sense_light
 from arbor.engine.lsystem.lsys import LSystem
 
@@ -22,7 +23,6 @@ MAX_GARDEN = 6  # trees in one garden
 MAX_SEEDS = 50  # seeds kept in the seed bag
 MAX_ROCKS = 20
 GARDEN_SPACING = 7.0  # scene units between neighbouring trees
-SUN_ACTIONS = ("orbit_height", "sun_speed")
 
 
 @dataclass(frozen=True)
@@ -79,10 +79,10 @@ class Garden:
         radius = GARDEN_SPACING * math.sqrt(k)
         seed = (self.world.seed * 7919 + k * 104729) % 2**31 if seed is None else seed
         world = World(system, rules, seed=seed)
-        world.apply("replant", 1.0)
+        world.apply(Action.REPLANT, 1.0)
         sun = self.world.sim.state
-        world.apply("orbit_height", sun.orbit_height)
-        world.apply("sun_speed", sun.sun_speed)
+        world.apply(Action.ORBIT_HEIGHT, sun.orbit_height)
+        world.apply(Action.SUN_SPEED, sun.sun_speed)
         world.sim.state.sun_angle = sun.sun_angle  # one sun: the new tree sees it where the others do
         world.position = (radius * math.cos(angle), radius * math.sin(angle))
         world.sim.state.sun_turns = sun.sun_turns  # the same calendar (and the same weather) for all
@@ -142,10 +142,10 @@ class Garden:
         self.current = (self.current + 1) % len(self.worlds)
         return self.world
 
-    def apply_sun(self, action: str, value: float) -> None:
+    def apply_sun(self, action: Action, value: float) -> None:
         """A sun slider: one sun shines on the whole garden."""
-        if action not in SUN_ACTIONS:
-            raise ValueError(f"not a sun action: {action!r}")
+        if not action.on_sun:
+            raise ValueError(f"not a sun action: {action.value!r}")
         for world in self.worlds:
             world.apply(action, value)
 

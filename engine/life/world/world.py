@@ -1,7 +1,7 @@
 """The game's world: simulation + growing tree + the player's actions, stepped deterministically.
 
 Given the same seed, rules, L-system and the same actions at the same steps, two worlds produce
-identical trees and meters (tests rely on it; the input log makes bug reports replayable).
+identical trees and meters (tests rely on it; every world's input log makes its life replayable).
 """
 
 from __future__ import annotations
@@ -19,11 +19,11 @@ from arbor.engine.life.plant.journal import Journal
 from arbor.engine.life.plant.light import exposure
 from arbor.engine.life.plant.roots import Roots
 from arbor.engine.life.plant.sim import Rules, SimState, Simulation
+from arbor.engine.life.world.actions import Action
 from arbor.engine.lsystem.lsys import LSystem
 
-ACTIONS = ("water", "orbit_height", "sun_speed", "replant")
 MAX_CATCH_UP_STEPS = 20_000  # a catch-up never takes more steps than this, whatever the rules say
-InputLog = list[tuple[int, str, float]]
+InputLog = list[tuple[int, Action, float]]  # (step, action, value): what was applied before which step
 
 
 @dataclass
@@ -40,6 +40,7 @@ class World:
     position: tuple[float, float] = (0.0, 0.0)  # where the tree stands in a garden (x, z)
     last_light: float = float("-inf")  # game time of the last light reading
     journal: Journal = field(default_factory=Journal)
+    input_log: InputLog = field(default_factory=list)  # every applied action, for :func:`replay`
     bare_at: float = -1.0  # the day of the sun winter last stripped the leaves
     lineage: Lineage = field(init=False)  # parents, generation, planting (engine/life/lineage.py)
     roots: Roots = field(init=False)  # grown below ground on water (engine/life/roots.py)
@@ -110,23 +111,29 @@ class World:
             return "needs_light"
         return status
 
-    def apply(self, action: str, value: float = 0.0) -> None:
-        """A player action: 'water' (1 = can held, 0 = released), slider values, or 'replant'."""
-        if action == "water":
+    def apply(self, action: Action, value: float = 0.0) -> None:
+        """A world action (:data:`~arbor.engine.life.world.actions.WORLD_ACTIONS`): water (1 = can held,
+        0 = released), the sun's sliders (simulation values) or replant; logged against the step."""
+        if not action.on_world:
+            raise ValueError(f"not an action of the world: {action.value!r}")
+        self.input_log.append((self.steps, action, value))
+        if action is Action.WATER:
             self.sim.state.watering = bool(value)
-        elif action == "orbit_height":
+        elif action is Action.ORBIT_HEIGHT:
             self.sim.set_orbit_height(value)
-        elif action == "sun_speed":
+        elif action is Action.SUN_SPEED:
             self.sim.set_sun_speed(value)
-        elif action == "replant":
-            self.sim.replant(self.rng)
-            seed = int(self.rng.integers(2**31))
-            self.tree = self._plant(seed)
-            self.lineage = new_lineage(seed, self.lineage.planted, self.lineage.species)  # a new line starts
-            self.roots = Roots(seed=seed)
-            self.sync_roots()
         else:
-            raise ValueError(f"unknown action {action!r}")
+            self._replant()
+
+    def _replant(self) -> None:
+        """A fresh sapling (and a fresh line of descent) in this tree's place."""
+        self.sim.replant(self.rng)
+        seed = int(self.rng.integers(2**31))
+        self.tree = self._plant(seed)
+        self.lineage = new_lineage(seed, self.lineage.planted, self.lineage.species)  # a new line starts
+        self.roots = Roots(seed=seed)
+        self.sync_roots()
 
     def catch_up(self, seconds: float, dt: float = 1.0, max_steps: int = MAX_CATCH_UP_STEPS) -> int:
         """Let the tree live ``seconds`` of game time unattended (offline growth), in coarse steps:
