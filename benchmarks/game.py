@@ -28,12 +28,14 @@ MATURE = 20.0  # physiological time the big tree rests before the frames (its ol
 
 
 def _frames(game, ctx, fbo, n: int, each=None) -> np.ndarray:
+    from arbor.engine.life.world.actions import Action
+
     times = []
     for i in range(n):
         start = time.perf_counter()
         if each is not None:
             each(i)
-        game.act("water", float(game.world.sim.state.water_meter < 0.55))
+        game.act(Action.WATER, float(game.world.sim.state.water_meter < 0.55))
         game.update(1 / FPS)
         game.draw(fbo)
         ctx.finish()
@@ -49,6 +51,7 @@ def _report(name: str, ms: np.ndarray) -> None:
 def grown_tree(days: float):
     """A world grown ``days`` simulated days by a careful player (the living model)."""
     from arbor.engine.life.rules.rules import load_rules
+    from arbor.engine.life.world.actions import Action
     from arbor.engine.life.world.world import World
     from arbor.engine.lsystem.lsys import load_lsystem
     from arbor.game.paths import ASSETS
@@ -57,7 +60,7 @@ def grown_tree(days: float):
     world = World(load_lsystem(ASSETS / "lsystems" / "game_tree.lsys"), rules, seed=3)
     world.sim.state.sun_meter = world.sim.state.water_meter = 0.9
     for _ in range(round(days * 2 * np.pi / 0.05 / 0.5)):
-        world.apply("water", float(world.sim.state.water_meter < 0.6))
+        world.apply(Action.WATER, float(world.sim.state.water_meter < 0.6))
         world.step(0.5)
     return world
 
@@ -155,7 +158,7 @@ def main() -> None:
         world.sim.state.length_time = world.sim.state.girth_time = t
         world.last_light = float("inf")  # drawing is measured here, not light readings of a huge tree
         game.rules.growth.length_rate = 0.5  # a rewrite every ~2 s of frames: it keeps growing
-        game.previous = world.sim.state
+        game.state.remember()
         game.draw(fbo)
         while game.view.pending:  # the first build of the big tree (on the worker thread)
             time.sleep(0.05)

@@ -56,6 +56,7 @@ def soak(minutes: float, seed: int = 3) -> float:
     import pygame
 
     from arbor.engine.base.memory import keep_freed_memory
+    from arbor.engine.life.world.actions import Action
     from arbor.game.render.renderer import headless_context
     from arbor.game.screens.game import Game, GameConfig
     from arbor.game.screens.kiosk import Kiosk, KioskConfig
@@ -79,7 +80,7 @@ def soak(minutes: float, seed: int = 3) -> float:
             events = gesture(rng, now) if rng.random() < 0.3 else []
             if rng.random() < 0.05:
                 action = ACTIONS[rng.integers(len(ACTIONS))]
-                kiosk.game.act(action, float(rng.uniform(0.05, 1.0)))
+                kiosk.game.act(Action.named(action), float(rng.uniform(0.05, 1.0)))
             kiosk.frame(events, now - last, fbo)
             last, frames = now, frames + 1
             if frames % 200 == 0:

@@ -7,6 +7,7 @@ import pygame
 import pytest
 
 from arbor.engine.life.rules.rules import load_rules
+from arbor.engine.life.world.actions import Action
 from arbor.engine.life.world.world import replay
 from arbor.engine.lsystem.lsys import load_lsystem
 from arbor.game.input.gestures import MAX_TILT
@@ -189,7 +190,7 @@ def test_meters_and_growth_under_the_rules(game):
     s.orbit_height, s.sun_meter, s.water_meter = 1.0, 0.9, 0.9
     t0, modules0 = s.length_time, len(game.world.tree.lstring)
     for _ in range(60):  # one real second at 60 fps = 100 s of game time
-        game.act("water", float(game.world.sim.state.water_meter < 0.6))
+        game.act(Action.WATER, float(game.world.sim.state.water_meter < 0.6))
         game.update(1 / 60)
     s = game.world.sim.state
     assert s.time == pytest.approx(100.0, abs=0.2)
@@ -208,15 +209,15 @@ def test_input_log_replays_identically(game):
     game.set_speed(10.0)
     for i in range(120):
         if i == 10:
-            game.act("water", 1.0)
+            game.act(Action.WATER, 1.0)
         if i == 40:
-            game.act("water", 0.0)
+            game.act(Action.WATER, 0.0)
         if i == 70:
-            game.act("orbit_height", 0.9)
+            game.act(Action.ORBIT_HEIGHT, 0.9)
         game.update(1 / 30)
     rules = load_rules(game.config.rules, pace=game.rules.pace)
     again = replay(load_lsystem(game.config.lsystem), rules, game.world.seed,
-                   game.input_log, game.world.steps, game.loop.dt)
+                   game.world.input_log, game.world.steps, game.loop.dt)
     assert again.sim.state == game.world.sim.state
     assert again.tree.lstring.to_text() == game.world.tree.lstring.to_text()
 
@@ -264,17 +265,17 @@ def test_a_garden_of_several_trees(ctx, tmp_path):
     game.draw(fbo)
     alone = game.triangles
     first = game.world
-    game.act("plant", 1.0)
-    game.act("plant", 1.0)
+    game.act(Action.PLANT, 1.0)
+    game.act(Action.PLANT, 1.0)
     assert len(game.others) == 2 and game.world is not first
     positions = {game.world.position, *(o.position for o in game.others)}
     assert len(positions) == 3  # three places in the garden
     game.draw(fbo)
     assert len(game.renderer.placed) == 3 and game.triangles > 1.3 * alone  # all three drawn (far ones coarser)
-    game.act("orbit_height", 0.9)
+    game.act(Action.ORBIT_HEIGHT, 0.9)
     assert {round(o.sim.state.orbit_height, 6) for o in [game.world, *game.others]} == {
         round(game.world.sim.state.orbit_height, 6)}  # one sun for the whole garden
-    game.act("next", 1.0)
+    game.act(Action.NEXT, 1.0)
     assert game.world is first  # "next" goes round the garden, oldest first
     game.set_speed(100.0)
     for _ in range(30):
@@ -285,5 +286,5 @@ def test_a_garden_of_several_trees(ctx, tmp_path):
     assert len(again.others) == 2
     assert {again.world.position, *(o.position for o in again.others)} == positions
     for _ in range(6):
-        game.act("plant", 1.0)
+        game.act(Action.PLANT, 1.0)
     assert len(game.others) + 1 == 6  # the garden has a limit

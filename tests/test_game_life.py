@@ -12,6 +12,7 @@ import pygame
 import pytest
 
 from arbor.engine.life.rules.rules import load_rules
+from arbor.engine.life.world.actions import Action
 from arbor.engine.life.world.world import World
 from arbor.engine.lsystem.lsys import load_lsystem
 from arbor.game.screens.game import Game, GameConfig
@@ -116,9 +117,9 @@ def test_status_tells_a_new_player_what_the_tree_needs_in_their_pace(gl_ctx, tmp
 def test_tapping_another_tree_cares_for_it_and_the_hud_says_which_needs_what(gl_ctx, tmp_path):
     game = new_game(gl_ctx, tmp_path)
     fbo = framebuffer(gl_ctx)
-    game.act("plant", 1.0)
+    game.act(Action.PLANT, 1.0)
     second = game.world
-    game.act("next", 1.0)
+    game.act(Action.NEXT, 1.0)
     first = game.world
     second.sim.state.water_meter = 0.05  # the other tree is thirsty
     game.draw(fbo)
@@ -127,7 +128,7 @@ def test_tapping_another_tree_cares_for_it_and_the_hud_says_which_needs_what(gl_
     tap(game, x + 6, y)
     assert game.world is second and not game.menu.visible
     assert "caring for tree 2" in game.hud_info().message
-    game.act("water", 1.0)
+    game.act(Action.WATER, 1.0)
     game.update(1.0)
     assert second.sim.state.water_meter > 0.05 and not first.sim.state.watering  # water reaches that tree
 
@@ -152,12 +153,12 @@ def test_a_ripe_fruit_is_picked_by_a_tap_and_its_seed_sown(gl_ctx, tmp_path, fru
     assert not game.menu.visible and "seed is in your bag" in game.hud_info().message
     game.care.sync_sliders()
     assert game.menu.widget("sow").label == "Sow a seed (1)"
-    game.act("sow", 1.0)
+    game.act(Action.SOW, 1.0)
     parent = game.garden.worlds[0]
     assert len(game.garden.worlds) == 2 and game.world.lineage.parents == (parent.lineage.id,)
     assert game.world.lineage.planted == pytest.approx(NOW + game.fake_clock.t, abs=1)
     assert not game.garden.seeds and "seed of tree 1" in game.hud_info().message
-    game.act("sow", 1.0)
+    game.act(Action.SOW, 1.0)
     assert "No seeds yet" in game.hud_info().message
 
 
@@ -189,7 +190,7 @@ def test_the_menu_puts_care_first_with_big_targets_and_tools_in_the_modeler(gl_c
     tap(game, *settings.rect.center)
     assert {w.name for w in game.menu.shown()} == {"save", "load", "roots", "devices", "back"}
     game.menu.hide()
-    game.act("modeler", 1.0)
+    game.act(Action.MODELER, 1.0)
     assert game.modeling.active
     game.input.tap(500, 300)
     assert game.menu.page == "tools" and game.menu.widget("modeler").label == "Done"
@@ -240,19 +241,19 @@ def test_crossing_two_trees_by_menu_and_tap_and_the_family_screen(gl_ctx, tmp_pa
     game = new_game(gl_ctx, tmp_path)
     game.coach.hints = []
     fbo = framebuffer(gl_ctx)
-    game.act("cross", 1.0)
+    game.act(Action.CROSS, 1.0)
     assert "second tree" in game.hud_info().message  # alone, no cross
     game.garden.plant(load_lsystem(ASSETS / "lsystems" / "game_poplar.lsys"), game.rules, now=NOW)
-    game.act("next", 1.0)  # care for the first tree again: she is the mother
+    game.act(Action.NEXT, 1.0)  # care for the first tree again: she is the mother
     mother, father = game.garden.worlds
-    game.act("cross", 1.0)
+    game.act(Action.CROSS, 1.0)
     assert game.care.crossing is mother and "Tap the other parent" in game.hud_info().message
     game.draw(fbo)
     x, y = _turn_to(game, fbo, father.position, mother.position)
     tap(game, x + 5, y)
     assert len(game.garden.worlds) == 3 and game.world.lineage.parents == (mother.lineage.id, father.lineage.id)
     assert "seedling is planted" in game.hud_info().message
-    game.act("family", 1.0)
+    game.act(Action.FAMILY, 1.0)
     assert game.family.visible and not game.menu.visible
     game.draw(fbo)
     boxes = {lin.id: box for box, lin in game.family.boxes}
@@ -277,8 +278,8 @@ def test_the_cut_away_view_shows_the_roots_in_the_soil(gl_ctx, tmp_path, fruitin
         return np.frombuffer(fbo.read(components=3), np.uint8).reshape(SIZE[1], SIZE[0], 3)[::-1].astype(int)
 
     grass = shot()
-    game.act("roots", 1.0)
-    assert game.cutaway and game.menu.widget("roots").label == "Hide roots"
+    game.act(Action.ROOTS, 1.0)
+    assert game.state.cutaway and game.menu.widget("roots").label == "Hide roots"
     soil = shot()
     low = soil[SIZE[1] - 150:, :, :]
     below = grass[SIZE[1] - 150:, :, :]

@@ -4,6 +4,7 @@ import numpy as np
 import pytest
 
 from arbor.engine.life.keep.save import SavedGarden, read_garden, write_garden
+from arbor.engine.life.world.actions import Action
 from arbor.game.input.events import DOWN, MOVE, UP, InputEvent
 from arbor.game.screens.game import Game, GameConfig
 
@@ -127,7 +128,7 @@ def test_modeled_tree_saves_reloads_and_keeps_growing(game, tmp_path):
     apices = back.tree.lstring.count("A")
     back.sim.state.orbit_height, back.sim.state.sun_meter, back.sim.state.water_meter = 1.0, 0.9, 0.9
     for _ in range(4000):
-        back.apply("water", float(back.sim.state.water_meter < 0.6))
+        back.apply(Action.WATER, float(back.sim.state.water_meter < 0.6))
         back.step(0.5)
     grown = back.tree.lstring
     drawn_points = sum(1 for i in range(len(grown)) if grown.module(i)[0] == "A" and len(grown.module(i)[1]) == 5)

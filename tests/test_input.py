@@ -242,7 +242,7 @@ def test_recorded_session_replays_through_the_real_game(ctx, tmp_path):
     again.draw(fbo)
     assert again.control.yaw == pytest.approx(live.control.yaw)
     assert again.menu.visible and live.menu.visible
-    assert sorted(again.devices) == ["mouse", "touch:1"]
+    assert sorted(again.state.devices) == ["mouse", "touch:1"]
     assert again.world.steps == pytest.approx(20, abs=1)  # two seconds of game time at 1x, 0.1 s steps
 
 

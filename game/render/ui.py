@@ -14,6 +14,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import pygame
 
+from arbor.engine.life.world.actions import Action
 from arbor.game.render.icons import draw_icon
 from arbor.game.strings import text
 
@@ -30,7 +31,8 @@ PAD = 10
 
 @dataclass
 class Widget:
-    """A slider (value 0..1) or a button on one page of the menu; ``hold`` buttons act while pressed."""
+    """A slider (value 0..1) or a button on one page of the menu; ``hold`` buttons act while pressed. Its
+    ``action`` is what it does (none for the buttons that only turn the page)."""
 
     name: str
     label: str
@@ -41,6 +43,10 @@ class Widget:
     value: float = 0.0
     hold: bool = False
     pressed: bool = False
+    action: Action | None = field(init=False)
+
+    def __post_init__(self) -> None:
+        self.action = None if self.name in NAV else Action(self.name)
 
 
 # Pages of the menu, row by row. The first page is for caring (big targets with icons); the garden,
@@ -121,7 +127,7 @@ class Menu:
                                                      top + PAD + extra + r * (ROW_H + PAD), width, ROW_H)
         self.visible = True
 
-    def hide(self) -> list[tuple[str, float]]:
+    def hide(self) -> list[tuple[Action, float]]:
         """Close the menu; releases a held button (returns the actions that causes)."""
         self.visible = False
         return self.release()
@@ -132,7 +138,7 @@ class Menu:
             return None
         return next((w for w in self.shown() if w.rect.collidepoint(x, y)), None)
 
-    def press(self, x: float, y: float) -> list[tuple[str, float]]:
+    def press(self, x: float, y: float) -> list[tuple[Action, float]]:
         """Pointer down at (x, y): start dragging a slider, press a button or turn the page."""
         w = self.hit(x, y)
         self.active = w
@@ -145,24 +151,24 @@ class Menu:
         w.pressed = True
         if w.kind == "slider":
             return self.drag(x, y)
-        return [(w.name, 1.0)]
+        return [(w.action, 1.0)]
 
-    def drag(self, x: float, y: float) -> list[tuple[str, float]]:
+    def drag(self, x: float, y: float) -> list[tuple[Action, float]]:
         """Pointer moved while pressed: sliders follow it."""
         w = self.active
         if w is None or w.kind != "slider":
             return []
         inner = w.rect.inflate(-2 * PAD, 0)
         w.value = min(max((x - inner.left) / max(inner.width, 1), 0.0), 1.0)
-        return [(w.name, w.value)]
+        return [(w.action, w.value)]
 
-    def release(self) -> list[tuple[str, float]]:
+    def release(self) -> list[tuple[Action, float]]:
         """Pointer up: a held button stops acting."""
         w, self.active = self.active, None
         if w is None:
             return []
         w.pressed = False
-        return [(w.name, 0.0)] if w.hold else []
+        return [(w.action, 0.0)] if w.hold else []
 
     def draw(self, surface: pygame.Surface, font: pygame.font.Font) -> None:
         """Draw the menu panel and the widgets of its page (icons beside the labels)."""

@@ -9,13 +9,10 @@ the menu's journal page lists the cared-for tree's milestones by day.
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING
 
 from arbor.engine.life.world.world import World
+from arbor.game.screens.state import GameState
 from arbor.game.strings import text
-
-if TYPE_CHECKING:
-    from arbor.game.screens.game import Game
 
 HINTS = ("open_menu", "water", "turn")
 ATTENTION = ("dead", "wilting", "drowning", "thirsty", "needs_light")  # statuses worth a reminder
@@ -25,16 +22,17 @@ JOURNAL_SHOWN = 12  # latest milestones listed on the journal page
 class Coach:
     """Hints, reminders and journal announcements for one game (see module docstring)."""
 
-    def __init__(self, game: Game) -> None:
-        self.game = game
+    def __init__(self, state: GameState, views: dict) -> None:
+        self.state = state
+        self.views = views  # the view's records of the trees (world id -> key, records, ...): ripe fruit shows
         self.hints: list[str] = []
         self.seen: dict[int, int] = {}  # world id -> journal entries already announced
-        self.start_yaw = game.control.yaw
+        self.start_yaw = state.control.yaw
 
     def first_run(self) -> None:
         """Show the hints from the first (a new player, or the kiosk's next visitor)."""
         self.hints = list(HINTS)
-        self.start_yaw = self.game.control.yaw
+        self.start_yaw = self.state.control.yaw
 
     def done(self, what: str) -> None:
         """The player did ``what`` (one of HINTS): its hint goes."""
@@ -43,31 +41,31 @@ class Coach:
 
     def hint(self) -> str:
         """The hint to show now ('' when none)."""
-        turned = abs(self.game.control.yaw - self.start_yaw) % 360.0
+        turned = abs(self.state.control.yaw - self.start_yaw) % 360.0
         if "turn" in self.hints and min(turned, 360.0 - turned) > 20:
             self.done("turn")
         return text(f"hints.{self.hints[0]}") if self.hints else ""
 
     def watch(self) -> None:
         """Announce milestones written since the last look (every tree of the garden)."""
-        for world in self.game.garden.worlds:
+        for world in self.state.garden.worlds:
             entries = world.journal.entries
             first = self.seen.setdefault(id(world), len(entries))
             fresh = [e for e in entries[first:] if e[1] != "planted"]
             self.seen[id(world)] = len(entries)
             if fresh:
-                self.game.say(text("journal.announce", what=describe(*fresh[-1][1:])), 6)
+                self.state.say(text("journal.announce", what=describe(*fresh[-1][1:])), 6)
 
     def reminder(self) -> str:
         """One line about what is worth doing now, or ''."""
-        game = self.game
-        world = game.world
+        state = self.state
+        world = state.world
         if world.sim.raining() and world.sim.state.alive:
             return text("reminders.rain")
-        view = game.view.views.get(id(world))
+        view = self.views.get(id(world))
         if view is not None and len(view[1].fruits.data) and (view[1].fruits.data[:, 10] >= 1.0).any():
             return text("reminders.fruit")
-        garden = game.garden
+        garden = state.garden
         if garden.seeds and not garden.full:
             return text("reminders.sow", count=len(garden.seeds))
         for number, other in enumerate(garden.worlds, 1):
@@ -78,7 +76,7 @@ class Coach:
 
     def journal_lines(self) -> list[str]:
         """The cared-for tree's latest milestones, oldest first, by day of its life."""
-        world = self.game.world
+        world = self.state.world
         entries = world.journal.entries[-JOURNAL_SHOWN:]
         if not entries:
             return [text("journal.empty")]

@@ -11,11 +11,12 @@ import pygame
 
 from arbor.engine.life.lineage.lineage import Lineage
 from arbor.game.render.icons import draw_icon
+from arbor.game.render.ui import Menu
+from arbor.game.screens.state import GameState
 from arbor.game.strings import text
 
 if TYPE_CHECKING:
     from arbor.engine.life.world.world import World
-    from arbor.game.screens.game import Game
 
 THUMB = 112  # pixels: a thumbnail's side
 MAX_SHOWN = 24  # members drawn at most (the garden's trees first, then their nearest ancestors)
@@ -52,8 +53,8 @@ def sketch(world: World, size: int = THUMB) -> pygame.Surface:
 class FamilyScreen:
     """Layout, drawing and taps of the family tree (see module docstring)."""
 
-    def __init__(self, game: Game) -> None:
-        self.game = game
+    def __init__(self, state: GameState, menu: Menu, size: tuple[int, int]) -> None:
+        self.state, self.menu, self.size = state, menu, size
         self.visible = False
         self.boxes: list[tuple[pygame.Rect, Lineage]] = []
         self._thumbs: dict[tuple, pygame.Surface] = {}
@@ -61,11 +62,11 @@ class FamilyScreen:
     def open(self) -> None:
         """Show the screen (the menu closes)."""
         self.visible = True
-        self.game.menu.hide()
+        self.menu.hide()
 
     def members(self) -> list[Lineage]:
         """Who is drawn: every tree of the garden, then their known ancestors, nearest first."""
-        garden = self.game.garden
+        garden = self.state.garden
         shown = {w.lineage.id: w.lineage for w in garden.worlds}
         for world in garden.worlds:
             for ancestor in garden.family.ancestors(world.lineage):
@@ -75,7 +76,7 @@ class FamilyScreen:
 
     def layout(self) -> None:
         """Boxes by generation (oldest at the top), centred on each row."""
-        width, height = self.game.size
+        width, height = self.size
         members = sorted(self.members(), key=lambda m: (m.generation, m.planted, m.id))
         generations = sorted({m.generation for m in members})
         row_h = min(THUMB + 60, (height - 90) // max(len(generations), 1))
@@ -105,10 +106,10 @@ class FamilyScreen:
             for parent in lin.parents:
                 if parent in where:
                     pygame.draw.line(surface, LINE, where[parent].midbottom, box.midtop, 3)
-        worlds = {w.lineage.id: (i, w) for i, w in enumerate(self.game.garden.worlds)}
+        worlds = {w.lineage.id: (i, w) for i, w in enumerate(self.state.garden.worlds)}
         for box, lin in self.boxes:
             here = worlds.get(lin.id)
-            cared = here is not None and here[1] is self.game.world
+            cared = here is not None and here[1] is self.state.world
             pygame.draw.rect(surface, (40, 60, 38), box, border_radius=8)
             pygame.draw.rect(surface, (250, 230, 120) if cared else LINE, box, width=3 if cared else 1,
                              border_radius=8)
@@ -130,13 +131,10 @@ class FamilyScreen:
             self._thumbs[key] = sketch(world)
         return self._thumbs[key]
 
-    def tap(self, x: float, y: float) -> None:
-        """A tap on a tree of the garden cares for it; any tap closes the screen."""
-        game = self.game
+    def tap(self, x: float, y: float) -> int | None:
+        """Any tap closes the screen; a tap on a tree of the garden returns its index (to care for it)."""
         self.visible = False
         hit = next((lin for box, lin in self.boxes if box.collidepoint(x, y)), None)
         if hit is None:
-            return
-        index = next((i for i, w in enumerate(game.garden.worlds) if w.lineage.id == hit.id), None)
-        if index is not None:
-            game.care.care_for(index)
+            return None
+        return next((i for i, w in enumerate(self.state.garden.worlds) if w.lineage.id == hit.id), None)

@@ -3,18 +3,22 @@ menu, cursor and tool outlines. It is repainted (and uploaded) only when what it
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
+from collections.abc import Callable
 
 import numpy as np
 import pygame
 
+from arbor.engine.life.rules.rules import Rules
 from arbor.game.render.camera import OrbitCamera, project_points
+from arbor.game.render.garden import GardenRenderer
 from arbor.game.render.icons import draw_icon
-from arbor.game.render.ui import HudInfo, draw_hud, draw_rain, draw_rain_cloud
+from arbor.game.render.renderer import Overlay
+from arbor.game.render.ui import HudInfo, Menu, draw_hud, draw_rain, draw_rain_cloud
+from arbor.game.screens.coach import Coach
+from arbor.game.screens.family import FamilyScreen
+from arbor.game.screens.modeler import ModelingMode
+from arbor.game.screens.state import GameState
 from arbor.game.strings import duration, text
-
-if TYPE_CHECKING:
-    from arbor.game.screens.game import Game
 
 NEEDS_ICON = {"thirsty": "can", "wilting": "can", "needs_light": "sun", "drowning": "can", "dead": "cross"}
 BADGE = 30  # pixels: a garden marker's size
@@ -23,54 +27,61 @@ BADGE = 30  # pixels: a garden marker's size
 class GameHud:
     """Paints the overlay surface (see module docstring)."""
 
-    def __init__(self, game: Game) -> None:
-        self.game = game
-        self.surface = pygame.Surface(game.size, pygame.SRCALPHA)
+    def __init__(self, state: GameState, rules: Rules, size: tuple[int, int], *, menu: Menu, overlay: Overlay,
+                 renderer: GardenRenderer, views: dict, fonts: tuple[pygame.font.Font, pygame.font.Font],
+                 modeling: ModelingMode, family: FamilyScreen, coach: Coach,
+                 hooks: list[Callable[[pygame.Surface], None]]) -> None:
+        self.state, self.rules, self.size = state, rules, size
+        self.menu, self.overlay, self.renderer = menu, overlay, renderer
+        self.views = views  # the view's records of the trees (world id -> key, records, ...)
+        self.font, self.small_font = fonts
+        self.modeling, self.family, self.coach = modeling, family, coach
+        self.hooks = hooks  # extra overlay layers (kiosk attract text, PIN pad)
+        self.surface = pygame.Surface(size, pygame.SRCALPHA)
         self._key: tuple | None = None
 
     def draw(self, camera: OrbitCamera) -> None:
         """Repaint the overlay if anything on it changed, and composite it over the frame."""
-        game = self.game
-        game.coach.watch()
+        self.coach.watch()
         key = self._overlay_key(camera)
         changed = key != self._key
         if changed:
             self.paint(camera)
             self._key = key
-        game.overlay.draw_surface(self.surface, changed)
+        self.overlay.draw_surface(self.surface, changed)
 
     def _overlay_key(self, camera: OrbitCamera) -> tuple:
         """Everything the HUD layer shows: repainted only when this changes (a message timing out
         changes it too), and 4 times a second while rain or the watering cloud animate."""
-        game = self.game
+        state = self.state
         info = self.hud_info()
-        menu = game.menu
+        menu = self.menu
         widgets = tuple((w.value, w.pressed, w.label) for w in menu.widgets) if menu.visible else ()
-        modeling = game.modeling
-        moving = modeling.active or game.cursor3d is not None or len(game.garden.worlds) > 1
+        modeling = self.modeling
+        moving = modeling.active or state.cursor3d is not None or len(state.garden.worlds) > 1
         view = (round(camera.yaw, 2), round(camera.pitch, 2), round(camera.distance, 3), len(modeling.points),
                 id(modeling.preview)) if moving else ()
         return (round(info.sun * 200), round(info.water * 200), info.status, int(info.age_seconds // 60),
                 info.speed, info.message, info.watering, info.season, info.raining, info.hint, info.reminder,
-                menu.visible, menu.page, widgets, view, game.cursor3d, len(game.overlay_hooks),
-                tuple(w.status() for w in game.garden.worlds), game.garden.current, game.family.visible,
-                int(game.clock() * 4) if info.raining or info.watering else 0)  # (rain and cloud animate)
+                menu.visible, menu.page, widgets, view, state.cursor3d, len(self.hooks),
+                tuple(w.status() for w in state.garden.worlds), state.garden.current, self.family.visible,
+                int(state.clock() * 4) if info.raining or info.watering else 0)  # (rain and cloud animate)
 
     def hud_info(self) -> HudInfo:
         """What the HUD shows now."""
-        game = self.game
-        world = game.world
+        state, rules = self.state, self.rules
+        world = state.world
         s, tree = world.sim.state, world.tree
-        message = game.message if game.clock() < game.message_until else ""
+        message = state.shown_message()
         if not message and tree.budget_hit:
             message = text("messages.budget")
-        status = text(f"status.{world.status()}", hold=duration(game.rules.growth.hold_time))
+        status = text(f"status.{world.status()}", hold=duration(rules.growth.hold_time))
         season = ""
-        if game.rules.seasons.enabled:
+        if rules.seasons.enabled:
             day = int(s.sun_turns) + 1
             season = text("hud.season", season=text(f"seasons.{world.sim.season().name}"), day=day)
-        return HudInfo(s.sun_meter, s.water_meter, status, s.time, game.loop.speed, message, s.watering, season,
-                       world.sim.raining(), game.coach.hint(), game.coach.reminder())
+        return HudInfo(s.sun_meter, s.water_meter, status, s.time, state.loop.speed, message, s.watering, season,
+                       world.sim.raining(), self.coach.hint(), self.coach.reminder())
 
     def overlay_pixels(self, camera: OrbitCamera) -> bytes:
         """The HUD layer as RGBA rows, bottom row first."""
@@ -79,50 +90,49 @@ class GameHud:
 
     def paint(self, camera: OrbitCamera) -> None:
         """Draw the whole overlay into the surface."""
-        game = self.game
         self.surface.fill((0, 0, 0, 0))
         info = self.hud_info()
         if info.raining:
-            draw_rain(self.surface, game.clock())
+            draw_rain(self.surface, self.state.clock())
         if info.watering:
             self._draw_cloud(camera)
         self._draw_markers(camera)
-        draw_hud(self.surface, game.font, info)
-        if game.cursor3d is not None:
+        draw_hud(self.surface, self.font, info)
+        if self.state.cursor3d is not None:
             self._draw_cursor3d(camera)
         project = lambda points: self.project_many(camera, points)  # noqa: E731
-        game.modeling.draw_outline(self.surface, project)
-        game.modeling.draw_symbols(self.surface, camera, game.small_font, project)
-        game.menu.draw(self.surface, game.font)
-        game.family.draw(self.surface, game.font, game.small_font)
-        for hook in game.overlay_hooks:
+        self.modeling.draw_outline(self.surface, project)
+        self.modeling.draw_symbols(self.surface, camera, self.small_font, project)
+        self.menu.draw(self.surface, self.font)
+        self.family.draw(self.surface, self.font, self.small_font)
+        for hook in self.hooks:
             hook(self.surface)
 
     def project(self, camera: OrbitCamera, point) -> tuple[float, float] | None:
         """The window pixel of one 3D point, or None when it is behind the camera."""
-        x, y = project_points(camera, self.game.size, np.asarray(point, float)[None])[0]
+        x, y = project_points(camera, self.size, np.asarray(point, float)[None])[0]
         return (float(x), float(y)) if np.isfinite(x) and np.isfinite(y) else None
 
     def project_many(self, camera: OrbitCamera, points) -> list[tuple[float, float]]:
         """Window pixels of many 3D points at once, leaving out those behind the camera."""
-        pixels = project_points(camera, self.game.size, np.asarray(points, float).reshape(-1, 3))
+        pixels = project_points(camera, self.size, np.asarray(points, float).reshape(-1, 3))
         return [(float(x), float(y)) for x, y in pixels[np.isfinite(pixels).all(axis=1)]]
 
     def _draw_markers(self, camera: OrbitCamera) -> None:
         """Over every tree of a garden: its number, and an icon when it needs something (water, sun);
         a ring at the foot of the tree being cared for."""
-        game = self.game
-        if len(game.garden.worlds) < 2 or game.modeling.active:
+        state = self.state
+        if len(state.garden.worlds) < 2 or self.modeling.active:
             return
-        here = np.array(game.world.position)
-        for number, world in enumerate(game.garden.worlds, 1):
-            entry = game.view.views.get(id(world))
+        here = np.array(state.world.position)
+        for number, world in enumerate(state.garden.worlds, 1):
+            entry = self.views.get(id(world))
             top = max(float(entry[1].hi[1]), 1.0) if entry else 2.0
             dx, dz = np.array(world.position) - here
             at = self.project(camera, (dx, top * 1.08, dz))
-            if at is None or not (0 <= at[0] < game.size[0] and 0 <= at[1] < game.size[1]):
+            if at is None or not (0 <= at[0] < self.size[0] and 0 <= at[1] < self.size[1]):
                 continue
-            cared = world is game.world
+            cared = world is state.world
             status = world.status()
             box = pygame.Rect(0, 0, BADGE, BADGE)
             box.midbottom = (int(at[0]), int(max(at[1], BADGE + 4)))
@@ -132,7 +142,7 @@ class GameHud:
             if icon:
                 draw_icon(self.surface, icon, box.inflate(-6, -6))
             else:
-                label = game.small_font.render(str(number), True, (30, 40, 30) if cared else (245, 245, 240))
+                label = self.small_font.render(str(number), True, (30, 40, 30) if cared else (245, 245, 240))
                 self.surface.blit(label, label.get_rect(center=box.center))
             if cared:
                 foot = self.project(camera, (0.0, 0.0, 0.0))
@@ -141,14 +151,13 @@ class GameHud:
                                         pygame.Rect(0, 0, 70, 18).move(int(foot[0]) - 35, int(foot[1]) - 9), 2)
 
     def _draw_cloud(self, camera: OrbitCamera) -> None:
-        game = self.game
-        at = self.project(camera, (0.0, max(float(game.renderer.hi[1]), 1.0) * 1.25, 0.0))
+        at = self.project(camera, (0.0, max(float(self.renderer.hi[1]), 1.0) * 1.25, 0.0))
         if at is not None:
-            draw_rain_cloud(self.surface, (at[0], max(at[1], 60.0)), game.size[1] * 0.12, game.clock())
+            draw_rain_cloud(self.surface, (at[0], max(at[1], 60.0)), self.size[1] * 0.12, self.state.clock())
 
     def _draw_cursor3d(self, camera: OrbitCamera) -> None:
         """The 3D tracker's cursor (scene units, relative to the tree's base) as a ring with a drop line."""
-        cursor = self.game.cursor3d
+        cursor = self.state.cursor3d
         at = self.project(camera, cursor)
         ground = self.project(camera, (cursor[0], 0.0, cursor[2]))
         if at is None:

@@ -1,11 +1,13 @@
-"""The game's input routing: which gesture, stroke, menu press or key a device event becomes."""
+"""The game's input routing: which gesture, stroke, menu press or key a device event becomes (the
+menu's presses and the keys become :class:`~arbor.engine.life.world.actions.Action` values)."""
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
+from collections.abc import Callable
 
 import pygame
 
+from arbor.engine.life.world.actions import Action
 from arbor.game.input.events import (
     DEVICE,
     DOWN,
@@ -19,10 +21,16 @@ from arbor.game.input.events import (
     WHEEL,
     InputEvent,
 )
+from arbor.game.input.gestures import Gestures
 from arbor.game.loop import SPEEDS
-
-if TYPE_CHECKING:
-    from arbor.game.screens.game import Game
+from arbor.game.render.camera import OrbitCamera
+from arbor.game.render.ui import Menu
+from arbor.game.screens.care import CareActions
+from arbor.game.screens.coach import Coach
+from arbor.game.screens.family import FamilyScreen
+from arbor.game.screens.modeler import ModelingMode
+from arbor.game.screens.picking import Picker
+from arbor.game.screens.state import GameState
 
 KEY_YAW, KEY_TILT = 4.0, 3.0  # degrees per key press
 TAP_SECONDS, TAP_PIXELS = 0.3, 12
@@ -31,8 +39,12 @@ TAP_SECONDS, TAP_PIXELS = 0.3, 12
 class GameInput:
     """Routes device-independent input events to the camera, the menu, the modeler and the actions."""
 
-    def __init__(self, game: Game) -> None:
-        self.game = game
+    def __init__(self, state: GameState, size: tuple[int, int], camera: Callable[[], OrbitCamera], *, menu: Menu,
+                 gestures: Gestures, modeling: ModelingMode, care: CareActions, picker: Picker,
+                 family: FamilyScreen, coach: Coach) -> None:
+        self.state, self.size, self.camera = state, size, camera
+        self.menu, self.gestures, self.modeling, self.care = menu, gestures, modeling, care
+        self.picker, self.family, self.coach = picker, family, coach
         self.menu_pointers: set[int] = set()
         self.right_y: float | None = None
         self.stroke_pointer: int | None = None
@@ -41,9 +53,9 @@ class GameInput:
 
     def handle(self, e: InputEvent) -> bool:
         """Handle one event; returns False when the game should quit."""
-        game = self.game
-        if e.device not in game.devices and e.device not in ("window", "hid") and e.amount >= 0:
-            game.devices[e.device] = e.device.split(":")[0]
+        state = self.state
+        if e.device not in state.devices and e.device not in ("window", "hid") and e.amount >= 0:
+            state.devices[e.device] = e.device.split(":")[0]
         if e.kind == QUIT:
             return False
         if e.kind in (DOWN, MOVE, UP):
@@ -53,153 +65,150 @@ class GameInput:
                 self._right_drag(e)
             elif e.button == 1:
                 self._pointer(e.kind, hash((e.device, e.pointer)) & 0x7FFFFFFF, e.x, e.y, e.t)
-        elif e.kind == WHEEL and not game.menu.visible:
-            game.control.zoom(0.9**e.amount)
-        elif e.kind == ROTATE and not game.menu.visible:
-            game.control.turn(-e.ry)
-            game.control.tilt_by(e.rx)
+        elif e.kind == WHEEL and not self.menu.visible:
+            state.control.zoom(0.9**e.amount)
+        elif e.kind == ROTATE and not self.menu.visible:
+            state.control.turn(-e.ry)
+            state.control.tilt_by(e.rx)
         elif e.kind in (KEY_DOWN, KEY_UP):
             return self._key(e.key, e.kind == KEY_DOWN)
         elif e.kind == FOCUS_LOST:
-            game.gestures.cancel_all()
+            self.gestures.cancel_all()
         elif e.kind == DEVICE:
             if e.amount < 0:
-                game.devices.pop(e.device, None)
-            game.say(e.text, 5)
+                state.devices.pop(e.device, None)
+            state.say(e.text, 5)
         return True
 
     def _right_drag(self, e: InputEvent) -> None:
         """The mouse's tilt gesture: vertical right-button drag."""
         if e.kind == DOWN:
             self.right_y = e.y
-        elif e.kind == MOVE and not self.game.menu.visible and self.right_y is not None:
-            self.game.control.tilt_by((e.y - self.right_y) * 0.25)
+        elif e.kind == MOVE and not self.menu.visible and self.right_y is not None:
+            self.state.control.tilt_by((e.y - self.right_y) * 0.25)
             self.right_y = e.y
         else:
             self.right_y = None
 
     def _pointer3d(self, e: InputEvent) -> None:
         """A 3D tracker's cursor (shown by the HUD); in the modeler, its button draws strokes in 3D."""
-        game = self.game
-        game.cursor3d = (e.x, e.y, e.z)
-        if not game.modeling.active:
+        modeling = self.modeling
+        self.state.cursor3d = (e.x, e.y, e.z)
+        if not modeling.active:
             return
         if e.kind == DOWN:
-            game.modeling.cancel_points()
+            modeling.cancel_points()
             self.stroke_pointer = -3
         if self.stroke_pointer == -3:
-            game.modeling.add3d(game.cursor3d, e.t)
+            modeling.add3d(self.state.cursor3d, e.t)
             if e.kind == UP:
-                game.modeling.finish()
+                modeling.finish()
                 self.stroke_pointer = None
 
     def _stroke(self, kind: str, pid: int, x: float, y: float, now: float) -> bool:
         """Modeler: one pointer draws; a second pointer turns the stroke into a camera gesture."""
-        game = self.game
-        if not game.modeling.active or game.menu.visible:
+        if not self.modeling.active or self.menu.visible:
             return False
-        if kind == DOWN and self.stroke_pointer is None and not game.gestures.pointers:
-            if game.menu.hit(x, y):
+        if kind == DOWN and self.stroke_pointer is None and not self.gestures.pointers:
+            if self.menu.hit(x, y):
                 return False
             self.stroke_pointer, self.stroke_start = pid, (x, y, now)
-            game.modeling.begin2d(x, y, now, game.camera())
+            self.modeling.begin2d(x, y, now, self.camera())
             return True
         if kind == DOWN and self.stroke_pointer is not None:  # second finger: it was a camera gesture
             sx, sy, st = self.stroke_start
-            game.modeling.cancel_points()
-            game.gestures.down(self.stroke_pointer, sx, sy, st)
+            self.modeling.cancel_points()
+            self.gestures.down(self.stroke_pointer, sx, sy, st)
             self.stroke_pointer = None
             return False
         if pid != self.stroke_pointer:
             return False
         if kind == MOVE:
-            game.modeling.add2d(x, y, now, game.camera())
+            self.modeling.add2d(x, y, now, self.camera())
         elif kind == UP:
             self._stroke_up(x, y, now)
         return True
 
     def _stroke_up(self, x: float, y: float, now: float) -> None:
-        game = self.game
         sx, sy, st = self.stroke_start
         self.stroke_pointer = None
         if now - st < TAP_SECONDS and abs(x - sx) + abs(y - sy) < TAP_PIXELS:  # a tap: a cut, or the menu
-            game.modeling.cancel_points()
-            camera = game.camera()
-            if not (game.modeling.prune_at(x, y, camera) or game.modeling.edit_at(x, y, camera)):
+            self.modeling.cancel_points()
+            camera = self.camera()
+            if not (self.modeling.prune_at(x, y, camera) or self.modeling.edit_at(x, y, camera)):
                 self.tap(x, y)
         else:
-            game.modeling.finish()
+            self.modeling.finish()
 
     def _pointer(self, kind: str, pid: int, x: float, y: float, now: float) -> None:
-        game = self.game
         if self._stroke(kind, pid, x, y, now):
             return
         if kind == DOWN:
-            if game.menu.hit(x, y):
+            if self.menu.hit(x, y):
                 self.menu_pointers.add(pid)
-                for action in game.menu.press(x, y):
-                    game.act(*action)
+                for action in self.menu.press(x, y):
+                    self.care.act(*action)
             else:
-                game.gestures.menu_open = game.menu.visible
-                game.gestures.down(pid, x, y, now)
+                self.gestures.menu_open = self.menu.visible
+                self.gestures.down(pid, x, y, now)
         elif kind == MOVE:
             if pid in self.menu_pointers:
-                for action in game.menu.drag(x, y):
-                    game.act(*action)
+                for action in self.menu.drag(x, y):
+                    self.care.act(*action)
             else:
-                game.gestures.move(pid, x, y, now)
+                self.gestures.move(pid, x, y, now)
         elif pid in self.menu_pointers:
             self.menu_pointers.discard(pid)
-            for action in game.menu.release():
-                game.act(*action)
-        elif game.gestures.up(pid, x, y, now):
+            for action in self.menu.release():
+                self.care.act(*action)
+        elif self.gestures.up(pid, x, y, now):
             self.tap(x, y)
 
     def tap(self, x: float, y: float) -> None:
         """A tap outside the menu: close the menu if it is open; else pick the ripe fruit or choose the
         tree that was tapped, or open the menu there (the modeler's tools page in the modeler)."""
-        game = self.game
-        if game.family.visible:
-            game.family.tap(x, y)
-        elif game.menu.visible:
-            for action in game.menu.hide():
-                game.act(*action)
-        elif game.modeling.active or not game.picker.tap(x, y, game.camera()):
-            game.care.sync_sliders()
-            game.menu.show_at(x, y, "tools" if game.modeling.active else None)
-            game.coach.done("open_menu")
-        game.gestures.menu_open = game.menu.visible
+        if self.family.visible:
+            index = self.family.tap(x, y)
+            if index is not None:
+                self.care.care_for(index)
+        elif self.menu.visible:
+            for action in self.menu.hide():
+                self.care.act(*action)
+        elif self.modeling.active or not self.picker.tap(x, y, self.camera()):
+            self.care.sync_sliders()
+            self.menu.show_at(x, y, "tools" if self.modeling.active else None)
+            self.coach.done("open_menu")
+        self.gestures.menu_open = self.menu.visible
 
     def _key(self, key: int, down: bool) -> bool:
-        game = self.game
         if key == pygame.K_w:
             if down != self.keys_water:
                 self.keys_water = down
-                game.act("water", float(down))
+                self.care.act(Action.WATER, float(down))
             return True
         if not down:
             return True
         if key == pygame.K_ESCAPE:
             return False
-        if not game.menu.visible:
+        if not self.menu.visible:
             self._camera_key(key)
         if key == pygame.K_m:
-            self.tap(game.size[0] * 0.6, game.size[1] * 0.2)
+            self.tap(self.size[0] * 0.6, self.size[1] * 0.2)
         elif key == pygame.K_r:
-            game.act("replant", 1.0)
+            self.care.act(Action.REPLANT, 1.0)
         elif key == pygame.K_p:
-            game.set_speed(0.0 if game.loop.speed else 1.0)
+            self.care.set_speed(0.0 if self.state.loop.speed else 1.0)
         elif key in (pygame.K_1, pygame.K_2, pygame.K_3):
-            game.set_speed(SPEEDS[key - pygame.K_1 + 1])
+            self.care.set_speed(SPEEDS[key - pygame.K_1 + 1])
         elif key == pygame.K_F5:
-            game.act("save", 1.0)
+            self.care.act(Action.SAVE, 1.0)
         elif key == pygame.K_F9:
-            game.act("load", 1.0)
+            self.care.act(Action.LOAD, 1.0)
         return True
 
     def _camera_key(self, key: int) -> None:
         """Arrows turn and tilt, +/- zoom."""
-        control = self.game.control
+        control = self.state.control
         turns = {pygame.K_LEFT: (KEY_YAW, 0), pygame.K_RIGHT: (-KEY_YAW, 0),
                  pygame.K_UP: (0, KEY_TILT), pygame.K_DOWN: (0, -KEY_TILT)}
         if key in turns:

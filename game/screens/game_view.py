@@ -1,24 +1,26 @@
-"""What the game shows: the garden's geometry (rebuilt when the clocks or the L-strings change) and the HUD."""
+"""What the game shows: the garden's geometry (rebuilt when the clocks or the L-strings change), framed by
+the orbit camera."""
 
 from __future__ import annotations
 
 import math
 from concurrent.futures import ThreadPoolExecutor
-from typing import TYPE_CHECKING
 
 import moderngl
 import numpy as np
 
 from arbor.engine.life.form.growth_view import GrowthView
 from arbor.engine.life.plant import seasons
+from arbor.engine.life.rules.rules import Rules
+from arbor.game.render.camera import OrbitCamera
 from arbor.game.render.falling import FALL_SECONDS, falling_view
 from arbor.game.render.garden import BARK, GardenRenderer, Placed
 from arbor.game.render.instanced import Detail, TreeBuffers, prepare_upload
 from arbor.game.render.roots import rocks_view, roots_view
+from arbor.game.screens.modeler import ModelingMode
+from arbor.game.screens.state import GameState
 
-if TYPE_CHECKING:
-    from arbor.game.screens.game import Game
-
+BASE_PITCH = 8.0  # degrees the camera looks down on the garden before any tilt
 HEALTHY_LEAF, WILTED_LEAF = np.array([1.0, 1.0, 1.0]), np.array([2.6, 0.85, 0.45])  # green -> yellow-brown
 WILT_STEP = 0.02  # a change of wilt this large rebuilds the tree (drooping angles change its shape)
 ASYNC_MODULES = 60_000  # trees with more modules are rebuilt on a worker thread
@@ -32,10 +34,11 @@ def _built(shown, clocks, const: dict) -> GrowthView:
 
 
 class GameView:
-    """Keeps every tree's instance records current and draws the frame (3D scene, then the HUD)."""
+    """Keeps every tree's instance records current and draws the 3D scene."""
 
-    def __init__(self, game: Game) -> None:
-        self.game = game
+    def __init__(self, state: GameState, renderer: GardenRenderer, modeling: ModelingMode, rules: Rules,
+                 size: tuple[int, int]) -> None:
+        self.state, self.renderer, self.modeling, self.rules, self.size = state, renderer, modeling, rules, size
         self.views: dict[int, tuple[tuple, GrowthView, TreeBuffers, int]] = {}  # world id -> key, view, GPU, ver
         self.triangles = 0
         self.fall_started: dict[int, float] = {}  # shed branch -> real time its fall began
@@ -49,14 +52,13 @@ class GameView:
     def rebuild(self) -> None:
         """Bring every tree's records up to date: a full build when its L-string (or wilt) changed,
         else only its growing parts move (engine/life/growth_view.py)."""
-        game = self.game
-        renderer: GardenRenderer = game.renderer
-        here = np.array([game.world.position[0], 0.0, game.world.position[1]])
+        state, renderer = self.state, self.renderer
+        here = np.array([state.world.position[0], 0.0, state.world.position[1]])
         placed, seen = [], set()
-        for world in game.garden.worlds:
-            cared = world is game.world
-            shown = game.modeling.lstring() if cared and game.modeling.active else world.tree.lstring
-            clocks = game.clocks() if cared else world.clocks()
+        for world in state.garden.worlds:
+            cared = world is state.world
+            shown = self.modeling.lstring() if cared and self.modeling.active else world.tree.lstring
+            clocks = state.clocks() if cared else world.clocks()
             alive = world.sim.state.alive
             key = (id(shown), len(shown), round(clocks.wilt / WILT_STEP), alive)
             entry = self._view(world, shown, clocks, key)
@@ -70,42 +72,42 @@ class GameView:
         placed += self._falling(here)
         placed += self._roots(here)
         placed += self._rocks(here)
-        current = self.views[id(game.world)][1]
+        current = self.views[id(state.world)][1]
         renderer.place(placed, current.lo, current.hi)
         self._tints()
         self._count_triangles()
 
     def _roots(self, here: np.ndarray) -> list[Placed]:
         """Every tree's roots, in the cut-away view only (elsewhere the ground hides them)."""
-        game = self.game
-        if not game.cutaway:
+        state = self.state
+        if not state.cutaway:
             for _, buffers in self.root_buffers.values():
                 buffers.release()
             self.root_buffers.clear()
             return []
         out = []
-        for world in game.garden.worlds:
+        for world in state.garden.worlds:
             key = (id(world.roots.lstring), len(world.roots.lstring))
             entry = self.root_buffers.get(id(world))
             if entry is None or entry[0] != key:
                 buffers = entry[1] if entry else TreeBuffers()
-                game.renderer.trees.sync(buffers, roots_view(world.roots))
+                self.renderer.trees.sync(buffers, roots_view(world.roots))
                 entry = self.root_buffers[id(world)] = (key, buffers)
             offset = np.array([world.position[0], 0.0, world.position[1]]) - here
             out.append(Placed(entry[1], offset, -2))
-            if world is game.world:
+            if world is state.world:
                 self.roots_bottom = float(entry[1].view.lo[1])
         return out
 
     def _rocks(self, here: np.ndarray) -> list[Placed]:
         """The garden's rocks (grey balls; shoots grow around them)."""
-        rocks = self.game.garden.rocks
+        rocks = self.state.garden.rocks
         if not rocks:
             return []
         key = tuple(rocks)
         if self.rock_buffers is None or self.rock_buffers[0] != key:
             buffers = self.rock_buffers[1] if self.rock_buffers else TreeBuffers()
-            self.game.renderer.trees.sync(buffers, rocks_view(rocks))
+            self.renderer.trees.sync(buffers, rocks_view(rocks))
             self.rock_buffers = (key, buffers)
         return [Placed(self.rock_buffers[1], -here, -3)]
 
@@ -133,15 +135,15 @@ class GameView:
         return entry
 
     def _count_triangles(self) -> None:
-        placed, details = self.game.renderer.placed, self.game.renderer.last_details
+        placed, details = self.renderer.placed, self.renderer.last_details
         if len(details) != len(placed):
             details = [Detail(0)] * len(placed)
         self.triangles = sum(d.triangles(p.buffers) for p, d in zip(placed, details, strict=True))
 
     def _tints(self) -> None:
-        game, renderer = self.game, self.game.renderer
-        alive = game.world.sim.state.alive
-        wilt = game.clocks().wilt if alive else 1.0
+        renderer = self.renderer
+        alive = self.state.world.sim.state.alive
+        wilt = self.state.clocks().wilt if alive else 1.0
         renderer.leaf_tint = tuple(HEALTHY_LEAF + (WILTED_LEAF - HEALTHY_LEAF) * wilt)
         renderer.bark_tint = BARK if alive else (1.0, 1.0, 1.0)
 
@@ -150,8 +152,8 @@ class GameView:
         for old in self.falls:
             old.release()
         self.falls = []
-        now, out, seen = self.game.clock(), [], set()
-        for world in self.game.garden.worlds:
+        now, out, seen = self.state.clock(), [], set()
+        for world in self.state.garden.worlds:
             offset = np.array([world.position[0], 0.0, world.position[1]]) - here
             recent = world.tree.last_rewrite_T - FALL_FRESH  # a branch shed long ago (while away) just lies there
             for fallen in world.tree.fallen:
@@ -159,55 +161,66 @@ class GameView:
                 started = self.fall_started.setdefault(id(fallen), now if fallen.at >= recent else -FALL_SECONDS)
                 if now - started < FALL_SECONDS:
                     buffers = TreeBuffers()
-                    self.game.renderer.trees.sync(buffers, falling_view(fallen, (now - started) / FALL_SECONDS))
+                    self.renderer.trees.sync(buffers, falling_view(fallen, (now - started) / FALL_SECONDS))
                     self.falls.append(buffers)
                     out.append(Placed(buffers, offset, -1))
         self.fall_started = {k: v for k, v in self.fall_started.items() if k in seen}
         return out
 
-    def draw(self, fbo: moderngl.Framebuffer) -> None:
-        """Render the scene and the HUD/menu overlay into ``fbo``."""
-        game = self.game
+    def camera(self) -> OrbitCamera:
+        """The orbit camera for this frame: gestures applied to an auto-framed view of the tree."""
+        r, control, modeling = self.renderer, self.state.control, self.modeling.active
+        cam = OrbitCamera(yaw=control.yaw, pitch=BASE_PITCH + control.tilt)
+        r_lo, r_hi = self.modeling.bounds if modeling and self.modeling.bounds else (r.lo, r.hi)
+        height = max(float(r_hi[1]), 2.0 if modeling else 4.0)  # a sapling stands small in its garden
+        width = max(float(np.max(r_hi[[0, 2]] - r_lo[[0, 2]])), 1.0)
+        bottom = self.roots_bottom if self.state.cutaway and not modeling else 0.0
+        lo, hi = np.array([-width / 2, bottom, -width / 2]), np.array([width / 2, height, width / 2])
+        cam.frame_bounds(lo, hi, self.size[0] / self.size[1], fill=0.8)
+        cam.distance *= control.distance
+        return cam
+
+    def draw(self, fbo: moderngl.Framebuffer) -> OrbitCamera:
+        """Render the scene into ``fbo``; returns the camera it was seen through (the HUD projects with it)."""
+        renderer = self.renderer
         self.rebuild()
-        camera = game.camera()
-        game.renderer.time = game.clock()
-        game.renderer.wind = self.wind()
-        game.renderer.backdrop.cutaway = game.cutaway
+        camera = self.camera()
+        renderer.time = self.state.clock()
+        renderer.wind = self.wind()
+        renderer.backdrop.cutaway = self.state.cutaway
         self._season_look()
-        game.renderer.render(fbo, camera, self.scene_sun(), game.size)
+        renderer.render(fbo, camera, self.scene_sun(), self.size)
         self._count_triangles()  # (again: the levels of detail of this very frame)
-        game.hud.draw(camera)
+        return camera
 
     def scene_sun(self) -> np.ndarray:
         """The sun the scene is lit by. When days fly by (a day of the sun in less than SMOOTH_DAY real
         seconds) the light leans toward the noon sun, fully at a day in a few seconds: at 100x the
         screen neither strobes nor goes dark every second, while the sim keeps its real sun."""
-        game = self.game
-        sim = game.world.sim
+        sim = self.state.world.sim
         sun = sim.sun_direction()
-        turn = sim.state.sun_speed * game.loop.speed  # radians of the sun per real second
+        turn = sim.state.sun_speed * self.state.loop.speed  # radians of the sun per real second
         day = 2 * math.pi / turn if turn > 0 else math.inf
         lean = min(max((SMOOTH_DAY - day) / (SMOOTH_DAY - STEADY_DAY), 0.0), 1.0)
         if lean == 0.0:
             return sun
-        noon = np.array([0.0, sim.sun_height() - math.sin(sim.state.sun_angle) + 1.0, game.rules.sun.side])
+        noon = np.array([0.0, sim.sun_height() - math.sin(sim.state.sun_angle) + 1.0, self.rules.sun.side])
         unit = lambda v: v / max(float(np.linalg.norm(v)), 1e-9)  # noqa: E731
         return unit(unit(sun) * (1.0 - lean) + unit(noon) * lean)
 
     def _season_look(self) -> None:
         """Autumn colours and the leaves that have fallen, for the renderer."""
-        game = self.game
-        turns = game.world.sim.state.sun_turns
-        game.renderer.autumn = seasons.autumn_colour(turns, game.rules)
-        game.renderer.leaf_keep = seasons.leaf_keep(turns, game.rules)
+        turns = self.state.world.sim.state.sun_turns
+        self.renderer.autumn = seasons.autumn_colour(turns, self.rules)
+        self.renderer.leaf_keep = seasons.leaf_keep(turns, self.rules)
 
     def wind(self) -> np.ndarray:
         """The wind vector for the shaders: the rules' direction x strength, scaled to the tree's size,
         with slow gusts (in real time: the air moves the same at every game speed)."""
-        rules = self.game.rules.wind
-        height = max(float(self.game.renderer.hi[1]), 1.0)
-        t = self.game.clock()
+        rules = self.rules.wind
+        height = max(float(self.renderer.hi[1]), 1.0)
+        t = self.state.clock()
         gust = 1.0 + rules.gusts * (0.6 * math.sin(t * 0.23) + 0.4 * math.sin(t * 0.61 + 1.3))
         a = math.radians(rules.direction)
-        shower = self.game.rules.weather.rain_wind if self.game.world.sim.raining() else 1.0
+        shower = self.rules.weather.rain_wind if self.state.world.sim.raining() else 1.0
         return np.array([math.cos(a), 0.0, math.sin(a)]) * rules.strength * shower * 0.1 * height * max(gust, 0.0)

@@ -9,6 +9,8 @@ modeling and resumes, growing branches from the drawn growth points, when the mo
 
 from __future__ import annotations
 
+from collections.abc import Callable
+
 import numpy as np
 import pygame
 
@@ -20,7 +22,9 @@ from arbor.engine.modeling.regions import prune
 from arbor.engine.modeling.strokes import Stroke
 from arbor.game.paths import ASSETS
 from arbor.game.render.camera import OrbitCamera, project_points, unproject_to_plane
+from arbor.game.render.garden import GardenRenderer
 from arbor.game.render.ui import draw_joint
+from arbor.game.screens.state import GameState
 from arbor.game.strings import text
 from arbor.game.tools.crown import CrownTool
 from arbor.game.tools.region import RegionTool
@@ -34,8 +38,9 @@ PREVIEW_SECONDS = 0.05  # live preview at most 20 times per second of drawing
 class ModelingMode:
     """Stroke capture, conversion and undo/redo for one game."""
 
-    def __init__(self, game) -> None:
-        self.game = game
+    def __init__(self, state: GameState, renderer: GardenRenderer, size: tuple[int, int],
+                 camera: Callable[[], OrbitCamera]) -> None:
+        self.state, self.renderer, self.size, self.camera = state, renderer, size, camera
         self.active = False
         self.modeler: Modeler | None = None
         self.points: list[np.ndarray] = []
@@ -61,7 +66,7 @@ class ModelingMode:
     def segments(self, ls: LString):
         """The tree's segments as drawn now (the modeler's view of the geometry), cached per L-string:
         a stroke's every pointer move asks for them."""
-        world = self.game.world
+        world = self.state.world
         key = (id(ls), len(ls), world.clocks().length_time)
         if self._segments is None or self._segments[0] != key:
             self._segments = (key, grow_geometry(ls, world.clocks(), world.tree.geometry_constants).turtle.segments)
@@ -72,19 +77,19 @@ class ModelingMode:
         if self.active:
             self.active = False
             self.cancel()
-            self.game.set_speed(self.resume_speed)
-            self.game.say(text("messages.modeler_off"))
+            self.state.loop.speed = self.resume_speed
+            self.state.say(text("messages.modeler_off"))
             return
         self.active = True
-        r = self.game.renderer
+        r = self.renderer
         center = np.clip((r.lo + r.hi) / 2, -WORK_SIZE, WORK_SIZE)
         half = np.clip((r.hi - r.lo) / 2 * 1.6, 1.6, WORK_SIZE)  # the view never grows past the work volume
         self.bounds = (np.array([center[0] - half[0], 0.0, center[2] - half[2]]), center + half)
-        self.resume_speed = self.game.loop.speed or 1.0
-        self.game.set_speed(0.0)
-        self.modeler = Modeler(lstring=self.game.world.tree.lstring, segments_of=self.segments)
+        self.resume_speed = self.state.loop.speed or 1.0
+        self.state.loop.speed = 0.0
+        self.modeler = Modeler(lstring=self.state.world.tree.lstring, segments_of=self.segments)
         self.crown_tool.clear()  # a new editing session: earlier crown steps cannot be undone into
-        self.game.say(text("messages.modeler_on"))
+        self.state.say(text("messages.modeler_on"))
 
     def tool(self, name: str) -> None:
         """Switch to tool ``name`` (crown, shaping, pruning, symbols) or back to branches if it is on
@@ -97,9 +102,9 @@ class ModelingMode:
         self.region_tool.clear()
         self.cancel()
         if name == "shaping" and on:
-            self.game.say(text("messages.shaping_on", op=text(f"shapes.{self.crown_tool.op}")))
+            self.state.say(text("messages.shaping_on", op=text(f"shapes.{self.crown_tool.op}")))
         else:
-            self.game.say(text(f"messages.{name}_on" if on else "messages.crown_off"))
+            self.state.say(text(f"messages.{name}_on" if on else "messages.crown_off"))
 
     def prune_at(self, x: float, y: float, camera: OrbitCamera) -> bool:
         """With the prune tool, cut the branch under pixel (x, y) and what grows from it (undoable).
@@ -109,8 +114,8 @@ class ModelingMode:
         segs = self.segments(self.modeler.lstring)
         if len(segs) == 0:
             return False
-        a = project_points(camera, self.game.size, segs.start)
-        b = project_points(camera, self.game.size, segs.end)
+        a = project_points(camera, self.size, segs.start)
+        b = project_points(camera, self.size, segs.end)
         ab = b - a
         t = np.clip(np.einsum("ij,ij->i", [x, y] - a, ab) / np.maximum(np.einsum("ij,ij->i", ab, ab), 1e-9), 0, 1)
         dist = np.linalg.norm(a + t[:, None] * ab - [x, y], axis=1)
@@ -118,12 +123,12 @@ class ModelingMode:
         if not dist[k] <= PICK_PIXELS:
             return False
         if segs.parent[k] < 0:
-            self.game.say(text("messages.prune_base"))
+            self.state.say(text("messages.prune_base"))
             return True
         before = self.modeler.lstring
         self.modeler.commit(prune(before, int(segs.module[k])))
-        self.game.world.tree.lstring = self.modeler.lstring
-        self.game.say(text("messages.pruned", count=len(segs) - len(self.segments(self.modeler.lstring))))
+        self.state.world.tree.lstring = self.modeler.lstring
+        self.state.say(text("messages.pruned", count=len(segs) - len(self.segments(self.modeler.lstring))))
         return True
 
     def cancel(self) -> None:
@@ -163,7 +168,7 @@ class ModelingMode:
         if self.shaping:
             self.crown_tool.drag_shape(x, y, self.stroke_camera or camera)
             return
-        hit = unproject_to_plane(self.stroke_camera or camera, self.game.size, x, y, *self.plane)
+        hit = unproject_to_plane(self.stroke_camera or camera, self.size, x, y, *self.plane)
         if hit is not None:
             self.add3d(hit, t, (x, y))
 
@@ -204,19 +209,19 @@ class ModelingMode:
             pass  # the prune tool cuts with taps
         elif self.modeler is not None and len(self.points) >= 3:
             new, result = self.modeler.convert(Stroke(np.array(self.points), np.array(self.times)))
-            budget = self.game.world.tree.deriver.budget
+            budget = self.state.world.tree.deriver.budget
             if budget is not None and len(new) > max(budget, len(self.modeler.lstring)):
-                self.game.say(text("messages.stroke_budget"))  # nothing is lost: the stroke is just not added
+                self.state.say(text("messages.stroke_budget"))  # nothing is lost: the stroke is just not added
                 self.cancel()
                 return
             if result.pieces:
                 self.modeler.commit(new)
-            self.game.world.tree.lstring = self.modeler.lstring
+            self.state.world.tree.lstring = self.modeler.lstring
             how = text("messages.stroke_merged" if result.merged else "messages.stroke_joined"
                        if result.snapped_to is not None else "messages.stroke_new")
             if result.bypassed:
                 how += ", " + text("messages.stroke_bent", count=result.bypassed)
-            self.game.say(text("messages.stroke", pieces=result.pieces, points=result.growth_points, how=how))
+            self.state.say(text("messages.stroke", pieces=result.pieces, points=result.growth_points, how=how))
         self.cancel()
 
     def draw_outline(self, surface: pygame.Surface, project) -> None:
@@ -230,7 +235,7 @@ class ModelingMode:
     def born_visible(self) -> float:
         """A birth time for leaves and blossoms added while the garden is paused: one growth time
         constant ago, so they show at once (63 % grown) and finish growing when time runs again."""
-        return self.game.world.clocks().length_time - self.game.world.tree.geometry_constants["TAU"]
+        return self.state.world.clocks().length_time - self.state.world.tree.geometry_constants["TAU"]
 
     def option_label(self) -> str:
         """The menu option button's label: the lobe operation with the shape tool, else the region edit."""
@@ -262,22 +267,14 @@ class ModelingMode:
     def undo(self) -> None:
         """Take back the last stroke."""
         if self.modeler is not None and self.modeler.undo():
-            self.game.world.tree.lstring = self.modeler.lstring
+            self.state.world.tree.lstring = self.modeler.lstring
 
     def redo(self) -> None:
         """Put back the last undone stroke."""
         if self.modeler is not None and self.modeler.redo():
-            self.game.world.tree.lstring = self.modeler.lstring
+            self.state.world.tree.lstring = self.modeler.lstring
 
     def lstring(self) -> LString:
         """What to draw now: the live preview while a stroke is being drawn, else the tree."""
-        return self.preview if self.preview is not None else self.game.world.tree.lstring
+        return self.preview if self.preview is not None else self.state.world.tree.lstring
 
-
-TOOLS = {  # menu button -> what it switches
-    "modeler": ModelingMode.toggle,
-    "crown": lambda mode: mode.tool("crown"),
-    "shape": lambda mode: mode.tool("shaping"),
-    "prune": lambda mode: mode.tool("pruning"),
-    "symbols": lambda mode: mode.tool("symbols"),
-}

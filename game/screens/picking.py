@@ -2,15 +2,12 @@
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
-
 import numpy as np
 
 from arbor.game.render.camera import OrbitCamera, project_points
+from arbor.game.screens.care import CareActions
+from arbor.game.screens.state import GameState
 from arbor.game.strings import text
-
-if TYPE_CHECKING:
-    from arbor.game.screens.game import Game
 
 FRUIT_PIXELS = 28  # a tap this close to a ripe fruit picks it (a finger, not a mouse pointer)
 TRUNK_PIXELS = 40  # a tap this close to another tree's trunk line chooses it
@@ -19,36 +16,37 @@ TRUNK_PIXELS = 40  # a tap this close to another tree's trunk line chooses it
 class Picker:
     """Finds what a tap on the scene points at (see module docstring)."""
 
-    def __init__(self, game: Game) -> None:
-        self.game = game
+    def __init__(self, state: GameState, views: dict, size: tuple[int, int], care: CareActions) -> None:
+        self.state, self.size, self.care = state, size, care
+        self.views = views  # the view's records of the trees (world id -> key, records, ...)
 
     def tap(self, x: float, y: float, camera: OrbitCamera) -> bool:
         """Pick the ripe fruit or choose the tree at (x, y) (to care for, or as the other parent of a
         cross the player started); False when the tap hit neither."""
-        game = self.game
-        if game.care.crossing is not None:
-            game.care.cross_with(self.tree_at(x, y, camera))
+        state, care = self.state, self.care
+        if care.crossing is not None:
+            care.cross_with(self.tree_at(x, y, camera))
             return True
         module = self.fruit_at(x, y, camera)
-        if module is not None and game.garden.harvest(game.world, module) is not None:
-            game.say(text("messages.picked", count=len(game.garden.seeds)), 4)
+        if module is not None and state.garden.harvest(state.world, module) is not None:
+            state.say(text("messages.picked", count=len(state.garden.seeds)), 4)
             return True
         index = self.tree_at(x, y, camera)
         if index is None:
             return False
-        game.care.care_for(index)
+        care.care_for(index)
         return True
 
     def fruit_at(self, x: float, y: float, camera: OrbitCamera) -> int | None:
         """The module of the ripe fruit of the cared-for tree nearest to (x, y), if one is close."""
-        entry = self.game.view.views.get(id(self.game.world))
+        entry = self.views.get(id(self.state.world))
         if entry is None or not len(entry[1].fruits.data):
             return None
         view = entry[1]
         ripe = np.flatnonzero(view.fruits.data[:, 10] >= 1.0)
         if not len(ripe):
             return None
-        pixels = project_points(camera, self.game.size, view.fruits.data[ripe, 0:3].astype(float))
+        pixels = project_points(camera, self.size, view.fruits.data[ripe, 0:3].astype(float))
         dist = np.hypot(pixels[:, 0] - x, pixels[:, 1] - y)
         dist[~np.isfinite(dist)] = np.inf
         best = int(np.argmin(dist))
@@ -56,16 +54,16 @@ class Picker:
 
     def tree_at(self, x: float, y: float, camera: OrbitCamera) -> int | None:
         """The index of the other tree whose trunk line (foot to top) passes closest to (x, y)."""
-        game = self.game
-        here = np.array(game.world.position)
+        state = self.state
+        here = np.array(state.world.position)
         best, best_dist = None, float(TRUNK_PIXELS)
-        for i, world in enumerate(game.garden.worlds):
-            entry = game.view.views.get(id(world))
-            if world is game.world or entry is None:
+        for i, world in enumerate(state.garden.worlds):
+            entry = self.views.get(id(world))
+            if world is state.world or entry is None:
                 continue
             dx, dz = np.array(world.position) - here
             top = max(float(entry[1].hi[1]), 1.0)
-            ends = project_points(camera, game.size, np.array([[dx, 0.0, dz], [dx, top, dz]]))
+            ends = project_points(camera, self.size, np.array([[dx, 0.0, dz], [dx, top, dz]]))
             if not np.isfinite(ends).all():
                 continue
             dist = _to_segment(np.array([x, y]), ends[0], ends[1])

@@ -11,54 +11,54 @@ from __future__ import annotations
 
 import os
 import time
+from collections.abc import Callable
 from pathlib import Path
-from typing import TYPE_CHECKING
 
 from arbor.engine.base.errors import LSysError
 from arbor.engine.life.keep.away import AwaySummary, away_seconds, live_away
 from arbor.engine.life.keep.save import SavedGarden, read_garden, write_garden
 from arbor.engine.life.lineage.lineage import new_lineage, species_of
 from arbor.engine.life.plant.sim import sun_angle_at
+from arbor.engine.life.rules.rules import Rules
+from arbor.engine.life.world.actions import Action
 from arbor.engine.life.world.garden import MAX_GARDEN, Garden
 from arbor.engine.life.world.world import World
+from arbor.engine.lsystem.lsys import LSystem
+from arbor.game.screens.config import GameConfig
+from arbor.game.screens.state import GameState
 from arbor.game.strings import text
-
-if TYPE_CHECKING:
-    from arbor.game.screens.game import Game
 
 
 class SaveKeeper:
     """Loads, saves and autosaves one game's garden."""
 
-    def __init__(self, game: Game) -> None:
-        self.game = game
-        self.last_autosave = game.clock()
+    def __init__(self, state: GameState, config: GameConfig, rules: Rules, system: LSystem,
+                 wall_clock: Callable[[], float]) -> None:
+        self.state, self.config, self.rules, self.system, self.wall_clock = state, config, rules, system, wall_clock
+        self.last_autosave = state.clock()
         self.last_summary: AwaySummary | None = None
         self.fresh = False  # True when start() found no garden to resume: a new player
 
     @property
     def autosave_path(self) -> Path:
         """Where autosaves go (and where the game resumes from)."""
-        return self.game.config.saves / "autosave.arbor"
+        return self.config.saves / "autosave.arbor"
 
     def new_world(self) -> World:
         """A fresh sapling with meters at a random 25-100 %, seeded from the config or the clock."""
-        game = self.game
-        seed = game.config.seed if game.config.seed is not None else int(game.wall_clock() * 1000) % 2**31
-        world = World(game.system, game.rules, seed=seed)
-        world.apply("replant", 1.0)
-        world.lineage = new_lineage(world.lineage.seed, game.wall_clock(), species_of(game.system.file))
-        if game.rules.pace == "home":  # a day of the sun lasts a day: start it at the player's time of day
-            now = time.localtime(game.wall_clock())
+        seed = self.config.seed if self.config.seed is not None else int(self.wall_clock() * 1000) % 2**31
+        world = World(self.system, self.rules, seed=seed)
+        world.apply(Action.REPLANT, 1.0)
+        world.lineage = new_lineage(world.lineage.seed, self.wall_clock(), species_of(self.system.file))
+        if self.rules.pace == "home":  # a day of the sun lasts a day: start it at the player's time of day
+            now = time.localtime(self.wall_clock())
             world.sim.state.sun_angle = sun_angle_at(now.tm_hour * 3600 + now.tm_min * 60 + now.tm_sec)
-        game.input_log = [(0, "replant", 1.0)]
         return world
 
     def start(self) -> Garden:
         """The garden the game starts with: the saved one when resuming, else a new sapling."""
-        game = self.game
-        remove_stale_temp_files(game.config.saves)
-        if game.config.resume and self.autosave_path.exists():
+        remove_stale_temp_files(self.config.saves)
+        if self.config.resume and self.autosave_path.exists():
             garden = self.load(self.autosave_path)
             if garden is not None:
                 return garden
@@ -67,23 +67,22 @@ class SaveKeeper:
 
     def load(self, path: Path) -> Garden | None:
         """A saved garden, grown by the time away; None (and the file kept as .broken) if unreadable."""
-        game = self.game
         try:
-            saved = read_garden(path, game.rules)
+            saved = read_garden(path, self.rules)
             saved.worlds += self._legacy_trees(path, len(saved.worlds))
         except LSysError as err:
             kept = path.with_name(path.name + ".broken")
             path.replace(kept)
-            game.say(text("messages.load_failed", name=path.name, error=err.message, kept=kept.name), 12)
+            self.state.say(text("messages.load_failed", name=path.name, error=err.message, kept=kept.name), 12)
             return None
         garden = saved.garden()
         if saved.dropped:
-            game.say(text("messages.lineage_dropped", count=saved.dropped, name=path.name), 8)
-        seconds = away_seconds(game.wall_clock(), saved.saved_at, game.rules.away.cap_days)
+            self.state.say(text("messages.lineage_dropped", count=saved.dropped, name=path.name), 8)
+        seconds = away_seconds(self.wall_clock(), saved.saved_at, self.rules.away.cap_days)
         summary = live_away(garden, seconds)
         self.last_summary = summary
         if summary.anything:
-            game.say(away_message(summary), 10)
+            self.state.say(away_message(summary), 10)
         return garden
 
     def _legacy_trees(self, path: Path, have: int) -> list[World]:
@@ -93,35 +92,34 @@ class SaveKeeper:
         out = []
         for legacy in sorted(path.parent.glob("garden-*.arbor"))[: MAX_GARDEN - have]:
             try:
-                world = read_garden(legacy, self.game.rules).world
+                world = read_garden(legacy, self.rules).world
             except LSysError as err:  # one bad neighbour does not lose the garden: keep it aside
                 legacy.replace(legacy.with_name(legacy.name + ".broken"))
-                self.game.say(text("messages.load_failed", name=legacy.name, error=err.message,
-                                   kept=legacy.name + ".broken"), 12)
+                self.state.say(text("messages.load_failed", name=legacy.name, error=err.message,
+                                    kept=legacy.name + ".broken"), 12)
                 continue
             out.append(world)
         return out
 
     def save(self, path: Path | None = None) -> bool:
         """Save the whole garden as one file (atomically); older garden-*.arbor files are folded in."""
-        game = self.game
         path = path or self.autosave_path
         try:
             path.parent.mkdir(parents=True, exist_ok=True)
-            garden = game.garden
-            write_garden(SavedGarden.of(garden, game.config.lsystem.name, game.wall_clock()), path)
+            garden = self.state.garden
+            write_garden(SavedGarden.of(garden, self.config.lsystem.name, self.wall_clock()), path)
             if path == self.autosave_path:
                 for legacy in path.parent.glob("garden-*.arbor"):
                     legacy.unlink()
         except OSError as exc:
-            game.say(text("messages.save_failed", error=exc.strerror), 6)
+            self.state.say(text("messages.save_failed", error=exc.strerror), 6)
             return False
-        self.last_autosave = game.clock()
+        self.last_autosave = self.state.clock()
         return True
 
     def autosave_if_due(self) -> None:
         """Autosave when the configured interval has passed since the last save."""
-        if self.game.clock() - self.last_autosave >= self.game.config.autosave_seconds:
+        if self.state.clock() - self.last_autosave >= self.config.autosave_seconds:
             self.save()
 
 

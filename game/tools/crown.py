@@ -95,7 +95,7 @@ class CrownTool:
             rings = [*state.rings, points]
             if len(rings) < 2:
                 self._remember(self.mode.modeler.lstring, replace(state, rings=rings))
-                self.mode.game.say(text("messages.crown_ring"))
+                self.mode.state.say(text("messages.crown_ring"))
                 return
             lobe = lobe_from_loops(rings, open_strokes=state.arches)
             lobes = [*state.lobes[:-1], lobe] if len(rings) > 2 else [*state.lobes, lobe]
@@ -111,19 +111,19 @@ class CrownTool:
         ms = (time.perf_counter() - start) * 1e3
         self.mode.modeler.commit(grown)
         self._remember(grown, state)
-        self.mode.game.world.tree.lstring = self.mode.modeler.lstring
+        self.mode.state.world.tree.lstring = self.mode.modeler.lstring
         if added == 0:
             key = "messages.crown_none"
         elif limited:
             key = "messages.crown_full"
-        self.mode.game.say(text(key, count=added, ms=ms, lobes=len(state.lobes), **extra))
+        self.mode.state.say(text(key, count=added, ms=ms, lobes=len(state.lobes), **extra))
 
     def regrow(self, base: LString, lobes: list[Lobe]) -> tuple[LString, int, bool]:
         """The crown grown from ``base`` into ``lobes`` within the tree's module budget: a try that is
         too big is grown again with proportionally fewer nodes (at most four tries). Returns the L-string,
         the branch pieces added and whether the budget limited them."""
         mode = self.mode
-        budget = mode.game.world.tree.deriver.budget
+        budget = mode.state.world.tree.deriver.budget
         room = MAX_CROWN_MODULES if budget is None else min(MAX_CROWN_MODULES, budget - len(base))
         nodes, seed = MAX_CROWN_MODULES // 4, int(mode.modeler.rng.integers(2**31))
         for _ in range(4):
@@ -148,9 +148,9 @@ class CrownTool:
         self.drag = None
         lobes = self.state().lobes
         if not lobes:
-            self.mode.game.say(text("messages.shape_none"))
+            self.mode.state.say(text("messages.shape_none"))
             return
-        size = self.mode.game.size
+        size = self.mode.size
         if self.op == "point":
             best = None
             for i, lobe in enumerate(lobes):
@@ -186,7 +186,7 @@ class CrownTool:
             d.edited = lobe.transformed(turn_deg=dx * 0.5)
         elif self.op == "squeeze":
             at = self._on_plane(*d.start, centre, camera)
-            toward = project_points(camera, self.mode.game.size, centre[None])[0] - d.start
+            toward = project_points(camera, self.mode.size, centre[None])[0] - d.start
             amount = float(np.clip(np.dot([dx, dy], toward) / max(np.linalg.norm(toward), 1.0) / 150.0, -0.6, 0.6))
             d.edited = lobe.squeezed(at, 0.5 * float(np.ptp(lobe.vertices, axis=0).max()), amount)
         elif d.point is not None:
@@ -209,7 +209,7 @@ class CrownTool:
         """The point under pixel (x, y) on the camera-facing plane through ``through``."""
         normal = camera.target - camera.eye
         normal = normal / max(float(np.linalg.norm(normal)), 1e-12)
-        hit = unproject_to_plane(camera, self.mode.game.size, x, y, through, normal)
+        hit = unproject_to_plane(camera, self.mode.size, x, y, through, normal)
         return through if hit is None else hit
 
     def draw(self, surface: pygame.Surface, project, points: list[np.ndarray], shaping: bool) -> None:

@@ -53,7 +53,7 @@ class RegionTool:
         return span[1] >= CONTOUR_PIXELS and span[1] >= 2 * span[0]
 
     def _radius(self) -> float:
-        r = self.mode.game.renderer
+        r = self.mode.renderer
         return 0.15 * max(float(np.max(r.hi - r.lo)), 1.0)
 
     def drag(self, point: np.ndarray, pixel: tuple[float, float] | None) -> None:
@@ -77,9 +77,9 @@ class RegionTool:
         """What a drag starting at ``pixel`` holds: ("move" | "size", the region then, the start point)."""
         if self.region is None:
             return None
-        camera = self.mode.game.camera()
-        centre = project_points(camera, self.mode.game.size, np.asarray(self.region.center, float)[None])[0]
-        rim = float(np.nanmax(np.hypot(*(project_points(camera, self.mode.game.size, self._outline().reshape(-1, 3))
+        camera = self.mode.camera()
+        centre = project_points(camera, self.mode.size, np.asarray(self.region.center, float)[None])[0]
+        rim = float(np.nanmax(np.hypot(*(project_points(camera, self.mode.size, self._outline().reshape(-1, 3))
                                           - centre).T)))
         away = float(np.hypot(pixel[0] - centre[0], pixel[1] - centre[1]))
         if not np.isfinite(rim) or away > rim * 1.15:
@@ -104,7 +104,7 @@ class RegionTool:
     def pinch(self, scale: float, x: float, y: float) -> bool:
         """A two-finger pinch centred on the region resizes it by ``scale`` (fingers apart: bigger);
         False when the pinch is elsewhere (the camera zooms instead)."""
-        if self.region is None or not self.hit(x, y, self.mode.game.camera()):
+        if self.region is None or not self.hit(x, y, self.mode.camera()):
             return False
         self.pixels, self.grab = [], None  # the first finger's drag is not a region drag any more
         self.region = scaled_region(self.region, min(max(scale, 0.5), 2.0))
@@ -119,7 +119,7 @@ class RegionTool:
         self.region = self.kept  # the start of the contour had moved the sphere: put it back
         self.contours.append(np.array(points))
         if len(self.contours) < 2:
-            self.mode.game.say(text("messages.contour_one"))
+            self.mode.state.say(text("messages.contour_one"))
             return
         side = camera.view()[0, :3]  # the screen's right, in the world
         left, right = sorted(self.contours[-2:], key=lambda c: float(c.mean(axis=0) @ side))
@@ -127,9 +127,9 @@ class RegionTool:
         try:
             self.region = fit_supertoroid(left, right)
         except ValueError:
-            self.mode.game.say(text("messages.contour_apart"))
+            self.mode.state.say(text("messages.contour_apart"))
             return
-        self.mode.game.say(text("messages.contour_region"))
+        self.mode.state.say(text("messages.contour_region"))
 
     def _outline(self) -> np.ndarray:
         """Points on the region's surface, (rings, points, 3): for drawing and for tap tests."""
@@ -147,7 +147,7 @@ class RegionTool:
         for a sphere)."""
         if self.region is None:
             return False
-        size = self.mode.game.size
+        size = self.mode.size
         if isinstance(self.region, Sphere):
             c, radius = project_ball(camera, size, self.region.center, self.region.radius)
             return bool(np.hypot(x - c[0], y - c[1]) <= radius)
@@ -161,7 +161,7 @@ class RegionTool:
         mode = self.mode
         if mode.modeler is None or not self.hit(x, y, camera):
             return False
-        world = mode.game.world
+        world = mode.state.world
         ls, clocks = world.tree.lstring, world.clocks()
         now, plastochron = clocks.length_time, float(world.tree.system.constants.get("P", 4.0))
         const = world.tree.geometry_constants
@@ -183,7 +183,7 @@ class RegionTool:
             world.tree.confine, world.tree.confine_left = self.region, GROW_STEPS
         key = "messages.new_axis" if changed < 0 else f"messages.{GROUPS.get(edit, 'edited')}"
         message = text(key, edit=text(f"edits.{edit}"), count=changed)
-        mode.game.say(message + (" " + text("messages.budget") if held else ""))
+        mode.state.say(message + (" " + text("messages.budget") if held else ""))
         return True
 
     def draw(self, surface: pygame.Surface, camera: OrbitCamera, font: pygame.font.Font, project,
@@ -198,13 +198,13 @@ class RegionTool:
         if isinstance(self.region, Supertoroid):
             for ring in self._outline():
                 draw_polyline(surface, project, ring, (255, 255, 255, 170), True, 2)
-        ls = self.mode.game.world.tree.lstring
-        self.labels = draw_symbols(surface, font, camera, self.mode.game.size, ls, self.positions(ls), self.region)
+        ls = self.mode.state.world.tree.lstring
+        self.labels = draw_symbols(surface, font, camera, self.mode.size, ls, self.positions(ls), self.region)
 
     def positions(self, ls: LString) -> np.ndarray:
         """Turtle positions of every module of the tree as drawn now (cached per L-string)."""
         if self._positions is None or self._positions[0] is not ls:
-            tree, clocks = self.mode.game.world.tree, self.mode.game.world.clocks()
+            tree, clocks = self.mode.state.world.tree, self.mode.state.world.clocks()
             view = render_view(ls, clocks, tree.geometry_constants)
             self._positions = (ls, module_positions(view, TurtleConfig(pipe_model=False, leaves_at_tips=0)))
         return self._positions[1]
