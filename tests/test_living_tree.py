@@ -189,6 +189,7 @@ def test_a_raised_tree_leaves_the_game_as_it_stands(system, tmp_path):
     """`arbor render` and `arbor export` take a save and show the tree exactly as saved."""
     import trimesh
 
+    from arbor.engine.base.units import METRE
     from arbor.engine.geometry.mesh import tree_mesh
     from arbor.engine.life.keep.save import SavedGarden, write_garden
     from arbor.game.cli import main
@@ -202,7 +203,7 @@ def test_a_raised_tree_leaves_the_game_as_it_stands(system, tmp_path):
     assert main(["export", str(path), "--out", str(tmp_path / "mine.glb")]) == 0
     scene = trimesh.load(tmp_path / "mine.glb")
     assert sum(len(g.faces) for g in scene.geometry.values()) == expected.n_triangles + roots.n_triangles
-    assert scene.bounds[0][1] < -1.0  # the roots go along, below the ground
+    assert scene.bounds[0][1] < -1.0 / METRE  # the roots go along, below the ground (exports are in metres)
     assert main(["render", str(path), "--out", str(tmp_path / "mine.png"), "--size", "320x240"]) == 0
     assert (tmp_path / "mine.png").stat().st_size > 1000
     assert main(["render", str(path), "--tree", "3", "--out", str(tmp_path / "x.png")]) == 1  # one tree only
