@@ -5,6 +5,9 @@ the piece it grows from in a bracketed string; so one compiled pass in index ord
 parent before its children.
 """
 
+# numba caches these kernels on disk under this module's name (arbor.engine...) and reloads them while
+# this file is unchanged: renaming the module needs a change here too, or the cache names a module gone.
+
 from __future__ import annotations
 
 import numba

@@ -1,5 +1,8 @@
 """The compiled loops behind context.neighbours (imported only when a system has contexts)."""
 
+# numba caches these kernels on disk under this module's name (arbor.engine...) and reloads them while
+# this file is unchanged: renaming the module needs a change here too, or the cache names a module gone.
+
 from __future__ import annotations
 
 import numba
