@@ -1,16 +1,27 @@
-"""Lobe benchmark: three drawn lobes -> attractors -> seed 004 growth -> L-string.
+"""Lobe benchmark: three drawn lobes -> attractors -> seed 004 growth -> L-string, and the modeler's
+crown cases with the game's module budget (issue 31).
 
 Run: python -m benchmarks.lobes
-Prints the median of 10 runs for: stitching the lobes from 5 closed strokes each, growing a crown
-from a drawn trunk into ~5,000 attractors, and writing the skeleton as L-string text.
+Prints the median of 20 runs for: stitching the lobes from 5 closed strokes each, growing a crown
+from a drawn trunk into ~5,000 attractors, and writing the skeleton as L-string text; then, for hand-
+drawn (1 % jitter) trees and lobes grown as the game grows them (12,000 modules, a leaf per tip, the
+game's radii): each lobe's fill (share of its volume within a tenth of its size from the wood), the
+drawn trunk's width after the crown over its drawn width, and the time.
 """
 
 from __future__ import annotations
 
+import time
+
 import numpy as np
 
+from arbor.engine.geometry.turtle import TurtleConfig, interpret
+from arbor.engine.life.form.interpret import CONSTANT_DEFAULTS, Clocks, grow_geometry
 from arbor.engine.modeling.crown import Skeleton, grow_into_lobes, skeleton_text
-from arbor.engine.modeling.lobes import Crossings, lobe_from_loops
+from arbor.engine.modeling.crown_fill import grow_within, lobe_fill
+from arbor.engine.modeling.lobes import Crossings, lobe_from_loops, lobe_from_outline
+from arbor.engine.modeling.modeler import Modeler
+from arbor.engine.modeling.strokes import Stroke
 from benchmarks import median_ms
 
 
@@ -27,6 +38,65 @@ def _lobes() -> list:
 
 
 
+GAME_BUDGET = 12000  # assets/lsystems/game_tree.lsys
+LEAF_TIP = "[&(45)L(1)]"  # the game ends every crown branch with a leaf
+
+
+def game_segments(ls):
+    """The segments as the game draws them (its radii: engine/life/form/interpret.py), fully grown."""
+    return grow_geometry(ls, Clocks(1e6, 1e6), CONSTANT_DEFAULTS).turtle.segments
+
+
+def _hand(points: np.ndarray, rng: np.random.Generator, jitter: float = 0.01) -> np.ndarray:
+    """A stroke as a hand draws it: 1 % jitter of its size."""
+    return points + rng.normal(0.0, jitter * float(np.ptp(points, axis=0).max()), points.shape)
+
+
+def _outline_lobe(center, rx: float, ry: float, rng: np.random.Generator):
+    a = np.linspace(0, 2 * np.pi, 90, endpoint=False)
+    outline = np.stack([center[0] + rx * np.cos(a), center[1] + ry * np.sin(a), np.full(90, center[2])], 1)
+    return lobe_from_outline(_hand(outline, rng, 0.005), depth=0.9)
+
+
+def drawn_tree(branches: list[tuple[float, float]], rng: np.random.Generator, slow: float = 1.0) -> Modeler:
+    """A hand-drawn trunk (0 -> 3) and branches from it to the given (x, y) ends."""
+    modeler = Modeler()
+    u = np.linspace(0, 1, 120)
+    modeler.add_stroke(Stroke(_hand(np.stack([0 * u, 3.0 * u, 0 * u], 1), rng), np.linspace(0, 1.2 * slow, 120)))
+    for x, y in branches:
+        path = np.stack([x * u, 2.6 + (y - 2.6) * u, 0.2 * u], 1)
+        modeler.add_stroke(Stroke(_hand(path, rng), np.linspace(0, 0.9, 120)))
+    return modeler
+
+
+def game_cases(grow=None) -> dict[str, tuple[list[float], float, float]]:
+    """The issue's cases with the game's budget (12,000 modules, leaves at the tips): three lobes over
+    three drawn branches, a lobe moved a lobe's width aside, a lobe high above a bare drawn trunk, two
+    lobes over no tree at all. For each: the lobes' fill, the drawn trunk's width after / before, ms."""
+    grow = grow or grow_within
+    rng = np.random.default_rng(7)
+    three = [(-2.4, 4.4), (0.0, 5.2), (2.4, 4.4)]
+    cases = {
+        "3 lobes over 3 drawn branches": (drawn_tree(three, rng),
+                                          [_outline_lobe((x, y + 0.9, 0.1), 1.2, 1.0, rng) for x, y in three]),
+        "a moved lobe": (drawn_tree([(0.0, 4.5)], rng), [_outline_lobe((2.6, 5.4, 0.1), 1.4, 1.1, rng)]),
+        "a lobe above a bare trunk": (drawn_tree([], rng), [_outline_lobe((0.0, 7.0, 0.0), 1.6, 1.3, rng)]),
+        "2 lobes over no tree": (Modeler(), [_outline_lobe((0.0, 2.6, 0.0), 1.3, 1.0, rng),
+                                             _outline_lobe((2.8, 5.0, 0.0), 1.3, 1.0, rng)]),
+    }
+    out = {}
+    for name, (modeler, lobes) in cases.items():
+        base = modeler.lstring
+        drawn = interpret(base, TurtleConfig()).segments.radius[0] if len(base) else np.nan
+        start = time.perf_counter()
+        grown, _, _ = grow(base, lobes, GAME_BUDGET - len(base), 5, game_segments, LEAF_TIP)
+        ms = (time.perf_counter() - start) * 1e3
+        segs = game_segments(grown)
+        width = float(segs.radius[0] / drawn)
+        out[name] = (lobe_fill(lobes, segs), width, ms)
+    return out
+
+
 def main() -> None:
     """Print timings and sizes."""
     ms, lobes = median_ms(_lobes)
@@ -41,6 +111,8 @@ def main() -> None:
           " have not yet entered a lobe; none once inside)")
     ms, text = median_ms(lambda: skeleton_text(skeleton))
     print(f"skeleton -> L-string: {ms:.1f} ms, {len(text)} characters")
+    for name, (fill, width, ms) in game_cases().items():
+        print(f"{name}: fill {' '.join(f'{f:.0%}' for f in fill)}, drawn trunk width x{width:.2f}, {ms:.0f} ms")
 
 
 if __name__ == "__main__":

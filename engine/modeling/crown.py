@@ -15,6 +15,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from scipy.spatial import cKDTree
 
 from arbor.engine.geometry.turtle import INITIAL_FRAME, unit
 from arbor.engine.lsystem import brackets
@@ -46,30 +47,28 @@ class Skeleton:
         return cls(points, np.arange(len(points)) - 1, heading, active)
 
 
-def _nearest(points: np.ndarray, targets: np.ndarray, chunk: int = 8192) -> tuple[np.ndarray, np.ndarray]:
-    """Index of and distance to the nearest target for every point."""
-    idx = np.empty(len(points), np.int64)
-    dist = np.empty(len(points))
-    fast = -2.0 * targets.astype(np.float32)  # single precision only ranks candidates; distances are exact
-    tt = 0.25 * np.einsum("ij,ij->i", fast, fast)
-    points32 = points.astype(np.float32)
-    for s in range(0, len(points), chunk):
-        scores = points32[s : s + chunk] @ fast.T
-        scores += tt  # |p|^2 - 2 p.q + |q|^2 without the |p|^2, which does not change the order
-        k = np.argmin(scores, axis=1)
-        idx[s : s + chunk] = k
-        gap = points[s : s + chunk] - targets[k]
-        dist[s : s + chunk] = np.sqrt(np.einsum("ij,ij->i", gap, gap))
-    return idx, dist
+def _nearest(points: np.ndarray, targets: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Index of and distance to the nearest target for every point (a k-d tree: O(n log m), not n x m)."""
+    if len(targets) == 0 or len(points) == 0:
+        return np.zeros(len(points), np.int64), np.full(len(points), np.inf)
+    dist, idx = cKDTree(targets).query(points)
+    return idx.astype(np.int64), dist
 
 
 def grow_into_lobes(skeleton: Skeleton, lobes: list[Lobe], attractors: np.ndarray, t_deg: float = 40.0,
                     step: float = 0.6, kill: float = 0.3, stop: float = 0.15, iterations: int = 30,
-                    max_nodes: int = 8000) -> Skeleton:
+                    max_nodes: int = 8000, labels: np.ndarray | None = None,
+                    rng: np.random.Generator | None = None) -> Skeleton:
     """Seed 004's growth (see module docstring), bounded by ``max_nodes``. A branch that would leave
-    the lobes once inside them is not grown, so the crown keeps the drawn silhouette."""
+    the lobes once inside them is not grown, so the crown keeps the drawn silhouette. ``labels`` says
+    which lobe each attractor belongs to: when the budget binds, the pieces of a step are shared among
+    the lobes in proportion to their unfilled volume and picked at random within a lobe (see _fair)."""
     remaining = np.asarray(attractors, float)
-    surface = np.concatenate([lobe.vertices for lobe in lobes])
+    labels = np.zeros(len(remaining), np.int64) if labels is None else np.asarray(labels, np.int64)
+    rng = np.random.default_rng(0) if rng is None else rng
+    count0 = np.maximum(np.bincount(labels, minlength=len(lobes)), 1)
+    volume = np.array([max(lobe.volume, 1e-12) for lobe in lobes])
+    surface = cKDTree(np.concatenate([lobe.vertices for lobe in lobes]))
     crossings = Crossings(lobes)
     inside = crossings.inside(skeleton.position) >= 0
     deep = np.zeros(len(skeleton.parent), bool)  # the branch has been well inside a lobe
@@ -81,23 +80,25 @@ def grow_into_lobes(skeleton: Skeleton, lobes: list[Lobe], attractors: np.ndarra
             break
         if owner_local is None:
             owner_local, _ = _nearest(remaining, skeleton.position[active])
-        _, to_surface = _nearest(skeleton.position[active], surface)
+        to_surface = surface.query(skeleton.position[active])[0]
         deep[active] |= inside[active] & (to_surface > 2 * stop)
         # only nodes inside a lobe stop at its surface, once their branch has been well inside it (a
         # branch entering through the surface keeps going), and the first nodes always sprout
         growing = (to_surface > stop) | ~inside[active] | ~deep[active] | (iteration == 0)
         keep = growing[owner_local]  # attractors of stopped nodes retire
-        remaining, owner_local = remaining[keep], owner_local[keep]
+        remaining, owner_local, labels = remaining[keep], owner_local[keep], labels[keep]
         skeleton.active[active] = False
         if len(remaining) == 0:
             break
-        nodes, directions, lengths = _grow_step(skeleton, remaining, active, owner_local, to_surface, t, step)
+        nodes, directions, lengths, lobe_of = _grow_pieces(skeleton, remaining, active, owner_local, to_surface, t,
+                                                         step, labels)
         new_pos = skeleton.position[nodes] + directions * lengths[:, None]
         new_inside = crossings.inside(new_pos) >= 0
         stays = new_inside | ~inside[nodes]
-        nodes, directions, new_pos, new_inside = nodes[stays], directions[stays], new_pos[stays], new_inside[stays]
         room = max_nodes - len(skeleton.parent)
-        nodes, directions, new_pos, new_inside = nodes[:room], directions[:room], new_pos[:room], new_inside[:room]
+        unfilled = volume * np.bincount(labels, minlength=len(lobes)) / count0
+        chosen = _fair(np.flatnonzero(stays), lobe_of, unfilled, room, rng)
+        nodes, directions, new_pos, new_inside = nodes[chosen], directions[chosen], new_pos[chosen], new_inside[chosen]
         if len(nodes) == 0:
             break
         inside = np.concatenate([inside, new_inside])
@@ -107,12 +108,48 @@ def grow_into_lobes(skeleton: Skeleton, lobes: list[Lobe], attractors: np.ndarra
         skeleton.heading = np.concatenate([skeleton.heading, directions])
         skeleton.active = np.concatenate([skeleton.active, np.ones(len(nodes), bool)])
         owner_local, reach = _nearest(remaining, new_pos)  # the new nodes are the next active set
-        remaining, owner_local = remaining[reach > kill], owner_local[reach > kill]
+        far = reach > kill
+        remaining, owner_local, labels = remaining[far], owner_local[far], labels[far]
     return skeleton
+
+
+def _fair(candidates: np.ndarray, lobe_of: np.ndarray, unfilled: np.ndarray, room: int,
+          rng: np.random.Generator) -> np.ndarray:
+    """The candidate pieces to grow within ``room``: all of them when they fit; else each lobe gets
+    a share of the room in proportion to its unfilled volume (what is left over goes to lobes with more
+    candidates), picked at random among its candidates, so no lobe and no place near the wood comes
+    first."""
+    if len(candidates) <= room:
+        return candidates
+    if room <= 0:
+        return candidates[:0]
+    lobe = lobe_of[candidates]
+    wanted = np.bincount(lobe, minlength=len(unfilled))
+    share = np.zeros(len(unfilled), np.int64)
+    left, open_ = room, wanted > 0
+    while left > 0 and open_.any():  # water-filling: a lobe never gets more than it asks for
+        weight = np.where(open_, np.maximum(unfilled, 1e-12), 0.0)
+        give = np.minimum(np.floor(left * weight / weight.sum()).astype(np.int64), wanted - share)
+        if give.sum() == 0:
+            give[np.argmax(np.where(open_, wanted - share, -1))] = 1
+        share += give
+        left -= int(give.sum())
+        open_ = share < wanted
+    order = rng.permutation(len(candidates))
+    rank = np.empty(len(candidates), np.int64)
+    by_lobe = order[np.argsort(lobe[order], kind="stable")]
+    starts = np.searchsorted(lobe[by_lobe], np.arange(len(unfilled)))
+    rank[by_lobe] = np.arange(len(candidates)) - starts[lobe[by_lobe]]
+    return np.sort(candidates[rank < share[lobe]])
 
 
 def _grow_step(skeleton: Skeleton, points, active, owner_local, to_surface, t, step):
     """One branch per (node, split piece): parent nodes, unit directions V_A, lengths."""
+    return _grow_pieces(skeleton, points, active, owner_local, to_surface, t, step, np.zeros(len(points), np.int64))[:3]
+
+
+def _grow_pieces(skeleton: Skeleton, points, active, owner_local, to_surface, t, step, labels):
+    """_grow_step's pieces and the lobe of each piece's attractors (the lobe most of them belong to)."""
     base = skeleton.position[active][owner_local]
     vec = points - base
     d = np.sqrt(np.einsum("ij,ij->i", vec, vec))
@@ -143,16 +180,19 @@ def _grow_step(skeleton: Skeleton, points, active, owner_local, to_surface, t, s
     v_cluster = weighted / np.maximum(total, 1e-12)[:, None]
     directions = unit(v_cluster + ALPHA * skeleton.heading[nodes] + BETA * GRAVITY)
     lengths = np.minimum(step, 0.5 * to_surface[node_local] + 0.02)
-    return nodes, directions, lengths
+    votes = np.zeros((len(keys), int(labels.max()) + 1))
+    np.add.at(votes, (group, labels), 1.0)
+    return nodes, directions, lengths, np.argmax(votes, axis=1)
 
 
 def skeleton_text(skeleton: Skeleton, root: int = 0, frame: np.ndarray = INITIAL_FRAME,
                   diameters: np.ndarray | None = None, tip: str = "") -> str:
     """The skeleton from node ``root`` on, for a turtle standing there with ``frame``, as ordinary
     L-string text: drawn F pieces (as the modeler writes them) with turns, side branches in brackets;
-    each piece gets its diameter from ``diameters`` (per node), or none (then the pipe model sets the
-    radii); ``tip`` ends every branch (e.g. a leaf). Frames are solved level by level in numpy; the
-    text is assembled with an explicit stack (no recursion, any depth)."""
+    each piece gets its diameter from ``diameters`` (per node; written only where it changes, as the
+    turtle carries it on), or none (then the pipe model sets the radii); ``tip`` ends every branch (e.g.
+    a leaf). Frames are solved level by level in numpy; the text is assembled with an explicit stack
+    (no recursion, any depth)."""
     pieces = _piece_texts(skeleton, root, np.array(frame, float), diameters)
     order = np.argsort(skeleton.parent, kind="stable")
     starts = np.searchsorted(skeleton.parent[order], np.arange(len(skeleton.parent) + 1))
@@ -211,7 +251,8 @@ def _piece_texts(skeleton: Skeleton, root: int, frame: np.ndarray, diameters: np
         for k, node in enumerate(nodes.tolist()):
             if moving[k]:
                 texts[node] = _piece(turn[k], pitch[k], length[k], pos[parent[node]], d[k], up[k], variation[k],
-                                     None if diameters is None else diameters[node])
+                                     None if diameters is None or (parent[node] != root and diameters[node]
+                                                                    == diameters[parent[node]]) else diameters[node])
     return texts
 
 
@@ -238,35 +279,67 @@ def _piece(turn, pitch, length, start, d, up, variation, diameter) -> str:
 
 
 def grow_crown(modeler: Modeler, lobes: list[Lobe], rng: np.random.Generator, per_lobe: int = 1500,
-               max_nodes: int = 6000, tip: str = "", step_fraction: float = 0.12) -> int:
+               max_nodes: int = 6000, tip: str = "", step_fraction: float = 0.12,
+               reach_fraction: float | None = None) -> int:
     """Grow the modeled tree into ``lobes`` (seed 004 section 5) and commit the branches to its
     L-string (undoable). Every node of the tree, drawn or grown, may grow toward the attractors of the
     lobes (each attractor joins its nearest node), so every lobe fills from the branches nearest to it;
-    where nothing is drawn yet, a straight trunk grows from the base into the lowest lobe first.
-    ``tip`` ends every new branch (a leaf in the game). Branch pieces are ``step_fraction`` of a lobe's
-    size long, so a crown looks alike at any scale. Returns the number of branch pieces added."""
-    surface = np.concatenate([lobe.vertices for lobe in lobes])
-    attractors = np.concatenate([surface] + [lobe.sample_inside(per_lobe, rng) for lobe in lobes])
+    a lobe with no wood near it is first reached by an axis grown straight to it from the nearest node
+    (where nothing is drawn yet, a trunk from the base into the lowest lobe). When ``max_nodes`` binds,
+    the lobes share it by unfilled volume. ``tip`` ends every new branch (a leaf in the game). Branch
+    pieces are ``step_fraction`` of a lobe's size long, so a crown looks alike at any scale. Returns the
+    number of branch pieces added."""
+    inside = [lobe.sample_inside(per_lobe, rng) for lobe in lobes]
+    attractors = np.concatenate([lobe.vertices for lobe in lobes] + inside)
+    labels = np.concatenate([np.full(len(lobe.vertices), k) for k, lobe in enumerate(lobes)]
+                            + [np.full(len(p), k) for k, p in enumerate(inside)]).astype(np.int64)
     step = step_fraction * float(np.mean([np.ptp(lobe.vertices, axis=0).max() for lobe in lobes]))
-    sizes = {"step": step, "kill": step / 2, "stop": step / 4, "max_nodes": max_nodes}
+    size = step / step_fraction
+    kill = step / 2 if reach_fraction is None else reach_fraction * size
+    sizes = {"step": step, "kill": kill, "stop": step / 4, "labels": labels, "rng": rng}
     segs = modeler.segments() if len(modeler.lstring) else None
     if segs is None or len(segs) == 0:  # nothing drawn yet: a trunk from the base into the lowest lobe
         lowest = min(lobes, key=lambda lobe: lobe.vertices[:, 1].min())
         entry = lowest.vertices.mean(axis=0)
         entry[1] = lowest.vertices[:, 1].min() + 0.2 * np.ptp(lowest.vertices[:, 1])
-        grown = grow_into_lobes(Skeleton.from_trunk(np.stack([np.zeros(3), entry])), lobes, attractors, **sizes)
+        pieces = max(1, int(np.ceil(np.linalg.norm(entry) / step)))
+        start = _bridged(Skeleton.from_trunk(np.linspace(np.zeros(3), entry, pieces + 1)), lobes, step)
+        grown = grow_into_lobes(start, lobes, attractors, max_nodes=max(max_nodes, len(start.parent)), **sizes)
         text = skeleton_text(grown, tip=tip)
         kept = modeler.lstring  # modules that draw nothing yet (a new sapling's apex) stay
         modeler.commit(concat(parse_lstring(f"[{text}]"), kept) if len(kept) else parse_lstring(text))
         return len(grown.parent) - 1
     m = len(segs)
-    sizes["max_nodes"] = m + max_nodes
-    start = Skeleton(segs.end.copy(), segs.parent.copy(), segs.frame[:, :, 0].copy(), np.ones(m, bool))
-    grown = grow_into_lobes(start, lobes, attractors, **sizes)
+    start = _bridged(Skeleton(segs.end.copy(), segs.parent.copy(), segs.frame[:, :, 0].copy(), np.ones(m, bool)),
+                     lobes, step)
+    grown = grow_into_lobes(start, lobes, attractors, max_nodes=m + max_nodes, **sizes)
     if len(grown.parent) == m:
         return 0
     modeler.commit(_graft(modeler.lstring, segs, grown, tip))
     return len(grown.parent) - m
+
+
+def _bridged(skeleton: Skeleton, lobes: list[Lobe], step: float) -> Skeleton:
+    """The skeleton with a straight axis grown to every lobe that no node is in or within ``step`` of:
+    from the node nearest to the lobe to a point a quarter of the way from the lobe's nearest surface
+    point to its centre, in pieces of about ``step``; only the axis' tip grows on (an empty lobe far from
+    the wood is filled from its own entry, not starved by the crown next to it)."""
+    for lobe in lobes:
+        pos = skeleton.position
+        gap, near = cKDTree(lobe.vertices).query(pos)
+        if lobe.contains(pos).any() or gap.min() <= step:
+            continue
+        node = int(np.argmin(gap))
+        surface_point = lobe.vertices[near[node]]
+        entry = surface_point + 0.25 * (lobe.vertices.mean(axis=0) - surface_point)
+        pieces = max(1, int(np.ceil(np.linalg.norm(entry - pos[node]) / step)))
+        chain = np.linspace(pos[node], entry, pieces + 1)[1:]
+        n = len(skeleton.parent)
+        heading = np.broadcast_to(unit(entry - pos[node]), chain.shape)
+        parent = np.concatenate([skeleton.parent, [node], n + np.arange(pieces - 1)])
+        skeleton = Skeleton(np.concatenate([pos, chain]), parent, np.concatenate([skeleton.heading, heading]),
+                            np.concatenate([skeleton.active, np.arange(pieces) == pieces - 1]))
+    return skeleton
 
 
 TWIG = 0.03  # diameter of a crown branch's last piece (the pipe model widens it toward the tree)
@@ -285,12 +358,16 @@ def _graft(ls, segs, grown: Skeleton, tip: str):
             tips[parent[node]] += tips[node]
     raw = TWIG * np.sqrt(np.maximum(tips, 1.0))
     first = np.arange(len(parent))  # the first piece of the branch each new node is on
-    scale = np.ones(len(parent))
-    for node in range(m, len(parent)):  # parents first: a branch is never wider than where it starts
-        if parent[node] < m:
-            scale[node] = min(1.0, 2.0 * float(segs.radius_end[grown.parent[node]]) / raw[node])
-        else:
+    for node in range(m, len(parent)):  # parents first
+        if parent[node] >= m:
             first[node] = first[parent[node]]
+    # the pipe law below a drawn node: the branches leaving it together are no wider than it (their
+    # cross-sections sum to at most its own), so the crown never swells or outgrows the drawn wood
+    roots = m + np.flatnonzero(parent[m:] < m)
+    area = np.bincount(grown.parent[roots], weights=raw[roots] ** 2, minlength=m)
+    scale = np.ones(len(parent))
+    source_d = 2.0 * segs.radius_end[grown.parent[roots]]
+    scale[roots] = np.minimum(1.0, source_d / np.sqrt(np.maximum(area[grown.parent[roots]], 1e-300)))
     diameters = raw * scale[first]
     sources = np.unique(parent[m:][parent[m:] < m])
     is_tip = np.bincount(segs.parent[segs.parent >= 0], minlength=m)[sources] == 0

@@ -113,6 +113,12 @@ class Lobe:
         faces = self.faces if volume >= 0 else self.faces[:, ::-1].copy()
         return Lobe(vertices, faces, self.ring_size, self.rings)
 
+    @cached_property
+    def volume(self) -> float:
+        """The enclosed volume (divergence theorem over the outward faces), for sharing a budget."""
+        a, b, c = (self.vertices[self.faces[:, k]] for k in range(3))
+        return abs(float(np.einsum("ij,ij->i", a, np.cross(b, c)).sum()) / 6.0)
+
     def contains(self, points: np.ndarray) -> np.ndarray:
         """True for points inside the lobe."""
         return self._crossings.inside(points) == 0

@@ -369,8 +369,7 @@ class Modeler(Undoable):
                 path = np.concatenate([[snap], path])  # a connecting piece from the branch to the stroke
                 widths = np.concatenate([widths[:1], widths])
             result.snapped_to, result.snap_point = int(segs.module[k]), snap
-            if self._is_drawn(int(segs.module[k])):  # no thicker than the drawn branch it grows from
-                widths = np.minimum(widths, 2 * segs.radius[k] * 0.9)
+            widths = np.minimum(widths, 2 * segs.radius[k] * 0.9)  # no thicker than the stem at the joint
             skip[k] = True
             skip[segs.parent == k] = True
         radius = np.append(widths, widths[-1]) / 2

@@ -19,14 +19,12 @@ import pygame
 
 from arbor.engine.lsystem.lstring import LString
 from arbor.engine.lsystem.text import format_number
-from arbor.engine.modeling.crown import grow_crown
+from arbor.engine.modeling.crown_fill import MAX_CROWN_MODULES, grow_within
 from arbor.engine.modeling.lobes import Lobe, lobe_from_loops, lobe_from_outline
-from arbor.engine.modeling.modeler import Modeler
 from arbor.game.render.camera import OrbitCamera, project_points, unproject_to_plane
 from arbor.game.render.ui import draw_polyline
 from arbor.game.strings import text
 
-MAX_CROWN_MODULES = 24000  # one crown's bound even without a tree budget
 MAX_CROWN_STATES = 32  # crown steps whose lobes undo/redo can bring back
 SHAPE_OPS = ("move", "scale", "turn", "squeeze", "point")
 POINT_PIXELS = 28.0  # how close a drag must start to a stroke point to pull it
@@ -124,19 +122,9 @@ class CrownTool:
         the branch pieces added and whether the budget limited them."""
         mode = self.mode
         budget = mode.state.world.tree.deriver.budget
-        room = MAX_CROWN_MODULES if budget is None else min(MAX_CROWN_MODULES, budget - len(base))
-        nodes, seed = MAX_CROWN_MODULES // 4, int(mode.modeler.rng.integers(2**31))
-        for _ in range(4):
-            if room <= 0 or nodes < 2 or not lobes:
-                break
-            scratch = Modeler(lstring=base, segments_of=mode.segments)
-            added = grow_crown(scratch, lobes, np.random.default_rng(seed), per_lobe=250, step_fraction=0.2,
-                               max_nodes=nodes, tip=f"[&(45)L({format_number(mode.born_visible())})]")
-            extra = len(scratch.lstring) - len(base)
-            if extra <= room:
-                return scratch.lstring, added, added >= nodes - 2 or nodes < MAX_CROWN_MODULES // 4
-            nodes = int(added * room / extra * 0.9)
-        return base, 0, bool(lobes)
+        room = MAX_CROWN_MODULES if budget is None else budget - len(base)
+        return grow_within(base, lobes, room, int(mode.modeler.rng.integers(2**31)), mode.segments,
+                           tip=f"[&(45)L({format_number(mode.born_visible())})]")
 
     def next_op(self) -> str:
         """Choose the next shape operation (the menu's option button cycles through them)."""

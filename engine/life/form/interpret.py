@@ -135,8 +135,9 @@ def pipe_area(ls: LString, segs: Segments, const: dict[str, float]) -> np.ndarra
 
 
 def radii(ls: LString, segs: Segments, clocks: Clocks, const: dict[str, float]) -> np.ndarray:
-    """Radii: the built wood or the pipe area, whichever is larger; drawn pieces keep at least their
-    drawn width. Internodes from before the living tree (three parameters) thicken with age instead."""
+    """Radii: the built wood or the pipe area, whichever is larger; drawn pieces (the modeler's strokes
+    and crowns, whose widths already follow the pipe law below them) keep their drawn width. Internodes
+    from before the living tree (three parameters) thicken with age instead."""
     module = segs.module
     count = ls.nparams[module]
     grown = (ls.sym[module] == INTERNODE) & (count >= 3)
@@ -147,7 +148,8 @@ def radii(ls: LString, segs: Segments, clocks: Clocks, const: dict[str, float]) 
     legacy = grown & (count < 5)
     rings = np.where(legacy, const["GMAX"] * saturate(clocks.girth_time - girth_birth, const["GT"]), 0.0)
     radius = np.sqrt(np.maximum(pipes * (1.0 + rings), wood))
-    return np.where(grown, radius, np.maximum(radius, segs.radius))
+    drawn = (ls.sym[module] == ord("F")) & (count == 11)  # modeler pieces: the width the user drew (or the
+    return np.where(grown, radius, np.where(drawn, segs.radius, np.maximum(radius, segs.radius)))  # crown's)
 
 
 def droop_angles(ls: LString) -> np.ndarray:
