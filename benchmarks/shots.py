@@ -2,7 +2,11 @@
 (two moments), at night and a close-up of a joint, as the game draws them headless (EGL; on this
 machine Mesa llvmpipe, so with the software-GL budget).
 
+Then the look of the scene (:func:`look`): a 25-day tree in daylight, back-lit, at night, in autumn and in
+blossom, a bark close-up and a garden of three trees, each 1280x720, as docs/look_*.png beside OUT.png.
+
 Run: python -m benchmarks.shots [OUT.png] [DAYS]   (default docs/renderer.png, a tree grown 12 days)
+     python -m benchmarks.shots --look              (the look pictures only)
 """
 
 from __future__ import annotations
@@ -28,6 +32,10 @@ def main() -> None:
     from arbor.game.screens.game import Game, GameConfig
     from benchmarks.game import grown_tree
 
+    if "--look" in sys.argv:
+        for path in look(Path("docs")):
+            print(f"wrote {path}")
+        return
     out = Path(sys.argv[1]) if len(sys.argv) > 1 else Path("docs/renderer.png")
     days = float(sys.argv[2]) if len(sys.argv) > 2 else 12.0
     pygame.init()
@@ -78,8 +86,124 @@ def main() -> None:
     out.parent.mkdir(parents=True, exist_ok=True)
     sheet.save(out)
     print(f"wrote {out}")
+    for path in look(out.parent):
+        print(f"wrote {path}")
     ctx.release()
 
 
 if __name__ == "__main__":
     main()
+
+
+LOOK = (1280, 720)
+SUMMER, AUTUMN, SPRING = 13.0, 18.0, 28.5  # days of the game's tree's first year: full crown, turning, in blossom
+
+
+def _grow(days: float, seed: int, world=None):
+    """A world of the game's tree grown to ``days`` simulated days by a careful player (or ``world``
+    grown on to that day)."""
+    from arbor.engine.life.rules.rules import load_rules
+    from arbor.engine.life.world.actions import Action
+    from arbor.engine.life.world.world import World
+    from arbor.engine.lsystem.lsys import load_lsystem
+    from arbor.game.paths import ASSETS
+
+    if world is None:
+        rules = load_rules(ASSETS / "rules.toml", pace="demo")
+        world = World(load_lsystem(ASSETS / "lsystems" / "game_tree.lsys"), rules, seed=seed)
+        world.sim.state.sun_meter = world.sim.state.water_meter = 0.9
+    while world.sim.state.sun_turns < days:
+        world.apply(Action.WATER, float(world.sim.state.water_meter < 0.6))
+        world.step(0.5)
+    return world
+
+
+class _Looks:
+    """The game's renderer drawing placed trees headless at LOOK size into PNGs."""
+
+    def __init__(self, folder: Path) -> None:
+        from arbor.game.render.garden import GardenRenderer
+        from arbor.game.render.renderer import headless_context
+
+        self.folder, self.paths = folder, []
+        self.ctx = headless_context()
+        self.fbo = self.ctx.framebuffer(color_attachments=[self.ctx.renderbuffer(LOOK)],
+                                        depth_attachment=self.ctx.depth_renderbuffer(LOOK))
+        self.renderer = GardenRenderer(self.ctx)
+
+    def placed(self, world, offset=(0.0, 0.0, 0.0)):
+        """``world``'s tree as the game draws it (records uploaded), standing at ``offset``."""
+        from arbor.engine.life.form.growth_view import GrowthView
+        from arbor.game.render.garden import Placed
+        from arbor.game.render.instanced import TreeBuffers
+
+        view = GrowthView(world.tree.lstring, world.clocks(), world.tree.geometry_constants)
+        buffers = TreeBuffers()
+        self.renderer.trees.sync(buffers, view)
+        return Placed(buffers, np.array(offset, float))
+
+    def camera(self, trees: list, yaw: float, pitch: float = 8.0, fill: float = 0.8):
+        """An orbit camera framing ``trees``."""
+        from arbor.game.render.camera import OrbitCamera
+
+        camera = OrbitCamera(yaw=yaw, pitch=pitch)
+        lo = np.min([np.asarray(p.buffers.view.lo) + p.offset for p in trees], axis=0)
+        hi = np.max([np.asarray(p.buffers.view.hi) + p.offset for p in trees], axis=0)
+        camera.frame_bounds(lo, hi, LOOK[0] / LOOK[1], fill=fill)
+        return camera
+
+    def shot(self, name: str, camera, sun: np.ndarray, trees: list, world) -> None:
+        """Draw ``trees`` as the game would on ``world``'s day (its season's colours) into look_NAME.png."""
+        from PIL import Image
+
+        from arbor.engine.life.plant import seasons
+
+        r = self.renderer
+        turns = world.sim.state.sun_turns
+        r.autumn, r.leaf_keep = seasons.autumn_colour(turns, world.rules), seasons.leaf_keep(turns, world.rules)
+        r.time = 10.0
+        r.place(trees, trees[0].buffers.view.lo, trees[0].buffers.view.hi)
+        r.render(self.fbo, camera, sun, LOOK)
+        pixels = np.frombuffer(self.fbo.read(components=3), np.uint8).reshape(LOOK[1], LOOK[0], 3)[::-1]
+        self.paths.append(self.folder / f"look_{name}.png")
+        Image.fromarray(pixels.copy()).save(self.paths[-1])
+
+
+def look(folder: Path) -> list[Path]:
+    """The look of the game's scene at 1280x720, through the game's own renderer (headless): one tree
+    in daylight, back-lit, at night, in autumn and in blossom, a bark close-up, and a garden of three
+    trees. Writes look_*.png into ``folder`` and returns their paths."""
+    import pygame
+
+    from arbor.game.render.camera import OrbitCamera
+    from arbor.game.render.renderer import sun_direction
+
+    pygame.init()
+    folder.mkdir(parents=True, exist_ok=True)
+    looks = _Looks(folder)
+    world = _grow(SUMMER, 3)
+    others = [_grow(SUMMER * 0.8, 8), _grow(SUMMER * 0.6, 12)]
+    tree = looks.placed(world)
+    one = [tree]
+    view = tree.buffers.view
+    print(f"tree after {SUMMER:g} days: {len(view.tubes):,} segments, {len(view.leaves):,} leaf cards")
+    looks.shot("day", looks.camera(one, 30.0), sun_direction(85.0, 40.0), one, world)
+    looks.shot("backlit", looks.camera(one, 30.0, 4.0), sun_direction(210.0, 14.0), one, world)
+    looks.shot("night", looks.camera(one, 30.0), sun_direction(30.0, -22.0), one, world)  # (the moon: opposite)
+    tubes = view.tubes.data
+    foot = tubes[np.argmin(tubes[:, 1])]
+    reach = float(foot[18]) * 9.0
+    close = OrbitCamera(yaw=30.0, pitch=12.0, distance=reach, target=foot[0:3] + np.array([0.0, reach * 0.3, 0.0]))
+    looks.shot("bark", close, sun_direction(75.0, 35.0), one, world)
+    garden = one + [looks.placed(w, offset) for w, offset in zip(others, ([-30.0, 0.0, -22.0], [28.0, 0.0, -24.0]),
+                                                                   strict=True)]
+    looks.shot("garden", looks.camera(garden, 20.0, 10.0, 0.9), sun_direction(80.0, 38.0), garden, world)
+    for day, name in ((AUTUMN, "autumn"), (SPRING, "blossom")):
+        world = _grow(day, 3, world)
+        seen = [looks.placed(world)]
+        v = seen[0].buffers.view
+        print(f"day {day:g}: {len(v.leaves):,} leaf cards, {len(v.blossoms):,} blossoms, {len(v.fruits):,} fruit")
+        looks.shot(name, looks.camera(seen, 30.0), sun_direction(85.0, 35.0), seen, world)
+    looks.renderer.release()
+    looks.ctx.release()
+    return looks.paths

@@ -1,15 +1,20 @@
 #version 330
-// Lit bark (kind 0), leaves (1), blossoms (2) and fruit (3): sun with a soft shadow map, a sky/ground
-// hemisphere ambient, and an ambient-occlusion term that darkens the inside of the crown. In autumn
-// (u_autumn 0..1) leaves turn yellow, orange and red, each at its own time (by its hash); fruit is a
-// lit ball, green while it ripens and red when it is ripe; a rock (4) is a grey ball.
+// Lit bark (kind 0), leaf cards (1), blossoms (2) and fruit (3): sun with a soft shadow map, a sky/ground
+// hemisphere ambient, and an ambient-occlusion term that darkens the inside of the crown. Bark has relief
+// from a tangent-space normal map (x around the branch, y along it) and darkens with age (its radius);
+// leaves vary in shade card by card and let the sun through when it is behind them (u_translucency; 0 =
+// an opaque card). In autumn (u_autumn 0..1) leaves turn yellow, orange and red, each at its own time
+// (by its hash); fruit is a lit ball, green while it ripens and red when it is ripe; a rock (4) is a
+// grey, lumpy ball.
 uniform sampler2D u_tex;
 uniform sampler2DShadow u_shadow;
+uniform sampler2D u_normal_map;
 uniform vec3 u_sun_dir;
 uniform vec3 u_sun_color;
 uniform vec3 u_sky_color;
 uniform vec3 u_ground_color;
 uniform vec3 u_tint;
+uniform vec3 u_eye;
 uniform int u_kind;
 uniform vec2 u_uv_scale;
 uniform vec3 u_crown_center;
@@ -17,8 +22,11 @@ uniform float u_crown_radius;
 uniform float u_shadow_texel;
 uniform float u_shadowed = 1.0;  // 0: skip the shadow lookup (far leaves; the crown's AO shades them)
 uniform float u_autumn = 0.0;
+uniform float u_relief = 1.0;  // strength of the bark's normal map (0: smooth tubes)
+uniform float u_translucency = 1.0;
 in vec3 v_pos;
 in vec3 v_normal;
+in vec3 v_tangent;
 in vec2 v_uv;
 in vec4 v_light;
 in float v_extra;
@@ -38,31 +46,57 @@ vec3 autumn_leaf(vec3 green) {
     return mix(green, hue * (0.35 + 1.6 * dot(green, vec3(0.3, 0.55, 0.15))), turn);
 }
 
+vec3 bark_normal(vec3 n, vec2 uv) {
+    // the relief in the frame of the tube: around = t x n (the direction u grows in), along = t
+    if (dot(v_tangent, v_tangent) < 0.25 || u_relief <= 0.0) return n;
+    vec3 t = normalize(v_tangent - dot(v_tangent, n) * n);
+    vec3 m = texture(u_normal_map, uv).xyz * 2.0 - 1.0;
+    m.xy *= u_relief;
+    return normalize(m.x * cross(t, n) + m.y * t + m.z * n);
+}
+
 void main() {
-    vec4 tex = texture(u_tex, v_uv * u_uv_scale);
+    vec2 uv = v_uv * u_uv_scale;
+    vec4 tex = texture(u_tex, uv);
     vec3 n = normalize(v_normal);
     vec3 to_eye = n;  // (fruit: the quad faces the eye)
     vec3 albedo = tex.rgb * u_tint;
     if (u_kind >= 3) {  // a ball facing the eye (fruit, rock): its normal from where in the disc the pixel lies
         vec2 d = v_uv * 2.0 - 1.0;
         float rr = dot(d, d);
-        if (rr > 1.0) discard;
+        float edge = u_kind == 4 ? 0.78 + 0.22 * texture(u_tex, vec2(atan(d.y, d.x) * 0.159, 0.37)).r : 1.0;
+        if (rr > edge * edge) discard;
+        rr /= edge * edge;
         vec3 right = normalize(cross(vec3(0.0, 1.0, 0.0), n));
         n = normalize(right * d.x + cross(n, right) * d.y + n * sqrt(1.0 - rr));
-        albedo = u_kind == 3 ? mix(vec3(0.42, 0.62, 0.16), vec3(0.86, 0.12, 0.07), smoothstep(0.6, 1.0, v_extra))
-                             : vec3(0.55, 0.53, 0.5) * (0.8 + 0.4 * texture(u_tex, v_uv * 2.0).r);  // rock: bark-grained stone
+        if (u_kind == 4) {  // rock: lumpy, cracked stone
+            n = normalize(n + 0.6 * (texture(u_normal_map, v_uv * 1.3).xyz * 2.0 - 1.0));
+            albedo = vec3(0.55, 0.53, 0.5) * (0.6 + 0.7 * texture(u_tex, v_uv * 1.7).r);
+        } else {
+            albedo = mix(vec3(0.42, 0.62, 0.16), vec3(0.86, 0.12, 0.07), smoothstep(0.6, 1.0, v_extra));
+        }
     } else if (u_kind != 0) {
         if (tex.a < 0.5) discard;
-        if (!gl_FrontFacing) n = -n;
-        if (u_kind == 1) albedo = autumn_leaf(albedo);
+        if (dot(n, u_eye - v_pos) < 0.0) n = -n;  // the side facing the eye (a card's winding says nothing)
+        if (u_kind == 1) albedo = autumn_leaf(albedo * (0.8 + 0.4 * fract(v_extra * 5.3)));
+    } else {
+        n = bark_normal(n, uv);
+        if (v_extra >= 0.0) albedo *= mix(vec3(1.1, 1.1, 0.92), vec3(0.66, 0.62, 0.58), smoothstep(0.03, 0.6, v_extra));
     }
     float ndl = dot(n, u_sun_dir);
-    float diffuse = (u_kind == 0 || u_kind >= 3) ? max(ndl, 0.0) : (max(ndl, 0.0) * 0.8 + max(-ndl, 0.0) * 0.45);
+    float diffuse = (u_kind == 0 || u_kind >= 3) ? max(ndl, 0.0) : max(ndl, 0.0) * 0.8;
     vec3 hemi = mix(u_ground_color, u_sky_color, 0.5 + 0.5 * n.y);
     if (u_kind >= 2) hemi = mix(hemi, vec3(dot(hemi, vec3(0.333))), 0.7);  // blossoms and fruit keep their colour
     float depth = length(v_pos - u_crown_center) / max(u_crown_radius, 1e-4);
-    float ao = (u_kind == 0 || u_kind >= 3) ? 1.0 : mix(0.5, 1.0, smoothstep(0.2, 1.0, depth));
-    vec3 color = albedo * (hemi * ao * (u_kind == 0 ? 1.1 : 0.95) + u_sun_color * diffuse * (u_shadowed > 0.5 ? sun_visibility() : 0.8));
+    float ao = (u_kind == 0 || u_kind >= 3) ? 1.0 : mix(0.42, 1.0, smoothstep(0.15, 1.0, depth));
+    float sun = u_shadowed > 0.5 ? sun_visibility() : 0.8;
+    vec3 color = albedo * (hemi * ao * (u_kind == 0 ? 1.1 : 0.95) + u_sun_color * diffuse * sun);
+    if (u_kind == 1 || u_kind == 2) {  // light through the leaf: from behind it, most when looking into the sun
+        float behind = max(-ndl, 0.0);
+        float into_sun = pow(max(dot(normalize(v_pos - u_eye), u_sun_dir), 0.0), 4.0);
+        vec3 through = albedo * (u_kind == 1 ? vec3(1.25, 1.45, 0.55) : vec3(0.8)) * u_sun_color * max(sun, 0.45);  // (scattered on through the crown)
+        color += through * u_translucency * (0.8 * behind + 1.8 * into_sun * step(ndl, 0.0)) * mix(0.6, 1.0, ao);
+    }
     if (u_kind == 3) color += u_sun_color * 0.35 * pow(max(dot(reflect(-u_sun_dir, n), to_eye), 0.0), 24.0);
     f_color = vec4(color * (1.3 - 0.3 * min(color, vec3(1.0))), 1.0);  // lifts the darks like a gamma of 1.15, no pow
 }

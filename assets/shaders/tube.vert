@@ -22,13 +22,14 @@ in vec2 i_flex;
 in float i_tip;
 out vec3 v_pos;
 out vec3 v_normal;
+out vec3 v_tangent;  // along the branch (the bark's normal map: y along, x around)
 out vec2 v_uv;
 out vec4 v_light;
 out float v_extra;
 void main() {
     if (max(i_r.x, i_r.y) < u_thinnest) {
         gl_Position = vec4(2.0, 2.0, 2.0, 1.0);  // outside the clip volume: not drawn
-        v_pos = vec3(0.0); v_normal = vec3(0.0, 1.0, 0.0); v_uv = vec2(0.0); v_light = vec4(0.0); v_extra = 0.0;
+        v_pos = vec3(0.0); v_normal = vec3(0.0, 1.0, 0.0); v_tangent = vec3(1.0, 0.0, 0.0); v_uv = vec2(0.0); v_light = vec4(0.0); v_extra = 0.0;
         return;
     }
     float s = min(in_ring.z, 1.0);
@@ -56,8 +57,9 @@ void main() {
     p += sway(p + u_offset, mix(i_flex.x, i_flex.y, s)) + u_offset;
     v_pos = p;
     v_normal = n;
+    v_tangent = t;
     v_uv = vec2(in_ring.w, v);
     v_light = u_light_mvp * vec4(p, 1.0);
-    v_extra = 0.0;
+    v_extra = mix(i_r.x, i_r.y, s);  // the wood's radius: thicker is older, darker bark
     gl_Position = u_mvp * vec4(p, 1.0);
 }

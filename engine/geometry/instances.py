@@ -4,8 +4,9 @@ Instead of a mesh of every ring vertex, each segment is one record: its start an
 tangent, twist-free reference direction, radius, bark v coordinate), whether it ends in a tip cone, and
 how far it is from the trunk's base (for wind). The vertex shader builds the ring vertices from a small
 template; consecutive segments share their joint ring exactly (same centre, tangent, reference and
-radius), so tapering is continuous and there are no caps except at tips. Leaves are one record each
-(base, axis, normal, size, width). Growth then rewrites a few records, not a mesh.
+radius), so tapering is continuous and there are no caps except at tips. A lateral branch's own start
+ring is wider (its collar where it leaves its parent) and so is the trunk's foot (the root flare).
+Leaves are one record each (base, axis, normal, size, width). Growth then rewrites a few records, not a mesh.
 """
 
 from __future__ import annotations
@@ -18,6 +19,8 @@ from arbor.engine.geometry.chains import chain_sum
 from arbor.engine.geometry.mesh import wood_rings
 from arbor.engine.geometry.turtle import Leaves, Segments
 
+COLLAR = 1.3  # a branch's start ring is this much wider than the branch: the collar where it leaves its parent
+FLARE = 1.6  # and the trunk's foot this much wider than the trunk: the root flare
 TUBE_FLOATS = 26  # c0 t0 x0 c1 t1 x1 (18), r0 r1, v0 v1, flex0 flex1, cap, order
 LEAF_FLOATS = 13  # base (3), axis (3), normal (3), length, width, flex, hash (which leaves a coarse level keeps)
 
@@ -73,6 +76,8 @@ def tube_instances(segs: Segments, bark_scale: float = 1.0) -> TubeInstances:
     data[:, 0:3], data[:, 3:6], data[:, 6:9] = rings.center[start], rings.tangent[start], rings.x[start]
     data[:, 9:12], data[:, 12:15], data[:, 15:18] = rings.center[:m], rings.tangent[:m], rings.x[:m]
     data[:, 18], data[:, 19] = rings.radius[start], rings.radius[:m]
+    data[(segs.parent >= 0) & ~segs.continues, 18] *= COLLAR  # (a lateral's start ring is its own)
+    data[segs.parent < 0, 18] *= FLARE
     data[:, 20], data[:, 21] = rings.v[start] * bark_scale, rings.v[:m] * bark_scale
     data[:, 22], data[:, 23] = d0 / reach, d1 / reach
     data[:, 24] = 0.0

@@ -1,8 +1,8 @@
 """What surrounds the trees: a sky dome with the sun's disc, and the ground that receives their shadow.
 
 Cheap on purpose (a software GL like llvmpipe shades every pixel on the CPU): the sky gradient is per
-vertex of a dome on the far plane, so it only fills pixels nothing else covers; the sun is a small
-additive square; the ground shadow uses four filtered taps.
+vertex of a dome on the far plane, so it only fills pixels nothing else covers; the sun (and at night
+the moon) is a small additive square, the stars a few hundred points; the ground shadow uses four filtered taps.
 """
 
 from __future__ import annotations
@@ -16,8 +16,11 @@ from arbor.game.paths import ASSETS
 
 SKY_ZENITH = (0.30, 0.52, 0.86)
 SKY_HORIZON = (0.78, 0.87, 0.95)
-NIGHT_ZENITH = (0.09, 0.13, 0.32)  # nights are dark blue, never black
-NIGHT_HORIZON = (0.22, 0.27, 0.46)
+NIGHT_ZENITH = (0.05, 0.08, 0.22)  # nights are dark blue, never black, lighter toward the horizon
+NIGHT_HORIZON = (0.27, 0.31, 0.50)
+MOON = (0.80, 0.84, 0.92)
+MOONLIT = (0.03, 0.05, 0.09)  # what the moon adds to the ground at night
+STARS = 500  # points over the sky (a few hundred vertices: nothing for any GL)
 GRASS = (0.33, 0.50, 0.22)
 SOIL = (0.36, 0.26, 0.17)  # the cut-away view: the ground as soil
 # The ground disc's mesh: few, large triangles (a software GL pays per triangle, also for the ones
@@ -77,6 +80,16 @@ def sky_colors(sun: np.ndarray) -> tuple[tuple, tuple, float]:
     return zenith, horizon, day
 
 
+def _stars(count: int = STARS, seed: int = 29) -> np.ndarray:
+    """``count`` stars: unit directions spread evenly over the upper sky and a brightness (most faint)."""
+    rng = np.random.default_rng(seed)
+    y = rng.random(count) ** 0.8  # (even over the hemisphere would be uniform in y; a few more up high)
+    a = rng.random(count) * 2 * math.pi
+    ring = np.sqrt(1 - y**2)
+    bright = 0.25 + 0.75 * rng.random(count) ** 3
+    return np.column_stack([ring * np.cos(a), y, ring * np.sin(a), bright]).astype("f4")
+
+
 def _dome(rings: int = 14, sectors: int = 48) -> tuple[np.ndarray, np.ndarray]:
     """Unit directions of a dome from a little below the horizon to the zenith, and its triangles."""
     elev = np.concatenate([[-0.15], np.linspace(0.0, math.pi / 2, rings)])
@@ -114,6 +127,9 @@ class Backdrop:
         corners = np.array([[-1, -1], [1, -1], [1, 1], [-1, 1]], "f4")
         self.sun = ctx.vertex_array(self.sun_prog, [(ctx.buffer(corners.tobytes()), "2f", "in_corner")],
                                     ctx.buffer(np.array([0, 1, 2, 0, 2, 3], "u4").tobytes()))
+        self.stars_prog = program(ctx, "stars.vert", "stars.frag")
+        stars = ctx.buffer(_stars().tobytes())
+        self.stars = ctx.vertex_array(self.stars_prog, [(stars, "3f 1f", "in_dir", "in_bright")])
         self.ground = None
         self.ground_radius = 0.0
 
@@ -142,8 +158,9 @@ class Backdrop:
         light_level = (0.45 + 0.55 * max(float(sun[1]), 0.0)) * (0.7 + 0.3 * day)
         self.noise.use(location=2)
         ground = SOIL if self.cutaway else GRASS  # the cut-away view shows the soil (and the roots in it)
+        grass = tuple(c * light_level + m * (1.0 - day) for c, m in zip(ground, MOONLIT, strict=True))
         set_uniforms(self.ground_prog, {
-            "u_mvp": mvp, "u_noise": 2, "u_grass": tuple(c * light_level for c in ground), "u_horizon": horizon,
+            "u_mvp": mvp, "u_noise": 2, "u_grass": grass, "u_horizon": horizon,
             "u_fade_start": fade[0], "u_fade_end": fade[1]})
         if self.ground is not None:
             self.ground.render()
@@ -193,18 +210,28 @@ class Backdrop:
         prog["u_sun_dir"].value = tuple(sun)
         prog["u_glow"].value = tuple(c * day for c in (1.0, 0.85, 0.55))
         self.dome.render()
+        ctx.enable(moderngl.BLEND)
+        ctx.blend_func = moderngl.ONE, moderngl.ONE
+        if day < 0.999:  # the night sky: stars, and the moon opposite the sun
+            ctx.enable(moderngl.PROGRAM_POINT_SIZE)
+            set_uniforms(self.stars_prog, {"u_vp": vp_bytes, "u_eye": tuple(eye), "u_radius": radius,
+                                           "u_night": 1.0 - day})
+            self.stars.render(moderngl.POINTS)
+            ctx.disable(moderngl.PROGRAM_POINT_SIZE)
+            self._disc(vp_bytes, eye, radius, -np.asarray(sun, float), 0.045, tuple(c * (1.0 - day) for c in MOON))
         if sun[1] > -0.05:
-            right = np.cross(sun, [0.0, 1.0, 0.0])
-            right = right / max(float(np.linalg.norm(right)), 1e-6)
-            up = np.cross(right, sun)
-            sp = self.sun_prog
-            sp["u_vp"].write(vp_bytes)
-            sp["u_eye"].value, sp["u_sun_dir"].value = tuple(eye), tuple(sun)
-            sp["u_right"].value, sp["u_up"].value = tuple(right), tuple(up)
-            sp["u_radius"].value, sp["u_size"].value = radius * 0.95, 0.06
             low = float(np.clip(sun[1] * 3.0, 0.0, 1.0))  # redder near the horizon
-            sp["u_color"].value = (1.0, 0.75 + 0.2 * low, 0.45 + 0.4 * low)
-            ctx.enable(moderngl.BLEND)
-            ctx.blend_func = moderngl.ONE, moderngl.ONE
-            self.sun.render()
-            ctx.disable(moderngl.BLEND)
+            self._disc(vp_bytes, eye, radius, sun, 0.06, (1.0, 0.75 + 0.2 * low, 0.45 + 0.4 * low))
+        ctx.disable(moderngl.BLEND)
+
+    def _disc(self, vp: bytes, eye: np.ndarray, radius: float, toward: np.ndarray, size: float, color: tuple) -> None:
+        """A glowing disc (the sun, the moon) on the far plane in direction ``toward``, added to the sky."""
+        if toward[1] < -0.05:
+            return
+        right = np.cross(toward, [0.0, 1.0, 0.0])
+        right = right / max(float(np.linalg.norm(right)), 1e-6)
+        up = np.cross(right, toward)
+        set_uniforms(self.sun_prog, {"u_vp": vp, "u_eye": tuple(eye), "u_sun_dir": tuple(toward),
+                                     "u_right": tuple(right), "u_up": tuple(up), "u_radius": radius * 0.95,
+                                     "u_size": size, "u_color": color})
+        self.sun.render()

@@ -42,7 +42,7 @@ LEAF_SPLIT = 0.4  # a picture drawn over frames: this share of the leaves, the r
 LEAVES = Piece(frozenset({"leaf", "leaf_young", "blossom", "fruit"}))
 WOOD = Piece(frozenset({"tube", "tube_young", "stone"}))
 FIRST_LEAVES = Piece(frozenset({"leaf"}), 0.0, LEAF_SPLIT)
-BARK = (1.45, 1.35, 1.25)
+BARK = (1.4, 1.36, 1.3)  # (near grey: the sun's warm light does the rest)
 BLOSSOM = (1.2, 0.9, 1.0)
 
 
@@ -80,7 +80,8 @@ class GardenRenderer:
         self.ctx = ctx
         self.backdrop = Backdrop(ctx)
         self.trees = InstancedTrees(ctx)
-        self.textures = {name: _load_texture(ctx, name, name == "bark") for name in ("bark", "leaf", "blossom")}
+        self.textures = {name: _load_texture(ctx, name, name.startswith("bark"))
+                         for name in ("bark", "bark_normal", "leaf_cluster", "blossom")}
         self.shadows = ShadowMaps(ctx)
         self.samples = samples if samples is not None else (1 if software_gl(ctx) else 4)
         self.vertex_budget = 60_000 if software_gl(ctx) else 10_000_000  # shaded per tree and frame
@@ -89,6 +90,7 @@ class GardenRenderer:
         self.lo, self.hi = -np.ones(3), np.ones(3)
         self.leaf_tint, self.bark_tint, self.blossom_tint = (1.0, 1.0, 1.0), BARK, BLOSSOM
         self.autumn, self.leaf_keep = 0.0, 1.0  # autumn colour (0..1) and share of leaves still on
+        self.relief, self.translucency = 1.0, 1.0  # bark normal map and light through leaves (0: left out)
         self.wind = np.zeros(3)  # direction x strength (scene units at the outermost twigs)
         self.time = 0.0
         self.last_details: list[Detail] = []
@@ -252,6 +254,7 @@ class GardenRenderer:
                 "u_ground_color": tuple(c * max(day, 0.35) for c in (0.30, 0.28, 0.18)),
                 "u_crown_center": tuple(centre + np.array([0.0, radius * 0.25, 0.0])), "u_crown_radius": radius,
                 "u_wind": (*self.wind, self.time), "u_autumn": self.autumn, "u_keep": self.leaf_keep,
+                "u_relief": self.relief, "u_translucency": self.translucency,
                 "tints": (self.bark_tint, self.leaf_tint, self.blossom_tint)}
 
     def _shadow_steps(self, light: np.ndarray, sun: np.ndarray, details: list[Detail],

@@ -36,6 +36,8 @@ LENGTH = 9  # column of a leaf record's length (its width next)
 LEAF_LAYOUT = ("2f 3f 3f 3f 3f 1f", ("i_base", "i_axis", "i_normal", "i_size", "i_hash"))  # a corner, then the record
 CORNERS = np.array([[0, 0], [1, 0], [1, 1], [0, 1]], "f4")  # of a leaf's quad (four vertices per leaf: a
 QUAD = np.array([0, 1, 2, 0, 2, 3], "u4")  # software GL draws them faster than one instance per leaf)
+MIN_PIXELS = (0.0, 0.0, 5.0, 6.5, 0.0)  # per kind: blossoms and fruit are drawn at least this many pixels across
+BARK_UV = (2.0, 1.0)  # the bark texture twice around a branch (u), once per growth step along it (v)
 
 
 @dataclass(frozen=True)
@@ -266,15 +268,16 @@ class InstancedTrees:
                 continue
             prog = self.programs[("tube" if kind == 0 else "leaf", pass_)]
             set_uniforms(prog, {k: v for k, v in uniforms.items() if k != "tints"})
-            textures["bark" if kind in (0, 4) else "leaf" if kind == 1 else "blossom"].use(location=0)
-            per_part = {"u_tex": 0, "u_fraction": share if kind == 1 else 1.0,
+            textures["bark" if kind in (0, 4) else "leaf_cluster" if kind == 1 else "blossom"].use(location=0)
+            per_part = {"u_tex": 0, "u_fraction": share if kind == 1 else 1.0, "u_min_pixels": MIN_PIXELS[kind],
                         "u_grow": detail.leaf_grow if kind == 1 else 1.0, "u_thinnest": detail.thinnest,
                         "u_keep": uniforms.get("u_keep", 1.0) if kind == 1 else 1.0, "u_ball": int(kind >= 3),
                         # far away, leaves skip the shadow lookup (their shade is the AO)
                         "u_shadowed": float(pass_ != "lit" or kind == 0 or lod < 2)}
             if pass_ == "lit":
+                textures["bark_normal"].use(location=3)
                 per_part.update(u_kind=kind, u_tint=(*uniforms["tints"], (1.0, 1.0, 1.0), (1.0, 1.0, 1.0))[kind],
-                                u_uv_scale=(1.0, 1.0))
+                                u_uv_scale=BARK_UV if kind == 0 else (1.0, 1.0), u_normal_map=3)
             else:
                 per_part["u_alpha_test"] = int(kind != 0)
             set_uniforms(prog, per_part)

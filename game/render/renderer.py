@@ -189,6 +189,8 @@ class TreeRenderer:
         ctx.enable(moderngl.DEPTH_TEST)
         self.shadow_map.use(location=1)
         self._draw_ground(vp, light, sun)
+        if "u_eye" in self.tree_prog:  # (a leaf is shaded on the side that faces the eye)
+            self.tree_prog["u_eye"].value = tuple(camera.eye)
         self._draw_tree(vp, light, sun)
 
     def _shadow_pass(self, light: np.ndarray) -> None:

@@ -1,0 +1,147 @@
+"""The look of the game's scene (issue 29): light through a leaf, relief on the bark, the branch collar
+and root flare, fruit big enough to see, stars and moon at night."""
+
+import numpy as np
+import pytest
+
+from arbor.engine.geometry.instances import LEAF_FLOATS, TUBE_FLOATS, LeafInstances, TubeInstances
+from arbor.game.render.camera import OrbitCamera
+from arbor.game.render.falling import StaticView
+from arbor.game.render.garden import GardenRenderer, Placed
+from arbor.game.render.instanced import TreeBuffers
+
+SIZE = (320, 240)
+
+
+@pytest.fixture(scope="module")
+def scene(gl_ctx):
+    renderer = GardenRenderer(gl_ctx)
+    fbo = gl_ctx.framebuffer(color_attachments=[gl_ctx.renderbuffer(SIZE)],
+                             depth_attachment=gl_ctx.depth_renderbuffer(SIZE))
+
+    def draw(view: StaticView, camera: OrbitCamera, sun: np.ndarray) -> np.ndarray:
+        buffers = TreeBuffers()
+        renderer.trees.sync(buffers, view)
+        renderer.place([Placed(buffers, np.zeros(3))], view.lo, view.hi)
+        renderer.render(fbo, camera, np.asarray(sun, float), SIZE)
+        buffers.release()
+        return np.frombuffer(fbo.read(components=3), np.uint8).reshape(SIZE[1], SIZE[0], 3)[::-1].astype(float)
+
+    yield renderer, draw
+    renderer.release()
+
+
+def leaf_view(normal) -> StaticView:
+    """One upright leaf card 4 units long at height 3 facing ``normal``."""
+    data = np.zeros((1, LEAF_FLOATS), np.float32)
+    data[0, 0:3], data[0, 3:6], data[0, 6:9] = (0.0, 3.0, 0.0), (0.0, 1.0, 0.0), normal
+    data[0, 9], data[0, 10], data[0, 12] = 4.0, 2.0, 0.5
+    return StaticView(TubeInstances.empty(), LeafInstances(data), LeafInstances.empty(),
+                      np.array([-2.0, 0.0, -2.0]), np.array([2.0, 7.0, 2.0]))
+
+
+def card_pixels(image: np.ndarray, sky: np.ndarray) -> np.ndarray:
+    """The pixels where the card is (those that differ from the picture without it)."""
+    return image[np.abs(image - sky).sum(axis=2) > 30]
+
+
+def test_a_leaf_against_the_sun_is_brighter_than_an_opaque_card(scene):
+    renderer, draw = scene
+    camera = OrbitCamera(yaw=0.0, pitch=0.0, distance=9.0, target=np.array([0.0, 5.0, 0.0]))
+    to_eye = (camera.eye - camera.target) / np.linalg.norm(camera.eye - camera.target)
+    behind = -to_eye + np.array([0.0, 0.35, 0.0])  # the sun low behind the leaf, the viewer looking into it
+    view = leaf_view(to_eye)
+    empty = StaticView(TubeInstances.empty(), LeafInstances.empty(), LeafInstances.empty(), view.lo, view.hi)
+    sky = draw(empty, camera, behind)
+    renderer.translucency = 0.0
+    opaque = card_pixels(draw(view, camera, behind), sky)
+    renderer.translucency = 1.0
+    lit = card_pixels(draw(view, camera, behind), sky)
+    assert len(opaque) > 500 and len(lit) > 500  # (the card is drawn)
+    assert lit.mean(axis=0)[1] > 1.5 * opaque.mean(axis=0)[1]  # green light through the leaf
+    front = to_eye + np.array([0.0, 0.35, 0.0])  # sun behind the viewer: nothing comes through
+    sky = draw(empty, camera, front)
+    renderer.translucency = 0.0
+    opaque = card_pixels(draw(view, camera, front), sky)
+    renderer.translucency = 1.0
+    lit = card_pixels(draw(view, camera, front), sky)
+    assert abs(lit.mean() - opaque.mean()) < 2.0
+
+
+def trunk_view(radius: float = 2.0) -> StaticView:
+    """One straight vertical segment 20 units tall (one growth step of bark along it)."""
+    data = np.zeros((1, TUBE_FLOATS), np.float32)
+    data[0, 0:3], data[0, 3:6], data[0, 6:9] = (0.0, 0.0, 0.0), (0.0, 1.0, 0.0), (1.0, 0.0, 0.0)
+    data[0, 9:12], data[0, 12:15], data[0, 15:18] = (0.0, 20.0, 0.0), (0.0, 1.0, 0.0), (1.0, 0.0, 0.0)
+    data[0, 18:20], data[0, 20:22] = radius, (0.0, 1.0)
+    return StaticView(TubeInstances(data, np.zeros(1, np.int64)), LeafInstances.empty(), LeafInstances.empty(),
+                      np.array([-radius, 0.0, -radius]), np.array([radius, 20.0, radius]))
+
+
+def test_the_bark_normal_map_changes_shading_across_a_branch(scene):
+    renderer, draw = scene
+    camera = OrbitCamera(yaw=0.0, pitch=0.0, distance=9.0, target=np.array([0.0, 10.0, 0.0]))
+    side = np.cross(camera.eye - camera.target, [0.0, 1.0, 0.0])
+    sun = side / np.linalg.norm(side) + (camera.eye - camera.target) / 9.0 * 0.4 + np.array([0.0, 0.3, 0.0])
+    renderer.relief = 0.0
+    smooth = draw(trunk_view(), camera, sun).sum(axis=2)
+    renderer.relief = 1.0
+    relief = draw(trunk_view(), camera, sun).sum(axis=2)
+    band = slice(SIZE[1] // 2 - 40, SIZE[1] // 2 + 40)  # rows of the trunk, the middle of the picture
+    middle = slice(SIZE[0] // 2 - 30, SIZE[0] // 2 + 30)  # across the trunk's middle
+    difference = np.abs(relief[band, middle] - smooth[band, middle])
+    assert difference.mean() > 12  # furrows and ridges shade differently from a smooth tube
+    # along a smooth tube's line (one normal) the shading is the texture's alone; relief adds to it
+    assert relief[band, SIZE[0] // 2].std() > 1.3 * smooth[band, SIZE[0] // 2].std()
+
+
+def test_a_branch_swells_where_it_leaves_its_parent_and_the_trunk_flares_at_its_foot():
+    from arbor.engine.geometry.instances import tube_instances
+    from arbor.engine.geometry.mesh import wood_rings
+    from arbor.engine.geometry.turtle import TurtleConfig, interpret
+    from arbor.engine.lsystem.lstring import parse_lstring
+
+    segs = interpret(parse_lstring("!(1)FF[+!(0.5)FF]F"), TurtleConfig(leaves_at_tips=0, pipe_model=False)).segments
+    data = tube_instances(segs).data
+    ring = wood_rings(segs)
+    own = ring.rings.radius[ring.start_ring]  # each segment's start ring as the mesher has it
+    lateral = (segs.parent >= 0) & ~segs.continues
+    assert lateral.sum() == 1 and (segs.parent < 0).sum() == 1
+    assert np.all(data[lateral, 18] > 1.2 * own[lateral])  # the collar: wider than the branch there
+    assert np.all(data[segs.parent < 0, 18] > 1.4 * own[segs.parent < 0])  # the root flare
+    along = segs.continues & (segs.parent >= 0)
+    np.testing.assert_allclose(data[along, 18], own[along])  # elsewhere the rings are the branch's own
+
+
+def test_fruit_is_drawn_at_least_six_pixels_across_however_small(scene):
+    _, draw = scene
+    fruit = np.zeros((1, LEAF_FLOATS), np.float32)
+    fruit[0, 0:3], fruit[0, 9], fruit[0, 10], fruit[0, 12] = (0.0, 3.0, 0.0), 0.01, 1.0, 0.5  # a ripe speck
+    view = StaticView(TubeInstances.empty(), LeafInstances.empty(), LeafInstances.empty(),
+                      np.array([-2.0, 0.0, -2.0]), np.array([2.0, 6.0, 2.0]), fruits=LeafInstances(fruit))
+    camera = OrbitCamera(yaw=0.0, pitch=0.0, distance=60.0, target=np.array([0.0, 3.0, 0.0]))
+    image = draw(view, camera, np.array([0.3, 0.8, 0.5]))
+    red = (image[..., 0] > image[..., 1] + 40) & (image[..., 0] > image[..., 2] + 40)
+    rows, cols = np.nonzero(red)
+    assert len(rows) > 0
+    assert cols.max() - cols.min() + 1 >= 6 and rows.max() - rows.min() + 1 >= 6  # (a 1 mm speck 60 units away)
+
+
+def test_the_night_sky_has_stars_and_a_moon_and_the_day_sky_has_neither(scene):
+    _, draw = scene
+    camera = OrbitCamera(yaw=0.0, pitch=0.0, distance=9.0, target=np.array([0.0, 3.0, 0.0]))
+    forward = (camera.target - camera.eye) * np.array([1.0, 0.0, 1.0])
+    moon = forward / np.linalg.norm(forward) + np.array([0.0, 0.25, 0.0])  # ahead, up in the sky; the sun opposite
+    empty = leaf_view((0.0, 0.0, 1.0))
+    empty.leaves = LeafInstances.empty()
+    night = draw(empty, camera, -moon).sum(axis=2)
+    sky = night[: SIZE[1] // 3]
+    background = np.median(sky)
+    y, x = np.unravel_index(np.argmax(sky), sky.shape)
+    rows, cols = np.indices(sky.shape)
+    near = (rows - y) ** 2 + (cols - x) ** 2 <= 4**2
+    assert sky[near].mean() > background + 150  # the brightest thing is a disc (the moon), not a point
+    far = (rows - y) ** 2 + (cols - x) ** 2 > 30**2  # away from the moon and its glow
+    assert (sky[far] > background + 60).sum() >= 5  # stars stand out of the dark sky
+    day = draw(empty, camera, -moon * np.array([1.0, -1.0, 1.0])).sum(axis=2)[: SIZE[1] // 3]  # sun behind us
+    assert (day > np.median(day, axis=1, keepdims=True) + 40).sum() == 0  # a clear day sky: no points in it
