@@ -62,7 +62,7 @@ def grow_into_lobes(skeleton: Skeleton, lobes: list[Lobe], attractors: np.ndarra
     """Seed 004's growth (see module docstring), bounded by ``max_nodes``. A branch that would leave
     the lobes once inside them is not grown, so the crown keeps the drawn silhouette. ``labels`` says
     which lobe each attractor belongs to: when the budget binds, the pieces of a step are shared among
-    the lobes in proportion to their unfilled volume and picked at random within a lobe (see _fair)."""
+    the lobes in proportion to their unfilled volume (see _fair)."""
     remaining = np.asarray(attractors, float)
     labels = np.zeros(len(remaining), np.int64) if labels is None else np.asarray(labels, np.int64)
     rng = np.random.default_rng(0) if rng is None else rng
@@ -117,8 +117,8 @@ def _fair(candidates: np.ndarray, lobe_of: np.ndarray, unfilled: np.ndarray, roo
           rng: np.random.Generator) -> np.ndarray:
     """The candidate pieces to grow within ``room``: all of them when they fit; else each lobe gets
     a share of the room in proportion to its unfilled volume (what is left over goes to lobes with more
-    candidates), picked at random among its candidates, so no lobe and no place near the wood comes
-    first."""
+    candidates), taken in growth order among its candidates (a random pick measured worse: it thins
+    every branch instead of finishing some), so no lobe starves another. ``rng`` is kept for callers."""
     if len(candidates) <= room:
         return candidates
     if room <= 0:
@@ -135,7 +135,7 @@ def _fair(candidates: np.ndarray, lobe_of: np.ndarray, unfilled: np.ndarray, roo
         share += give
         left -= int(give.sum())
         open_ = share < wanted
-    order = rng.permutation(len(candidates))
+    order = np.arange(len(candidates))
     rank = np.empty(len(candidates), np.int64)
     by_lobe = order[np.argsort(lobe[order], kind="stable")]
     starts = np.searchsorted(lobe[by_lobe], np.arange(len(unfilled)))
