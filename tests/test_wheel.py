@@ -57,7 +57,7 @@ def test_installed_arbor_renders_from_another_folder(installed, tmp_path):
     env = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH",)}
     env["NUMBA_DISABLE_JIT"] = "1"  # the kernels as plain Python: a small tree, and no 20 s compile
     out = tmp_path / "tree.png"
-    source = _site_packages(installed) / "arbor" / "assets" / "lsystems" / "game_tree.lsys"
+    source = _site_packages(installed) / "arbor" / "assets" / "lsystems" / "abop_2_8_tree.lsys"
     proc = subprocess.run([str(installed / "bin" / "arbor"), "render", str(source), "--steps", "4", "--size",
                            "160x120", "--out", str(out)], cwd=tmp_path, env=env, capture_output=True, text=True,
                           timeout=300)

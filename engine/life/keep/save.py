@@ -19,7 +19,7 @@ import math
 import re
 import time
 import tomllib
-from dataclasses import dataclass, field
+from dataclasses import asdict, dataclass, field
 from pathlib import Path
 
 import numpy as np
@@ -31,6 +31,7 @@ from arbor.engine.life.keep.save_check import (
     BIG,
     SaveError,
     Where,
+    carbon_budget,
     lstring_sane,
     restore_rng,
     sim_state,
@@ -139,6 +140,8 @@ def _tree_lines(world: World, lsystem_name: str) -> list[str]:
         "",
         "[trees.lineage]",
         *_lineage_pairs(world.lineage),
+        "",
+        *_table("trees.carbon", asdict(world.carbon)),
         "",
         "[trees.journal]",
         "entries = [" + ", ".join(f"[{format_number(tm)}, {_toml_string(k)}, {format_number(v)}]"
@@ -348,6 +351,7 @@ def _load_tree(data: dict, where: Where, rules: Rules, budget_slack: float) -> W
     growth = table(data, "growth", where)
     _restore_growth(world, growth, where, budget_slack)
     world.journal, _ = Journal.from_rows(table(data, "journal", where, required=False).get("entries", []))
+    world.carbon = carbon_budget(data.get("carbon") if "carbon" in data else None, where)
     saved = data.get("lineage")
     lineage = lineage_from_row(saved) if saved is not None else None
     world.dropped_lineage = int(saved is not None and lineage is None)

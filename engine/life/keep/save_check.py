@@ -17,6 +17,7 @@ from pathlib import Path
 import numpy as np
 
 from arbor.engine.base.errors import LSysError
+from arbor.engine.life.plant.carbon import CarbonBudget
 from arbor.engine.life.plant.sim import GrowthCycle, SimState
 
 BIG = 1e12  # largest magnitude of any saved number (game time 30,000 years; coordinates far off-screen)
@@ -39,6 +40,12 @@ SIM_FIELDS = {
 OPTIONAL_SIM = {"sun_turns": 0.0, "weather_seed": 0, "root_time": 0.0}  # older saves have none
 CYCLE_FIELDS = {"cycle": ("float", 0.0, BIG), "above": ("float", 0.0, BIG), "rate": ("float", 0.0, 1.0),
                 "earned": ("int", 0, 2**53)}
+CARBON_FIELDS = {  # [trees.carbon] (engine/life/plant/carbon.py); g, s, g per s, m², m³
+    "pool": ("float", 0.0, BIG), "starving": ("float", 0.0, BIG), "fixed": ("float", 0.0, BIG),
+    "respired": ("float", 0.0, BIG), "built": ("float", 0.0, BIG), "last_fixed_rate": ("float", 0.0, BIG),
+    "last_upkeep_rate": ("float", 0.0, BIG), "vigour": ("float", 0.0, 1.0), "leaf_area": ("float", 0.0, 1e8),
+    "sapwood": ("float", 0.0, 1e8), "fill_at_next_reading": ("bool", 0, 1),
+}
 
 
 @dataclass
@@ -134,6 +141,17 @@ def sim_state(data: dict, where: Where | None = None) -> SimState:
             raise where.error(f"unknown field '{sorted(bad)[0]}' in [sim.{name}]", sorted(bad)[0])
         cycles[name] = GrowthCycle(**{k: value(cycle, k, *spec, where) for k, spec in CYCLE_FIELDS.items()})
     return SimState(**values, **cycles)
+
+
+def carbon_budget(data: dict | None, where: Where) -> CarbonBudget:
+    """The carbon budget a [trees.carbon] table holds, every field checked against CARBON_FIELDS; a save
+    from before the carbon budget has none: its tree starts with the pool filled at the first reading."""
+    if data is None:
+        return CarbonBudget(fill_at_next_reading=True)
+    unknown = set(data) - set(CARBON_FIELDS)
+    if unknown:
+        raise where.error(f"unknown field '{sorted(unknown)[0]}' in [carbon]", sorted(unknown)[0])
+    return CarbonBudget(**{k: value(data, k, *spec, where) for k, spec in CARBON_FIELDS.items()})
 
 
 def restore_rng(rng: np.random.Generator, state_text: str, key: str, where: Where) -> None:

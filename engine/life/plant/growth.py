@@ -50,6 +50,8 @@ from arbor.engine.life.form.interpret import (
     render_view,
     turtle_config,
 )
+from arbor.engine.life.plant import carbon
+from arbor.engine.life.plant.carbon import Economy
 from arbor.engine.life.plant.collide import Obstacles, avoidance
 from arbor.engine.life.plant.light import memory_weight
 from arbor.engine.lsystem import brackets
@@ -139,12 +141,15 @@ class GrowingTree:
         return min(len(self.lstring) / budget, 1.0) if budget else 0.0
 
     def rewrite(self, length_time: float, girth_time: float, resources: float, leaf_vigour: float = 1.0,
-                season: dict[str, float] | None = None) -> StepReport:
+                season: dict[str, float] | None = None, vigour: float = 1.0) -> StepReport:
         """One derivation step at the given clocks (new modules are born now), then empty brackets go.
-        ``season``: the season's externs (SF, AF, SP; see Simulation.season_externs). While a region
-        confines growth (``confine``, for ``confine_left`` more rewrites) only modules inside it change."""
+        ``season``: the season's externs (SF, AF, SP; see Simulation.season_externs); ``vigour`` (0..1,
+        extern C): the share of its shoots' growth the carbon pool pays for (engine/life/plant/carbon.py).
+        While a region confines growth (``confine``, for ``confine_left`` more rewrites) only modules
+        inside it change."""
         extern = {"T": length_time, "G": girth_time, "DT": length_time - self.last_rewrite_T, "R": resources,
-                  "B": self.budget_used, "WL": leaf_vigour, "SF": 1.0, "AF": 0.0, "SP": 0.0, **(season or {})}
+                  "B": self.budget_used, "WL": leaf_vigour, "SF": 1.0, "AF": 0.0, "SP": 0.0, "C": vigour,
+                  **(season or {})}
         only = None
         if self.confine is not None and self.confine_left > 0:
             view = render_view(self.lstring, Clocks(length_time, girth_time, 0.0), self.geometry_constants)
@@ -195,7 +200,7 @@ class GrowingTree:
 
     def sense(self, scene: LightScene, light: np.ndarray, clocks: Clocks, shine: float, sun: np.ndarray,
               memory: float, drought: float = 0.0, leafy: bool = True,
-              obstacles: Obstacles | None = None) -> SenseReport:
+              obstacles: Obstacles | None = None, economy: Economy | None = None) -> SenseReport:
         """Write a light reading (``light``: one value per ``scene.queries``) into the string.
 
         ``shine`` (0..1) is the sun's strength: buds and apices remember light x shine (a low sun feeds
@@ -206,6 +211,7 @@ class GrowingTree:
         half bare (leaf fall, winter, the first days of spring): shade is not counted then, or every
         branch would starve for want of leaves it does not grow yet. ``obstacles`` (in this tree's
         frame: neighbours' wood, rocks) turn apices away or stop them (engine/life/collide.py).
+        ``economy`` books the reading in the tree's carbon budget and pays for the wood (plant/carbon.py).
         """
         now, girth = clocks.length_time, clocks.girth_time
         dt = 0.0 if self.last_sense_length is None else max(now - self.last_sense_length, 0.0)
@@ -225,7 +231,7 @@ class GrowingTree:
         if area > 0 and weight > 0:
             self.mean_light = float((leaf_light * scene.leaf_area).sum() / area)
         grown = self._grow_wood_and_count_shade(ls, params, scene, leaf_light, dt, dg, drought,
-                                                count=weight > 0 and leafy)
+                                                count=weight > 0 and leafy, economy=economy)
         self.lstring = LString(ls.sym, ls.nparams, ls.offsets, params)
         shed = self._shed(scene, grown, params, now)
         return SenseReport(shed, self.mean_light)
@@ -275,9 +281,10 @@ class GrowingTree:
         params[at + 5] += weight * (pitch - params[at + 5])
 
     def _grow_wood_and_count_shade(self, ls: LString, params: np.ndarray, scene: LightScene, leaf_light: np.ndarray,
-                                   dt: float, dg: float, drought: float, count: bool) -> np.ndarray:
-        """Secondary growth (wood never shrinks) and each internode's time in deep shade. Returns, per
-        segment, whether it is a grown internode with the full layout."""
+                                   dt: float, dg: float, drought: float, count: bool,
+                                   economy: Economy | None = None) -> np.ndarray:
+        """Secondary growth (wood never shrinks; rings as far as the carbon pool pays) and each internode's
+        time in deep shade. Returns, per segment, whether it is a grown internode with the full layout."""
         const = self.geometry_constants
         segs = scene.turtle.segments
         if len(segs) == 0:
@@ -285,7 +292,12 @@ class GrowingTree:
         grown = (ls.sym[segs.module] == INTERNODE) & (ls.nparams[segs.module] == 5)
         off = ls.offsets[segs.module[grown]]
         pipes = pipe_area(ls, segs, const)[grown]
-        params[off + 4] = np.maximum(params[off + 4], pipes) + const["RING"] * dg * pipes
+        rings = const["RING"] * dg * pipes
+        if economy is not None:
+            length = np.linalg.norm(segs.end - segs.start, axis=1)[grown]
+            economy.book(carbon.canopy(scene.leaf_area, leaf_light, pipes, length))
+            rings = rings * economy.wood_share(float((rings * length).sum()))
+        params[off + 4] = np.maximum(params[off + 4], pipes) + rings
         if count and dt > 0:
             carrier = scene.turtle.carriers(scene.leaf_idx)
             ok = carrier >= 0

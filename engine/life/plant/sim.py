@@ -89,6 +89,8 @@ class Simulation:
             state = SimState(orbit_height=self.rules.sun.orbit_height, sun_speed=self.rules.sun.speed)
         self.state = state
         self.root_share = 0.0  # how much of a full root system the tree has (set by its World)
+        self.root_vigour = 1.0  # how fast the carbon pool lets the roots grow (set by its World; 0 .. 3)
+        self.starving = 0.0  # s the tree's carbon pool has been empty with upkeep unpaid (set by its World)
 
     def season(self) -> Season:
         """The season now (spring, summer, autumn, winter)."""
@@ -155,6 +157,8 @@ class Simulation:
         s, g = self.state, self.rules.growth
         if not s.alive:
             return 0.0, 0.0
+        if s.drowning > self.rules.water.drown_time:  # drowned roots take up nothing: no growth
+            return 0.0, 0.0
         gate = s.sun_cycle.rate * s.water_cycle.rate * (1.0 - s.wilt) * seasons.growth_factor(s.sun_turns, self.rules)
         return g.length_rate * s.sun_meter * gate, g.girth_rate * s.water_meter * gate
 
@@ -203,13 +207,15 @@ class Simulation:
         s.length_time += length * dt
         s.girth_time += girth * dt
         if s.alive:
-            wet = min(max((s.water_meter - 0.2) / 0.6, 0.0), 1.0)
-            s.root_time += rules.roots.growth_rate * wet * seasons.growth_factor(s.sun_turns, rules) * dt
+            wet = min(max((s.water_meter - 0.2) / 0.6, 0.0), 1.0) if s.water_meter <= rules.water.drown_level else 0.0
+            s.root_time += (rules.roots.growth_rate * wet * self.root_vigour * seasons.growth_factor(s.sun_turns, rules)
+                            * dt)  # no roots grow in waterlogged soil
 
     def _health(self, dt: float) -> None:
         s, h, w = self.state, self.rules.health, self.rules.water
         s.drowning = s.drowning + dt if s.water_meter > w.drown_level else 0.0
-        neglected = min(s.sun_meter, s.water_meter) < h.neglect_level
+        starved = self.starving > self.rules.carbon.starve_time
+        neglected = min(s.sun_meter, s.water_meter) < h.neglect_level or starved
         if not s.alive:
             return
         if neglected or s.drowning > w.drown_time:

@@ -41,7 +41,7 @@ def rules_class(schema: tuple[Rule, ...] = SCHEMA) -> type:
 Rules = rules_class(SCHEMA)
 _fields = Rules.__dataclass_fields__
 GrowthRules, SunRules, WaterRules, HealthRules, ReplantRules, LightRules, WindRules, SeasonRules, WeatherRules, \
-    TimeAwayRules, RootRules = (_fields[s].default_factory for s in SECTIONS)
+    TimeAwayRules, RootRules, CarbonRules = (_fields[s].default_factory for s in SECTIONS)
 TIMES = tuple(r.key for r in SCHEMA if r.scales == "time")  # multiplied by a pace's time scale
 RATES = tuple(r.key for r in SCHEMA if r.scales == "rate")  # per second: divided by it
 RULE_RANGES = {r.key: (r.low, r.high) for r in SCHEMA if r.low is not None}  # physical limits of every number

@@ -50,6 +50,8 @@ SECTION_DOCS = {
     "weather": ("WeatherRules", "Rain showers that fill the water meter (one chance a day, by season) and the wind."),
     "away": ("TimeAwayRules", "What happens while the player is away."),
     "roots": ("RootRules", "Roots: how fast they grow on water and how much they spare it."),
+    "carbon": ("CarbonRules", "The carbon budget: sugar fixed by the light each leaf catches, the upkeep of leaves "
+                              "and sapwood, what building costs, and starving (engine/life/plant/carbon.py)."),
 }
 
 METER = "meter (0..1)"
@@ -129,6 +131,24 @@ SCHEMA: tuple[Rule, ...] = (
     Rule("roots.drain_relief", 0.35, 0.0, 0.9, "share (0..1)", "a full root system drains the water meter this much "
          "more slowly"),
     Rule("roots.full_length", 150.0, 1.0, 1e5, "scene units", "roots that count as a full root system"),
+    Rule("carbon.assimilation", 4.0, 0.0, 100.0, "g per m² of leaf per s", "sugar a leaf fixes in full sun with "
+         "open stomata (in proportion to the light that reaches it)", "rate"),
+    Rule("carbon.leaf_respiration", 0.08, 0.0, 100.0, "g per m² of leaf per s", "upkeep of the leaves", "rate"),
+    Rule("carbon.wood_respiration", 200.0, 0.0, 1e6, "g per m³ of sapwood per s", "upkeep of the living wood "
+         "(the pipe model's conducting cross-section times its length)", "rate"),
+    Rule("carbon.dormant", 0.05, 0.0, 1.0, "share (0..1)", "upkeep in winter rest, as a share of summer's"),
+    Rule("carbon.leaf_mass", 50.0, 1.0, 1000.0, "g per m² of leaf", "what a new leaf costs (leaf mass per area)"),
+    Rule("carbon.wood_density", 5e5, 1e4, 1.5e6, "g per m³", "what new wood costs (a species' .lsys may set WD)"),
+    Rule("carbon.reserve_time", 1260.0, 1.0, 1e8, "s", "the pool holds at most this long of summer upkeep (ten days "
+         "of the sun)", "time"),
+    Rule("carbon.keep_time", 126.0, 0.0, 1e8, "s", "this long of upkeep is kept in the pool for nights and winter, "
+         "never spent on growth", "time"),
+    Rule("carbon.seed_reserve", 2.0, 0.0, 1e6, "g", "a new sapling's reserve (in its seed and roots)"),
+    Rule("carbon.starve_time", 40.0, 0.0, 1e8, "s", "upkeep unpaid (or no leaf at all in a leafy season) for this "
+         "long wilts the tree", "time"),
+    Rule("carbon.root_cost", 0.02, 0.0, 100.0, "g per s", "what roots growing at full speed cost", "rate"),
+    Rule("carbon.root_drought", 2.0, 0.0, 10.0, "x", "roots grow up to 1 + this times as fast in drought "
+         "(a functional balance: more roots where water is short)"),
 )
 
 

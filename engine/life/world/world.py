@@ -6,13 +6,15 @@ identical trees and meters (tests rely on it; every world's input log makes its 
 
 from __future__ import annotations
 
+import math
 from dataclasses import InitVar, dataclass, field
 
 import numpy as np
 
 from arbor.engine.life.form.interpret import Clocks
 from arbor.engine.life.lineage.lineage import Lineage, new_lineage, species_of
-from arbor.engine.life.plant import collide, seasons
+from arbor.engine.life.plant import carbon, collide, seasons
+from arbor.engine.life.plant.carbon import CarbonBudget, Economy
 from arbor.engine.life.plant.collide import Obstacles
 from arbor.engine.life.plant.growth import GrowingTree
 from arbor.engine.life.plant.journal import Journal
@@ -44,6 +46,7 @@ class World:
     bare_at: float = -1.0  # the day of the sun winter last stripped the leaves
     lineage: Lineage = field(init=False)  # parents, generation, planting (engine/life/lineage.py)
     roots: Roots = field(init=False)  # grown below ground on water (engine/life/roots.py)
+    carbon: CarbonBudget = field(init=False)  # the sugar its leaves fix and its growth spends (plant/carbon.py)
     # 1 when the save this tree was read from held a lineage that could not be trusted (so it starts a
     # line of its own): told to the player by the loader, never written back
     dropped_lineage: int = field(default=0, init=False)
@@ -57,6 +60,7 @@ class World:
         self.tree = self._plant(self.seed) if plant else GrowingTree(self.system, seed=self.seed)
         self.lineage = new_lineage(self.seed, 0.0, species_of(self.system.file))
         self.roots = Roots(seed=self.seed)
+        self.carbon = CarbonBudget.for_seedling(self.rules)
 
     def _plant(self, seed: int) -> GrowingTree:
         """A sapling: the axiom grown to the rules' sapling age (its leader only, no side shoots)."""
@@ -96,8 +100,36 @@ class World:
         if self.roots.grow(s.root_time, self.rules.roots.step):
             self.sync_roots()
         if s.length_time - self.tree.last_rewrite_T >= self.rules.growth.rewrite_step:
-            self.tree.rewrite(s.length_time, s.girth_time, self.sim.resources(), self.sim.leaf_vigour(),
-                              self.sim.season_externs(s.length_time))
+            self._rewrite()
+
+    def _rewrite(self) -> None:
+        """One rewrite at the sim's clocks, the shoots' growth paid for by the carbon pool: the pool funds
+        a share of what the apices would build at full speed (extern C), and what was built is taken out."""
+        s, tree, rules = self.sim.state, self.tree, self.rules
+        const, density = tree.geometry_constants, carbon.wood_density(tree.system.constants, rules)
+        demand = carbon.shoot_demand(tree.lstring, s.length_time - tree.last_rewrite_T, const, rules, density)
+        vigour = self.carbon.share(rules, demand)
+        self.carbon.vigour = vigour
+        tree.rewrite(s.length_time, s.girth_time, self.sim.resources(), self.sim.leaf_vigour(),
+                     self.sim.season_externs(s.length_time), vigour)
+        self.carbon.spend(carbon.built_cost(tree.lstring, s.length_time, const, rules, density))
+
+    def economy(self, seconds: float, shine: float) -> Economy:
+        """This tree's dealings with its carbon budget for a light reading ``seconds`` after the last."""
+        s, rules = self.sim.state, self.rules
+        drowned = s.drowning > rules.water.drown_time
+        activity = min(max(seasons.growth_factor(s.sun_turns, rules), rules.carbon.dormant), 1.0)
+        return Economy(self.carbon, rules, seconds, shine, carbon.stomata(self.sim.drought(), drowned), activity,
+                       carbon.wood_density(self.tree.system.constants, rules), seasons.leafy(s.sun_turns, rules))
+
+    def settle(self, seconds: float) -> None:
+        """After a reading: the roots get their share of the pool (more in drought: a functional balance)
+        and the simulation hears whether the tree is starving."""
+        rules = self.rules
+        boost = 1.0 + rules.carbon.root_drought * self.sim.drought()
+        paid = self.carbon.fund(rules, rules.carbon.root_cost * boost * seconds)
+        self.sim.root_vigour = paid * boost
+        self.sim.starving = self.carbon.starving
 
     def sync_roots(self) -> None:
         """Tell the simulation how big the roots are (they spare water)."""
@@ -133,6 +165,7 @@ class World:
         self.tree = self._plant(seed)
         self.lineage = new_lineage(seed, self.lineage.planted, self.lineage.species)  # a new line starts
         self.roots = Roots(seed=seed)
+        self.carbon = CarbonBudget.for_seedling(self.rules)
         self.sync_roots()
 
     def catch_up(self, seconds: float, dt: float = 1.0, max_steps: int = MAX_CATCH_UP_STEPS) -> int:
@@ -171,10 +204,15 @@ def sense_light(worlds: list[World], rocks: Obstacles | None = None) -> None:
     sim = worlds[0].sim
     sun, shine = sim.sun_direction(), sim.sunshine()
     rules = worlds[0].rules.light
+    seconds = []
     for world in worlds:
+        since = world.sim.state.time - world.last_light
+        seconds.append(since if math.isfinite(since) else 0.0)  # (the first reading books nothing)
         world.last_light = world.sim.state.time
     if shine <= 0:  # night: nothing to read or remember; wood grown meanwhile is added at the next reading
-        for world in worlds:
+        for world, since in zip(worlds, seconds, strict=True):
+            world.economy(since, 0.0).rest()
+            world.settle(since)
             if world.tree.last_sense_length is not None:
                 world.tree.last_sense_length = world.sim.state.length_time
         return
@@ -190,12 +228,13 @@ def sense_light(worlds: list[World], rocks: Obstacles | None = None) -> None:
         first += k
     light = exposure(occluders, area, np.concatenate(queries), sun, rules, np.concatenate(self_index))
     start = 0
-    for world, scene, q in zip(worlds, scenes, queries, strict=True):
+    for world, scene, q, since in zip(worlds, scenes, queries, seconds, strict=True):
         part = light[start:start + len(q)]
         start += len(q)
         leafy = seasons.leafy(world.sim.state.sun_turns, world.rules)
         world.tree.sense(scene, part, world.clocks(), shine, sun, rules.memory, world.sim.drought(), leafy,
-                         _obstacles(world, worlds, scenes, offsets, rocks))
+                         _obstacles(world, worlds, scenes, offsets, rocks), world.economy(since, shine))
+        world.settle(since)
         world.journal.observe(world, world.tree.height)
 
 

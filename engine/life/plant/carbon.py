@@ -1,0 +1,204 @@
+"""The tree's carbon budget: what its leaves fix from the light they really catch, what living tissue
+costs to keep, and what is left to build with.
+
+A light-use-efficiency canopy model in the manner of the functional-structural plant models (LIGNUM by
+Perttunen et al.; GreenLab by de Reffye and Hu): every leaf fixes sugar in proportion to the light that
+reaches it (engine/life/plant/light.py), times the sun's strength and how far its stomata are open
+(they close in drought and when the roots drown). Leaves and living wood respire: the leaves in
+proportion to their area, the wood in proportion to its sapwood, which by the pipe model (Shinozaki et
+al.) is the conducting cross-section that carries the leaves above it. What is left goes into a pool,
+spent by priority (Lacointe's "sink priority": leaves and shoots first, then girth, then roots),
+except ``keep_time`` of upkeep kept for the nights; the pool holds at most ``reserve_time`` of the tree's
+summer upkeep. A pool that stays empty while the
+balance is negative for ``starve_time`` starves the tree: it wilts, and a tree that stays fully wilted
+dies, so a leafless tree cannot live on.
+
+Units: sugar in grams (g), leaf area in m², wood in m³ (scene units through METRE), time in game
+seconds; the rules (assets/rules.toml [carbon]) give the rates at the demo pace.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from arbor.engine.base.units import METRE
+from arbor.engine.life.form.interpret import APEX, CLUSTER_AREA, INTERNODE, LEAF, LEAF_ASPECT
+from arbor.engine.life.rules.rules import Rules
+from arbor.engine.lsystem.lstring import LString
+
+AREA = 1.0 / METRE**2  # m² per scene unit²
+VOLUME = 1.0 / METRE**3  # m³ per scene unit³
+
+
+@dataclass
+class Canopy:
+    """What a light reading tells the budget: the leaves' area and the light on it, and the sapwood."""
+
+    leaf_area: float  # m² of leaves on the tree
+    lit_area: float  # m² of leaf x the light that reaches it (0..1): what photosynthesis works with
+    sapwood: float  # m³ of conducting wood (pipe area x length over every grown internode)
+
+
+@dataclass
+class CarbonBudget:
+    """One tree's sugar: the pool, how long it has been starving, and running totals for the lab."""
+
+    pool: float = 0.0  # g of sugar in store
+    starving: float = 0.0  # s the pool has been empty with upkeep unpaid
+    fixed: float = 0.0  # g fixed since planting
+    respired: float = 0.0  # g respired since planting
+    built: float = 0.0  # g built into leaves, shoots, wood and roots since planting
+    last_fixed_rate: float = 0.0  # g per s at the last reading (gross)
+    last_upkeep_rate: float = 0.0  # g per s at the last reading (maintenance respiration)
+    vigour: float = 1.0  # share of the shoots' growth the pool paid for at the last rewrite
+    leaf_area: float = 0.0  # m² at the last reading
+    sapwood: float = 0.0  # m³ at the last reading
+    fill_at_next_reading: bool = False  # a tree from before the carbon budget: its pool starts full
+
+    @classmethod
+    def for_seedling(cls, rules: Rules) -> CarbonBudget:
+        """A new sapling's budget: the seed's reserve."""
+        return cls(pool=rules.carbon.seed_reserve)
+
+    def capacity(self, rules: Rules) -> float:
+        """The most the pool can fill to: ``reserve_time`` of the tree's summer upkeep."""
+        return rules.carbon.reserve_time * self.upkeep_rate(rules)
+
+    def upkeep_rate(self, rules: Rules, activity: float = 1.0) -> float:
+        """Maintenance respiration (g per s) of the leaves and sapwood last measured, at ``activity`` (0..1)."""
+        c = rules.carbon
+        return (c.leaf_respiration * self.leaf_area + c.wood_respiration * self.sapwood) * activity
+
+    def live(self, rules: Rules, seconds: float, shine: float, stomata: float, activity: float,
+             canopy: Canopy | None = None, bare_starves: bool = False) -> float:
+        """Book ``seconds`` of photosynthesis and respiration; returns the net sugar (g, may be negative).
+
+        ``canopy`` is this reading's measurement (None at night: the last one respires on); ``shine``
+        the sun's strength 0..1; ``stomata`` how open the leaves are 0..1; ``activity`` how awake the tree
+        is (1 in the growing season, the dormant share in winter rest). The tree starves while its upkeep
+        goes unpaid, and, when ``bare_starves`` (a season in which it should be in leaf), while it has no
+        leaves at all to earn with."""
+        if not seconds > 0:
+            return 0.0
+        if canopy is not None:
+            self.leaf_area, self.sapwood = canopy.leaf_area, canopy.sapwood
+            if self.fill_at_next_reading:
+                self.pool, self.fill_at_next_reading = self.capacity(rules), False
+        lit = canopy.lit_area if canopy is not None else 0.0
+        gross = rules.carbon.assimilation * lit * max(shine, 0.0) * min(max(stomata, 0.0), 1.0)
+        upkeep = self.upkeep_rate(rules, activity)
+        self.last_fixed_rate, self.last_upkeep_rate = gross, upkeep
+        net = (gross - upkeep) * seconds
+        self.fixed += gross * seconds
+        self.respired += upkeep * seconds
+        pool = self.pool + net
+        starving = pool < 0 or (bare_starves and self.leaf_area <= 0)
+        self.starving = self.starving + seconds if starving else max(self.starving - seconds, 0.0)
+        self.pool = min(max(pool, 0.0), max(self.capacity(rules), self.pool))  # (a seed may hold more)
+        return net
+
+    def spare(self, rules: Rules) -> float:
+        """Sugar that may be spent on growth: the pool above what is kept for upkeep (``keep_time`` of it)."""
+        return max(self.pool - rules.carbon.keep_time * self.upkeep_rate(rules), 0.0)
+
+    def share(self, rules: Rules, demand: float) -> float:
+        """The share 0..1 of growth that would cost ``demand`` g at full speed the pool can pay now."""
+        return min(self.spare(rules) / demand, 1.0) if demand > 0 else 1.0
+
+    def fund(self, rules: Rules, demand: float) -> float:
+        """Spend on growth that would cost ``demand`` g at full speed: returns the share 0..1 the pool pays
+        (and takes it)."""
+        share = self.share(rules, demand)
+        self.spend(share * max(demand, 0.0))
+        return share
+
+    def spend(self, grams: float) -> None:
+        """Take what was built (leaves, shoots, wood, roots) out of the pool."""
+        grams = max(grams, 0.0)
+        self.pool = max(self.pool - grams, 0.0)
+        self.built += grams
+
+
+def stomata(drought: float, drowned: bool) -> float:
+    """How far the leaves' stomata are open (0..1): they close as drought deepens, and shut when the
+    roots are drowned (waterlogged roots take up nothing)."""
+    return 0.0 if drowned else min(max(1.0 - drought, 0.0), 1.0)
+
+
+def canopy(leaf_area: np.ndarray, leaf_light: np.ndarray, pipe_area: np.ndarray, seg_length: np.ndarray) -> Canopy:
+    """The budget's view of one light reading: leaf areas (scene units²) with their light, and the
+    grown internodes' pipe areas (units²) and lengths (units)."""
+    return Canopy(float(leaf_area.sum()) * AREA, float((leaf_area * np.clip(leaf_light, 0.0, 1.0)).sum()) * AREA,
+                  float((pipe_area * seg_length).sum()) * VOLUME)
+
+
+@dataclass
+class Economy:
+    """One light reading's dealings with the budget: how long since the last one, the leaves' stomata, how
+    awake the tree is, and what its wood costs (the tree's own sense() books and pays through it)."""
+
+    budget: CarbonBudget
+    rules: Rules
+    seconds: float
+    shine: float
+    stomata: float = 1.0
+    activity: float = 1.0
+    wood_density: float = 5e5  # g per m³
+    in_leaf: bool = True  # a season in which the tree should have leaves (a bare tree then starves)
+
+    def book(self, measured: Canopy) -> float:
+        """Photosynthesis and upkeep since the last reading, for the canopy measured now; the net (g)."""
+        return self.budget.live(self.rules, self.seconds, self.shine, self.stomata, self.activity, measured,
+                                self.in_leaf)
+
+    def rest(self) -> float:
+        """A reading at night: upkeep goes on (from the last canopy measured), nothing is fixed."""
+        return self.budget.live(self.rules, self.seconds, 0.0, 0.0, self.activity, None, self.in_leaf)
+
+    def wood_share(self, volume: float) -> float:
+        """The share (0..1) of ``volume`` scene units³ of new wood the pool pays for now (and takes)."""
+        return self.budget.fund(self.rules, volume * VOLUME * self.wood_density)
+
+
+def wood_density(constants: dict[str, float], rules: Rules) -> float:
+    """A species' wood density (g per m³): its .lsys ``WD`` (kg per m³) or the rules' default."""
+    return float(constants["WD"]) * 1000.0 if "WD" in constants else rules.carbon.wood_density
+
+
+def node_cost(order: np.ndarray, const: dict[str, float], rules: Rules, density: float) -> np.ndarray:
+    """What one new node costs at each branch ``order`` (g): a full-grown leaf cluster and the internode
+    under it (its pipe for one leaf)."""
+    leaf = CLUSTER_AREA * LEAF_ASPECT * const["LS"] ** 2 * AREA * rules.carbon.leaf_mass
+    wood = const["IL"] * const["IO"] ** order * const["TIP"] ** 2 * VOLUME * density
+    return leaf + wood
+
+
+def shoot_demand(ls: LString, dt: float, const: dict[str, float], rules: Rules, density: float) -> float:
+    """Sugar (g) the growing apices would build into nodes in ``dt`` of physiological time at full speed:
+    each apex makes a node every plastochron ``P`` while lit above ``QG``."""
+    apex = np.flatnonzero((ls.sym == APEX) & (ls.nparams == 6))
+    if len(apex) == 0 or not dt > 0:
+        return 0.0
+    off = ls.offsets[apex]
+    order, light = ls.params[off + 1], ls.params[off + 3]
+    qg = const.get("QG", 0.12)
+    lit = np.clip((light - qg) / max(1.0 - qg, 1e-9), 0.0, 1.0)
+    nodes = dt * lit / const.get("P", 4.0)
+    return float((nodes * node_cost(order, const, rules, density)).sum())
+
+
+def built_cost(ls: LString, born: float, const: dict[str, float], rules: Rules, density: float) -> float:
+    """Sugar (g) of the nodes born at physiological time ``born`` (the last rewrite): new internodes and
+    the leaves on them, at their full size."""
+    if len(ls.params) == 0:
+        return 0.0
+    first = np.where(ls.nparams > 0, ls.params[np.where(ls.nparams > 0, ls.offsets, 0)], np.nan)
+    new = first == born
+    internodes = np.flatnonzero(new & (ls.sym == INTERNODE) & (ls.nparams >= 3))
+    leaves = int(np.count_nonzero(new & (ls.sym == LEAF)))
+    order = ls.params[ls.offsets[internodes] + 2]
+    wood = const["IL"] * const["IO"] ** order * const["TIP"] ** 2 * VOLUME * density
+    leaf = CLUSTER_AREA * LEAF_ASPECT * const["LS"] ** 2 * AREA * rules.carbon.leaf_mass
+    return float(wood.sum()) + leaves * leaf
