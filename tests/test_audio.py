@@ -87,3 +87,16 @@ def test_the_soundscape_follows_the_world(lsys_dir):
     assert scape.watering and scape.wind == 0.35 and scape.milestones == len(world.journal.entries)
     world.apply(Action.WATER, 0.0)
     assert not soundscape(world, 0.35).watering
+
+
+def test_a_pressed_menu_button_clicks(gl_ctx, tmp_path):
+    from arbor.game.screens.game import Game, GameConfig
+
+    game = Game(gl_ctx, (640, 360), GameConfig(saves=tmp_path, seed=5, resume=False), clock=lambda: 100.0)
+    game.update(1 / 60)
+    assert "click" not in game.audio.heard
+    game.tap(320, 180)  # the menu opens
+    widget = next(w for w in game.menu.shown() if w.kind != "slider")
+    game.menu.press(*widget.rect.center)  # (what the input layer does with a pointer down on it)
+    game.update(1 / 60)
+    assert game.audio.heard.count("click") == 1

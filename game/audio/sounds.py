@@ -3,14 +3,16 @@
 
 The game hands the service the soundscape each frame (:meth:`Audio.hear`); the service keeps one channel
 per loop (wind, rain, pour, night) at a level set by the state (wind by its strength, the pour while the
-watering can is held, crickets by how dark it is), calls a bird now and then by day, and chimes once when
-the journal gains a milestone. Without a sound device (or with SDL's dummy driver, as in CI) it works the
-same and is silent; if the mixer cannot start at all, it only keeps the levels.
+watering can is held, crickets by how dark it is), calls a bird now and then by day, chimes once when the
+journal gains a milestone and ticks when a button is pressed. Without a sound device (or with SDL's dummy
+driver, as in CI) it works the same and is silent; if the mixer cannot start at all, it only keeps the
+levels.
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cache
 
 import numpy as np
 import pygame
@@ -28,23 +30,25 @@ WIND_QUIET = 0.02  # below this strength the air is still: no wind sound
 @dataclass(frozen=True)
 class Soundscape:
     """What the garden sounds like now: how hard the wind blows (the rule's strength), whether it rains
-    and the watering can pours, how light it is (0 night .. 1 day) and how many milestones the journal
-    holds (one more chimes)."""
+    and the watering can pours, how light it is (0 night .. 1 day), how many milestones the journal
+    holds (one more chimes) and how many buttons were pressed (one more clicks)."""
 
     wind: float = 0.0
     rain: bool = False
     watering: bool = False
     daylight: float = 1.0
     milestones: int = 0
+    clicks: int = 0
 
 
-def soundscape(world, wind_strength: float) -> Soundscape:
-    """The soundscape of ``world`` (an engine World) in a wind of ``wind_strength``."""
+def soundscape(world, wind_strength: float, clicks: int = 0) -> Soundscape:
+    """The soundscape of ``world`` (an engine World) in a wind of ``wind_strength``, ``clicks`` buttons
+    pressed so far."""
     sim = world.sim
     sun_height = float(sim.sun_direction()[1])
     day = float(np.clip((sun_height + 0.15) / 0.35, 0.0, 1.0))  # (as the sky brightens: see render.backdrop)
     return Soundscape(float(wind_strength), bool(sim.raining()), bool(sim.state.watering), day,
-                      len(world.journal.entries))
+                      len(world.journal.entries), int(clicks))
 
 
 def loop_levels(scape: Soundscape) -> dict[str, float]:
@@ -52,6 +56,13 @@ def loop_levels(scape: Soundscape) -> dict[str, float]:
     wind = 0.0 if scape.wind < WIND_QUIET else 0.15 + 0.65 * min(scape.wind / WIND_FULL, 1.0)
     night = (1.0 - scape.daylight) ** 2
     return {"wind": wind, "rain": 0.7 * scape.rain, "pour": 0.8 * scape.watering, "night": 0.35 * night}
+
+
+@cache
+def _made() -> dict[str, np.ndarray]:
+    """Every sound, synthesised once a run (a third of a second of numpy; a kiosk makes many games)."""
+    return {"wind": synth.wind(), "rain": synth.rain(), "pour": synth.pour(), "night": synth.crickets(),
+            "chime": synth.chime(), "click": synth.click(), **{f"bird{k}": synth.bird(5 + k) for k in range(BIRDS)}}
 
 
 class Audio:
@@ -62,7 +73,8 @@ class Audio:
         self.rng = np.random.default_rng(seed)
         self.levels = dict.fromkeys(LOOPS, 0.0)  # each loop's level now (0 = stopped), master volume applied
         self.heard: list[str] = []  # one-shots started (birds, chimes, clicks), latest last
-        self.milestones: int | None = None
+        self.milestones: int | None = None  # (None until the first soundscape: a loaded journal is not news)
+        self.clicks: int | None = None
         self.mixer = None
         self.sounds: dict = {}
         self.channels: dict = {}
@@ -79,9 +91,7 @@ class Audio:
         except (pygame.error, NotImplementedError):
             return
         rate = pygame.mixer.get_init()[0]
-        made = {"wind": synth.wind(), "rain": synth.rain(), "pour": synth.pour(), "night": synth.crickets(),
-                "chime": synth.chime(), "click": synth.click(), **{f"bird{k}": synth.bird(5 + k) for k in range(BIRDS)}}
-        for name, sound in made.items():
+        for name, sound in _made().items():
             if rate != synth.RATE:  # (the mixer was opened at another rate by someone else)
                 sound = np.interp(np.arange(0, len(sound), synth.RATE / rate), np.arange(len(sound)), sound)
             self.sounds[name] = make(synth.stereo16(sound))
@@ -101,7 +111,9 @@ class Audio:
             self.play(f"bird{int(self.rng.integers(BIRDS))}", 0.5)
         if self.milestones is not None and scape.milestones > self.milestones:
             self.play("chime", 0.8)
-        self.milestones = scape.milestones
+        if self.clicks is not None and scape.clicks > self.clicks:
+            self.click()
+        self.milestones, self.clicks = scape.milestones, scape.clicks
 
     def click(self) -> None:
         """A button's tick."""

@@ -72,6 +72,7 @@ class Menu:
         self.screen = screen
         self.visible = False
         self.page = "care"
+        self.presses = 0  # widgets pressed so far (the click sound follows it: game/audio)
         self.journal_lines: list[str] = []
         self.journal_source = None  # () -> the journal page's lines, asked each time the page opens
         names = {name for rows in PAGES.values() for row in rows for name in row}
@@ -144,6 +145,7 @@ class Menu:
         self.active = w
         if w is None:
             return []
+        self.presses += 1
         if w.name in NAV:
             self.active = None
             self.show_at(*self._at, "care" if w.name == "back" else w.name)

@@ -24,6 +24,7 @@ from arbor.engine.life.rules.rules import load_rules
 from arbor.engine.life.world.actions import Action
 from arbor.engine.life.world.world import World
 from arbor.engine.lsystem.lsys import load_lsystem
+from arbor.game.audio.sounds import Audio, soundscape
 from arbor.game.input.events import InputEvent, PygameTranslator
 from arbor.game.input.gestures import CameraControl, Gestures
 from arbor.game.loop import FixedStepLoop
@@ -61,6 +62,7 @@ class Game:
         self.gestures = Gestures(self.control)
         self.menu = Menu(size)
         self.renderer = GardenRenderer(ctx)
+        self.audio = Audio()
         self.overlay = Overlay(ctx, size)
         pygame.font.init()
         self.font = pygame.font.Font(None, 32)
@@ -148,6 +150,7 @@ class Game:
     def update(self, real_seconds: float) -> None:
         """Advance the simulation by one frame's worth of fixed steps; autosave when due."""
         self.state.advance(real_seconds)
+        self.audio.hear(soundscape(self.world, self.rules.wind.strength, self.menu.presses), real_seconds)
         self.keeper.autosave_if_due()
 
     def clocks(self) -> Clocks:
