@@ -93,6 +93,19 @@ def test_lower_layers_never_import_higher_ones(top, table):
     assert violations(ROOT, table, top) == []
 
 
+def test_our_modules_are_imported_by_their_installed_names():
+    """Installed, only `arbor.engine` and `arbor.game` exist: an `import engine...` works in a checkout run from
+    its root (the folder is on sys.path) and nowhere else, and would load a second copy of the module."""
+    for path in [p for top in ("engine", "game", "tests", "benchmarks") for p in (ROOT / top).rglob("*.py")]:
+        tree = ast.parse(path.read_text(encoding="utf-8"), str(path))
+        for node in ast.walk(tree):
+            names = ([a.name for a in node.names] if isinstance(node, ast.Import)
+                     else [node.module] if isinstance(node, ast.ImportFrom) and node.module and node.level == 0 else [])
+            for name in names:
+                assert name.split(".")[0] not in ("engine", "game"), \
+                    f"{path.relative_to(ROOT)}:{node.lineno} imports {name}: say arbor.{name}"
+
+
 def test_engine_is_pure():
     for path in (ROOT / "engine").rglob("*.py"):
         for name, line in imports_of(path):
