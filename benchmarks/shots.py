@@ -195,7 +195,7 @@ def look(folder: Path) -> list[Path]:
     reach = float(foot[18]) * 9.0
     close = OrbitCamera(yaw=30.0, pitch=12.0, distance=reach, target=foot[0:3] + np.array([0.0, reach * 0.3, 0.0]))
     looks.shot("bark", close, sun_direction(75.0, 35.0), one, world)
-    garden = one + [looks.placed(w, offset) for w, offset in zip(others, ([-30.0, 0.0, -22.0], [28.0, 0.0, -24.0]),
+    garden = one + [looks.placed(w, offset) for w, offset in zip(others, ([-19.0, 0.0, -14.0], [18.0, 0.0, -16.0]),
                                                                    strict=True)]
     looks.shot("garden", looks.camera(garden, 20.0, 10.0, 0.9), sun_direction(80.0, 38.0), garden, world)
     for day, name in ((AUTUMN, "autumn"), (SPRING, "blossom")):

@@ -128,7 +128,7 @@ def test_fruit_is_drawn_at_least_six_pixels_across_however_small(scene):
 
 
 def test_the_night_sky_has_stars_and_a_moon_and_the_day_sky_has_neither(scene):
-    _, draw = scene
+    renderer, draw = scene
     camera = OrbitCamera(yaw=0.0, pitch=0.0, distance=9.0, target=np.array([0.0, 3.0, 0.0]))
     forward = (camera.target - camera.eye) * np.array([1.0, 0.0, 1.0])
     moon = forward / np.linalg.norm(forward) + np.array([0.0, 0.25, 0.0])  # ahead, up in the sky; the sun opposite
@@ -143,5 +143,38 @@ def test_the_night_sky_has_stars_and_a_moon_and_the_day_sky_has_neither(scene):
     assert sky[near].mean() > background + 150  # the brightest thing is a disc (the moon), not a point
     far = (rows - y) ** 2 + (cols - x) ** 2 > 30**2  # away from the moon and its glow
     assert (sky[far] > background + 60).sum() >= 5  # stars stand out of the dark sky
+    clouds, renderer.backdrop.cloud_places = renderer.backdrop.cloud_places, np.zeros((0, 3))  # (clear sky)
     day = draw(empty, camera, -moon * np.array([1.0, -1.0, 1.0])).sum(axis=2)[: SIZE[1] // 3]  # sun behind us
+    renderer.backdrop.cloud_places = clouds
     assert (day > np.median(day, axis=1, keepdims=True) + 40).sum() == 0  # a clear day sky: no points in it
+
+
+def test_grass_sways_in_the_wind_and_stands_still_in_still_air(scene):
+    renderer, draw = scene
+    camera = OrbitCamera(yaw=0.0, pitch=20.0, distance=30.0, target=np.array([0.0, 5.0, 0.0]))
+    sun = np.array([0.3, 0.8, 0.5])
+    lower = slice(SIZE[1] * 2 // 3, SIZE[1])  # the ground in front of the trunk
+    pictures = {}
+    for wind in (0.0, 2.0):
+        renderer.wind = np.array([wind, 0.0, 0.0])
+        for t in (10.0, 11.3):
+            renderer.time = t
+            pictures[wind, t] = draw(trunk_view(), camera, sun)[lower]
+    renderer.wind, renderer.time = np.zeros(3), 0.0
+    assert np.array_equal(pictures[0.0, 10.0], pictures[0.0, 11.3])
+    moved = np.abs(pictures[2.0, 10.0] - pictures[2.0, 11.3]).sum(axis=2) > 40
+    assert moved.sum() > 50  # blades moved
+    assert np.abs(pictures[0.0, 10.0] - pictures[2.0, 10.0]).sum(axis=2).max() > 40
+
+
+def test_clouds_drift_across_the_sky(scene):
+    renderer, draw = scene
+    camera = OrbitCamera(yaw=0.0, pitch=-5.0, distance=30.0, target=np.array([0.0, 5.0, 0.0]))
+    sun = np.array([0.3, 0.8, 0.5])
+    skies = []
+    for t in (0.0, 0.0, 120.0):
+        renderer.time = t
+        skies.append(draw(trunk_view(), camera, sun)[: SIZE[1] // 3])
+    renderer.time = 0.0
+    assert np.array_equal(skies[0], skies[1])
+    assert (np.abs(skies[0] - skies[2]).sum(axis=2) > 30).sum() > 100  # two minutes on, the clouds are elsewhere

@@ -21,6 +21,9 @@ NIGHT_HORIZON = (0.27, 0.31, 0.50)
 MOON = (0.80, 0.84, 0.92)
 MOONLIT = (0.03, 0.05, 0.09)  # what the moon adds to the ground at night
 STARS = 500  # points over the sky (a few hundred vertices: nothing for any GL)
+CLOUDS = 11  # cards in the sky, drifting with the wind
+CLOUD_DRIFT = 0.002  # radians of azimuth a second
+CLOUD_STEP = 0.004  # drift between redraws of the sky's picture on a software GL (about 3 px at 720 px)
 GRASS = (0.33, 0.50, 0.22)
 SOIL = (0.36, 0.26, 0.17)  # the cut-away view: the ground as soil
 # The ground disc's mesh: few, large triangles (a software GL pays per triangle, also for the ones
@@ -90,6 +93,25 @@ def _stars(count: int = STARS, seed: int = 29) -> np.ndarray:
     return np.column_stack([ring * np.cos(a), y, ring * np.sin(a), bright]).astype("f4")
 
 
+def cloud_rgba(size: int = 128, seed: int = 17) -> np.ndarray:
+    """A cumulus as a texture twice as wide as tall: lobes of soft puffs with a ragged edge; red is how
+    lit a point is (its top), alpha how thick."""
+    rng = np.random.default_rng(seed)
+    h, w = size // 2, size
+    y, x = np.mgrid[0:h, 0:w] / np.array([h, w])[:, None, None]
+    thick = np.zeros((h, w))
+    for _ in range(16):
+        cx, r = rng.uniform(0.15, 0.85), rng.uniform(0.07, 0.17)
+        cy = 0.3 + 0.35 * (1.0 - 2.0 * abs(cx - 0.5)) * rng.random()  # heaped up in the middle
+        thick += np.exp(-(((x - cx) * 2.0) ** 2 + (y - cy) ** 2) / (r * r))
+    noise = np.fft.ifft2(np.fft.fft2(rng.standard_normal((h, w))) * np.exp(-np.add.outer(
+        np.fft.fftfreq(h) ** 2, np.fft.fftfreq(w) ** 2) * 120.0)).real
+    thick = thick * (0.7 + 0.6 * noise / max(float(np.abs(noise).max()), 1e-9)) * np.clip(y * 4.0, 0.0, 1.0)
+    alpha = np.clip((thick - 0.35) * 1.6, 0.0, 1.0)
+    lit = np.clip(0.6 + 1.2 * (y - 0.3), 0.0, 1.0)  # (rows from the bottom: the top is lit)
+    return (np.dstack([lit, lit, lit, alpha]) * 255).astype("u1")
+
+
 def _dome(rings: int = 14, sectors: int = 48) -> tuple[np.ndarray, np.ndarray]:
     """Unit directions of a dome from a little below the horizon to the zenith, and its triangles."""
     elev = np.concatenate([[-0.15], np.linspace(0.0, math.pi / 2, rings)])
@@ -130,6 +152,16 @@ class Backdrop:
         self.stars_prog = program(ctx, "stars.vert", "stars.frag")
         stars = ctx.buffer(_stars().tobytes())
         self.stars = ctx.vertex_array(self.stars_prog, [(stars, "3f 1f", "in_dir", "in_bright")])
+        self.cloud_prog = program(ctx, "cloud.vert", "cloud.frag")
+        self.cloud_texture = ctx.texture((128, 64), 4, cloud_rgba().tobytes())
+        self.cloud_texture.build_mipmaps()
+        self.cloud_texture.filter = (moderngl.LINEAR_MIPMAP_LINEAR, moderngl.LINEAR)
+        self.clouds = ctx.vertex_array(self.cloud_prog, [(ctx.buffer(corners.tobytes()), "2f", "in_corner")],
+                                       ctx.buffer(np.array([0, 1, 2, 0, 2, 3], "u4").tobytes()))
+        rng = np.random.default_rng(5)
+        self.cloud_places = np.column_stack([rng.uniform(0, 2 * math.pi, CLOUDS), rng.uniform(0.06, 0.35, CLOUDS),
+                                             rng.uniform(0.7, 1.3, CLOUDS)])  # azimuth, elevation, size
+        self.drift = 0  # clouds' drift in CLOUD_STEPs (set by the renderer from its clock)
         self.ground = None
         self.ground_radius = 0.0
 
@@ -219,10 +251,30 @@ class Backdrop:
             self.stars.render(moderngl.POINTS)
             ctx.disable(moderngl.PROGRAM_POINT_SIZE)
             self._disc(vp_bytes, eye, radius, -np.asarray(sun, float), 0.045, tuple(c * (1.0 - day) for c in MOON))
-        if sun[1] > -0.05:
+        ctx.blend_func = moderngl.SRC_ALPHA, moderngl.ONE_MINUS_SRC_ALPHA
+        self._clouds(vp_bytes, eye, radius, day, horizon)
+        ctx.blend_func = moderngl.ONE, moderngl.ONE
+        if sun[1] > -0.05:  # (over the clouds: the sun the tree lives on is always seen)
             low = float(np.clip(sun[1] * 3.0, 0.0, 1.0))  # redder near the horizon
             self._disc(vp_bytes, eye, radius, sun, 0.06, (1.0, 0.75 + 0.2 * low, 0.45 + 0.4 * low))
         ctx.disable(moderngl.BLEND)
+
+    def _clouds(self, vp: bytes, eye: np.ndarray, radius: float, day: float, horizon: tuple) -> None:
+        """The clouds, drifted ``self.drift`` steps, white by day and dim blue-grey at night."""
+        self.cloud_texture.use(location=0)
+        light = tuple(0.25 + 0.75 * day * c for c in (1.0, 0.99, 0.96))
+        shade = tuple(0.6 * h + 0.15 * day for h in horizon)
+        set_uniforms(self.cloud_prog, {"u_vp": vp, "u_eye": tuple(eye), "u_radius": radius * 0.93, "u_tex": 0,
+                                       "u_light": light, "u_shade": shade})
+        for azimuth, elevation, size in self.cloud_places:
+            a = azimuth + self.drift * CLOUD_STEP
+            ring = math.cos(elevation)
+            toward = np.array([ring * math.cos(a), math.sin(elevation), ring * math.sin(a)])
+            right = np.array([-math.sin(a), 0.0, math.cos(a)])
+            up = np.cross(right, toward)
+            set_uniforms(self.cloud_prog, {"u_dir": tuple(toward), "u_right": tuple(right), "u_up": tuple(up),
+                                           "u_size": (0.22 * size, 0.11 * size)})
+            self.clouds.render()
 
     def _disc(self, vp: bytes, eye: np.ndarray, radius: float, toward: np.ndarray, size: float, color: tuple) -> None:
         """A glowing disc (the sun, the moon) on the far plane in direction ``toward``, added to the sky."""

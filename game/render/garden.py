@@ -17,8 +17,9 @@ from dataclasses import dataclass, replace
 import moderngl
 import numpy as np
 
-from arbor.game.render.backdrop import Backdrop, sky_colors
+from arbor.game.render.backdrop import CLOUD_DRIFT, CLOUD_STEP, Backdrop, sky_colors
 from arbor.game.render.camera import OrbitCamera, look_at, orthographic
+from arbor.game.render.grass import Grass
 from arbor.game.render.instanced import (
     LEAF_KEPT,
     SIDES,
@@ -80,6 +81,7 @@ class GardenRenderer:
         self.ctx = ctx
         self.backdrop = Backdrop(ctx)
         self.trees = InstancedTrees(ctx)
+        self.grass = Grass(ctx)
         self.textures = {name: _load_texture(ctx, name, name.startswith("bark"))
                          for name in ("bark", "bark_normal", "leaf_cluster", "blossom")}
         self.shadows = ShadowMaps(ctx)
@@ -166,6 +168,8 @@ class GardenRenderer:
                    for p in self.placed]
         self.last_details = details
         self.last_scale = scale = self._scale(details, camera, size[1])
+        self._grow_grass()
+        self.backdrop.drift = int(self.time * CLOUD_DRIFT / CLOUD_STEP)
         self.shadows.age += 1
         target = self.stage.target(fbo, size)
         pixel = 2.0 * math.tan(math.radians(camera.fov_y) / 2) / size[1]
@@ -221,7 +225,19 @@ class GardenRenderer:
             for placed, detail in zip(self.placed, details, strict=True):
                 uniforms["u_offset"] = tuple(placed.offset)
                 self.trees.draw(placed.buffers, "lit", detail, uniforms, self.textures, piece)
+            if "tube" in piece.names and not self.stage.backdrop.cutaway:  # (with the wood: once a picture)
+                self.grass.draw(uniforms)
         return run, True
+
+    def _grow_grass(self) -> None:
+        """The grass around the grown trees (not the falling branches), as big as the trees are."""
+        standing = [p for p in self.placed if p.version >= 0 and p.buffers.view is not None]
+        if not standing:
+            return
+        heights = [float(np.asarray(p.buffers.view.hi)[1]) for p in standing]
+        radius = max(float(np.linalg.norm(np.asarray(p.buffers.view.hi) - np.asarray(p.buffers.view.lo))) / 2
+                     for p in standing)
+        self.grass.update([p.offset for p in standing], radius, max(max(heights), 4.0))
 
     def _scale(self, details: list[Detail], camera: OrbitCamera, height_px: int) -> float:
         """The resolution the trees are drawn at: the whole frame's, or on a software GL less when

@@ -31,9 +31,9 @@ class Stage:
         self._scene_key: tuple | None = None
 
     def _state(self, size: tuple[int, int], vp: np.ndarray, sun: np.ndarray, radius: float) -> tuple:
-        """What the sky and ground picture shows: frame, camera, the sun (to SUN_STEP), the cutaway and
-        the ground's size (in 2 % steps)."""
-        return (size, _gl(vp), tuple(np.round(sun / SUN_STEP)), self.backdrop.cutaway,
+        """What the sky and ground picture shows: frame, camera, the sun (to SUN_STEP), the cutaway, the
+        clouds' drift and the ground's size (in 2 % steps)."""
+        return (size, _gl(vp), tuple(np.round(sun / SUN_STEP)), self.backdrop.cutaway, self.backdrop.drift,
                 round(math.log(max(radius, 1e-3)) / 0.02))
 
     def target(self, fbo: moderngl.Framebuffer, size: tuple[int, int]) -> moderngl.Framebuffer:
