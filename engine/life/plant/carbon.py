@@ -153,9 +153,11 @@ class Economy:
         return self.budget.live(self.rules, self.seconds, self.shine, self.stomata, self.activity, measured,
                                 self.in_leaf)
 
-    def rest(self) -> float:
-        """A reading at night: upkeep goes on (from the last canopy measured), nothing is fixed."""
-        return self.budget.live(self.rules, self.seconds, 0.0, 0.0, self.activity, None, self.in_leaf)
+    def rest(self, leaf_area: float) -> float:
+        """A reading at night: nothing is fixed, upkeep goes on for ``leaf_area`` scene units² of leaves
+        (counted from the string: no light reading is taken at night) and the sapwood last measured."""
+        dark = Canopy(leaf_area * AREA, 0.0, self.budget.sapwood)
+        return self.budget.live(self.rules, self.seconds, 0.0, 0.0, self.activity, dark, self.in_leaf)
 
     def wood_share(self, volume: float) -> float:
         """The share (0..1) of ``volume`` scene units³ of new wood the pool pays for now (and takes)."""

@@ -46,6 +46,7 @@ from arbor.engine.life.form.interpret import (
     LEAF_BUD,
     Clocks,
     grow_geometry,
+    leaf_sizes,
     pipe_area,
     render_view,
     turtle_config,
@@ -173,6 +174,12 @@ class GrowingTree:
             self.lstring = LString.from_arrays(sym, np.where(leaves, 0, ls.nparams), ls.params[~np.repeat(leaves,
                                                                                                          ls.nparams)])
         return count
+
+    def leaf_area(self, now: float) -> float:
+        """Area (scene units²) of the leaf clusters on the tree at length time ``now``, counted from the string."""
+        idx = np.flatnonzero((self.lstring.sym == LEAF) & (self.lstring.nparams >= 1))
+        sizes = leaf_sizes(self.lstring, idx, now, self.geometry_constants)
+        return float((CLUSTER_AREA * LEAF_ASPECT * sizes**2).sum())
 
     def render_view(self, clocks: Clocks) -> LString:
         """The L-string the turtle draws at these clocks: ages turned into lengths and leaf sizes."""

@@ -211,7 +211,7 @@ def sense_light(worlds: list[World], rocks: Obstacles | None = None) -> None:
         world.last_light = world.sim.state.time
     if shine <= 0:  # night: nothing to read or remember; wood grown meanwhile is added at the next reading
         for world, since in zip(worlds, seconds, strict=True):
-            world.economy(since, 0.0).rest()
+            world.economy(since, 0.0).rest(world.tree.leaf_area(world.sim.state.length_time))  # (no turtle at night)
             world.settle(since)
             if world.tree.last_sense_length is not None:
                 world.tree.last_sense_length = world.sim.state.length_time

@@ -1,0 +1,100 @@
+"""The carbon budget under the game: sugar from the light the leaves catch, limited by water, spent on upkeep
+and growth; a tree that cannot pay its upkeep, or stands bare in summer, starves and dies."""
+
+import numpy as np
+import pytest
+
+from arbor.engine.life.plant.carbon import CarbonBudget, canopy, stomata
+from arbor.engine.life.rules.rules import Rules, load_rules
+from arbor.engine.life.world.actions import Action
+from arbor.engine.life.world.world import World
+from arbor.engine.lsystem.lsys import load_lsystem
+
+DAY = 2 * np.pi / 0.05  # seconds of a simulated day at the default sun speed
+
+
+@pytest.fixture(scope="module")
+def system(lsys_dir):
+    return load_lsystem(lsys_dir / "game_tree.lsys")
+
+
+def lived(system, days: float, orbit: float | None = None, below: float = 0.55, until: float = 0.75,
+          seed: int = 3) -> World:
+    """A world in an endless summer, watered between ``below`` and ``until`` (both 1: the can always held)."""
+    rules = load_rules("assets/rules.toml", pace="demo")
+    rules.seasons.enabled = False
+    world = World(system, rules, seed=seed)
+    if orbit is not None:
+        world.apply(Action.ORBIT_HEIGHT, orbit)
+    world.sim.state.sun_meter = world.sim.state.water_meter = 0.9
+    for _ in range(round(days * DAY / 0.5)):
+        s = world.sim.state
+        world.apply(Action.WATER, float(s.water_meter < until if s.watering else s.water_meter < below))
+        world.step(0.5)
+    return world
+
+
+def test_sugar_follows_the_light_on_the_leaves_and_closes_with_the_stomata():
+    rules = Rules()
+    shaded, lit = CarbonBudget(pool=1.0), CarbonBudget(pool=1.0)
+    area = np.full(10, 100.0)  # ten leaves of 1 m² (100 scene units² each)
+    shaded.live(rules, 10.0, 1.0, 1.0, 1.0, canopy(area, np.full(10, 0.2), np.zeros(0), np.zeros(0)))
+    lit.live(rules, 10.0, 1.0, 1.0, 1.0, canopy(area, np.full(10, 0.8), np.zeros(0), np.zeros(0)))
+    assert lit.fixed == pytest.approx(4 * shaded.fixed) and lit.fixed == pytest.approx(rules.carbon.assimilation * 80)
+    dry = CarbonBudget(pool=1.0)
+    dry.live(rules, 10.0, 1.0, stomata(0.75, drowned=False), 1.0, canopy(area, np.full(10, 0.8), np.zeros(0),
+                                                                         np.zeros(0)))
+    assert dry.fixed == pytest.approx(0.25 * lit.fixed)
+    assert stomata(0.0, drowned=True) == 0.0 and stomata(0.0, drowned=False) == 1.0
+
+
+def test_leaves_and_sapwood_cost_upkeep_by_day_and_by_night():
+    rules = Rules()
+    small, big = CarbonBudget(pool=50.0), CarbonBudget(pool=50.0)
+    leaves = np.full(4, 100.0)  # 4 m² of leaves in the dark; 5 internodes of 0.02 units² x 10 units of sapwood
+    small.live(rules, 1.0, 1.0, 1.0, 1.0, canopy(leaves, np.zeros(4), np.full(5, 0.02), np.full(5, 10.0)))
+    big.live(rules, 1.0, 1.0, 1.0, 1.0, canopy(leaves, np.zeros(4), np.full(5, 0.08), np.full(5, 10.0)))
+    upkeep = rules.carbon.leaf_respiration * 4.0 + rules.carbon.wood_respiration * 5 * 0.02 * 10 / 1000
+    assert small.respired == pytest.approx(upkeep) and big.respired > small.respired
+    night = small.pool
+    small.live(rules, 10.0, 0.0, 0.0, 1.0)  # night: the last canopy respires on, nothing is fixed
+    assert small.pool == pytest.approx(night - 10 * upkeep) and small.fixed == 0.0
+    asleep = CarbonBudget(pool=50.0, leaf_area=4.0, sapwood=small.sapwood)
+    asleep.live(rules, 10.0, 0.0, 0.0, rules.carbon.dormant)  # winter rest: a share of summer's upkeep
+    assert asleep.respired == pytest.approx(rules.carbon.dormant * 10 * upkeep)
+
+
+def test_shade_builds_less_than_sun_and_starves_nothing_that_is_lit(system):
+    sun, shade = lived(system, 8), lived(system, 8, orbit=-0.5)
+    assert sun.carbon.fixed > 2.5 * shade.carbon.fixed
+    assert sun.carbon.built > 2 * shade.carbon.built
+    leaves = [int(np.count_nonzero(w.tree.lstring.sym == ord("L"))) for w in (sun, shade)]
+    assert leaves[1] <= 0.7 * leaves[0]
+    assert sun.sim.state.alive and shade.sim.state.alive and sun.carbon.starving == 0.0
+
+
+def test_a_drowned_tree_does_not_grow(system):
+    wet = lived(system, 3, below=1.0, until=1.0)  # the can held all the time
+    s = wet.sim.state
+    assert s.drowning > wet.rules.water.drown_time
+    length, roots = s.length_time, s.root_time
+    for _ in range(round(DAY / 0.5)):
+        wet.step(0.5)
+    assert wet.sim.state.length_time == length and wet.sim.state.root_time == roots  # no shoot, no root grew
+
+
+def test_a_tree_kept_in_the_dark_starves_and_dies(system):
+    rules = load_rules("assets/rules.toml", pace="demo")
+    rules.seasons.enabled = False
+    world = World(system, rules, seed=3)
+    world.sim.state.water_meter = 0.7
+    world.apply(Action.ORBIT_HEIGHT, -1.0)  # the sun never rises: leaves stay, nothing is fixed
+    days = 0.0
+    while world.sim.state.alive and days < 6:
+        for _ in range(round(DAY / 4 / 0.5)):
+            world.sim.state.water_meter = max(world.sim.state.water_meter, 0.6)  # watered: only light is missing
+            world.sim.state.sun_meter = max(world.sim.state.sun_meter, 0.6)  # (the meter alone would not kill)
+            world.step(0.5)
+        days += 0.25
+    assert not world.sim.state.alive and days <= 4
+    assert world.carbon.pool == 0.0 and world.carbon.respired > 0
