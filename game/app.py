@@ -10,7 +10,7 @@ from pathlib import Path
 
 import numpy as np
 
-from arbor.game.errors import NO_DISPLAY, UserError
+from arbor.game.errors import NO_DISPLAY, NO_DISPLAY_FOUND, UserError
 from arbor.game.render.renderer import save_png
 from arbor.game.watchdog import STAFF_EXIT
 
@@ -22,8 +22,10 @@ def open_window(size: tuple[int, int], title: str, fullscreen: bool = False):
     import moderngl
     import pygame
 
+    _refuse_invisible_window(_driver_without_display())  # before SDL probes (and complains about) what is absent
     try:
         pygame.display.init()  # display and fonts only: no audio device is needed (or probed)
+        _refuse_invisible_window(pygame.display.get_driver())
         pygame.font.init()
         pygame.display.gl_set_attribute(pygame.GL_CONTEXT_MAJOR_VERSION, 3)
         pygame.display.gl_set_attribute(pygame.GL_CONTEXT_MINOR_VERSION, 3)
@@ -32,12 +34,35 @@ def open_window(size: tuple[int, int], title: str, fullscreen: bool = False):
         pygame.display.set_mode((0, 0) if fullscreen else size, flags)
         pygame.display.set_caption(title)
         ctx = moderngl.create_context(require=330)
+    except UserError:
+        pygame.quit()
+        raise
     except Exception as exc:  # pygame.error, moderngl.Error: no display, no GL, too old a GL
         pygame.quit()
         raise UserError(NO_DISPLAY.format(detail=str(exc).strip().splitlines()[0] if str(exc).strip()
                                           else type(exc).__name__)) from None
     ctx.gc_mode = "auto"  # GL objects are freed with their Python objects (a recovered kiosk leaks nothing)
     return ctx
+
+
+INVISIBLE_DRIVERS = ("offscreen", "dummy")  # SDL's fallbacks when there is no display: a window nobody sees
+
+
+def _refuse_invisible_window(driver: str) -> None:
+    """Refuse to run a window on a video driver SDL fell back to (no DISPLAY: "offscreen"), where the game
+    would run unseen. A driver asked for by name in SDL_VIDEODRIVER is the user's choice and is kept."""
+    asked = os.environ.get("SDL_VIDEODRIVER", "").strip().lower()
+    if driver.lower() in INVISIBLE_DRIVERS and asked != driver.lower():
+        raise UserError(NO_DISPLAY_FOUND.format(driver=driver))
+
+
+def _driver_without_display() -> str:
+    """"offscreen" when nothing says where a window could go on Linux (no DISPLAY, WAYLAND_DISPLAY or
+    SDL_VIDEODRIVER): what SDL would fall back to; otherwise "" (let SDL look)."""
+    import sys
+
+    names = ("DISPLAY", "WAYLAND_DISPLAY", "SDL_VIDEODRIVER")
+    return "offscreen" if sys.platform.startswith("linux") and not any(os.environ.get(n) for n in names) else ""
 
 
 def _frames_limit() -> int:

@@ -9,3 +9,6 @@ class UserError(Exception):
 
 NO_DISPLAY = ("no OpenGL 3.3 display ({detail}). Run it on a desktop, or headless under a virtual display: "
               "xvfb-run -a arbor ...; without any window: arbor render / export / lab --out")
+
+NO_DISPLAY_FOUND = ("no display found (SDL fell back to its {driver} driver: the window would be invisible). "
+                    "Run it on a desktop, or under a virtual display: xvfb-run -a arbor")

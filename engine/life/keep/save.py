@@ -41,6 +41,8 @@ from arbor.engine.life.keep.save_check import (
     vector,
 )
 from arbor.engine.life.lineage.lineage import Family, Lineage, lineage_from_row, new_lineage, species_of
+from arbor.engine.life.plant import genome
+from arbor.engine.life.plant.growth import GrowingTree
 from arbor.engine.life.plant.journal import Journal
 from arbor.engine.life.plant.sim import Rules, Simulation
 from arbor.engine.life.world.garden import MAX_ROCKS, MAX_SEEDS, Garden, Seed
@@ -142,6 +144,8 @@ def _tree_lines(world: World, lsystem_name: str) -> list[str]:
         *_lineage_pairs(world.lineage),
         "",
         *_table("trees.carbon", asdict(world.carbon)),
+        "",
+        *_table("trees.genome", world.genome),
         "",
         "[trees.journal]",
         "entries = [" + ", ".join(f"[{format_number(tm)}, {_toml_string(k)}, {format_number(v)}]"
@@ -348,6 +352,9 @@ def _load_tree(data: dict, where: Where, rules: Rules, budget_slack: float) -> W
     state.orbit_height = min(max(state.orbit_height, rules.sun.orbit_height_min), rules.sun.orbit_height_max)
     state.sun_speed = min(max(state.sun_speed, rules.sun.speed_min), rules.sun.speed_max)
     world.sim = Simulation(rules, state)
+    saved_genome = table(data, "genome", where, required=False)  # (older saves: the species as it is)
+    world.genome = genome.checked(system, saved_genome) if "genome" in data else {}
+    world.tree = GrowingTree(world.expressed(), seed=world.seed)
     growth = table(data, "growth", where)
     _restore_growth(world, growth, where, budget_slack)
     world.journal, _ = Journal.from_rows(table(data, "journal", where, required=False).get("entries", []))

@@ -13,7 +13,7 @@ import numpy as np
 
 from arbor.engine.life.form.interpret import Clocks
 from arbor.engine.life.lineage.lineage import Lineage, new_lineage, species_of
-from arbor.engine.life.plant import carbon, collide, seasons
+from arbor.engine.life.plant import carbon, collide, genome, seasons
 from arbor.engine.life.plant.carbon import CarbonBudget, Economy
 from arbor.engine.life.plant.collide import Obstacles
 from arbor.engine.life.plant.growth import GrowingTree
@@ -47,6 +47,7 @@ class World:
     lineage: Lineage = field(init=False)  # parents, generation, planting (engine/life/lineage.py)
     roots: Roots = field(init=False)  # grown below ground on water (engine/life/roots.py)
     carbon: CarbonBudget = field(init=False)  # the sugar its leaves fix and its growth spends (plant/carbon.py)
+    genome: dict[str, float] = field(init=False)  # its own values of the species' varying defines (plant/genome.py)
     # 1 when the save this tree was read from held a lineage that could not be trusted (so it starts a
     # line of its own): told to the player by the loader, never written back
     dropped_lineage: int = field(default=0, init=False)
@@ -57,14 +58,19 @@ class World:
         self.sim = Simulation(self.rules)
         self.sim.state.weather_seed = self.seed
         self.rng = np.random.Generator(np.random.PCG64(self.seed))
-        self.tree = self._plant(self.seed) if plant else GrowingTree(self.system, seed=self.seed)
+        self.genome = genome.draw(self.system, self.seed)
+        self.tree = self._plant(self.seed) if plant else GrowingTree(self.expressed(), seed=self.seed)
         self.lineage = new_lineage(self.seed, 0.0, species_of(self.system.file))
         self.roots = Roots(seed=self.seed)
         self.carbon = CarbonBudget.for_seedling(self.rules)
 
+    def expressed(self) -> LSystem:
+        """The species' L-system with this tree's own genome (engine/life/plant/genome.py)."""
+        return genome.expressed(self.system, self.genome)
+
     def _plant(self, seed: int) -> GrowingTree:
         """A sapling: the axiom grown to the rules' sapling age (its leader only, no side shoots)."""
-        tree = GrowingTree(self.system, seed=seed)
+        tree = GrowingTree(self.expressed(), seed=seed)
         age = self.rules.growth.sapling_age
         step = self.rules.growth.rewrite_step
         for k in range(1, int(age / step) + 1):
@@ -106,7 +112,8 @@ class World:
         """One rewrite at the sim's clocks, the shoots' growth paid for by the carbon pool: the pool funds
         a share of what the apices would build at full speed (extern C), and what was built is taken out."""
         s, tree, rules = self.sim.state, self.tree, self.rules
-        const, density = tree.geometry_constants, carbon.wood_density(tree.system.constants, rules)
+        const = {**tree.system.constants, **tree.geometry_constants}
+        density = carbon.wood_density(tree.system.constants, rules)
         demand = carbon.shoot_demand(tree.lstring, s.length_time - tree.last_rewrite_T, const, rules, density)
         vigour = self.carbon.share(rules, demand)
         self.carbon.vigour = vigour
@@ -162,6 +169,7 @@ class World:
         """A fresh sapling (and a fresh line of descent) in this tree's place."""
         self.sim.replant(self.rng)
         seed = int(self.rng.integers(2**31))
+        self.genome = genome.draw(self.system, seed)  # a new seedling: its own traits
         self.tree = self._plant(seed)
         self.lineage = new_lineage(seed, self.lineage.planted, self.lineage.species)  # a new line starts
         self.roots = Roots(seed=seed)

@@ -1,0 +1,43 @@
+"""A newcomer's first minutes: a window that cannot be seen is refused with one line, the first start says
+what it compiles, and a tree shared as a postcard PNG comes back as the same tree."""
+
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+
+import pytest
+
+from arbor.game.errors import UserError
+
+
+def _no_display_env() -> dict[str, str]:
+    env = {k: v for k, v in os.environ.items() if k not in ("DISPLAY", "WAYLAND_DISPLAY", "SDL_VIDEODRIVER")}
+    env.update(SDL_AUDIODRIVER="dummy", ARBOR_MAX_FRAMES="2")  # a window that did open ends at once
+    return env
+
+
+@pytest.mark.parametrize("args", [[], ["view", "assets/lsystems/abop_1_24a.lsys"]])
+def test_windowed_command_without_display_is_refused_in_one_line(args):
+    """No DISPLAY: SDL would fall back to its invisible offscreen driver; arbor says how to fix it, exit 1."""
+    from arbor.game.paths import ROOT
+
+    run = subprocess.run([sys.executable, "-m", "arbor.game.cli", *args], env=_no_display_env(), cwd=ROOT,
+                         capture_output=True, text=True, timeout=120)
+    assert run.returncode == 1, run.stderr
+    lines = run.stderr.strip().splitlines()
+    assert len(lines) == 1, run.stderr
+    assert "no display" in lines[0] and "xvfb-run -a arbor" in lines[0]
+
+
+def test_a_driver_asked_for_by_name_is_kept(monkeypatch):
+    """SDL_VIDEODRIVER=offscreen set on purpose (EGL screenshots) is the user's choice; a fallback is not."""
+    from arbor.game.app import _refuse_invisible_window
+
+    monkeypatch.setenv("SDL_VIDEODRIVER", "offscreen")
+    _refuse_invisible_window("offscreen")
+    _refuse_invisible_window("x11")
+    monkeypatch.delenv("SDL_VIDEODRIVER")
+    with pytest.raises(UserError, match="xvfb-run -a arbor"):
+        _refuse_invisible_window("offscreen")
