@@ -118,7 +118,7 @@ def _cmd_lab(args: argparse.Namespace) -> int:
 def _cmd_sweep(args: argparse.Namespace) -> int:
     from arbor.game.commands.sweep import run_sweep
 
-    return run_sweep(args.sweep, args.out, args.workers, args.scheduler, plots=not args.no_plots)
+    return run_sweep(args.sweep, args.out, args.workers, args.scheduler, plots=not args.no_plots, keep=args.keep)
 
 
 def _cmd_landscape(args: argparse.Namespace) -> int:
@@ -202,6 +202,9 @@ def build_parser() -> argparse.ArgumentParser:
     sweep.add_argument("--scheduler", default=None, metavar="ADDRESS",
                        help="run on an existing Dask cluster, e.g. tcp://10.0.0.5:8786 (pip install 'arbor[cluster]')")
     sweep.add_argument("--no-plots", action="store_true", help="CSV tables only")
+    sweep.add_argument("--keep", choices=("all", "first", "none"), default="first",
+                       help="final trees saved in DIR/trees, named by level and seed: every seed, each level's "
+                            "first seed (default) or none; docs/columns.md documents the CSV columns")
     sweep.set_defaults(run=_cmd_sweep)
     land = sub.add_parser("landscape", help="render a landscape of many trees (instancing, LOD, culling)")
     land.add_argument("trees", type=_bounded(1, MAX_TREES, "the number of trees"),

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import sys
 from pathlib import Path
 
 import numpy as np
@@ -17,6 +18,8 @@ from arbor.game.render.renderer import headless_context, render_image, save_png
 def new_lab(experiment_path: Path) -> Lab:
     """A lab for an experiment file, with the game's rules as the base."""
     experiment = load_experiment(experiment_path, ASSETS / "lsystems")
+    for note in experiment.notes:
+        print(note, file=sys.stderr)
     return Lab(experiment, load_rules(ASSETS / "rules.toml", experiment.pace))
 
 
@@ -45,7 +48,7 @@ def run_headless(experiment_path: Path, out: Path) -> list[Path]:
     out.mkdir(parents=True, exist_ok=True)
     lab.write_csv(out / "results.csv")
     charts = lab_charts(lab.series, out / "charts",
-                        title=f"{lab.experiment.title} ({lab.experiment.duration / 60:.0f} min)")
+                        title=f"{lab.experiment.title} ({lab.worlds[0].sim.state.sun_turns:.0f} game days)")
     files = [out / "results.csv", *charts, out / "scene.png"]
     ctx = headless_context()
     try:

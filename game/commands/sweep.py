@@ -1,9 +1,10 @@
 """`arbor sweep SWEEP.toml --out DIR`: every run of a sweep, then a tidy CSV, a summary CSV and figures.
 
-DIR gets: runs/ (one CSV per finished run, kept across Ctrl-C), trees/ (the final tree of each
-level's first seed, as saves the game opens), tidy.csv (one row per run and sample time), summary.csv
+DIR gets: runs/ (one CSV per finished run, kept across Ctrl-C), trees/ (the final trees, as saves the
+game opens, named by level and seed: ``orbit_height=0.5_seed03.arbor``; ``--keep all|first|none``:
+every seed, each level's first seed (default), none), tidy.csv (one row per run and sample time), summary.csv
 (per level and response at the end: n, mean, sd, 10 %, median, 90 %), and dose_response, time_series
-and thumbnails as PNG and SVG.
+and thumbnails as PNG and SVG. docs/columns.md (also ``arbor sweep --columns``) documents every column.
 """
 
 from __future__ import annotations
@@ -11,6 +12,7 @@ from __future__ import annotations
 import contextlib
 import csv
 import io
+import math
 import os
 from collections.abc import Callable
 from pathlib import Path
@@ -25,12 +27,16 @@ from arbor.game.commands.sweep_runs import RunStore, outcomes, progress_bar, wri
 from arbor.game.paths import ASSETS
 
 MAX_WORKERS = 256
+KEEP = ("all", "first", "none")
 
 
 def run_sweep(path: Path, out: Path, workers: int | None = None, scheduler: str | None = None,
-              plots: bool = True, echo: Callable[[str], None] = print) -> int:
+              plots: bool = True, echo: Callable[[str], None] = print, keep: str = "first") -> int:
     """Run what is not done yet of the sweep in ``path`` into ``out``; write tables and figures when every
-    run is done. Returns the exit status (0 done, 1 some runs failed, 130 stopped by Ctrl-C)."""
+    run is done. ``keep`` says which final trees are saved (all, each level's first seed, none). Returns
+    the exit status (0 done, 1 some runs failed, 130 stopped by Ctrl-C)."""
+    if keep not in KEEP:
+        raise ValueError(f"keep must be one of {KEEP}")
     sweep = load_sweep(path, ASSETS / "lsystems")
     store = RunStore(out, sweep)
     everything = runs(sweep)
@@ -39,7 +45,7 @@ def run_sweep(path: Path, out: Path, workers: int | None = None, scheduler: str 
     workers = min(workers or os.cpu_count() or 1, MAX_WORKERS)
     where = f"the Dask scheduler at {scheduler}" if scheduler else f"{workers} worker process(es)"
     echo(f"{sweep.title}: {len(everything)} runs, {len(everything) - len(todo)} already done, on {where}")
-    tasks = _tasks(sweep, todo)
+    tasks = _tasks(sweep, todo, keep)
     bar = progress_bar(len(everything), len(everything) - len(todo), sweep.title)
     failed, stopped = [], False
     try:
@@ -68,11 +74,18 @@ def run_sweep(path: Path, out: Path, workers: int | None = None, scheduler: str 
     return 0
 
 
-def _tasks(sweep: Sweep, todo: list) -> list[Task]:
+def _tasks(sweep: Sweep, todo: list, keep: str = "first") -> list[Task]:
     rules = load_rules(ASSETS / "rules.toml", sweep.pace)
     names = {sweep.species, *(v for f in sweep.factors if f.key == "species" for v in f.levels)}
     sources = {name: (ASSETS / "lsystems" / name).read_text(encoding="utf-8") for name in names}
-    return [Task(sweep, run, rules, sources, keep_tree=run.seed == sweep.seeds[0]) for run in todo]
+    kept = {"all": lambda run: True, "first": lambda run: run.seed == sweep.seeds[0], "none": lambda run: False}
+    return [Task(sweep, run, rules, sources, keep_tree=kept[keep](run)) for run in todo]
+
+
+def day_seconds(sweep: Sweep) -> float:
+    """How long a game day (one turn of the sun) lasts in the sweep's base regime, in game seconds."""
+    speed = sweep.base.sun_speed or load_rules(ASSETS / "rules.toml", sweep.pace).sun.speed
+    return 2 * math.pi / speed
 
 
 def write_outputs(sweep: Sweep, store: RunStore, everything: list, plots: bool = True,
@@ -89,7 +102,7 @@ def write_outputs(sweep: Sweep, store: RunStore, everything: list, plots: bool =
         from arbor.game.render import figures
 
         files += figures.dose_response(sweep, finals, out / "dose_response")
-        files += figures.time_series(sweep, _series(sweep, rows), out / "time_series")
+        files += figures.time_series(sweep, _series(sweep, rows), out / "time_series", day_seconds(sweep))
         files += _thumbnails(sweep, store, everything, echo)
     return files
 
@@ -127,13 +140,16 @@ def _thumbnails(sweep: Sweep, store: RunStore, everything: list, echo: Callable[
     from arbor.game.render import figures
     from arbor.game.render.renderer import headless_context, render_image
 
-    kept = {r.levels: store.trees_dir / f"{r.name}.arbor" for r in everything if r.seed == sweep.seeds[0]}
+    kept = {r.levels: store.trees_dir / r.tree_name(sweep) for r in everything if r.seed == sweep.seeds[0]}
     rules = load_rules(ASSETS / "rules.toml", sweep.pace)
     meshes = {}
     for levels, path in kept.items():
         if path.is_file():
             world = read_garden(path, rules).world
             meshes[levels] = world.tree.geometry(world.clocks())
+    if not meshes:
+        echo("thumbnails skipped: no kept trees (--keep none)")
+        return []
     try:
         ctx = headless_context()
     except Exception as exc:  # no EGL / GL here: the tables and plots are still worth having

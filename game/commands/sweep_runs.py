@@ -53,7 +53,7 @@ class RunStore:
             writer.writerow([run.name, run.seed, *(cell(v) for v in run.levels), cell(row["time_s"]),
                              *(cell(row[r]) for r in self.sweep.responses)])
         if outcome.tree is not None:
-            write_atomic(self.trees_dir / f"{run.name}.arbor", outcome.tree)
+            write_atomic(self.trees_dir / run.tree_name(self.sweep), outcome.tree)
         write_atomic(self.runs_dir / f"{run.name}.csv", buf.getvalue())
 
     def table(self, runs: list[Run]) -> str:

@@ -9,8 +9,9 @@ from __future__ import annotations
 import pygame
 
 COLORS = ((230, 90, 60), (60, 140, 230), (90, 180, 70), (200, 160, 30))
-TITLES = {"height": "Height", "girth": "Trunk girth", "modules": "Modules", "leaves": "Leaves",
-          "sun": "Sun meter", "water": "Water meter", "wilt": "Wilt"}
+TITLES = {"height": "Height (m)", "girth": "Trunk girth (cm)", "modules": "Modules", "leaves": "Leaves",
+          "sun": "Sun meter", "water": "Water meter", "wilt": "Wilt (0..1)", "leaf_area": "Leaf area (m²)",
+          "light_share": "Light on the leaves (0..1)", "biomass": "Biomass (kg)"}
 BACK, GRID, INK = (250, 250, 246), (215, 215, 205), (40, 40, 36)
 
 
@@ -31,7 +32,7 @@ def draw_panel(surface: pygame.Surface, rect: pygame.Rect, metric: str, series: 
     if not values or len(times) < 2:
         return
     top = max(max(values), 1e-9) * 1.05
-    if metric in ("sun", "water", "wilt"):
+    if metric in ("sun", "water", "wilt", "light_share"):
         top = 1.0
     t_end = max(times) or 1.0
     for k in range(5):
@@ -39,7 +40,8 @@ def draw_panel(surface: pygame.Surface, rect: pygame.Rect, metric: str, series: 
         pygame.draw.line(surface, GRID, (plot.left, y), (plot.right, y), 1)
         label = small.render(_nice(top * k / 4), True, INK)
         surface.blit(label, (plot.left - label.get_width() - 6, y - label.get_height() // 2))
-    minutes = small.render(f"{t_end / 60:.0f} min", True, INK)
+    days = [d for s in series for d in s.day]
+    minutes = small.render(f"day {max(days):.0f}" if days else f"{t_end / 60:.0f} min", True, INK)
     surface.blit(minutes, (plot.right - minutes.get_width(), plot.bottom + 4))
     surface.blit(small.render("0", True, INK), (plot.left, plot.bottom + 4))
     for i, s in enumerate(series):
@@ -50,7 +52,7 @@ def draw_panel(surface: pygame.Surface, rect: pygame.Rect, metric: str, series: 
 
 
 def draw_charts(surface: pygame.Surface, rect: pygame.Rect, series: list,
-                metrics=("height", "girth", "modules", "leaves", "sun", "water")) -> None:
+                metrics=("height", "girth", "leaf_area", "light_share", "water", "wilt")) -> None:
     """All panels in a grid inside ``rect``, with a legend on top."""
     pygame.font.init()
     font, small = pygame.font.Font(None, 34), pygame.font.Font(None, 26)

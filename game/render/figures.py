@@ -12,14 +12,20 @@ matplotlib.use("Agg")  # files only: never a window, never a display
 import matplotlib.pyplot as plt
 import numpy as np
 
+from arbor.engine.life.experiment.measure import UNITS
+from arbor.engine.life.experiment.schema import FACTOR_KEYS
 from arbor.engine.life.rules.schema import find_rule
 
 TITLES = {"height": "Height", "width": "Crown width", "offset": "Lean toward the sun", "girth": "Trunk girth",
-          "modules": "Modules", "leaves": "Leaf clusters", "density": "Leaf density (per unit of crown box)",
-          "shed": "Branches shed", "roots": "Root length",
-          "sun": "Sun meter", "water": "Water meter", "wilt": "Wilt", "alive": "Alive (share)",
-          "fruit": "Fruit"}
-REGIME_RULES = {"orbit_height": "sun.orbit_height", "sun_speed": "sun.speed"}  # the rule a regime key sets
+          "modules": "Modules", "leaves": "Leaf clusters", "density": "Leaf density (clusters per crown volume)",
+          "shed": "Branches shed", "roots": "Root length", "sun": "Sun meter (mean)", "water": "Water meter (mean)",
+          "wilt": "Wilt (mean)", "alive": "Alive (share)", "fruit": "Fruit", "biomass": "Above-ground biomass",
+          "leaf_area": "Leaf area", "lai": "Leaf area index", "light_share": "Light reaching the leaves",
+          "light_day": "Light intercepted a day", "net_carbon": "Net carbon (fixed - respired)",
+          "pool": "Sugar in store", "day_of_death": "Day of death"}
+YLABELS = {"alive": "share of seeds alive (0..1)", "modules": "modules (count)", "leaves": "clusters (count)",
+           "shed": "branches (count)", "fruit": "fruit (count)", "lai": "m² of leaf per m² of ground",
+           "light_share": "share of full sun (0..1)", "light_day": "m² of leaf x hours of full sun"}
 plt.rcParams.update({"font.size": 13, "axes.titlesize": 15, "axes.titleweight": "bold", "lines.linewidth": 2.5,
                      "svg.hashsalt": "arbor", "axes.spines.top": False, "axes.spines.right": False})
 
@@ -74,6 +80,7 @@ def dose_response(sweep, finals: dict, path: Path) -> list[Path]:
         _limits(ax, response)
         ax.set_title(TITLES.get(response, response))
         ax.set_xlabel(axis_label(first))
+        ax.set_ylabel(y_label(response))
         if labels:
             ax.set_xticks(x, labels)
         ax.grid(alpha=0.3)
@@ -84,20 +91,21 @@ def dose_response(sweep, finals: dict, path: Path) -> list[Path]:
     return save_both(fig, path)
 
 
-def time_series(sweep, series: dict, path: Path) -> list[Path]:
-    """Each response over time: per combination of levels, the mean over seeds and a 10-90 % band.
-    ``series`` maps levels -> (times, {response: array seeds x samples})."""
+def time_series(sweep, series: dict, path: Path, day_seconds: float = 125.66) -> list[Path]:
+    """Each response over time (in game days of ``day_seconds``): per combination of levels, the mean over
+    seeds and a 10-90 % band. ``series`` maps levels -> (times, {response: array seeds x samples})."""
     fig, axes = _grid(len(sweep.responses))
     colors = plt.cm.viridis(np.linspace(0.05, 0.85, max(len(series), 1)))
     for ax, response in zip(axes, sweep.responses, strict=True):
         for color, (levels, (times, values)) in zip(colors, series.items(), strict=True):
             v = values[response]
-            minutes = times / 60.0
-            ax.fill_between(minutes, *np.percentile(v, [10, 90], axis=0), color=color, alpha=0.15, linewidth=0)
-            ax.plot(minutes, v.mean(axis=0), color=color, label=", ".join(_text(x) for x in levels))
+            days = times / day_seconds
+            ax.fill_between(days, *np.percentile(v, [10, 90], axis=0), color=color, alpha=0.15, linewidth=0)
+            ax.plot(days, v.mean(axis=0), color=color, label=", ".join(_text(x) for x in levels))
         _limits(ax, response)
         ax.set_title(TITLES.get(response, response))
-        ax.set_xlabel("minutes of game time")
+        ax.set_xlabel(f"time (game days of {day_seconds:.0f} s)")
+        ax.set_ylabel(y_label(response))
         ax.grid(alpha=0.3)
     axes[0].legend(fontsize=9, frameon=False, title=" x ".join(f.name for f in sweep.factors), title_fontsize=9)
     fig.suptitle(f"{sweep.title}: mean over {len(sweep.seeds)} seeds (band: 10-90 %)", fontsize=16)
@@ -128,17 +136,21 @@ def thumbnails(sweep, images: dict, path: Path) -> list[Path]:
 
 def lab_charts(series: list, path: Path, title: str = "", colors=((230, 90, 60), (60, 140, 230), (90, 180, 70),
                                                                    (200, 160, 30), (150, 80, 180), (60, 60, 60)),
-               metrics=("height", "girth", "modules", "leaves", "sun", "water")) -> list[Path]:
+               metrics=("height", "girth", "leaf_area", "light_share", "water", "wilt")) -> list[Path]:
     """The lab's time series as small multiples, one line per tree in the live charts' colours (the
-    exported twin of the lab screen's charts)."""
+    exported twin of the lab screen's charts), against game days; a dead tree's line ends in a cross."""
     fig, axes = _grid(len(metrics))
     for ax, metric in zip(axes, metrics, strict=True):
         for k, s in enumerate(series):
             color = np.array(colors[k % len(colors)]) / 255.0
-            ax.plot(np.array(s.time) / 60.0, s.values[metric], label=s.name, color=color)
+            ax.plot(s.day, s.values[metric], label=s.name, color=color)
+            dead = [i for i, alive in enumerate(s.values["alive"]) if not alive]
+            if dead:
+                ax.plot(s.day[dead[0]], s.values[metric][dead[0]], "x", color=color, markersize=14, mew=3)
         _limits(ax, metric)
         ax.set_title(TITLES.get(metric, metric))
-        ax.set_xlabel("minutes")
+        ax.set_xlabel("time (game days)")
+        ax.set_ylabel(y_label(metric))
         ax.grid(alpha=0.3)
     axes[0].legend(fontsize=10, frameon=False)
     if title:
@@ -147,17 +159,26 @@ def lab_charts(series: list, path: Path, title: str = "", colors=((230, 90, 60),
 
 
 def axis_label(factor) -> str:
-    """A factor's name for its axis, with the unit of the rule it varies (from the rule schema, e.g.
-    "Drain (meter per s)"), so a figure says what its numbers count."""
-    rule = find_rule(REGIME_RULES.get(factor.key, factor.key))
-    return f"{factor.name} ({rule.unit})" if rule else factor.name
+    """A factor's name for its axis, with the unit of what it varies (the experiment schema's sun and
+    watering keys, the rule schema's rules, e.g. "Drain (meter per s)"), so a figure says what its numbers
+    count; a species axis is named, it has no unit."""
+    if factor.key == "species":
+        return f"{factor.name} (.lsys file)"
+    key = FACTOR_KEYS.get(factor.key)
+    unit = key.unit if key else getattr(find_rule(factor.key), "unit", "")
+    return f"{factor.name} ({unit})" if unit and f"({unit})" not in factor.name else factor.name
+
+
+def y_label(response: str) -> str:
+    """A response's axis label: its unit (measure.UNITS), in words where a bare unit says too little."""
+    return YLABELS.get(response, UNITS.get(response, ""))
 
 
 def _limits(ax, response: str) -> None:
     """Shares and meters on 0..1; counts and sizes from 0, so small differences do not look large."""
-    if response in ("sun", "water", "wilt", "alive"):
+    if response.split("_")[0] in ("sun", "water", "wilt") or response in ("alive", "light_share"):
         ax.set_ylim(-0.02, 1.05)
-    elif response != "offset":
+    elif response not in ("offset", "net_carbon"):
         ax.set_ylim(bottom=0)
 
 

@@ -13,6 +13,7 @@ import moderngl
 import numpy as np
 import pygame
 
+from arbor.engine.base.units import METRE
 from arbor.engine.life.experiment.lab import Lab
 from arbor.engine.life.keep.save import SavedGarden, write_garden
 from arbor.game.input.events import DOWN, KEY_DOWN, QUIT, InputEvent
@@ -26,6 +27,14 @@ SCENE_FRACTION = 0.55
 BUTTON_H = 56
 
 
+def tree_state(world, meters) -> str:
+    """One tree's line under its name: alive with its wilt and height, or the day it died."""
+    s = world.sim.state
+    if not s.alive:
+        return f"dead (day {meters.died:.0f})"
+    return f"alive, wilt {s.wilt:.2f}, {world.tree.height / METRE:.2f} m"
+
+
 class LabScreen:
     """Draws and drives a :class:`Lab` in a window (or headless, in tests)."""
 
@@ -37,6 +46,7 @@ class LabScreen:
         self.overlay = Overlay(ctx, size)
         pygame.font.init()
         self.font = pygame.font.Font(None, 36)
+        self.small = pygame.font.Font(None, 28)
         self.surface = pygame.Surface(size, pygame.SRCALPHA)
         self.buttons = self._layout_buttons()
         self.message = ""
@@ -114,7 +124,12 @@ class LabScreen:
             box = pygame.Rect(i * tile_w + 12, 12, label.get_width() + 24, 44)
             pygame.draw.rect(s, (*COLORS[i % len(COLORS)], 220), box, border_radius=8)
             s.blit(label, (box.left + 12, box.top + 8))
-        title = f"{self.lab.experiment.title} - {self.lab.time / 60:.1f} of {self.lab.experiment.duration / 60:.0f} min"
+            state = self.small.render(tree_state(self.lab.worlds[i], self.lab.meters[i]), True, (255, 255, 255))
+            pygame.draw.rect(s, (0, 0, 0, 150), (box.left, box.bottom + 6, state.get_width() + 24, 34), border_radius=8)
+            s.blit(state, (box.left + 12, box.bottom + 12))
+        days = self.lab.worlds[0].sim.state.sun_turns
+        title = (f"{self.lab.experiment.title} - day {days:.1f} ({self.lab.time / 60:.1f} of "
+                 f"{self.lab.experiment.duration / 60:.0f} min)")
         text = self.font.render(title, True, (255, 255, 255))
         back = pygame.Rect(12, scene_h - BUTTON_H - 10, text.get_width() + 24, BUTTON_H)
         pygame.draw.rect(s, (0, 0, 0, 140), back, border_radius=8)

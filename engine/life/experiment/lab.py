@@ -1,32 +1,36 @@
 """The educators' lab: several trees from one seed, each under its own regime, grown in lock-step.
 
-An experiment file (TOML) names the trees and their regimes: sun orbit height and speed, a watering
-schedule (keep the water meter between two levels, water on a timetable, or never) and rule
-overrides (any number in rules.toml, e.g. ``"water.drain_rate" = 0.01``). Every tree starts from the
-same seed; the run samples height, trunk girth, module and leaf counts and both meters at fixed
-intervals. Same file -> identical numbers (the worlds are deterministic).
+An experiment file (TOML, read strictly by engine/life/experiment/schema.py) names the trees and their
+regimes: the sun (orbit height or day length in hours, noon elevation in degrees, speed), a watering
+schedule (keep the water meter between two levels, water on a timetable, or never) and rule overrides
+(any number in rules.toml, e.g. ``"water.drain_rate" = 0.01``). Every tree starts from the same seed,
+each with a lineage of its own; with ``spacing`` (metres) the trees stand in a row on one plot and
+shade each other (competition). The run samples every ``sample_every`` seconds; meters and wilt are
+the mean, minimum and maximum since the last sample (docs/columns.md lists every column and its unit).
+Same file -> identical numbers (the worlds are deterministic).
 """
 
 from __future__ import annotations
 
 import copy
 import csv
-import math
+import hashlib
 import tomllib
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 
-import numpy as np
-
 from arbor.engine.base.errors import ExperimentError
+from arbor.engine.base.units import METRE
+from arbor.engine.life.experiment import schema
+from arbor.engine.life.experiment.measure import METRICS, Meters, measure
+from arbor.engine.life.experiment.schema import Reader
 from arbor.engine.life.rules.rules import Rules, check_rules, set_rule
 from arbor.engine.life.world.actions import Action
-from arbor.engine.life.world.world import World
+from arbor.engine.life.world.world import World, sense_light
 from arbor.engine.lsystem.lsys import LSystem, load_lsystem
 
-METRICS = ("height", "width", "offset", "girth", "modules", "leaves", "density", "shed", "roots", "sun", "water",
-           "wilt", "alive", "fruit")
 MAX_TREES = 6
+__all__ = ["METRICS", "Experiment", "Lab", "Regime", "Watering", "load_experiment", "measure"]
 
 
 @dataclass
@@ -52,8 +56,10 @@ class Regime:
     """One tree's conditions."""
 
     name: str
-    orbit_height: float | None = None
-    sun_speed: float | None = None
+    orbit_height: float | None = None  # orbit radii
+    sun_speed: float | None = None  # rad per s
+    day_length: float | None = None  # hours of daylight (sets the orbit height)
+    sun_elevation: float | None = None  # degrees at noon (sets the rule sun.side)
     watering: Watering = field(default_factory=Watering)
     rules: dict[str, float | bool] = field(default_factory=dict)
 
@@ -72,97 +78,125 @@ class Experiment:
     file: str = "<experiment>"
     pace: str = "demo"  # experiments keep seed 003's numbers unless they ask for another pace
     seasons: bool = True  # false: an endless summer, to study light or water alone
-
-
-def number_value(data: dict, key: str, file: str, default=None, positive: bool = False) -> float:
-    """``data[key]`` as a finite number (``default`` when missing); an error naming the key otherwise."""
-    value = data.get(key, default)
-    if value is None or isinstance(value, bool) or not isinstance(value, int | float) or not math.isfinite(value):
-        raise ExperimentError(f"'{key}' must be a number", file)
-    if positive and value <= 0:
-        raise ExperimentError(f"'{key}' must be above 0", file)
-    return float(value)
+    spacing: float | None = None  # m between trees sharing one plot (None: each tree alone)
+    notes: list[str] = field(default_factory=list)  # what the reader noticed (an old key name)
 
 
 def load_experiment(path: str | Path, lsystem_dir: Path) -> Experiment:
-    """Read and check an experiment file; problems are errors naming the file and the key."""
+    """Read and check an experiment file against the schema (engine/life/experiment/schema.py): every
+    problem is one ExperimentError naming the file, the key's line and column, and the fix."""
     path = Path(path)
     file = str(path)
     try:
-        data = tomllib.loads(path.read_text(encoding="utf-8"))
+        text = path.read_text(encoding="utf-8")
+        data = tomllib.loads(text)
     except (OSError, UnicodeDecodeError) as exc:
         raise ExperimentError(f"cannot read: {exc}", file) from None
     except tomllib.TOMLDecodeError as exc:
-        raise ExperimentError(f"not valid TOML: {exc}", file) from None
-    trees = data.get("tree", [])
-    if not isinstance(trees, list) or not 1 <= len(trees) <= MAX_TREES:
-        raise ExperimentError(f"an experiment needs 1 to {MAX_TREES} [[tree]] tables", file)
-    regimes = [parse_regime(t, i, file) for i, t in enumerate(trees)]
-    duration = number_value(data, "duration", file, positive=True)
-    if duration > 7 * 24 * 3600:
-        raise ExperimentError("'duration' is at most a week of game time", file)
-    lsys_name = str(data.get("lsystem", "game_tree.lsys"))
-    if "/" in lsys_name or "\\" in lsys_name or lsys_name.startswith("."):
-        raise ExperimentError("'lsystem' must be a file name in assets/lsystems", file)
+        raise ExperimentError(f"not valid TOML: {exc}", file, *toml_error_position(exc)) from None
+    reader = Reader(file, text, ExperimentError)
+    reader.table(data, schema.EXPERIMENT, (), "the experiment")
+    trees = reader.value(data, "tree", schema.EXPERIMENT["tree"], (), [])
+    if not 1 <= len(trees) <= MAX_TREES:
+        raise reader.fail(f"an experiment needs 1 to {MAX_TREES} [[tree]] tables (it has {len(trees)})", ())
+    regimes = [parse_regime(reader, t, ("tree", i), schema.TREE) for i, t in enumerate(trees)]
+    names = [r.name for r in regimes]
+    for i, name in enumerate(names):
+        if name in names[:i]:
+            raise reader.fail(f"two trees are named {name!r}: give each tree its own name", ("tree", i, "name"))
+    spacing = reader.value(data, "spacing", schema.EXPERIMENT["spacing"], (), 0.0) or None
+    if spacing is not None:
+        check_shared_sun(reader, regimes, trees)
+    get = lambda key, default: reader.value(data, key, schema.EXPERIMENT[key], (), default)  # noqa: E731
     return Experiment(
-        title=str(data.get("title", path.stem)),
-        seed=int(number_value(data, "seed", file, 0)),
-        duration=duration,
-        sample_every=number_value(data, "sample_every", file, 30.0, positive=True),
-        regimes=regimes,
-        lsystem=lsystem_dir / lsys_name,
-        file=file,
-        pace=pace_value(data, file),
-        seasons=flag_value(data, "seasons", file),
-    )
+        title=str(get("title", path.stem)), seed=get("seed", 0), duration=reader.value(
+            data, "duration", schema.EXPERIMENT["duration"], ()), sample_every=get("sample_every", 30.0),
+        regimes=regimes, lsystem=lsystem_dir / species_name(reader, data, "lab"), file=file,
+        pace=pace_value(reader, data), seasons=get("seasons", True), spacing=spacing, notes=reader.notes)
 
 
-def flag_value(data: dict, key: str, file: str) -> bool:
-    """``data[key]`` as true or false (true when missing)."""
-    value = data.get(key, True)
-    if not isinstance(value, bool):
-        raise ExperimentError(f"'{key}' must be true or false", file)
-    return value
+def toml_error_position(exc: tomllib.TOMLDecodeError) -> tuple[int, int]:
+    """The line and column tomllib names in its message ("... (at line 3, column 7)"), or (1, 1)."""
+    import re
+
+    match = re.search(r"line (\d+), column (\d+)", str(exc))
+    return (int(match.group(1)), int(match.group(2))) if match else (1, 1)
 
 
-def pace_value(data: dict, file: str) -> str:
+def species_name(reader: Reader, data: dict, kind: str) -> str:
+    """The species file name (key ``species``; a lab's old ``lsystem`` is read with a note), checked."""
+    key = "species"
+    if kind == "lab" and "lsystem" in data:
+        if "species" in data:
+            raise reader.fail("give 'species' only ('lsystem' is its old name)", ("lsystem",))
+        key = "lsystem"
+        reader.notes.append(f"{reader.file}:{':'.join(map(str, reader.locator.find(('lsystem',))))}: note: "
+                            "'lsystem' is now called 'species' (read as species)")
+    name = reader.value(data, key, schema.COMMON["species"], (), "game_tree.lsys")
+    if not name.endswith(".lsys") or "/" in name or "\\" in name or name.startswith("."):
+        raise reader.fail(f"'{key}' must be a file name in assets/lsystems, e.g. \"game_poplar.lsys\"", (key,))
+    return name
+
+
+def pace_value(reader: Reader, data: dict) -> str:
     """The pace a file asks for (default demo)."""
-    pace = data.get("pace", "demo")
-    if not isinstance(pace, str) or not pace.isidentifier():
-        raise ExperimentError("'pace' must be the name of a pace in rules.toml (demo or home)", file)
+    pace = reader.value(data, "pace", schema.COMMON["pace"], (), "demo")
+    if not pace.isidentifier():
+        raise reader.fail("'pace' must be the name of a pace in rules.toml (demo or home)", ("pace",))
     return pace
 
 
-def parse_regime(t: dict, i: int, file: str) -> Regime:
-    """One tree's regime from its table (sun, watering, rule overrides), checked."""
-    where = f"{file} [[tree]] #{i + 1}"
-    if not isinstance(t, dict) or "name" not in t:
-        raise ExperimentError("every [[tree]] needs a name", where)
-    water = t.get("watering", "never")
+def check_shared_sun(reader: Reader, regimes: list[Regime], tables: list[dict]) -> None:
+    """Trees on one plot share one sun: their sun keys must agree."""
+    keys = ("orbit_height", "sun_speed", "day_length", "sun_elevation")
+    first = [getattr(regimes[0], k) for k in keys]
+    for i, regime in enumerate(regimes[1:], 1):
+        for key, want in zip(keys, first, strict=True):
+            if getattr(regime, key) != want:
+                raise reader.fail(f"trees on one plot (spacing) share the sun: give every tree the same {key!r}",
+                                  ("tree", i, key) if key in tables[i] else ("tree", i))
+
+
+def parse_watering(reader: Reader, water, path: tuple) -> Watering:
+    """A watering schedule: "never", keep the meter between ``below`` and ``until``, or a timetable."""
     if water == "never":
-        watering = Watering()
-    elif isinstance(water, dict):
-        watering = Watering(
-            below=number_value(water, "below", where) if "below" in water else None,
-            until=number_value(water, "until", where, 0.7),
-            every=number_value(water, "every", where, positive=True) if "every" in water else None,
-            seconds=number_value(water, "seconds", where, 5.0, positive=True),
-        )
-    else:
-        raise ExperimentError("'watering' is \"never\" or a table like { below = 0.5, until = 0.7 }", where)
-    rules = t.get("rules", {})
-    if not isinstance(rules, dict):
-        raise ExperimentError("'rules' must be a table of \"section.key\" = number", where)
+        return Watering()
+    if not isinstance(water, dict):
+        raise reader.fail("'watering' is \"never\" or a table like { below = 0.5, until = 0.7 }", path)
+    reader.table(water, schema.WATERING, path, "'watering'")
+    get = lambda key, default: reader.value(water, key, schema.WATERING[key], path, default)  # noqa: E731
+    watering = Watering(below=get("below", -1.0), until=get("until", 0.7), every=get("every", 0.0) or None,
+                        seconds=get("seconds", 5.0))
+    watering.below = None if "below" not in water else watering.below
+    if watering.below is not None and watering.every is not None:
+        raise reader.fail("give 'below' (keep the meter up) or 'every' (a timetable), not both", (*path, "every"))
+    if watering.below is not None and not watering.below < watering.until:
+        raise reader.fail(f"'below' ({watering.below:g}) must be under 'until' ({watering.until:g}): watering "
+                          "starts below one and stops at the other", (*path, "below"))
+    if watering.every is not None and watering.seconds >= watering.every:
+        raise reader.fail(f"'seconds' ({watering.seconds:g}) must be shorter than 'every' ({watering.every:g})",
+                          (*path, "seconds"))
+    return watering
+
+
+def parse_regime(reader: Reader, t, path: tuple, keys: dict) -> Regime:
+    """One tree's regime from its table (sun, watering, rule overrides), checked against ``keys``."""
+    reader.table(t, keys, path, f"[[{path[0]}]] #{path[1] + 1}" if len(path) > 1 else f"[{path[0]}]")
+    name = reader.value(t, "name", schema.TREE["name"], path) if "name" in keys else "base"
+    if not name.strip():
+        raise reader.fail("a tree's 'name' must not be empty", (*path, "name"))
+    watering = parse_watering(reader, t.get("watering", "never"), (*path, "watering"))
+    rules = reader.value(t, "rules", schema.TREE["rules"], path, {})
     probe = Rules()
-    for key, value in rules.items():
-        set_rule(probe, key, value, where, ExperimentError)  # a known rule, within its range
-    return Regime(
-        name=str(t["name"]),
-        orbit_height=number_value(t, "orbit_height", where) if "orbit_height" in t else None,
-        sun_speed=number_value(t, "sun_speed", where, positive=True) if "sun_speed" in t else None,
-        watering=watering,
-        rules=dict(rules),
-    )
+    for key, value in rules.items():  # a known rule, within its range
+        set_rule(probe, key, value, reader.file, reader.error, at=reader.locator.find((*path, "rules", key)))
+    sun = {key: reader.value(t, key, schema.SUN[key], path, 0.0) if key in t else None for key in schema.SUN}
+    if sun["orbit_height"] is not None and sun["day_length"] is not None:
+        raise reader.fail("give 'orbit_height' or 'day_length', not both (the day length sets the orbit's height)",
+                          (*path, "day_length"))
+    if sun["sun_elevation"] is not None and "sun.side" in rules:
+        raise reader.fail("give 'sun_elevation' or the rule \"sun.side\", not both", (*path, "sun_elevation"))
+    return Regime(name=name, watering=watering, rules=dict(rules), **sun)
 
 
 def regime_rules(base: Rules, regime: Regime) -> Rules:
@@ -171,16 +205,28 @@ def regime_rules(base: Rules, regime: Regime) -> Rules:
     rules = copy.deepcopy(base)
     for key, value in regime.rules.items():
         set_rule(rules, key, value, regime.name, ExperimentError)
+    if regime.sun_elevation is not None:
+        rules.sun.side = schema.elevation_side(regime.sun_elevation, orbit_height(regime, rules))
     check_rules(rules, regime.name, ExperimentError)
     return rules
 
 
+def orbit_height(regime: Regime, rules: Rules) -> float:
+    """The orbit height a regime asks for: its own, the one its day length gives, or the rules'."""
+    if regime.orbit_height is not None:
+        return regime.orbit_height
+    if regime.day_length is not None:
+        return schema.day_length_height(regime.day_length)
+    return rules.sun.orbit_height
+
+
 @dataclass
 class Series:
-    """One tree's sampled time series."""
+    """One tree's sampled time series (``day``: game days, turns of the sun, at each sample)."""
 
     name: str
     time: list[float] = field(default_factory=list)
+    day: list[float] = field(default_factory=list)
     values: dict[str, list[float]] = field(default_factory=lambda: {m: [] for m in METRICS})
 
 
@@ -192,20 +238,30 @@ class Lab:
         base_rules = copy.deepcopy(base_rules)
         base_rules.seasons.enabled = experiment.seasons
         self.system = system or load_lsystem(experiment.lsystem)
-        self.worlds: list[World] = []
-        for regime in experiment.regimes:
-            world = World(self.system, regime_rules(base_rules, regime), seed=experiment.seed)
-            if regime.orbit_height is not None:
-                world.apply(Action.ORBIT_HEIGHT, regime.orbit_height)
-            if regime.sun_speed is not None:
-                world.apply(Action.SUN_SPEED, regime.sun_speed)
-            self.worlds.append(world)
+        self.worlds = [self._world(i, regime, base_rules) for i, regime in enumerate(experiment.regimes)]
+        self.meters = [Meters() for _ in self.worlds]
         self.series = [Series(r.name) for r in experiment.regimes]
         self.time = 0.0
         self._next_sample = 0.0
 
+    def _world(self, index: int, regime: Regime, base_rules: Rules) -> World:
+        """One tree's world: its rules, its sun, its own lineage and (on a shared plot) its place in the row."""
+        rules = regime_rules(base_rules, regime)
+        world = World(self.system, rules, seed=self.experiment.seed)
+        ident = hashlib.sha256(f"{world.lineage.id}|lab|{index}|{regime.name}".encode()).hexdigest()[:16]
+        world.lineage = replace(world.lineage, id=ident)  # every tree a line of its own
+        if regime.orbit_height is not None or regime.day_length is not None:
+            world.apply(Action.ORBIT_HEIGHT, orbit_height(regime, rules))
+        if regime.sun_speed is not None:
+            world.apply(Action.SUN_SPEED, regime.sun_speed)
+        if self.experiment.spacing:
+            n = len(self.experiment.regimes)
+            world.position = ((index - (n - 1) / 2) * self.experiment.spacing * METRE, 0.0)
+        return world
+
     def step(self) -> None:
-        """Advance every tree by one time step, watering each by its schedule; sample when due."""
+        """Advance every tree by one time step, watering each by its schedule; sample when due. Trees on
+        one plot read the light together (each shades the others)."""
         dt = self.experiment.dt
         if self.time >= self._next_sample - 1e-9:
             self.sample()
@@ -215,7 +271,18 @@ class Lab:
             wanted = regime.watering.wants_water(s.time, s.water_meter, s.watering)
             if wanted != s.watering:
                 world.apply(Action.WATER, float(wanted))
-            world.step(dt)
+        if self.experiment.spacing:
+            for world in self.worlds:
+                world.advance(dt)
+            if self.worlds[0].light_due():
+                sense_light(self.worlds)
+            for world in self.worlds:
+                world.grow()
+        else:
+            for world in self.worlds:
+                world.step(dt)
+        for world, meters in zip(self.worlds, self.meters, strict=True):
+            meters.add(world, dt)
         self.time += dt
 
     def run(self, until: float | None = None) -> None:
@@ -228,52 +295,20 @@ class Lab:
             self._next_sample += self.experiment.sample_every
 
     def sample(self) -> None:
-        """Record every tree's measurements now."""
-        for world, series in zip(self.worlds, self.series, strict=True):
+        """Record every tree's measurements now (meters and wilt: since the last sample)."""
+        for world, series, meters in zip(self.worlds, self.series, self.meters, strict=True):
             series.time.append(self.time)
-            for key, value in measure(world).items():
+            series.day.append(world.sim.state.sun_turns)
+            for key, value in measure(world, meters).items():
                 series.values[key].append(value)
+            meters.reset()
 
     def write_csv(self, path: str | Path) -> None:
         """The time series of every tree as one CSV table (long format: one row per tree and time)."""
         with open(path, "w", newline="", encoding="utf-8") as fh:
             writer = csv.writer(fh)
-            writer.writerow(["time_s", "tree", *METRICS])
+            writer.writerow(["time_s", "day", "tree", *METRICS])
             for series in self.series:
                 for i, t in enumerate(series.time):
-                    writer.writerow([f"{t:g}", series.name, *(f"{series.values[m][i]:.6g}" for m in METRICS)])
-
-
-def measure(world: World) -> dict[str, float]:
-    """Height, crown width, crown offset toward the sun's side, trunk girth (diameter at the base),
-    modules, leaf clusters on the tree and per unit of the crown's box (each side at least 0.5),
-    branches shed, root length, meters, wilt, alive (1 or 0) and fruit."""
-    geometry = world.tree.geometry(world.clocks())
-    segs, leaves = geometry.turtle.segments, geometry.turtle.leaves
-    shape = crown_shape(segs, leaves)
-    girth = float(2 * segs.radius[0]) if len(segs) else 0.0
-    big = leaves.size > 0.05 * leaves.size.max() if len(leaves) else np.zeros(0, bool)
-    on_tree = len(np.unique(leaves.module[big]))
-    box = np.ptp(leaves.position[big], axis=0) if big.any() else np.zeros(3)
-    density = on_tree / float(np.prod(np.maximum(box, 0.5)))  # leaf clusters per unit of crown box
-    side = np.array([0.0, 0.0, 1.0]) if world.rules.sun.side >= 0 else np.array([0.0, 0.0, -1.0])
-    s = world.sim.state
-    return {"height": shape["height"], "width": shape["width"], "offset": float(shape["centroid"] @ side),
-            "girth": girth, "modules": float(len(world.tree.lstring)), "leaves": float(on_tree), "density": density,
-            "shed": float(world.tree.shed_total), "roots": world.roots.length(), "sun": s.sun_meter,
-            "water": s.water_meter, "wilt": s.wilt, "alive": float(s.alive),
-            "fruit": float(world.tree.lstring.count("O"))}
-
-
-def crown_shape(segs, leaves) -> dict:
-    """Height (top of the wood), crown width (largest horizontal extent of the leaves) and the leaves'
-    centroid relative to the trunk's base (x, 0, z)."""
-    height = float(segs.end[:, 1].max()) if len(segs) else 0.0
-    if len(leaves) == 0:
-        return {"height": height, "width": 0.0, "centroid": np.zeros(3)}
-    base = segs.start[0] if len(segs) else np.zeros(3)
-    flat = leaves.position[:, [0, 2]]
-    width = float(np.ptp(flat, axis=0).max())
-    centroid = leaves.position.mean(axis=0) - base
-    centroid[1] = 0.0
-    return {"height": height, "width": width, "centroid": centroid}
+                    writer.writerow([f"{t:g}", f"{series.day[i]:.4g}", series.name,
+                                     *(f"{series.values[m][i]:.6g}" for m in METRICS)])

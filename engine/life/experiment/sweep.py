@@ -21,8 +21,8 @@ from arbor.engine.life.keep.save import save_text
 from arbor.engine.life.rules.rules import Rules
 from arbor.engine.lsystem.lsys import parse_lsystem
 
-RESPONSES = METRICS
-REGIME_KEYS = ("orbit_height", "sun_speed", "watering.every", "watering.below")
+RESPONSES = tuple(m for m in METRICS if m != "day_of_death")  # (no number for a tree still alive)
+REGIME_KEYS = ("orbit_height", "sun_speed", "day_length", "sun_elevation", "watering.every", "watering.below")
 MAX_FACTORS, MAX_LEVELS, MAX_SEEDS, MAX_RUNS = 2, 24, 500, 5000
 
 
@@ -65,6 +65,14 @@ class Run:
     def name(self) -> str:
         """A file-safe name, stable for a given sweep."""
         return f"run{self.index:05d}"
+
+    def tree_name(self, sweep: Sweep) -> str:
+        """The kept tree's file name: each factor's key and level, and the seed
+        (``orbit_height=0.5_seed03.arbor``), so a tree can be found without the tables."""
+        parts = [f"{f.key}={cell(level).removesuffix('.lsys')}" for f, level in zip(sweep.factors, self.levels,
+                                                                                      strict=True)]
+        name = "_".join([*parts, f"seed{self.seed:02d}"])
+        return "".join(c if c.isalnum() or c in "._=-" else "_" for c in name) + ".arbor"
 
 
 @dataclass
@@ -118,10 +126,12 @@ def execute(task: Task) -> Outcome:
 
 
 def _set_regime(regime: Regime, key: str, value: float) -> None:
-    if key == "orbit_height":
-        regime.orbit_height = value
-    elif key == "sun_speed":
-        regime.sun_speed = value
+    if key in ("orbit_height", "sun_speed", "day_length", "sun_elevation"):
+        setattr(regime, key, value)
+        if key == "orbit_height":
+            regime.day_length = None
+        elif key == "day_length":
+            regime.orbit_height = None
     elif key == "watering.every":
         regime.watering = replace(regime.watering, every=value, below=None)
     else:

@@ -13,8 +13,8 @@ Example (assets/experiments/sweep_sun_height.toml)::
 
     [[factor]]
     name = "Sun orbit height"
-    key = "orbit_height"       # orbit_height, sun_speed, watering.every, watering.below, species,
-    levels = [-0.4, 0.0, 0.35, 0.7, 1.0]   # or any "section.key" of rules.toml
+    key = "orbit_height"       # orbit_height, sun_speed, day_length, sun_elevation, watering.every,
+    levels = [-0.4, 0.0, 0.35, 0.7, 1.0]   # watering.below, species, or any "section.key" of rules.toml
 """
 
 from __future__ import annotations
@@ -23,8 +23,10 @@ import math
 import tomllib
 from pathlib import Path
 
-from arbor.engine.base.errors import ExperimentError, SweepError
-from arbor.engine.life.experiment.lab import flag_value, number_value, pace_value, parse_regime
+from arbor.engine.base.errors import SweepError
+from arbor.engine.life.experiment import schema
+from arbor.engine.life.experiment.lab import pace_value, parse_regime, species_name, toml_error_position
+from arbor.engine.life.experiment.schema import Reader
 from arbor.engine.life.experiment.sweep import (
     MAX_FACTORS,
     MAX_LEVELS,
@@ -38,19 +40,12 @@ from arbor.engine.life.experiment.sweep import (
 from arbor.engine.life.rules.rules import Rules, set_rule
 
 MAX_SAMPLES = 2000  # per run
-WEEK = 7 * 24 * 3600.0
 
 
 def load_sweep(path: str | Path, lsystem_dir: Path) -> Sweep:
-    """Read and check a sweep file; species must be .lsys files in ``lsystem_dir``. Every problem is a
-    SweepError (also those found by the lab's readers of the parts a sweep shares with an experiment)."""
-    try:
-        return _load_sweep(Path(path), lsystem_dir)
-    except ExperimentError as exc:
-        raise SweepError(exc.message, exc.file, exc.line, exc.col) from None
-
-
-def _load_sweep(path: Path, lsystem_dir: Path) -> Sweep:
+    """Read and check a sweep file against the schema (engine/life/experiment/schema.py); species must be
+    .lsys files in ``lsystem_dir``. Every problem is one SweepError naming the key's line and column."""
+    path = Path(path)
     file = str(path)
     try:
         source = path.read_text(encoding="utf-8")
@@ -58,84 +53,89 @@ def _load_sweep(path: Path, lsystem_dir: Path) -> Sweep:
     except (OSError, UnicodeDecodeError) as exc:
         raise SweepError(f"cannot read: {exc}", file) from None
     except tomllib.TOMLDecodeError as exc:
-        raise SweepError(f"not valid TOML: {exc}", file) from None
-    duration = number_value(data, "duration", file, positive=True)
-    if duration > WEEK:
-        raise SweepError("'duration' is at most a week of game time", file)
-    every = number_value(data, "sample_every", file, 60.0, positive=True)
+        raise SweepError(f"not valid TOML: {exc}", file, *toml_error_position(exc)) from None
+    reader = Reader(file, source, SweepError)
+    reader.table(data, schema.SWEEP, (), "the sweep")
+    get = lambda key, default=None: reader.value(data, key, schema.SWEEP[key], (), default)  # noqa: E731
+    duration, every = get("duration"), get("sample_every", 60.0)
     if duration / every > MAX_SAMPLES:
-        raise SweepError(f"'sample_every' gives more than {MAX_SAMPLES} samples per run: take a larger one", file)
-    base = data.get("base", {})
-    if not isinstance(base, dict):
-        raise SweepError("[base] must be a table (watering, orbit_height, sun_speed, rules)", file)
-    species = _species(data.get("species", "game_tree.lsys"), lsystem_dir, f"{file} species")
-    sweep = Sweep(title=str(data.get("title", path.stem)), factors=_factors(data, lsystem_dir, file),
-                  seeds=_seeds(data.get("seeds", 10), file), duration=duration, sample_every=every,
-                  responses=_responses(data.get("responses", list(RESPONSES)), file),
-                  base=parse_regime({"name": "base", **base}, 0, f"{file} [base]"), species=species,
-                  pace=pace_value(data, file), seasons=flag_value(data, "seasons", file), file=file, source=source)
+        raise reader.fail(f"'sample_every' gives more than {MAX_SAMPLES} samples per run: take a larger one",
+                          ("sample_every",))
+    base = parse_regime(reader, get("base", {}), ("base",), schema.BASE)
+    species = _species_file(reader, species_name(reader, data, "sweep"), lsystem_dir, ("species",))
+    sweep = Sweep(title=str(get("title", path.stem)), factors=_factors(reader, data, lsystem_dir),
+                  seeds=_seeds(reader, data.get("seeds", 10)), duration=duration, sample_every=every,
+                  responses=_responses(reader, get("responses", list(RESPONSES))), base=base, species=species,
+                  pace=pace_value(reader, data), seasons=get("seasons", True), file=file, source=source)
     total = len(sweep.seeds) * math.prod(len(f.levels) for f in sweep.factors)
     if total > MAX_RUNS:
-        raise SweepError(f"{total} runs is more than {MAX_RUNS}: use fewer levels or seeds", file)
+        raise reader.fail(f"{total} runs is more than {MAX_RUNS}: use fewer levels or seeds", ("seeds",))
     return sweep
 
 
-def _factors(data: dict, lsystem_dir: Path, file: str) -> list[Factor]:
-    tables = data.get("factor", [])
-    if not isinstance(tables, list) or not 1 <= len(tables) <= MAX_FACTORS:
-        raise SweepError(f"a sweep needs 1 or {MAX_FACTORS} [[factor]] tables", file)
-    factors = []
-    for i, t in enumerate(tables):
-        where = f"{file} [[factor]] #{i + 1}"
-        if not isinstance(t, dict) or not isinstance(t.get("key"), str):
-            raise SweepError("every [[factor]] needs a key (what it varies)", where)
-        key, levels = t["key"], t.get("levels")
-        if not isinstance(levels, list) or not 1 <= len(levels) <= MAX_LEVELS:
-            raise SweepError(f"'levels' must be a list of 1 to {MAX_LEVELS} values", where)
-        if key == "species":
-            levels = [_species(v, lsystem_dir, where) for v in levels]
-        else:
-            levels = [number_value({"levels": v}, "levels", where) for v in levels]
-            if key not in REGIME_KEYS:
-                probe = Rules()
-                for level in levels:
-                    set_rule(probe, key, level, where, SweepError)  # a known rule, every level in its range
-        if len(set(levels)) != len(levels):
-            raise SweepError("'levels' must not repeat a value", where)
-        factors.append(Factor(str(t.get("name", key)), key, tuple(levels)))
-    if len({f.key for f in factors}) != len(factors):
-        raise SweepError("two factors vary the same thing", file)
-    names = [f.name for f in factors]
-    if len(set(names)) != len(names) or set(names) & {"run", "seed", "time_s", "response", *RESPONSES}:
-        raise SweepError("each factor needs its own name (not run, seed, time_s, response or a response's)", file)
+def _factors(reader: Reader, data: dict, lsystem_dir: Path) -> list[Factor]:
+    tables = reader.value(data, "factor", schema.SWEEP["factor"], (), [])
+    if not 1 <= len(tables) <= MAX_FACTORS:
+        raise reader.fail(f"a sweep needs 1 or {MAX_FACTORS} [[factor]] tables (it has {len(tables)})", ())
+    factors = [_factor(reader, t, ("factor", i), lsystem_dir) for i, t in enumerate(tables)]
+    for i, f in enumerate(factors):
+        if f.key in [g.key for g in factors[:i]]:
+            raise reader.fail("two factors vary the same thing", ("factor", i, "key"))
+        if f.name in [g.name for g in factors[:i]] or f.name in {"run", "seed", "time_s", "response", *RESPONSES}:
+            raise reader.fail("each factor needs its own name (not run, seed, time_s, response or a response's)",
+                              ("factor", i, "name"))
     return factors
 
 
-def _species(name, lsystem_dir: Path, where: str) -> str:
+def _factor(reader: Reader, t, path: tuple, lsystem_dir: Path) -> Factor:
+    reader.table(t, schema.FACTOR, path, f"[[factor]] #{path[1] + 1}")
+    key = reader.value(t, "key", schema.FACTOR["key"], path)
+    levels = reader.value(t, "levels", schema.FACTOR["levels"], path)
+    where = (*path, "levels")
+    if not 1 <= len(levels) <= MAX_LEVELS:
+        raise reader.fail(f"'levels' must be a list of 1 to {MAX_LEVELS} values", where)
+    if key == "species":
+        levels = [_species_file(reader, v, lsystem_dir, where) for v in levels]
+    elif key in REGIME_KEYS:
+        levels = [reader.check(v, "levels", schema.FACTOR_KEYS[key], where) for v in levels]
+    else:
+        levels = [reader.check(v, "levels", schema.Key("number", "a level"), where) for v in levels]
+        probe = Rules()
+        for level in levels:  # a known rule, every level in its range
+            set_rule(probe, key, level, reader.file, SweepError, at=reader.locator.find((*path, "key")))
+    if len(set(levels)) != len(levels):
+        raise reader.fail("'levels' must not repeat a value", where)
+    return Factor(str(t.get("name", key)), key, tuple(levels))
+
+
+def _species_file(reader: Reader, name, lsystem_dir: Path, path: tuple) -> str:
     if not isinstance(name, str) or not name.endswith(".lsys") or "/" in name or "\\" in name or name.startswith("."):
-        raise SweepError("a species is the file name of an .lsys in assets/lsystems, e.g. \"game_poplar.lsys\"", where)
+        raise reader.fail("a species is the file name of an .lsys in assets/lsystems, e.g. \"game_poplar.lsys\"",
+                          path)
     if not (lsystem_dir / name).is_file():
-        raise SweepError(f"no species {name!r} in assets/lsystems", where)
+        raise reader.fail(f"no species {name!r} in assets/lsystems", path)
     return name
 
 
-def _seeds(value, file: str) -> list[int]:
+def _seeds(reader: Reader, value) -> list[int]:
+    seed = schema.Key("whole", "a seed", "", 0, schema.SEED_MAX)
     if isinstance(value, int) and not isinstance(value, bool):
         if not 1 <= value <= MAX_SEEDS:
-            raise SweepError(f"'seeds' must be 1 to {MAX_SEEDS} (how many) or a list of seeds", file)
+            raise reader.fail(f"'seeds' must be 1 to {MAX_SEEDS} (how many) or a list of seeds", ("seeds",))
         return list(range(1, value + 1))
-    if (not isinstance(value, list) or not 1 <= len(value) <= MAX_SEEDS
-            or not all(isinstance(s, int) and not isinstance(s, bool) and 0 <= s < 2**32 for s in value)):
-        raise SweepError(f"'seeds' must be a count or a list of 1 to {MAX_SEEDS} whole numbers from 0", file)
-    if len(set(value)) != len(value):
-        raise SweepError("'seeds' must not repeat a seed", file)
-    return list(value)
+    if not isinstance(value, list) or not 1 <= len(value) <= MAX_SEEDS:
+        raise reader.fail(f"'seeds' must be a count or a list of 1 to {MAX_SEEDS} whole numbers from 0", ("seeds",))
+    seeds = [reader.check(s, "seeds", seed, ("seeds",)) for s in value]
+    if len(set(seeds)) != len(seeds):
+        raise reader.fail("'seeds' must not repeat a seed", ("seeds",))
+    return seeds
 
 
-def _responses(value, file: str) -> tuple[str, ...]:
-    if not isinstance(value, list) or not value or not all(isinstance(v, str) for v in value):
-        raise SweepError(f"'responses' must be a list of names from {', '.join(RESPONSES)}", file)
-    unknown = [v for v in value if v not in RESPONSES]
-    if unknown:
-        raise SweepError(f"unknown response {unknown[0]!r}; choose from {', '.join(RESPONSES)}", file)
+def _responses(reader: Reader, value: list) -> tuple[str, ...]:
+    for v in value:
+        if v not in RESPONSES:
+            raise reader.fail(f"unknown response {v!r}; choose from {', '.join(RESPONSES)} (docs/columns.md)",
+                              ("responses",))
+    if not value:
+        raise reader.fail("'responses' must name at least one response", ("responses",))
     return tuple(dict.fromkeys(value))

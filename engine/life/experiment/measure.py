@@ -1,0 +1,122 @@
+"""What the lab and the sweeps measure on a tree, in physical units (docs/columns.md lists every column).
+
+Lengths in metres (the scene's metre, engine/base/units.py), the trunk's girth in cm, areas in m², mass
+in kg, sugar in g (the plant's carbon budget, engine/life/plant/carbon.py). Meters and wilt are not one
+instant: :class:`Meters` keeps their mean, minimum and maximum since the last sample, so a meter that
+swings within a day is not caught at one phase of its swing.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from arbor.engine.base.units import METRE
+from arbor.engine.life.plant import carbon
+from arbor.engine.life.world.world import World
+
+SWUNG = ("sun", "water", "wilt")  # sampled as mean, min and max since the last sample
+METRICS = ("height", "width", "offset", "girth", "modules", "leaves", "density", "shed", "roots",
+           *(f"{m}{s}" for m in SWUNG for s in ("", "_min", "_max")), "alive", "day_of_death", "fruit",
+           "biomass", "leaf_area", "lai", "light_share", "light_day", "net_carbon", "pool")
+UNITS = {"height": "m", "width": "m", "offset": "m", "girth": "cm", "modules": "count", "leaves": "count",
+         "density": "per m³", "shed": "count", "roots": "m", **{f"{m}{s}": "0..1" for m in SWUNG
+                                                               for s in ("", "_min", "_max")},
+         "alive": "1 or 0", "day_of_death": "game day", "fruit": "count", "biomass": "kg", "leaf_area": "m²",
+         "lai": "m² per m²", "light_share": "0..1", "light_day": "m² x h per day", "net_carbon": "g", "pool": "g"}
+
+
+@dataclass
+class Meters:
+    """The meters and wilt since the last sample (mean, min, max), light caught, and the day of death."""
+
+    sums: dict[str, float] = field(default_factory=lambda: dict.fromkeys(SWUNG, 0.0))
+    low: dict[str, float] = field(default_factory=lambda: dict.fromkeys(SWUNG, math.inf))
+    high: dict[str, float] = field(default_factory=lambda: dict.fromkeys(SWUNG, -math.inf))
+    seconds: float = 0.0
+    light: float = 0.0  # m² of full-sun-lit leaf x s since the last sample
+    lit: float = 0.0  # the leaves' mean light x the sun's strength x s since the last sample
+    shine: float = 0.0  # the sun's strength x s since the last sample
+    died: float = math.nan  # game day of death
+
+    def add(self, world: World, dt: float) -> None:
+        """Book one step of ``dt`` seconds of ``world``."""
+        s = world.sim.state
+        for key, value in zip(SWUNG, (s.sun_meter, s.water_meter, s.wilt), strict=True):
+            self.sums[key] += value * dt
+            self.low[key] = min(self.low[key], value)
+            self.high[key] = max(self.high[key], value)
+        self.seconds += dt
+        shine = world.sim.sunshine()
+        self.light += world.carbon.leaf_area * world.tree.mean_light * shine * dt
+        self.lit += (world.tree.mean_light if world.carbon.leaf_area > 0 else 0.0) * shine * dt
+        self.shine += shine * dt
+        if not s.alive and math.isnan(self.died):
+            self.died = s.sun_turns
+
+    def reset(self) -> None:
+        """Start the next interval (the day of death is kept)."""
+        self.sums, self.seconds, self.light, self.lit, self.shine = dict.fromkeys(SWUNG, 0.0), 0.0, 0.0, 0.0, 0.0
+        self.low, self.high = dict.fromkeys(SWUNG, math.inf), dict.fromkeys(SWUNG, -math.inf)
+
+    def swung(self, world: World) -> dict[str, float]:
+        """Mean, min and max of each meter since the last sample (the instant, at the first sample)."""
+        s = world.sim.state
+        now = dict(zip(SWUNG, (s.sun_meter, s.water_meter, s.wilt), strict=True))
+        out = {}
+        for key in SWUNG:
+            timed = self.seconds > 0
+            out[key] = self.sums[key] / self.seconds if timed else now[key]
+            out[f"{key}_min"] = self.low[key] if timed else now[key]
+            out[f"{key}_max"] = self.high[key] if timed else now[key]
+        return out
+
+
+def measure(world: World, meters: Meters | None = None) -> dict[str, float]:
+    """Every metric of METRICS for ``world`` now (see UNITS and docs/columns.md)."""
+    meters = meters or Meters()
+    geometry = world.tree.geometry(world.clocks())
+    segs, leaves = geometry.turtle.segments, geometry.turtle.leaves
+    shape = crown_shape(segs, leaves)
+    big = leaves.size > 0.05 * leaves.size.max() if len(leaves) else np.zeros(0, bool)
+    on_tree = len(np.unique(leaves.module[big]))
+    box = np.ptp(leaves.position[big], axis=0) / METRE if big.any() else np.zeros(3)
+    side = np.array([0.0, 0.0, 1.0]) if world.rules.sun.side >= 0 else np.array([0.0, 0.0, -1.0])
+    s, budget = world.sim.state, world.carbon
+    width = shape["width"] / METRE
+    return {"height": shape["height"] / METRE, "width": width, "offset": float(shape["centroid"] @ side) / METRE,
+            "girth": float(2 * segs.radius[0]) / METRE * 100 if len(segs) else 0.0,
+            "modules": float(len(world.tree.lstring)), "leaves": float(on_tree),
+            "density": on_tree / float(np.prod(np.maximum(box, 0.05))), "shed": float(world.tree.shed_total),
+            "roots": world.roots.length() / METRE, **meters.swung(world), "alive": float(s.alive),
+            "day_of_death": meters.died, "fruit": float(world.tree.lstring.count("O")),
+            "biomass": biomass(world, segs), "leaf_area": budget.leaf_area,
+            "lai": budget.leaf_area / max(math.pi * (width / 2) ** 2, 0.01),
+            "light_share": meters.lit / meters.shine if meters.shine > 0 else world.tree.mean_light,
+            "light_day": meters.light / meters.seconds * 24.0 if meters.seconds > 0 else 0.0,
+            "net_carbon": budget.fixed - budget.respired, "pool": budget.pool}
+
+
+def biomass(world: World, segs) -> float:
+    """Above-ground biomass (kg): the wood's volume (every segment a cylinder) x the species' wood density,
+    plus the leaf area x the leaf mass per area."""
+    length = np.linalg.norm(segs.end - segs.start, axis=1) if len(segs) else np.zeros(0)
+    volume = float((np.pi * segs.radius**2 * length).sum()) / METRE**3 if len(segs) else 0.0
+    density = carbon.wood_density(world.tree.system.constants, world.rules)
+    return (volume * density + world.carbon.leaf_area * world.rules.carbon.leaf_mass) / 1000.0
+
+
+def crown_shape(segs, leaves) -> dict:
+    """Height (top of the wood), crown width (largest horizontal extent of the leaves) and the leaves'
+    centroid relative to the trunk's base (x, 0, z), in scene units."""
+    height = float(segs.end[:, 1].max()) if len(segs) else 0.0
+    if len(leaves) == 0:
+        return {"height": height, "width": 0.0, "centroid": np.zeros(3)}
+    base = segs.start[0] if len(segs) else np.zeros(3)
+    flat = leaves.position[:, [0, 2]]
+    width = float(np.ptp(flat, axis=0).max())
+    centroid = leaves.position.mean(axis=0) - base
+    centroid[1] = 0.0
+    return {"height": height, "width": width, "centroid": centroid}

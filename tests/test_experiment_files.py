@@ -1,0 +1,134 @@
+"""Every bad experiment or sweep file a teacher can write is one line naming the file, the key's line and
+column, and the fix (issue 30's cases, one test each)."""
+
+from __future__ import annotations
+
+import pytest
+
+from arbor.engine.base.errors import ExperimentError, SweepError
+from arbor.engine.life.experiment.lab import load_experiment
+from arbor.engine.life.experiment.sweep_file import load_sweep
+from arbor.game.paths import ASSETS
+
+LSYS = ASSETS / "lsystems"
+SWEEP = """title = "Sun"
+duration = 300
+sample_every = 60
+seeds = 3
+
+[base]
+watering = { below = 0.5, until = 0.7 }
+
+[[factor]]
+name = "Sun orbit height"
+key = "orbit_height"
+levels = [0.0, 1.0]
+"""
+LAB = """title = "Two trees"
+seed = 5
+duration = 300
+sample_every = 30
+
+[[tree]]
+name = "Watered"
+orbit_height = 0.6
+watering = { below = 0.55, until = 0.75 }
+
+[[tree]]
+name = "Dry"
+orbit_height = 0.6
+"""
+
+SWEEP_CASES = [  # (what is replaced, by what, line, column, words of the message)
+    ("seeds = 3", "seed = 2", 4, 1, "unknown key 'seed' in the sweep (did you mean 'seeds'?)"),
+    ("sample_every = 60", "sample_evry = 60", 3, 1, "did you mean 'sample_every'?"),
+    ('key = "orbit_height"', 'key = "watering.every"', 12, 1, "'levels' must be above 0"),
+    ("watering = { below = 0.5, until = 0.7 }", "watering = { below = 0.5, until = 0.7 }\norbit_hieght = 0.5",
+     8, 1, "did you mean 'orbit_height'?"),
+    ("levels = [0.0, 1.0]", "levels = [0.0, 5]", 12, 1, "'levels' must be from -1 to 1 orbit radii (it is 5)"),
+    ('key = "orbit_height"\nlevels = [0.0, 1.0]', 'key = "water.drain_rate"\nlevels = [-0.004, 0.01]', 11, 1,
+     "'drain_rate' in [water] must be from 0"),
+    ("watering = { below = 0.5, until = 0.7 }", "watering = { below = 1.5, until = 0.2 }", 7, 14,
+     "'below' must be from 0 to 1"),
+    ("seeds = 3", "seeds = [1, 2.7]", 4, 1, "'seeds' must be a whole number, not 2.7"),
+    ("seeds = 3", "seeds = [1, -3]", 4, 1, "'seeds' must be from 0 to"),
+    ('title = "Sun"', 'title = "Sun"\nspecies = "game_oak.lsys"', 2, 1, "no species 'game_oak.lsys'"),
+]
+
+
+@pytest.mark.parametrize("old, new, line, col, words", SWEEP_CASES)
+def test_bad_sweep_file_is_one_line_at_the_key(tmp_path, old, new, line, col, words):
+    path = tmp_path / "bad_sweep.toml"
+    assert old in SWEEP
+    path.write_text(SWEEP.replace(old, new), encoding="utf-8")
+    with pytest.raises(SweepError) as err:
+        load_sweep(path, LSYS)
+    text = str(err.value)
+    assert "\n" not in text and text.startswith(f"{path}:{line}:{col}: "), text
+    assert words in text, text
+
+
+LAB_CASES = [
+    ("orbit_height = 0.6\nwatering", "orbit_hieght = 0.6\nwatering", 8, 1, "did you mean 'orbit_height'?"),
+    ("watering = { below = 0.55, until = 0.75 }", "waterng = { below = 0.55, until = 0.75 }", 9, 1,
+     "did you mean 'watering'?"),
+    ("orbit_height = 0.6\nwatering", "orbit_height = 5\nwatering", 8, 1, "must be from -1 to 1 orbit radii"),
+    ("watering = { below = 0.55, until = 0.75 }", "watering = { every = -30 }", 9, 14, "'every' must be above 0"),
+    ("watering = { below = 0.55, until = 0.75 }", 'rules = { "water.drain_rate" = -0.004 }', 9, 11,
+     "'drain_rate' in [water] must be from 0"),
+    ("watering = { below = 0.55, until = 0.75 }", "watering = { below = 0.8, until = 0.2 }", 9, 14,
+     "'below' (0.8) must be under 'until' (0.2)"),
+    ("seed = 5", "seed = -3", 2, 1, "'seed' must be from 0 to 4294967295 (it is -3)"),
+    ("seed = 5", "seed = 2.7", 2, 1, "'seed' must be a whole number, not 2.7"),
+    ('name = "Dry"', 'name = "Watered"', 12, 1, "two trees are named 'Watered'"),
+    ("sample_every = 30", "sample_evry = 30", 4, 1, "did you mean 'sample_every'?"),
+    ('title = "Two trees"', 'title = "Two trees"\nspecies = "../x.lsys"', 2, 1, "'species' must be a file name"),
+]
+
+
+@pytest.mark.parametrize("old, new, line, col, words", LAB_CASES)
+def test_bad_lab_file_is_one_line_at_the_key(tmp_path, old, new, line, col, words):
+    path = tmp_path / "bad_lab.toml"
+    assert old in LAB
+    path.write_text(LAB.replace(old, new, 1), encoding="utf-8")
+    with pytest.raises(ExperimentError) as err:
+        load_experiment(path, LSYS)
+    text = str(err.value)
+    assert "\n" not in text and text.startswith(f"{path}:{line}:{col}: "), text
+    assert words in text, text
+
+
+def test_species_is_one_key_in_lab_and_sweep_and_lsystem_is_read_with_a_note(tmp_path):
+    path = tmp_path / "old.toml"
+    path.write_text(LAB.replace("seed = 5", 'seed = 5\nlsystem = "game_poplar.lsys"'), encoding="utf-8")
+    experiment = load_experiment(path, LSYS)
+    assert experiment.lsystem.name == "game_poplar.lsys"
+    assert experiment.notes == [f"{path}:3:1: note: 'lsystem' is now called 'species' (read as species)"]
+    path.write_text(LAB.replace("seed = 5", 'seed = 5\nspecies = "game_poplar.lsys"'), encoding="utf-8")
+    experiment = load_experiment(path, LSYS)
+    assert experiment.lsystem.name == "game_poplar.lsys" and experiment.notes == []
+    sweep = tmp_path / "s.toml"
+    sweep.write_text(SWEEP.replace('title = "Sun"', 'title = "Sun"\nspecies = "game_poplar.lsys"'), encoding="utf-8")
+    assert load_sweep(sweep, LSYS).species == "game_poplar.lsys"
+
+
+def test_day_length_and_sun_elevation_set_the_sun_apart(tmp_path):
+    from arbor.engine.life.experiment.lab import Lab
+    from arbor.engine.life.rules.rules import load_rules
+
+    path = tmp_path / "sun.toml"
+    text = LAB.replace("orbit_height = 0.6", "day_length = 16\nsun_elevation = 45", 1)
+    path.write_text(text.replace("seed = 5", "seed = 5\nseasons = false"), encoding="utf-8")  # no season offset
+    lab = Lab(load_experiment(path, LSYS), load_rules(ASSETS / "rules.toml", "demo"))
+    world = lab.worlds[0]
+    s = world.sim
+    lit = 0
+    for _ in range(1000):  # one whole day of the sun, in steps
+        s.state.sun_angle += 2 * 3.141592653589793 / 1000
+        lit += s.sun_height() > 0
+    assert abs(lit / 1000 * 24 - 16) < 0.1  # 16 of 24 hours of daylight
+    s.state.sun_angle = 3.141592653589793 / 2  # noon
+    direction = s.sun_direction()
+    import math
+
+    assert abs(math.degrees(math.asin(direction[1])) - 45) < 0.5

@@ -1,0 +1,81 @@
+"""The teacher's guide's three lessons (docs/teaching.md) run as written, at reduced size: the files
+the guide names, shortened (fewer days and seeds), through the same commands, and what the guide says
+to expect shows in the numbers."""
+
+from __future__ import annotations
+
+import csv
+import io
+import re
+from pathlib import Path
+
+from arbor.engine.life.experiment.lab import Lab, load_experiment
+from arbor.engine.life.rules.rules import load_rules
+from arbor.game.commands.sweep import run_sweep
+from arbor.game.paths import ASSETS
+
+ROOT = Path(__file__).resolve().parent.parent
+GUIDE = (ROOT / "docs" / "teaching.md").read_text(encoding="utf-8")
+
+
+def shortened(name: str, tmp_path: Path, duration: float, seeds: int | None = None) -> Path:
+    """The lesson's file with a shorter duration (and fewer seeds): nothing else changed."""
+    text = (ASSETS / "experiments" / name).read_text(encoding="utf-8")
+    text = re.sub(r"(?m)^duration = \d+", f"duration = {duration:.0f}", text)
+    if seeds is not None:
+        text = re.sub(r"(?m)^seeds = \d+", f"seeds = {seeds}", text)
+    path = tmp_path / name
+    path.write_text(text, encoding="utf-8")
+    return path
+
+
+def finals(out: Path, factor: str, response: str) -> dict[str, float]:
+    """The mean final value of ``response`` per level of ``factor``, from summary.csv."""
+    rows = csv.DictReader(io.StringIO((out / "summary.csv").read_text(encoding="utf-8")))
+    return {r[factor]: float(r["mean"]) for r in rows if r["response"] == response}
+
+
+def test_the_guide_names_its_three_lesson_files_and_commands():
+    for name, command in (("lesson_light.toml", "arbor sweep"), ("lesson_water.toml", "arbor sweep"),
+                          ("lesson_competition.toml", "arbor lab")):
+        assert f"{command} assets/experiments/{name}" in GUIDE
+        assert (ASSETS / "experiments" / name).is_file()
+
+
+def test_lesson_light_longer_days_catch_more_light(tmp_path):
+    path = shortened("lesson_light.toml", tmp_path, 5 * 125.66667, seeds=2)
+    out = tmp_path / "light"
+    assert run_sweep(path, out, workers=1, plots=False, echo=lambda _: None, keep="none") == 0
+    light = finals(out, "Day length", "light_day")
+    assert light["6"] < light["10"] < light["14"] < light["18"]  # the guide: light caught rises with day length
+    assert not list((out / "trees").iterdir())  # --keep none
+
+
+def test_lesson_water_rare_drinks_leave_the_meter_low(tmp_path):
+    path = shortened("lesson_water.toml", tmp_path, 6 * 125.66667, seeds=2)
+    out = tmp_path / "water"
+    assert run_sweep(path, out, workers=1, plots=False, echo=lambda _: None) == 0
+    low = finals(out, "Time between drinks", "water_min")
+    assert low["30"] > low["240"]  # the guide: the longer the wait, the lower the meter falls between drinks
+    biomass = finals(out, "Time between drinks", "biomass")
+    assert biomass["60"] > biomass["240"]
+
+
+def test_lesson_competition_the_middle_tree_is_shaded(tmp_path):
+    path = shortened("lesson_competition.toml", tmp_path, 10 * 125.66667)
+    lab = Lab(load_experiment(path, ASSETS / "lsystems"), load_rules(ASSETS / "rules.toml", "demo"))
+    lab.run()
+    share = {s.name: sum(s.values["light_share"][3:]) / len(s.values["light_share"][3:]) for s in lab.series}
+    assert share["Middle"] < min(share["West"], share["East"])  # shaded from both sides
+    assert [w.position[0] for w in lab.worlds] == [-20.0, 0.0, 20.0]  # 2 m apart (10 scene units a metre)
+
+
+def test_every_csv_column_is_documented_with_its_unit():
+    from arbor.engine.life.experiment.measure import METRICS, UNITS
+
+    doc = (ROOT / "docs" / "columns.md").read_text(encoding="utf-8")
+    for name in ("run", "seed", "time_s", "day", "tree", *METRICS):
+        assert re.search(rf"^\| `{name}` \| [^|]+ \| .+ \|$", doc, re.M), f"{name} is not in docs/columns.md"
+    for name, unit in UNITS.items():
+        if unit not in ("count", "1 or 0"):
+            assert f"| `{name}` | {unit} |" in doc, f"{name}: docs/columns.md does not give the unit {unit}"
