@@ -98,3 +98,23 @@ def test_a_tree_kept_in_the_dark_starves_and_dies(system):
         days += 0.25
     assert not world.sim.state.alive and days <= 4
     assert world.carbon.pool == 0.0 and world.carbon.respired > 0
+
+
+def test_seedlings_differ_within_their_species_ranges_and_keep_their_traits(system, tmp_path):
+    from arbor.engine.life.keep.save import SavedGarden, read_garden, write_garden
+    from arbor.engine.life.plant.genome import checked, ranges
+
+    rules = load_rules("assets/rules.toml", pace="demo")
+    a, b = World(system, rules, seed=1), World(system, rules, seed=2)
+    spread = ranges(system)
+    assert {"BA", "WAKE", "P", "HK"} <= set(spread) and a.genome.keys() == spread.keys()
+    assert a.genome != b.genome and World(system, rules, seed=1).genome == a.genome  # a seed is a genome
+    for name, value in a.genome.items():
+        assert abs(value / system.constants[name] - 1) <= spread[name] + 1e-12
+        assert a.tree.system.constants[name] == pytest.approx(value)  # the tree grows by its own values
+    path = tmp_path / "a.arbor"
+    write_garden(SavedGarden([a]), path)
+    back = read_garden(path, rules).world
+    assert back.genome == pytest.approx(a.genome) and back.tree.system.constants["BA"] == pytest.approx(a.genome["BA"])
+    hostile = checked(system, {"BA": 1e9, "IL": 5.0, "WAKE": float("nan")})
+    assert hostile == {"BA": pytest.approx(system.constants["BA"] * (1 + spread["BA"]))}  # clamped; others dropped
