@@ -30,3 +30,24 @@ def atomic_write(path: str | Path, data: bytes) -> None:
         os.fsync(dir_fd)
     finally:
         os.close(dir_fd)
+
+
+def set_aside(path: str | Path, suffix: str = ".broken") -> Path:
+    """Rename ``path`` to the first free ``NAME.broken``, ``NAME.2.broken``, ... beside it and return the
+    new path: a second bad file never overwrites the first one kept (a hard link claims the name
+    atomically, so two processes cannot pick the same one). Raises OSError (a read-only folder)."""
+    path = Path(path)
+    for n in range(1, 10_000):
+        kept = path.with_name(f"{path.name}{'' if n == 1 else f'.{n}'}{suffix}")
+        try:
+            os.link(path, kept, follow_symlinks=False)
+        except FileExistsError:
+            continue
+        except OSError:  # no hard links here (some USB sticks): a plain rename to a free name
+            if kept.exists() or kept.is_symlink():
+                continue
+            os.rename(path, kept)
+            return kept
+        os.unlink(path)
+        return kept
+    raise FileExistsError(f"too many kept copies of {path.name}")

@@ -110,6 +110,14 @@ def concat(*parts: LString) -> LString:
     )
 
 
+def params_where(params: np.ndarray, mask: np.ndarray, at: np.ndarray, default: float = 0.0) -> np.ndarray:
+    """``params[at]`` where ``mask`` holds, ``default`` elsewhere; never indexes ``params`` where the mask
+    is false (so an L-string with no parameters at all, a hostile save's ``F``, is no IndexError)."""
+    out = np.full(len(mask), default, dtype=np.float64)
+    out[mask] = params[at[mask]]
+    return out
+
+
 def ragged_arange(starts: np.ndarray, counts: np.ndarray) -> np.ndarray:
     """Concatenation of arange(s, s + c) for each (s, c), without a Python loop."""
     counts = np.asarray(counts, dtype=np.int64)

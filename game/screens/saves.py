@@ -15,6 +15,7 @@ from collections.abc import Callable
 from pathlib import Path
 
 from arbor.engine.base.errors import LSysError
+from arbor.engine.base.files import set_aside
 from arbor.engine.life.keep.away import AwaySummary, away_seconds, live_away
 from arbor.engine.life.keep.save import SavedGarden, read_garden, write_garden
 from arbor.engine.life.lineage.lineage import new_lineage, species_of
@@ -70,16 +71,14 @@ class SaveKeeper:
         try:
             saved = read_garden(path, self.rules)
             saved.worlds += self._legacy_trees(path, len(saved.worlds))
-        except LSysError as err:
-            kept = path.with_name(path.name + ".broken")
-            path.replace(kept)
-            self.state.say(text("messages.load_failed", name=path.name, error=err.message, kept=kept.name), 12)
+            garden = saved.garden()
+            seconds = away_seconds(self.wall_clock(), saved.saved_at, self.rules.away.cap_days)
+            summary = live_away(garden, seconds)
+        except Exception as err:  # a save that breaks loading (a bug it finds) must never break the start
+            self._set_aside(path, err.message if isinstance(err, LSysError) else f"{type(err).__name__}: {err}")
             return None
-        garden = saved.garden()
         if saved.dropped:
             self.state.say(text("messages.lineage_dropped", count=saved.dropped, name=path.name), 8)
-        seconds = away_seconds(self.wall_clock(), saved.saved_at, self.rules.away.cap_days)
-        summary = live_away(garden, seconds)
         self.last_summary = summary
         if summary.anything:
             self.state.say(away_message(summary), 10)
@@ -94,12 +93,19 @@ class SaveKeeper:
             try:
                 world = read_garden(legacy, self.rules).world
             except LSysError as err:  # one bad neighbour does not lose the garden: keep it aside
-                legacy.replace(legacy.with_name(legacy.name + ".broken"))
-                self.state.say(text("messages.load_failed", name=legacy.name, error=err.message,
-                                    kept=legacy.name + ".broken"), 12)
+                self._set_aside(legacy, err.message)
                 continue
             out.append(world)
         return out
+
+    def _set_aside(self, path: Path, error: str) -> None:
+        """Keep an unreadable save under a name of its own (``*.broken``, ``*.2.broken``, ...) and say so
+        in one line; a folder that cannot be written keeps it where it is (said too)."""
+        try:
+            kept = set_aside(path).name
+        except OSError as exc:
+            kept = text("messages.kept_in_place", error=exc.strerror or str(exc))
+        self.state.say(text("messages.load_failed", name=path.name, error=error.splitlines()[0][:200], kept=kept), 12)
 
     def save(self, path: Path | None = None) -> bool:
         """Save the whole garden as one file (atomically); older garden-*.arbor files are folded in."""

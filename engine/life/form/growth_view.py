@@ -29,7 +29,7 @@ from arbor.engine.life.form.interpret import (
     saturate,
     turtle_config,
 )
-from arbor.engine.lsystem.lstring import LString
+from arbor.engine.lsystem.lstring import LString, params_where
 
 YOUNG = 3.5  # elongation time constants: a younger internode still visibly grows (97 % grown by then)
 
@@ -86,8 +86,8 @@ class GrowthView:
         module = segs.module
         grown = (ls.sym[module] == INTERNODE) & (ls.nparams[module] >= 3)
         off = ls.offsets[module]
-        self.birth = np.where(grown, ls.params[np.where(grown, off, 0)], -np.inf)
-        self.order = np.where(grown, ls.params[np.where(grown, off + 2, 0)], 0.0)
+        self.birth = params_where(ls.params, grown, off, -np.inf)
+        self.order = params_where(ls.params, grown, off + 2)
         young = grown & (clocks.length_time - self.birth < YOUNG * const["TAU"])
         level = np.full(m, -1, dtype=np.int64)
         frontier = np.flatnonzero(young & ((self.parent < 0) | ~young[np.maximum(self.parent, 0)]))

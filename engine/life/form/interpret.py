@@ -15,7 +15,7 @@ import numpy as np
 from arbor.engine.geometry.mesh import LOD_LEVELS, tree_mesh
 from arbor.engine.geometry.tree import TreeGeometry
 from arbor.engine.geometry.turtle import Leaves, Segments, TurtleConfig, interpret, set_radii, subtree_sums
-from arbor.engine.lsystem.lstring import LString, replace_modules
+from arbor.engine.lsystem.lstring import LString, params_where, replace_modules
 
 INTERNODE, LEAF, BLOSSOM, PITCH, APEX, BUD, FRUIT, LEAF_BUD = (ord(c) for c in "ILK&ADOV")
 FRUIT_SIZE = 0.55  # a ripe fruit's diameter, in leaf lengths
@@ -125,7 +125,7 @@ def pipe_area(ls: LString, segs: Segments, const: dict[str, float]) -> np.ndarra
     grown = (ls.sym[segs.module] == INTERNODE) & (ls.nparams[segs.module] >= 3)
     offsets = ls.offsets[segs.module]
     seg_len = np.linalg.norm(segs.end - segs.start, axis=1)
-    order = np.where(grown, ls.params[np.where(grown, offsets + 2, 0)], 0.0)
+    order = params_where(ls.params, grown, offsets + 2)
     full = const["IL"] * const["IO"] ** order
     weight = np.where(grown, seg_len / full, 0.0)
     drawn = ~grown & (ls.sym[segs.module] == ord("F")) & (ls.nparams[segs.module] == 11)
@@ -143,8 +143,8 @@ def radii(ls: LString, segs: Segments, clocks: Clocks, const: dict[str, float]) 
     grown = (ls.sym[module] == INTERNODE) & (count >= 3)
     pipes = pipe_area(ls, segs, const)
     offsets = ls.offsets[module]
-    wood = np.where(grown & (count >= 5), ls.params[np.where(grown & (count >= 5), offsets + 4, 0)], 0.0)
-    girth_birth = np.where(grown, ls.params[np.where(grown, offsets + 1, 0)], 0.0)
+    wood = params_where(ls.params, grown & (count >= 5), offsets + 4)
+    girth_birth = params_where(ls.params, grown, offsets + 1)
     legacy = grown & (count < 5)
     rings = np.where(legacy, const["GMAX"] * saturate(clocks.girth_time - girth_birth, const["GT"]), 0.0)
     radius = np.sqrt(np.maximum(pipes * (1.0 + rings), wood))

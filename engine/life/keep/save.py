@@ -29,9 +29,18 @@ from arbor.engine.base.files import atomic_write
 from arbor.engine.life.keep import save_blocks
 from arbor.engine.life.keep.save_check import (
     BIG,
+    CARBON_FIELDS,
+    CYCLE_FIELDS,
+    GROWTH_FIELDS,
+    POSITION_LIMIT,
+    SIM_FIELDS,
+    TREE_FIELDS,
     SaveError,
     Where,
     carbon_budget,
+    fit,
+    fitted,
+    fitted_params,
     lstring_sane,
     restore_rng,
     sim_state,
@@ -127,52 +136,84 @@ def _numbers(values) -> str:
 
 def _tree_lines(world: World, lsystem_name: str) -> list[str]:
     """One tree's part of a save: its identity and rules, [trees.sim], then [trees.growth] with the
-    L-string last."""
-    tree, ls = world.tree, world.tree.lstring
+    L-string last. Every number is first fitted to the range the reader accepts (save_check.fit)."""
+    tree = world.tree
+    ls, roots = _fitted_lstring(tree.lstring), _fitted_lstring(world.roots.lstring)
+    growth = fitted({"last_rewrite_T": tree.last_rewrite_T, "mean_light": tree.mean_light,
+                     "shed_total": tree.shed_total, "last_light": world.last_light,
+                     "last_sense_length": tree.last_sense_length, "last_sense_girth": tree.last_sense_girth,
+                     "roots_rewrite": world.roots.last_rewrite}, GROWTH_FIELDS)
+    journal, _ = Journal.from_rows(world.journal.to_rows())  # what the reader keeps, nothing else
     lines = [
         "[[trees]]",
-        f"seed = {world.seed}",
-        f"steps = {world.steps}",
-        f"position = {_numbers(world.position)}",
+        f"seed = {fit(world.seed, *TREE_FIELDS['seed'])}",
+        f"steps = {fit(world.steps, *TREE_FIELDS['steps'])}",
+        f"position = {_numbers(np.clip(np.nan_to_num(world.position), -POSITION_LIMIT, POSITION_LIMIT))}",
         f"lsystem = {_toml_string(lsystem_name)}",
         f"lsystem_sha256 = {_toml_string(world.system.sha256)}",
         f"lsystem_source = {_toml_text(world.system.source)}",
         "",
-        *_table("trees.sim", world.sim.state.to_dict()),
+        *_table("trees.sim", _fitted_sim(world)),
         "",
         "[trees.lineage]",
         *_lineage_pairs(world.lineage),
         "",
-        *_table("trees.carbon", asdict(world.carbon)),
+        *_table("trees.carbon", fitted(asdict(world.carbon), CARBON_FIELDS)),
         "",
         *_table("trees.genome", world.genome),
         "",
         "[trees.journal]",
         "entries = [" + ", ".join(f"[{format_number(tm)}, {_toml_string(k)}, {format_number(v)}]"
-                                  for tm, k, v in world.journal.entries) + "]",
+                                  for tm, k, v in journal.entries) + "]",
         "",
         "[trees.growth]",
-        f"last_rewrite_T = {format_number(tree.last_rewrite_T)}",
-        f"light_dir = {_numbers(tree.light_dir)}",
-        f"mean_light = {format_number(tree.mean_light)}",
-        f"shed_total = {tree.shed_total}",
+        *(f"{key} = {format_number(growth[key])}" for key in ("last_rewrite_T", "mean_light")),
+        f"light_dir = {_numbers(_direction(tree.light_dir))}",
+        f"shed_total = {growth['shed_total']}",
     ]
-    if np.isfinite(world.last_light):
-        lines.append(f"last_light = {format_number(world.last_light)}")
+    if world.last_light > -BIG:  # never measured: -inf, not written
+        lines.append(f"last_light = {format_number(growth['last_light'])}")
     if tree.last_sense_length is not None and tree.last_sense_girth is not None:
-        lines += [f"last_sense_length = {format_number(tree.last_sense_length)}",
-                  f"last_sense_girth = {format_number(tree.last_sense_girth)}"]
+        lines += [f"last_sense_length = {format_number(growth['last_sense_length'])}",
+                  f"last_sense_girth = {format_number(growth['last_sense_girth'])}"]
     lines += [
         f"rng_world = {_toml_string(_rng_text(world.rng))}",
         f"rng_roots = {_toml_string(_rng_text(world.roots.deriver.rng))}",
-        f"roots_rewrite = {format_number(world.roots.last_rewrite)}",
-        f"roots = {_toml_lstring(world.roots.lstring)}",
+        f"roots_rewrite = {format_number(growth['roots_rewrite'])}",
+        f"roots = {_toml_lstring(roots)}",
         f"rng_tree = {_toml_string(_rng_text(tree.deriver.rng))}",
         f"modules = {len(ls)}",
         f"lstring = {_toml_lstring(ls)}",
         "",
     ]
     return lines
+
+
+def _fitted_lstring(ls: LString) -> LString:
+    """The L-string with its parameters as the reader accepts them (a NaN from a player's .lsys, a
+    length grown past BIG): the same object when nothing needs it."""
+    params = fitted_params(ls.params)
+    return ls if params is ls.params else LString.from_arrays(ls.sym, ls.nparams, params)
+
+
+def _fitted_sim(world: World) -> dict:
+    """[trees.sim] as the reader reads it back: every field within SIM_FIELDS / CYCLE_FIELDS, the sun's
+    angle on one turn and its orbit and speed within the rules' range (as loading makes them)."""
+    sim = fitted(world.sim.state.to_dict(), SIM_FIELDS)
+    for name in ("sun_cycle", "water_cycle"):
+        sim[name] = fitted(sim[name], CYCLE_FIELDS)
+    sun = world.rules.sun
+    sim["sun_angle"] %= 2 * math.pi
+    sim["orbit_height"] = min(max(sim["orbit_height"], sun.orbit_height_min), sun.orbit_height_max)
+    sim["sun_speed"] = min(max(sim["sun_speed"], sun.speed_min), sun.speed_max)
+    return sim
+
+
+def _direction(v) -> np.ndarray:
+    """A unit vector (up when ``v`` is not a usable direction), as the reader keeps it."""
+    v = np.asarray(v, dtype=np.float64)
+    norm = float(np.linalg.norm(v)) if np.isfinite(v).all() else 0.0
+    return v / norm if norm > 1e-9 else np.array([0.0, 1.0, 0.0])
 
 
 def _lineage_pairs(lineage: Lineage) -> list[str]:
@@ -233,12 +274,13 @@ def garden_text(saved: SavedGarden) -> str:
     lines = [
         "# Arbor save file: a garden of trees, their rules and their state. Each tree's L-string ends its part.",
         f"format = {FORMAT}",
-        f"saved_at = {time.time() if saved.saved_at is None else saved.saved_at!r}",
+        f"saved_at = {time.time() if saved.saved_at is None else float(saved.saved_at)!r}",
         f"current = {min(max(saved.current, 0), len(worlds) - 1)}",
         "seeds = [" + ", ".join(f"[{s.parent_seed}, {_toml_string(s.parent_sha)}, {s.number}]"
-                                for s in saved.seeds) + "]",
-        "rocks = [" + ", ".join(_numbers(r) for r in saved.rocks) + "]",
-        *_family_lines(saved.family),
+                                for s in _seeds({"seeds": [[s.parent_seed, s.parent_sha, s.number]
+                                                           for s in saved.seeds]})) + "]",
+        "rocks = [" + ", ".join(_numbers(r) for r in _rocks({"rocks": [list(r) for r in saved.rocks]})) + "]",
+        *_family_lines(Family.from_rows(saved.family.to_rows())[0] if saved.family else None),
         "",
     ]
     for world in worlds:
@@ -344,9 +386,9 @@ def _system(data: dict, where: Where):
 def _load_tree(data: dict, where: Where, rules: Rules, budget_slack: float) -> World:
     """One checked tree (see save_check for the checks)."""
     system = _system(data, where)
-    world = World(system, rules, seed=value(data, "seed", "int", 0, 2**63 - 1, where), plant=False)
-    world.steps = value(data, "steps", "int", 0, 2**53, where)
-    world.position = tuple(vector(data, "position", 2, where, [0.0, 0.0], limit=1e4))
+    world = World(system, rules, seed=value(data, "seed", *TREE_FIELDS["seed"], where), plant=False)
+    world.steps = value(data, "steps", *TREE_FIELDS["steps"], where)
+    world.position = tuple(vector(data, "position", 2, where, [0.0, 0.0], limit=POSITION_LIMIT))
     state = sim_state(table(data, "sim", where), where)
     state.sun_angle %= 2 * math.pi
     state.orbit_height = min(max(state.orbit_height, rules.sun.orbit_height_min), rules.sun.orbit_height_max)
@@ -387,17 +429,17 @@ def _restore_growth(world: World, growth: dict, where: Where, budget_slack: floa
     if len(tree.lstring) > limit:
         raise where.error(f"the tree is larger than this L-system's budget allows ({limit:,} modules)", "lstring")
     lstring_sane(tree.lstring, where)
-    tree.last_rewrite_T = value(growth, "last_rewrite_T", "float", 0.0, BIG, where)
+    tree.last_rewrite_T = value(growth, "last_rewrite_T", *GROWTH_FIELDS["last_rewrite_T"], where)
     direction = np.array(vector(growth, "light_dir", 3, where, [0.0, 1.0, 0.0], limit=10.0))
     if not 0.5 < float(np.linalg.norm(direction)) < 2.0:
         raise where.error("'light_dir' must be a direction (a vector of length 1)", "light_dir")
     tree.light_dir = direction / np.linalg.norm(direction)
-    tree.mean_light = value(growth, "mean_light", "float", 0.0, 1.0, where, default=1.0)
-    tree.shed_total = value(growth, "shed_total", "int", 0, 2**53, where, default=0)
-    world.last_light = value(growth, "last_light", "float", -BIG, BIG, where, default=float("-inf"))
+    tree.mean_light = value(growth, "mean_light", *GROWTH_FIELDS["mean_light"], where, default=1.0)
+    tree.shed_total = value(growth, "shed_total", *GROWTH_FIELDS["shed_total"], where, default=0)
+    world.last_light = value(growth, "last_light", *GROWTH_FIELDS["last_light"], where, default=float("-inf"))
     if "last_sense_length" in growth or "last_sense_girth" in growth:
-        tree.last_sense_length = value(growth, "last_sense_length", "float", 0.0, BIG, where)
-        tree.last_sense_girth = value(growth, "last_sense_girth", "float", 0.0, BIG, where)
+        tree.last_sense_length = value(growth, "last_sense_length", *GROWTH_FIELDS["last_sense_length"], where)
+        tree.last_sense_girth = value(growth, "last_sense_girth", *GROWTH_FIELDS["last_sense_girth"], where)
     restore_rng(world.rng, text_value(growth, "rng_world", where, 4096), "rng_world", where)
     _restore_roots(world, growth, where)
     restore_rng(tree.deriver.rng, text_value(growth, "rng_tree", where, 4096), "rng_tree", where)
@@ -417,7 +459,7 @@ def _restore_roots(world: World, growth: dict, where: Where) -> None:
     if len(roots.lstring) > limit:
         raise where.error(f"the roots are larger than their budget allows ({limit:,} modules)", "roots")
     lstring_sane(roots.lstring, where)
-    roots.last_rewrite = value(growth, "roots_rewrite", "float", 0.0, BIG, where)
+    roots.last_rewrite = value(growth, "roots_rewrite", *GROWTH_FIELDS["roots_rewrite"], where)
     restore_rng(roots.deriver.rng, text_value(growth, "rng_roots", where, 4096), "rng_roots", where)
     world.sync_roots()
 

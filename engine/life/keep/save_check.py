@@ -46,6 +46,45 @@ CARBON_FIELDS = {  # [trees.carbon] (engine/life/plant/carbon.py); g, s, g per s
     "last_upkeep_rate": ("float", 0.0, BIG), "vigour": ("float", 0.0, 1.0), "leaf_area": ("float", 0.0, 1e8),
     "sapwood": ("float", 0.0, 1e8), "fill_at_next_reading": ("bool", 0, 1),
 }
+TREE_FIELDS = {"seed": ("int", 0, 2**63 - 1), "steps": ("int", 0, 2**53)}  # [[trees]]
+GROWTH_FIELDS = {  # [trees.growth]
+    "last_rewrite_T": ("float", 0.0, BIG), "mean_light": ("float", 0.0, 1.0), "shed_total": ("int", 0, 2**53),
+    "last_light": ("float", -BIG, BIG), "last_sense_length": ("float", 0.0, BIG),
+    "last_sense_girth": ("float", 0.0, BIG), "roots_rewrite": ("float", 0.0, BIG),
+}
+POSITION_LIMIT = 1e4  # a tree's place in the garden, scene units either way
+JOURNAL_LIMIT = 1e12  # journal times and numbers (plant/journal.py drops rows beyond it)
+
+
+def fit(v, kind: str, low: float, high: float):
+    """``v`` made what the reader accepts for a field of this spec: the writer's half of the one
+    validation (a state the game reached beyond a range, or a NaN from a player's .lsys, is saved at the
+    nearest accepted value rather than written as a save the next start refuses). NaN becomes the value
+    nearest 0; None (a field not written) stays None."""
+    if v is None:
+        return None
+    if kind == "bool":
+        return bool(v)
+    if kind == "int":
+        return min(max(int(v), int(low)), int(high))
+    v = float(v)
+    if math.isnan(v):
+        v = 0.0
+    return min(max(v, low), high)
+
+
+def fitted(data: dict, fields: dict) -> dict:
+    """``data`` with every field of ``fields`` passed through :func:`fit` (others, like tables, kept)."""
+    return {k: fit(v, *fields[k]) if k in fields else v for k, v in data.items()}
+
+
+def fitted_params(params: np.ndarray) -> np.ndarray:
+    """L-string parameters as the reader accepts them (:func:`lstring_sane`): NaN 0, the rest within
+    +-BIG. The same array when nothing needs fixing (the usual case costs one pass)."""
+    bad = ~(np.abs(params) <= BIG)
+    if not bad.any():
+        return params
+    return np.clip(np.nan_to_num(params, nan=0.0, posinf=BIG, neginf=-BIG), -BIG, BIG)
 
 
 @dataclass

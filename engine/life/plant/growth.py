@@ -57,7 +57,7 @@ from arbor.engine.life.plant.collide import Obstacles, avoidance
 from arbor.engine.life.plant.light import memory_weight
 from arbor.engine.lsystem import brackets
 from arbor.engine.lsystem.derive import Deriver, StepReport
-from arbor.engine.lsystem.lstring import LString
+from arbor.engine.lsystem.lstring import LString, params_where
 from arbor.engine.lsystem.lsys import LSystem
 
 FALL_KEEP = 40.0  # physiological time a shed branch stays in `fallen` for the game to show its fall
@@ -333,8 +333,8 @@ class GrowingTree:
         module = segs.module
         base = grown & ~segs.continues & (segs.parent >= 0)
         off = ls.offsets[module]
-        dead = base & (params[np.where(grown, off + 3, 0)] > self.geometry_constants["SHED"])
-        dead &= params[np.where(grown, off + 2, 0)] >= 1  # the trunk is never shed
+        dead = base & (params_where(params, grown, off + 3) > self.geometry_constants["SHED"])
+        dead &= params_where(params, grown, off + 2) >= 1  # the trunk is never shed
         if not dead.any():
             return 0
         close = brackets.branch_ends(ls.sym, module[dead])

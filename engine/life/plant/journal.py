@@ -14,6 +14,8 @@ from arbor.engine.base.units import METRE
 
 KINDS = ("planted", "branch", "flower", "fruit", "height", "season", "harvest")
 MAX_ENTRIES = 400
+MAX_METRES = 150  # the "every metre" milestones stop here (the tallest trees on Earth are about 116 m): a hostile
+# save's F(1e12) must not write (or even look for) one entry per metre
 
 
 @dataclass
@@ -39,8 +41,10 @@ class Journal:
         new = []
         checks = [("branch", 0.0, ls.count("A") >= 2), ("flower", 0.0, ls.count("K") > 0),
                   ("fruit", 0.0, ls.count("O") > 0)]
-        metres = math.floor(height / METRE)
-        checks += [("height", float(m), True) for m in range(1, metres + 1)]
+        metres = min(math.floor(height / METRE), MAX_METRES) if math.isfinite(height) else 0
+        if metres >= 1 and not self.has("height", float(metres)):
+            written = {v for _, k, v in self.entries if k == "height"}
+            checks += [("height", float(m), True) for m in range(1, metres + 1) if float(m) not in written]
         season = world.sim.season()
         if season.index == 0 and season.year >= 1 and s.alive:
             checks.append(("season", float(season.year), True))  # a spring after a winter: a year survived
