@@ -43,7 +43,7 @@ def test_the_guide_names_its_three_lesson_files_and_commands():
 
 
 def test_lesson_light_longer_days_catch_more_light(tmp_path):
-    path = shortened("lesson_light.toml", tmp_path, 5 * 125.66667, seeds=2)
+    path = shortened("lesson_light.toml", tmp_path, 4 * 125.66667, seeds=2)
     out = tmp_path / "light"
     assert run_sweep(path, out, workers=1, plots=False, echo=lambda _: None, keep="none") == 0
     light = finals(out, "Day length", "light_day")
@@ -52,7 +52,7 @@ def test_lesson_light_longer_days_catch_more_light(tmp_path):
 
 
 def test_lesson_water_rare_drinks_leave_the_meter_low(tmp_path):
-    path = shortened("lesson_water.toml", tmp_path, 6 * 125.66667, seeds=2)
+    path = shortened("lesson_water.toml", tmp_path, 5 * 125.66667, seeds=2)
     out = tmp_path / "water"
     assert run_sweep(path, out, workers=1, plots=False, echo=lambda _: None) == 0
     low = finals(out, "Time between drinks", "water_min")

@@ -136,7 +136,7 @@ def thumbnails(sweep, images: dict, path: Path) -> list[Path]:
 
 def lab_charts(series: list, path: Path, title: str = "", colors=((230, 90, 60), (60, 140, 230), (90, 180, 70),
                                                                    (200, 160, 30), (150, 80, 180), (60, 60, 60)),
-               metrics=("height", "girth", "leaf_area", "light_share", "water", "wilt")) -> list[Path]:
+               metrics=("height", "biomass", "leaf_area", "light_day", "water", "wilt")) -> list[Path]:
     """The lab's time series as small multiples, one line per tree in the live charts' colours (the
     exported twin of the lab screen's charts), against game days; a dead tree's line ends in a cross."""
     fig, axes = _grid(len(metrics))
