@@ -8,10 +8,7 @@ import os
 import time
 from pathlib import Path
 
-import numpy as np
-
 from arbor.game.errors import NO_DISPLAY, NO_DISPLAY_FOUND, UserError
-from arbor.game.render.renderer import save_png
 from arbor.game.watchdog import STAFF_EXIT
 
 WINDOW = (1280, 720)
@@ -71,6 +68,10 @@ def _frames_limit() -> int:
 
 def _save_screen(ctx, size: tuple[int, int], path: str) -> None:
     """Save what the window shows (used by tests and bug reports)."""
+    import numpy as np
+
+    from arbor.game.render.renderer import save_png  # imported here: the renderer (numba) is slow to load
+
     pixels = np.frombuffer(ctx.screen.read(components=3), np.uint8).reshape(size[1], size[0], 3)
     save_png(pixels[::-1], path)
 
@@ -92,10 +93,11 @@ class Heartbeat:
             self.path.touch()
 
 
-def _main_loop(ctx, size: tuple[int, int], poll, frame) -> None:
+def _main_loop(ctx, size: tuple[int, int], poll, frame, on_first_frame=None) -> None:
     """Run ``frame(events, seconds)`` at up to 60 fps until it returns False, or until ARBOR_MAX_FRAMES
     frames have run (then save ARBOR_SCREENSHOT if set: used by tests and bug reports). ``poll(events,
-    now)`` turns the window's events into input events."""
+    now)`` turns the window's events into input events; ``on_first_frame()`` runs once the first frame
+    is shown (start-up figures)."""
     import pygame
 
     clock = pygame.time.Clock()
@@ -114,6 +116,8 @@ def _main_loop(ctx, size: tuple[int, int], poll, frame) -> None:
                 _save_screen(ctx, size, os.environ["ARBOR_SCREENSHOT"])
             return
         pygame.display.flip()
+        if frames == 1 and on_first_frame is not None:
+            on_first_frame()
         clock.tick(60)
 
 
@@ -132,11 +136,18 @@ def _screen_frame(screen, fbo):
 
 def run_app(args: argparse.Namespace | None = None) -> int:
     """Open the game window and run until closed (Esc or the close button); saves on the way out."""
+    import importlib
+
     import pygame
 
+    from arbor.game.first_start import show_until_ready, timing
+
+    ctx = open_window(WINDOW, "Arbor")  # first: the title screen is up before the game's modules load
+    if not show_until_ready(ctx, WINDOW, lambda: importlib.import_module("arbor.game.screens.game")):
+        pygame.quit()  # closed while the kernels compiled: nothing was played, nothing to save
+        return 0
     from arbor.game.screens.game import Game, GameConfig
 
-    ctx = open_window(WINDOW, "Arbor")
     config = GameConfig()
     saves = getattr(args, "saves", None) or os.environ.get("ARBOR_SAVES")
     if saves:
@@ -145,10 +156,11 @@ def run_app(args: argparse.Namespace | None = None) -> int:
         config.pace = args.pace
     game = Game(ctx, WINDOW, config, clock=time.perf_counter)
     hub = make_input_hub(args, WINDOW, time.perf_counter())
-    _main_loop(ctx, WINDOW, hub.poll, _screen_frame(game, ctx.screen))
+    _main_loop(ctx, WINDOW, hub.poll, _screen_frame(game, ctx.screen), on_first_frame=lambda: timing("garden"))
     game.quit()
     hub.close()
     pygame.quit()
+    timing("closed")
     return 0
 
 

@@ -249,6 +249,7 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
+COMPILING = ("render", "export", "landscape", "lab", "sweep", "view", "card", "import")  # use numba kernels
 EXIT_OK, EXIT_FAILED, EXIT_USAGE = 0, 1, 2  # argparse exits with EXIT_USAGE for bad arguments
 
 
@@ -280,6 +281,18 @@ def _quiet_broken_pipe() -> int:
     return EXIT_FAILED
 
 
+def _exit_now(status: int) -> None:
+    """End the process as soon as the game has saved and closed its window: Python's own teardown of numba,
+    LLVM and the GL modules takes most of a second and shows nothing."""
+    import logging
+    import os
+
+    logging.shutdown()
+    sys.stdout.flush()
+    sys.stderr.flush()
+    os._exit(status)
+
+
 def main(argv: list[str] | None = None) -> int:
     """Entry point of the `arbor` console script: user errors end in one line naming what to fix.
 
@@ -297,7 +310,13 @@ def main(argv: list[str] | None = None) -> int:
         if args.command is None:
             from arbor.game.app import run_app, run_kiosk
 
-            return run_kiosk(args) if args.kiosk else run_app(args)
+            if args.kiosk:
+                return run_kiosk(args)
+            _exit_now(run_app(args))
+        if args.command in COMPILING:
+            from arbor.game.first_start import headless_notice
+
+            headless_notice()
         status = args.run(args)
         sys.stdout.flush()  # a broken pipe shows here, inside the try, not at interpreter exit
         return status

@@ -41,3 +41,23 @@ def test_a_driver_asked_for_by_name_is_kept(monkeypatch):
     monkeypatch.delenv("SDL_VIDEODRIVER")
     with pytest.raises(UserError, match="xvfb-run -a arbor"):
         _refuse_invisible_window("offscreen")
+
+
+@pytest.mark.parametrize("progress", [0.25, 0.75])
+def test_title_screen_bar_fills_with_the_kernels_progress(progress):
+    """The first start's progress bar is green over `progress` of its width and dark over the rest."""
+    import pygame
+
+    from arbor.game.first_start import FIRST_START, TitleScreen
+
+    pygame.display.init()
+    pygame.font.init()
+    screen = TitleScreen.__new__(TitleScreen)  # the drawing alone: no GL context needed
+    screen.size = (800, 480)
+    screen.title, screen.small = pygame.font.Font(None, 68), pygame.font.Font(None, 20)
+    surf = screen.surface(progress, FIRST_START)
+    row = int(480 * 0.62) + 5
+    green = [x for x in range(800) if surf.get_at((x, row))[1] > 180]
+    assert green, "no bar drawn"
+    assert abs((max(green) - 200) / 400 - progress) < 0.03  # the bar spans the middle half: x 200..600
+    assert surf.get_at((590, row))[1] < 60 if progress < 0.9 else True

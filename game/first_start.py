@@ -1,0 +1,224 @@
+"""The first start that talks: Arbor's compiled kernels (numba) are built once per machine, which takes
+tens of seconds; the window shows a title and a progress bar meanwhile, headless commands say one line.
+
+The kernels compile on a thread (``Warmup``) by growing a small tree through the public engine API; the
+progress is the share of kernel functions that have a compiled (or cache-loaded) version, so the bar moves
+with numba's real work rather than with a guess."""
+
+from __future__ import annotations
+
+import importlib
+import sys
+import threading
+import time
+
+# Every module holding numba kernels (keep in step with engine/: a module missing here only makes the
+# progress bar coarser, never wrong, because the bar is full when the warm-up thread ends).
+KERNEL_MODULES = (
+    "arbor.engine.geometry.turtle_kernel",
+    "arbor.engine.geometry.mesh_kernel",
+    "arbor.engine.geometry.chains",
+    "arbor.engine.lsystem.context_kernel",
+)
+FIRST_START = "preparing Arbor for this machine (first start only)"
+
+
+def kernel_dispatchers() -> list:
+    """The numba dispatchers of Arbor's kernels (functions inlined into others are left out: they never
+    compile on their own)."""
+    from numba.core.registry import CPUDispatcher
+
+    found = []
+    for name in KERNEL_MODULES:
+        module = importlib.import_module(name)
+        for value in vars(module).values():
+            if isinstance(value, CPUDispatcher) and value.__module__ == name \
+                    and value.targetoptions.get("inline") != "always":
+                found.append(value)
+    return found
+
+
+def _cached(dispatcher) -> bool:
+    """True when numba's disk cache holds a current (not stale) build of this kernel."""
+    try:
+        return bool(dispatcher._cache._cache_file._load_index())  # {} when missing or the source changed
+    except Exception:  # a numba without these internals: assume cached, so nothing false is said
+        return True
+
+
+def kernels_cold() -> bool:
+    """True when some kernel has no usable build on disk: the next use compiles it (tens of seconds)."""
+    return not all(_cached(d) for d in kernel_dispatchers())
+
+
+def compiled_share(dispatchers: list) -> float:
+    """Share of the kernels with a version in memory (compiled now or loaded from the cache), 0..1."""
+    return sum(1 for d in dispatchers if d.overloads) / max(len(dispatchers), 1)
+
+
+def warm_kernels() -> None:
+    """Use every kernel once on a small tree (context rules, turtle, leaves, mesh, chains): compiles what
+    the cache lacks and loads the rest, so the garden's first tree finds them ready."""
+    from arbor.engine.base.assets import assets_dir
+    from arbor.engine.geometry.tree import build_geometry
+    from arbor.engine.lsystem.derive import Deriver
+    from arbor.engine.lsystem.lsys import load_lsystem, parse_lsystem
+
+    context = load_lsystem(assets_dir() / "lsystems" / "context_plant.lsys")
+    Deriver(context, seed=0).derive(steps=4)
+    tree = parse_lsystem("n: 3\ndelta: 30\nw: A\np1: A -> F[+A L][-A L]F A\n")
+    ls, _ = Deriver(tree, seed=0).derive(steps=3)
+    for lod in (0, 1):
+        build_geometry(ls, tree, lod=lod)  # leaves where the string has them
+    build_geometry(ls, tree, lod=0, leaves_at_tips=3)  # and clusters at the twigs' tips
+
+
+def headless_notice(stream=None) -> bool:
+    """Print one line before a headless command compiles the kernels; True when it did."""
+    if not kernels_cold():
+        return False
+    print(f"arbor: {FIRST_START}: compiling its kernels, about half a minute...", file=stream or sys.stderr,
+          flush=True)
+    return True
+
+
+class Warmup:
+    """The kernels' warm-up on a background thread, plus anything else slow to import (``extra``)."""
+
+    def __init__(self, extra=None) -> None:
+        self.dispatchers = kernel_dispatchers()
+        self.cold = not all(_cached(d) for d in self.dispatchers)
+        self.error: BaseException | None = None
+        self.started = time.perf_counter()
+        self._extra = extra
+        self._thread = threading.Thread(target=self._run, name="arbor-warmup", daemon=True)
+        self._thread.start()
+
+    def _run(self) -> None:
+        try:
+            warm_kernels()
+            if self._extra is not None:
+                self._extra()
+        except BaseException as exc:  # handed to the main thread, which raises it there
+            self.error = exc
+
+    @property
+    def done(self) -> bool:
+        """True once the warm-up thread has finished (successfully or not)."""
+        return not self._thread.is_alive()
+
+    @property
+    def progress(self) -> float:
+        """0..1: the kernels compiled so far (the last tenth is the imports after them)."""
+        return 1.0 if self.done else 0.9 * compiled_share(self.dispatchers)
+
+    def result(self) -> None:
+        """Wait for the thread; raise what it raised."""
+        self._thread.join()
+        if self.error is not None:
+            raise self.error
+
+
+def since_launch() -> float:
+    """Seconds since this process started (Linux /proc; 0.0 elsewhere): for start-up figures."""
+    import os
+
+    try:
+        with open("/proc/self/stat") as f:
+            started = int(f.read().rsplit(")", 1)[1].split()[19]) / os.sysconf("SC_CLK_TCK")
+        with open("/proc/uptime") as f:
+            return float(f.read().split()[0]) - started
+    except (OSError, ValueError, IndexError):
+        return 0.0
+
+
+def timing(what: str) -> None:
+    """With ARBOR_TIMING set, say on stderr when a start-up milestone happened (benchmarks.startup reads it)."""
+    import os
+
+    if os.environ.get("ARBOR_TIMING"):
+        print(f"arbor-timing {what} {since_launch():.3f} {time.time():.3f}", file=sys.stderr, flush=True)
+
+
+_VERTEX = """#version 330
+in vec2 pos; out vec2 uv;
+void main() { uv = vec2(pos.x * 0.5 + 0.5, 0.5 - pos.y * 0.5); gl_Position = vec4(pos, 0.0, 1.0); }"""
+_FRAGMENT = """#version 330
+uniform sampler2D image; in vec2 uv; out vec4 color;
+void main() { color = texture(image, uv); }"""
+
+
+class TitleScreen:
+    """Arbor's title, a line of what is happening and a progress bar, drawn with pygame and shown as one
+    texture (no game renderer needed: it is up before the game's modules are imported)."""
+
+    def __init__(self, ctx, size: tuple[int, int]) -> None:
+        from array import array
+
+        import pygame
+
+        pygame.font.init()
+        self.ctx, self.size = ctx, size
+        self.title = pygame.font.Font(None, max(48, size[1] // 7))
+        self.small = pygame.font.Font(None, max(20, size[1] // 28))
+        self.texture = ctx.texture(size, 3)
+        program = ctx.program(vertex_shader=_VERTEX, fragment_shader=_FRAGMENT)
+        quad = ctx.buffer(array("f", [-1, -1, 1, -1, -1, 1, 1, 1]).tobytes())
+        self.vao = ctx.vertex_array(program, [(quad, "2f", "pos")])
+
+    def surface(self, progress: float, line: str):
+        """The title screen as a pygame Surface: sky to meadow, the name, the line, the bar."""
+        import pygame
+
+        w, h = self.size
+        surf = pygame.Surface(self.size)
+        for y in range(0, h, 4):  # a soft dawn sky over a meadow strip
+            t = y / h
+            colour = (38 + 90 * t, 62 + 100 * t, 92 + 70 * t) if t < 0.78 else (70, 112, 58)
+            surf.fill([int(c) for c in colour], (0, y, w, 4))
+        name = self.title.render("Arbor", True, (246, 240, 222))
+        surf.blit(name, name.get_rect(center=(w // 2, int(h * 0.36))))
+        text = self.small.render(line, True, (236, 232, 214))
+        surf.blit(text, text.get_rect(center=(w // 2, int(h * 0.55))))
+        bar = pygame.Rect(w // 4, int(h * 0.62), w // 2, max(8, h // 48))
+        pygame.draw.rect(surf, (28, 40, 34), bar, border_radius=bar.height // 2)
+        filled = bar.copy()
+        filled.width = max(bar.height, int(bar.width * min(max(progress, 0.0), 1.0)))
+        pygame.draw.rect(surf, (150, 206, 110), filled, border_radius=bar.height // 2)
+        return surf
+
+    def draw(self, progress: float, line: str) -> None:
+        """Draw the title screen into the window's framebuffer."""
+        import pygame
+
+        self.texture.write(pygame.image.tobytes(self.surface(progress, line), "RGB"))
+        self.ctx.screen.use()
+        self.ctx.viewport = (0, 0, *self.size)
+        self.texture.use(0)
+        self.vao.render(mode=self.ctx.TRIANGLE_STRIP)
+
+
+def show_until_ready(ctx, size: tuple[int, int], extra=None) -> bool:
+    """Show the title screen while the kernels warm up on a thread (and ``extra`` runs after them);
+    False when the player closed the window meanwhile."""
+    import pygame
+
+    screen, clock = TitleScreen(ctx, size), pygame.time.Clock()
+    warm = Warmup(extra)
+    line = FIRST_START + "..." if warm.cold else "waking the garden..."
+    first = True
+    while not warm.done:
+        if any(e.type == pygame.QUIT for e in pygame.event.get()):
+            return False
+        screen.draw(warm.progress, line)
+        pygame.display.flip()
+        if first:
+            timing("first-frame")
+            first = False
+        clock.tick(30)
+    warm.result()
+    screen.draw(1.0, "planting the garden...")
+    pygame.display.flip()
+    if first:
+        timing("first-frame")
+    return True
