@@ -108,7 +108,8 @@ def test_replant_resets_meters_into_range():
         sim.replant(rng)
         levels += [sim.state.sun_meter, sim.state.water_meter]
     assert sim.state.alive and sim.state.wilt == 0.0
-    assert min(levels) >= 0.25 and max(levels) <= 1.0 and max(levels) - min(levels) > 0.5
+    # issue 28: a new sapling starts comfortable (well above half, below drowning), still not always the same
+    assert min(levels) >= 0.7 and max(levels) <= 0.9 and max(levels) - min(levels) > 0.1
 
 
 def test_state_round_trips_through_plain_data():

@@ -239,8 +239,8 @@ class HudInfo:
 
 
 def draw_hud(surface: pygame.Surface, font: pygame.font.Font, info: HudInfo) -> None:
-    """Meters (yellow sun, blue water), season, what the tree needs, age and speed, a reminder, a
-    first-run hint and the current message."""
+    """Meters (yellow sun, blue water), season, what the tree needs, age and speed, a reminder and a
+    first-run hint (the message is :func:`draw_toast`'s, over the menu)."""
     x, y = 20, 20
     for label, value, color in ((text("hud.sun"), info.sun, SUN_YELLOW), (text("hud.water"), info.water, WATER_BLUE)):
         _shade(surface, pygame.Rect(x, y, 300, 40), 120)
@@ -264,9 +264,14 @@ def draw_hud(surface: pygame.Surface, font: pygame.font.Font, info: HudInfo) -> 
     if info.hint:
         _boxed(surface, font, info.hint, (surface.get_width() // 2, 24), min(width, 640), (60, 50, 10, 215),
                anchor="midtop", border=SUN_YELLOW)
-    if info.message:
-        _boxed(surface, font, info.message, (surface.get_width() // 2, surface.get_height() - 24), width,
-               (0, 0, 0, 150), anchor="midbottom")
+
+
+def draw_toast(surface: pygame.Surface, font: pygame.font.Font, message: str) -> None:
+    """The current message, boxed at the bottom centre; drawn after the menu so it is never hidden."""
+    if message:
+        width = surface.get_width() - 40
+        _boxed(surface, font, message, (surface.get_width() // 2, surface.get_height() - 24), width,
+               (0, 0, 0, 190), anchor="midbottom")
 
 
 def _shade(surface: pygame.Surface, rect: pygame.Rect, alpha: int, colour=(0, 0, 0)) -> None:

@@ -41,11 +41,13 @@ class CareActions:
         self.state, self.menu, self.modeling, self.keeper = state, menu, modeling, keeper
         self.family, self.coach, self.rules, self.system, self.wall_clock = family, coach, rules, system, wall_clock
         self.crossing = None  # the mother of a cross, while the player picks the father
+        state.on_halt.append(self.sync_sliders)
         tool = lambda switch: pressed(lambda: self._tool(switch))  # noqa: E731
         self.handlers: dict[Action, Handler] = {
             Action.WATER: self._water, Action.ORBIT_HEIGHT: lambda value: self._sun(Action.ORBIT_HEIGHT, value),
             Action.SUN_SPEED: lambda value: self._sun(Action.SUN_SPEED, value),
             Action.REPLANT: pressed(self.replant), Action.SPEED: pressed(self._next_speed),
+            Action.GO_ON: pressed(self.go_on),
             Action.SAVE: pressed(self._save), Action.LOAD: pressed(self._load), Action.PLANT: pressed(self.plant),
             Action.SOW: pressed(self.sow), Action.CROSS: pressed(self.start_cross),
             Action.FAMILY: pressed(family.open), Action.ROCK: pressed(self.place_rock),
@@ -81,7 +83,16 @@ class CareActions:
         state.remember()
         state.say(text("messages.planted"))
 
+    def go_on(self) -> None:
+        """After the guardian's stop: the garden is tended and time flies on (see GameState.go_on)."""
+        if self.state.halted is not None:
+            self.state.go_on()
+            self.sync_sliders()
+
     def _next_speed(self) -> None:
+        if self.state.halted is not None:  # the speed button after a stop is "go on"
+            self.go_on()
+            return
         speed = self.state.loop.speed
         i = SPEEDS.index(speed) if speed in SPEEDS else 1
         self.set_speed(SPEEDS[(i + 1) % len(SPEEDS)])
@@ -208,12 +219,14 @@ class CareActions:
         menu.widget("orbit_height").value = range_to_slider(s.orbit_height, r.orbit_height_min, r.orbit_height_max)
         menu.widget("sun_speed").value = range_to_slider(s.sun_speed, r.speed_min, r.speed_max, log=True)
         speed = state.loop.speed
-        menu.widget("speed").label = text("menu.paused") if speed == 0 else text("menu.speed", speed=f"{speed:g}")
+        label = text("menu.paused") if speed == 0 else text("menu.speed", speed=f"{speed:g}")
+        menu.widget("speed").label = text("menu.go_on", speed=f"{state.resume_speed:g}") if state.halted else label
         menu.widget("sow").label = text("menu.sow", count=len(state.garden.seeds))
         menu.widget("roots").label = text("menu.roots_hide" if state.cutaway else "menu.roots")
         menu.widget("modeler").label = text("menu.modeler_done" if self.modeling.active else "menu.modeler")
 
     def set_speed(self, speed: float) -> None:
-        """Time speed: 0 (pause), 1, 10 or 100."""
+        """Time speed: 0 (pause), 1, 10 or 100 (a speed chosen by hand answers a guardian's stop)."""
+        self.state.halted = None
         self.state.loop.speed = speed
         self.sync_sliders()

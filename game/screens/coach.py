@@ -15,7 +15,7 @@ from arbor.game.screens.state import GameState
 from arbor.game.strings import text
 
 HINTS = ("open_menu", "water", "turn")
-ATTENTION = ("dead", "wilting", "drowning", "thirsty", "needs_light")  # statuses worth a reminder
+ATTENTION = ("dead", "wilting", "starving", "drowning", "thirsty", "needs_light")  # statuses worth a reminder
 JOURNAL_SHOWN = 12  # latest milestones listed on the journal page
 
 
@@ -63,7 +63,8 @@ class Coach:
         if world.sim.raining() and world.sim.state.alive:
             return text("reminders.rain")
         view = self.views.get(id(world))
-        if view is not None and len(view[1].fruits.data) and (view[1].fruits.data[:, 10] >= 1.0).any():
+        ripe = view is not None and len(view[1].fruits.data) and (view[1].fruits.data[:, 10] >= 1.0).any()
+        if ripe and world.sim.state.alive:  # (no fruit prompt on a dead tree)
             return text("reminders.fruit")
         garden = state.garden
         if garden.seeds and not garden.full:

@@ -69,7 +69,7 @@ class Game:
         self.small_font = pygame.font.Font(None, 24)
         self.translator = PygameTranslator(size)
         self.overlay_hooks: list = []  # extra overlay layers (kiosk attract text, PIN pad)
-        self.state = state = GameState(self.loop, self.control, clock)
+        self.state = state = GameState(self.loop, self.control, clock, self.rules)
         self.keeper = SaveKeeper(state, self.config, self.rules, self.system, wall_clock)
         state.use(self.keeper.start())
         self._parts()
@@ -91,7 +91,8 @@ class Game:
         self.picker = Picker(state, self.view.views, size, self.care)
         self.hud = GameHud(state, self.rules, size, menu=self.menu, overlay=self.overlay, renderer=self.renderer,
                            views=self.view.views, fonts=(self.font, self.small_font), modeling=self.modeling,
-                           family=self.family, coach=self.coach, hooks=self.overlay_hooks)
+                           family=self.family, coach=self.coach, hooks=self.overlay_hooks,
+                           scene_sun=self.view.scene_sun)
         self.input = GameInput(state, size, self.camera, menu=self.menu, gestures=self.gestures,
                                modeling=self.modeling, care=self.care, picker=self.picker, family=self.family,
                                coach=self.coach)

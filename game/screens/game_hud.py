@@ -9,18 +9,20 @@ import numpy as np
 import pygame
 
 from arbor.engine.life.rules.rules import Rules
+from arbor.game.render.backdrop import sky_colors
 from arbor.game.render.camera import OrbitCamera, project_points
 from arbor.game.render.garden import GardenRenderer
 from arbor.game.render.icons import draw_icon
 from arbor.game.render.renderer import Overlay
-from arbor.game.render.ui import HudInfo, Menu, draw_hud, draw_rain, draw_rain_cloud
+from arbor.game.render.ui import HudInfo, Menu, draw_hud, draw_rain, draw_rain_cloud, draw_toast
 from arbor.game.screens.coach import Coach
 from arbor.game.screens.family import FamilyScreen
 from arbor.game.screens.modeler import ModelingMode
 from arbor.game.screens.state import GameState
 from arbor.game.strings import duration, text
 
-NEEDS_ICON = {"thirsty": "can", "wilting": "can", "needs_light": "sun", "drowning": "can", "dead": "cross"}
+NEEDS_ICON = {"thirsty": "can", "wilting": "sun", "starving": "sun", "needs_light": "sun", "drowning": "can",
+              "dead": "cross"}
 BADGE = 30  # pixels: a garden marker's size
 
 
@@ -30,8 +32,9 @@ class GameHud:
     def __init__(self, state: GameState, rules: Rules, size: tuple[int, int], *, menu: Menu, overlay: Overlay,
                  renderer: GardenRenderer, views: dict, fonts: tuple[pygame.font.Font, pygame.font.Font],
                  modeling: ModelingMode, family: FamilyScreen, coach: Coach,
-                 hooks: list[Callable[[pygame.Surface], None]]) -> None:
+                 hooks: list[Callable[[pygame.Surface], None]], scene_sun: Callable[[], np.ndarray]) -> None:
         self.state, self.rules, self.size = state, rules, size
+        self.scene_sun = scene_sun  # the sun the scene is lit by (see GameView.scene_sun)
         self.menu, self.overlay, self.renderer = menu, overlay, renderer
         self.views = views  # the view's records of the trees (world id -> key, records, ...)
         self.font, self.small_font = fonts
@@ -75,13 +78,18 @@ class GameHud:
         message = state.shown_message()
         if not message and tree.budget_hit:
             message = text("messages.budget")
-        status = text(f"status.{world.status()}", hold=duration(rules.growth.hold_time))
+        status = text(f"status.{world.status(self.dark_sky())}", hold=duration(world.sim.settle_left()))
         season = ""
         if rules.seasons.enabled:
             day = int(s.sun_turns) + 1
             season = text("hud.season", season=text(f"seasons.{world.sim.season().name}"), day=day)
         return HudInfo(s.sun_meter, s.water_meter, status, s.time, state.loop.speed, message, s.watering, season,
                        world.sim.raining(), self.coach.hint(), self.coach.reminder())
+
+    def dark_sky(self) -> bool:
+        """True when the sky drawn now is a night's (at fast speeds the scene leans toward noon, so a
+        night of the sim may be drawn as day: the status follows what the player sees)."""
+        return sky_colors(self.scene_sun())[2] < 0.5
 
     def overlay_pixels(self, camera: OrbitCamera) -> bytes:
         """The HUD layer as RGBA rows, bottom row first."""
@@ -107,6 +115,7 @@ class GameHud:
         self.family.draw(self.surface, self.font, self.small_font)
         for hook in self.hooks:
             hook(self.surface)
+        draw_toast(self.surface, self.font, info.message)
 
     def project(self, camera: OrbitCamera, point) -> tuple[float, float] | None:
         """The window pixel of one 3D point, or None when it is behind the camera."""

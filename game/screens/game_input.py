@@ -196,6 +196,8 @@ class GameInput:
             self.tap(self.size[0] * 0.6, self.size[1] * 0.2)
         elif key == pygame.K_r:
             self.care.act(Action.REPLANT, 1.0)
+        elif key == pygame.K_g:
+            self.care.act(Action.GO_ON, 1.0)
         elif key == pygame.K_p:
             self.care.set_speed(0.0 if self.state.loop.speed else 1.0)
         elif key in (pygame.K_1, pygame.K_2, pygame.K_3):

@@ -12,10 +12,13 @@ import copy
 from collections.abc import Callable
 
 from arbor.engine.life.form.interpret import Clocks
+from arbor.engine.life.rules.rules import Rules
 from arbor.engine.life.world.garden import Garden
+from arbor.engine.life.world.guardian import Guardian, Need
 from arbor.engine.life.world.world import World
 from arbor.game.input.gestures import CameraControl
 from arbor.game.loop import FixedStepLoop
+from arbor.game.strings import text
 
 
 class GameState:
@@ -27,8 +30,14 @@ class GameState:
 
     garden: Garden
 
-    def __init__(self, loop: FixedStepLoop, control: CameraControl, clock: Callable[[], float]) -> None:
+    def __init__(self, loop: FixedStepLoop, control: CameraControl, clock: Callable[[], float],
+                 rules: Rules | None = None) -> None:
         self.loop, self.control, self.clock = loop, control, clock
+        self.guardian = Guardian(rules or Rules())  # watches every tree while time flies (engine/life/world)
+        self.halted: Need | None = None  # the need the guardian stopped fast-forward for (until "go on")
+        self.resume_speed = 1.0  # the speed "go on" returns to
+        self.autopilot = False  # the kiosk with nobody there: the garden is tended every step
+        self.on_halt: list[Callable[[], None]] = []  # told when the guardian stops fast-forward (menu labels)
         self.message, self.message_until = "", 0.0
         self.alpha = 1.0  # how far the frame is between the last two sim states
         self.cutaway = False  # the roots' view: the ground turns to soil and the roots show
@@ -63,6 +72,32 @@ class GameState:
         """One fixed step of the whole garden (the frame interpolates from the state before it)."""
         self.previous = copy.copy(self.world.sim.state)
         self.garden.step(dt)
+        if self.autopilot:
+            self.guardian.autopilot(self.garden)
+            return
+        self.guardian.care(self.garden)
+        if self.loop.speed > 1.0:
+            need = self.guardian.watch(self.garden)
+            if need is not None:
+                self.halt(need)
+
+    def halt(self, need: Need) -> None:
+        """The guardian's stop: back to 1x at once (the rest of this frame's steps are not run), and a
+        line that says which tree needs what and how to go on."""
+        self.halted, self.resume_speed = need, self.loop.speed
+        self.loop.speed = 1.0
+        self.loop.accumulator = self.loop.dt  # (the step in progress is this frame's last)
+        self.say(text(f"guardian.{need.what}", number=need.index + 1, speed=f"{self.resume_speed:g}"), 30)
+        for listener in self.on_halt:
+            listener()
+
+    def go_on(self) -> None:
+        """The player's answer to a stop: every tree is tended (the can pours where it is needed) and time
+        flies on at the speed it had."""
+        self.guardian.tend(self.garden)
+        self.loop.speed = self.resume_speed
+        self.halted = None
+        self.message_until = 0.0
 
     def clocks(self) -> Clocks:
         """Growth clocks to draw: interpolated between the last two sim states."""

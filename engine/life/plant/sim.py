@@ -226,23 +226,38 @@ class Simulation:
         if s.dead_for > h.death_time:
             s.alive = False
 
-    def status(self) -> str:
-        """A short word for the HUD that says what is true: dead, wilting, drowning, thirsty, needs_light,
-        growing, resting (night), winter (resting for the winter) or starting (both meters fine; growth is
-        earned after 20 s)."""
-        s, threshold = self.state, self.rules.growth.threshold
+    def settle_left(self) -> float:
+        """Seconds until growth is earned if both meters stay above half: the longest of the two meters'
+        hold times still to go (0 once both have earned growth). The HUD counts it down."""
+        hold = self.rules.growth.hold_time
+        left = [hold - c.above for c in (self.state.sun_cycle, self.state.water_cycle) if c.rate == 0]
+        return max([0.0, *left])
+
+    def status(self, dark: bool | None = None) -> str:
+        """A short word for the HUD from ONE ranking of the tree's real state, the first that holds:
+        dead > drowning > thirsty > wilting (starving when its leaves cannot feed it, recovering when it
+        is cared for again) > needs_light (only by day) > winter > starting (growth not earned yet) >
+        resting (a night whose sky is dark: ``dark``, or the sun below the horizon when not given) >
+        growing."""
+        s, rules = self.state, self.rules
+        threshold = rules.growth.threshold
         if not s.alive:
             return "dead"
-        if s.wilt > 0.5:
-            return "wilting"
-        if s.drowning > self.rules.water.drown_time:
+        if s.drowning > rules.water.drown_time or (s.water_meter > rules.water.drown_level and s.drowning > 0):
             return "drowning"
         if s.water_meter <= threshold:
             return "thirsty"
-        if s.sun_meter <= threshold:
+        day = self.sunshine() > 0
+        if s.wilt > 0.5:
+            if self.starving > rules.carbon.starve_time:
+                return "starving"
+            return "wilting" if s.sun_meter < rules.health.neglect_level else "recovering"
+        if s.sun_meter <= threshold and day:
             return "needs_light"
-        if self.season().index == 3 and seasons.growth_factor(s.sun_turns, self.rules) == 0:
+        if self.season().index == 3 and seasons.growth_factor(s.sun_turns, rules) == 0:
             return "winter"
-        if self.growth_speeds()[0] > 0:
-            return "growing" if self.sunshine() > 0 else "resting"
-        return "starting"
+        if self.settle_left() > 0:
+            return "starting"
+        if (not day) if dark is None else dark:
+            return "resting"
+        return "growing"

@@ -92,8 +92,13 @@ SCHEMA: tuple[Rule, ...] = (
          "rate"),
     Rule("health.recover_rate", 0.01, 0.0, 100.0, "wilt per s", "wilt recovered otherwise", "rate"),
     Rule("health.death_time", 120.0, 0.0, 1e8, "s", "time at full wilt before the tree dies", "time"),
-    Rule("replant.meter_min", 0.25, 0.0, 1.0, METER, "the sapling button refills both meters to at least this"),
-    Rule("replant.meter_max", 1.0, 0.0, 1.0, METER, "... and at most this"),
+    Rule("health.guard_margin", 0.1, 0.0, 0.5, METER, "fast-forward drops to 1x when a meter falls to this above "
+         "its need line (water: the growth threshold; sun: the neglect level) or a tree starts to wilt"),
+    Rule("health.comfort", 0.8, 0.0, 1.0, METER, "tending (go on after a stop, the kiosk's autopilot) waters a tree "
+         "up to this"),
+    Rule("replant.meter_min", 0.7, 0.0, 1.0, METER, "a new sapling starts with both meters at least this "
+         "(comfortable: well above half)"),
+    Rule("replant.meter_max", 0.9, 0.0, 1.0, METER, "... and at most this (below drowning)"),
     Rule("light.cell", 0.9, 0.05, 100.0, "scene units", "side of a shadow cell across the sun's rays (about a leaf)"),
     Rule("light.extinction", 0.55, 0.0, 100.0, "per leaf area per cell area", "Beer-Lambert coefficient"),
     Rule("light.sky", 0.3, 0.0, 1.0, "share (0..1)", "share of the light from the open sky rather than the sun disc"),

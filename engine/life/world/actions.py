@@ -20,6 +20,7 @@ class Action(Enum):
     SUN_SPEED = "sun_speed"  # value: the sun's speed
     REPLANT = "replant"  # a fresh sapling in the tree's place
     SPEED = "speed"
+    GO_ON = "go_on"  # after the fast-forward guardian's stop: tend the garden and fly on
     SAVE = "save"
     LOAD = "load"
     PLANT = "plant"

@@ -142,11 +142,12 @@ class World:
         """Tell the simulation how big the roots are (they spare water)."""
         self.sim.root_share = self.roots.share(self.rules.roots.full_length)
 
-    def status(self) -> str:
-        """What the HUD says about this tree (see :meth:`Simulation.status`); a tree that grows but whose
-        leaves get little light says it needs light."""
-        status = self.sim.status()
-        if status == "growing" and self.tree.mean_light < self.tree.geometry_constants["SHQ"]:
+    def status(self, dark: bool | None = None) -> str:
+        """What the HUD says about this tree (see :meth:`Simulation.status`; ``dark``: the sky drawn is a
+        night's); a tree that grows by day but whose leaves get little light says it needs light."""
+        status = self.sim.status(dark)
+        shaded = self.tree.mean_light < self.tree.geometry_constants["SHQ"]
+        if status == "growing" and self.sim.sunshine() > 0 and shaded:
             return "needs_light"
         return status
 

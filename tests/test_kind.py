@@ -1,0 +1,73 @@
+"""Issue 28: fast-forward cannot kill (the guardian) and the HUD's status tells the truth."""
+
+import pytest
+
+from arbor.engine.life.rules.rules import load_rules
+from arbor.engine.life.world.garden import Garden
+from arbor.engine.life.world.guardian import Guardian
+from arbor.engine.life.world.world import World
+from arbor.engine.lsystem.lsys import load_lsystem
+
+
+@pytest.fixture(scope="module")
+def system(lsys_dir):
+    return load_lsystem(lsys_dir / "game_tree.lsys")
+
+
+@pytest.fixture
+def rules():
+    return load_rules("assets/rules.toml", pace="demo")
+
+
+def test_the_guardian_tells_a_thirst_before_the_need_line_and_tending_keeps_the_tree(system, rules):
+    garden = Garden([World(system, rules, seed=3)])
+    garden.plant(system, rules)
+    guardian = Guardian(rules)
+    told = None
+    for _ in range(3000):  # 300 s of demo time, nobody waters
+        garden.step(0.1)
+        told = told or guardian.watch(garden)
+        if told:
+            break
+    assert told is not None and told.what == "water"
+    water = garden.worlds[told.index].sim.state.water_meter
+    assert rules.growth.threshold < water < rules.growth.threshold + rules.health.guard_margin + 0.01
+    guardian.tend(garden)  # "go on": the can pours until the meter is comfortable, then is let go
+    assert garden.worlds[told.index].sim.state.watering
+    peak = 0.0
+    for _ in range(100):
+        garden.step(0.1)
+        guardian.care(garden)
+        peak = max(peak, garden.worlds[told.index].sim.state.water_meter)
+    assert not garden.worlds[told.index].sim.state.watering
+    assert rules.health.comfort <= peak < rules.health.comfort + 0.02
+
+
+def test_new_saplings_start_comfortable(system, rules):
+    garden = Garden([World(system, rules, seed=3)])
+    for _ in range(4):
+        s = garden.plant(system, rules).sim.state
+        assert 0.65 < s.water_meter < rules.water.drown_level and s.sun_meter > 0.65
+
+
+def test_status_follows_one_ranking_of_the_real_state(system, rules):
+    world = World(system, rules, seed=1)
+    s = world.sim.state
+    s.water_meter, s.drowning, s.wilt = 1.0, rules.water.drown_time + 1, 0.9  # drowned and wilting
+    assert world.status() == "drowning"
+    s.drowning, s.wilt, s.water_meter, s.sun_meter = 0.0, 0.0, 0.8, 0.3
+    s.sun_angle = -1.2  # night: the sun is down
+    assert world.sim.sunshine() == 0 and world.status() != "needs_light"
+    s.sun_cycle.rate = s.water_cycle.rate = 1.0
+    assert world.status() == "resting" and world.status(dark=False) == "growing"
+    s.alive = False
+    assert world.status() == "dead"
+    s.alive, s.sun_turns = True, rules.seasons.year_days * (0.85 - rules.seasons.start)  # winter
+    s.sun_angle, s.sun_meter = 0.6, 0.9
+    assert world.status() == "winter"
+    s.sun_turns = 0.0
+    s.sun_cycle.rate = s.water_cycle.rate = 0.0
+    s.sun_cycle.above = rules.growth.hold_time - 5.0
+    assert world.status() == "starting" and world.sim.settle_left() == pytest.approx(rules.growth.hold_time)
+    s.water_cycle.above = rules.growth.hold_time - 7.0
+    assert world.sim.settle_left() == pytest.approx(7.0)  # the HUD's wait counts down
