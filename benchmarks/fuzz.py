@@ -1,8 +1,9 @@
 """Fuzz campaign: hostile saves, .lsys sources and TUIO packets through the real load paths.
 
-Run: python -m benchmarks.fuzz [SAVES] [LSYS] [OSC] [--seed N]   (defaults 10000 10000 2000)
+Run: python -m benchmarks.fuzz [SAVES] [LSYS] [OSC] [--seed N] [--keep DIR]   (defaults 10000 10000 2000)
 Every case goes through what the game does with such input (a save: load, then geometry and a little
-catch-up; an .lsys: parse, derive under the budget, geometry; a packet: the TUIO parser). A case
+catch-up, then the game's own save of it, which must load back to the same bytes; an .lsys: parse,
+derive under the budget, geometry; a packet: the TUIO parser). A case
 passes when it works or ends in the error meant for users (SaveError / LSysError, nothing for OSC).
 Prints cases, uncaught exceptions (with the first few), cases slower than 5 s and peak RSS. The
 suite runs the same mutators on fewer cases (tests/test_fuzz.py).
@@ -10,9 +11,11 @@ suite runs the same mutators on fewer cases (tests/test_fuzz.py).
 
 from __future__ import annotations
 
+import functools
 import random
 import re
 import resource
+import signal
 import sys
 import time
 import traceback
@@ -23,7 +26,7 @@ import numpy as np
 
 from arbor.engine.base.errors import LSysError
 from arbor.engine.geometry.tree import build_geometry
-from arbor.engine.life.keep.save import SavedGarden, garden_text, read_garden
+from arbor.engine.life.keep.save import SavedGarden, garden_text, read_garden, write_garden
 from arbor.engine.life.rules.rules import load_rules
 from arbor.engine.life.world.actions import Action
 from arbor.engine.life.world.world import World
@@ -34,6 +37,11 @@ ROOT = Path(__file__).resolve().parent.parent
 LSYSTEMS = ROOT / "assets" / "lsystems"
 NASTY_NUMBERS = ["1e400", "-1e400", "nan", "inf", "-1", "0", "1e308", "-1e308", "10000000000000000000000000",
                  "2.5", '"x"', "true", "[]", "{}", "-0.0", "1e-320", "99999999999", "-99999999999"]
+EDGE_NUMBERS = ["1e12", "999999999999", "1000000000001", "9007199254740992", "9007199254740993", "4294967296",
+                "9223372036854775807", "1e-300", "5e-324", "0.0", "1"]  # at and just past the reader's bounds
+EDGE_LSTRINGS = ["F", "F(1e12)", "F(1e12,1e12)", "I(0,0,1e12,0,1e12)", "I(1e12,1e12,0,0,0)", "A(1e12,0,0,1,0,0)",
+                 "[" * 5000 + "]" * 5000, "F[" * 3000 + "]" * 3000, "L(0,1e12,0)", "O(-1e12)", "K(1e12)", "F(0)" * 5000]
+LSTRING_BLOCK = re.compile(r"lstring = '''\n.*?'''", re.S)
 NASTY_TEXT = ["[", "]", "(", ")", ",", "\\", '"', "'''", "\x00", "é", "\ufeff", "((((((((", "--------", "%", "ε",
               "->", ":", "#define", "F(", "1e999", "nan", "A(1,2,3,4,5,6,7,8,9)", "[[[[", "]]]]"]
 
@@ -42,12 +50,14 @@ def mutate_text(text: str, rng: random.Random) -> str:
     """One to three random edits: swap a number for a nasty one, insert nasty text, drop or duplicate a
     line, flip a byte, truncate."""
     for _ in range(rng.randint(1, 3)):
-        op = rng.randrange(6)
-        if op == 0:
+        op = rng.randrange(8)
+        if op in (0, 6):  # a nasty number, or one at the edge of a range
             numbers = list(re.finditer(r"-?\d+(\.\d+)?(e[-+]?\d+)?", text))
             if numbers:
                 m = rng.choice(numbers)
-                text = text[:m.start()] + rng.choice(NASTY_NUMBERS) + text[m.end():]
+                text = text[:m.start()] + rng.choice(NASTY_NUMBERS if op == 0 else EDGE_NUMBERS) + text[m.end():]
+        elif op == 7 and LSTRING_BLOCK.search(text):  # a whole L-string at the edges: bare F, F(1e12), nesting
+            text = LSTRING_BLOCK.sub(lambda _: "lstring = '''\n" + rng.choice(EDGE_LSTRINGS) + "'''", text, count=1)
         elif op == 1:
             at = rng.randrange(len(text) + 1)
             text = text[:at] + rng.choice(NASTY_TEXT) * rng.choice([1, 1, 3, 200]) + text[at:]
@@ -80,18 +90,40 @@ def sample_garden_text(trees: int = 2) -> str:
     return garden_text(SavedGarden(worlds, 0, 1.7e9))
 
 
-def try_save(text: str, folder: Path) -> None:
-    """What the game does with a save file: load it, then grow it a little and build its geometry.
-    Raises only if that path has a bug (SaveError is the expected answer to a bad file)."""
+def try_save(text: str, folder: Path) -> str:
+    """What the game does with a save file: load it, grow it a little (journal, light, shedding), build
+    its geometry, then save it and check the save's own round trip (load it back, save again: the same
+    bytes). Returns "refused" or "loaded"; raises only if that path has a bug (SaveError is the expected
+    answer to a bad file), :class:`RoundTripError` when the game could not read back what it wrote."""
     path = folder / "fuzz.arbor"
     path.write_text(text, encoding="utf-8", errors="surrogatepass")
+    rules = _rules()
     try:
-        worlds = read_garden(path, load_rules(ROOT / "assets" / "rules.toml", pace="demo")).worlds
+        saved = read_garden(path, rules)
     except LSysError:
-        return
-    for world in worlds:
+        return "refused"
+    for world in saved.worlds:
         world.catch_up(30.0)
         world.tree.geometry(world.clocks())
+    again = folder / "again.arbor"
+    write_garden(saved, again)
+    first = again.read_bytes()
+    try:
+        write_garden(read_garden(again, rules), again)
+    except LSysError as err:
+        raise RoundTripError(f"the game refused its own save: {err}") from None
+    if again.read_bytes() != first:
+        raise RoundTripError("save -> load -> save changed the file")
+    return "loaded"
+
+
+class RoundTripError(AssertionError):
+    """An accepted save whose own save does not read back the same (the writer and reader disagree)."""
+
+
+@functools.lru_cache(maxsize=1)
+def _rules():
+    return load_rules(ROOT / "assets" / "rules.toml", pace="demo")
 
 
 def sample_sources() -> list[str]:
@@ -141,13 +173,26 @@ def try_packet(parser, data: bytes) -> None:
     parser.packet(data, 0.0)
 
 
-def campaign(n_saves: int, n_lsys: int, n_osc: int, seed: int = 0) -> int:
-    """Run the whole campaign; prints the figures and returns the number of uncaught exceptions."""
+class HangError(Exception):
+    """A case that ran past HANG_SECONDS (the alarm stopped it)."""
+
+
+HANG_SECONDS = 60.0  # a case is stopped here and counted as a hang (slow: over 5 s)
+
+
+def _alarm(signum, frame):
+    raise HangError()
+
+
+def campaign(n_saves: int, n_lsys: int, n_osc: int, seed: int = 0, keep: Path | None = None) -> int:
+    """Run the whole campaign; prints the figures and returns the number of uncaught exceptions, hangs
+    and failed round trips. ``keep``: a folder where every failing case is written (to replay it)."""
     from arbor.game.input.tuio import TuioParser
 
     rng = random.Random(seed)
-    failures, slow = [], 0
+    failures, slow, outcomes = [], 0, {"loaded": 0, "refused": 0, "round trip": 0, "hang": 0}
     base_save, sources, parser = sample_garden_text(), sample_sources(), TuioParser((1280, 720))
+    signal.signal(signal.SIGALRM, _alarm)
     with TemporaryDirectory() as tmp:
         cases = [("save", n_saves), ("lsys", n_lsys), ("osc", n_osc)]
         start = time.perf_counter()
@@ -160,25 +205,45 @@ def campaign(n_saves: int, n_lsys: int, n_osc: int, seed: int = 0) -> int:
                 else:
                     case, run = random_packet(rng), lambda c: try_packet(parser, c)
                 t0 = time.perf_counter()
+                signal.setitimer(signal.ITIMER_REAL, HANG_SECONDS)
                 try:
-                    run(case)
-                except Exception:
+                    result = run(case)
+                    signal.setitimer(signal.ITIMER_REAL, 0)
+                    if result in outcomes:
+                        outcomes[result] += 1
+                except Exception as exc:
+                    signal.setitimer(signal.ITIMER_REAL, 0)
+                    outcomes["hang"] += isinstance(exc, HangError)
+                    outcomes["round trip"] += isinstance(exc, RoundTripError)
                     failures.append((kind, traceback.format_exc(limit=4), case))
+                    if keep is not None:
+                        _keep(keep, kind, len(failures), case)
                 slow += time.perf_counter() - t0 > 5.0
     peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
     print(f"cases: {n_saves:,} saves, {n_lsys:,} .lsys, {n_osc:,} OSC packets in {time.perf_counter() - start:.0f} s")
-    print(f"uncaught: {len(failures)}; slower than 5 s: {slow}; peak RSS {peak:.0f} MiB")
+    print(f"saves: {outcomes['loaded']:,} loaded and round-tripped, {outcomes['refused']:,} refused with one line, "
+          f"{outcomes['round trip']} failed their own round trip")
+    print(f"uncaught: {len(failures)} (hangs over {HANG_SECONDS:g} s: {outcomes['hang']}); slower than 5 s: {slow}; "
+          f"peak RSS {peak:.0f} MiB")
     for kind, text, case in failures[:5]:
         print(f"--- {kind}: {case[:300]!r}\n{text}")
     return len(failures)
 
 
+def _keep(folder: Path, kind: str, number: int, case) -> None:
+    folder.mkdir(parents=True, exist_ok=True)
+    data = case if isinstance(case, bytes) else case.encode("utf-8", "surrogatepass")
+    (folder / f"{kind}-{number:04d}.{'arbor' if kind == 'save' else kind}").write_bytes(data)
+
+
 def main() -> None:
     """Command line: counts, optional --seed."""
-    args = [a for a in sys.argv[1:] if not a.startswith("--")]
-    seed = int(sys.argv[sys.argv.index("--seed") + 1]) if "--seed" in sys.argv else 0
+    argv = sys.argv[1:]
+    options = {argv[i]: argv[i + 1] for i in range(len(argv) - 1) if argv[i] in ("--seed", "--keep")}
+    args = [a for i, a in enumerate(argv) if not a.startswith("--") and (i == 0 or argv[i - 1] not in options)]
     counts = [int(a) for a in args[:3]] + [10_000, 10_000, 2_000][len(args[:3]):]
-    sys.exit(1 if campaign(*counts, seed=seed) else 0)
+    keep = Path(options["--keep"]) if "--keep" in options else None
+    sys.exit(1 if campaign(*counts, seed=int(options.get("--seed", 0)), keep=keep) else 0)
 
 
 if __name__ == "__main__":
