@@ -22,7 +22,7 @@ from pathlib import Path
 from arbor.engine.base.errors import ExperimentError
 from arbor.engine.base.units import METRE
 from arbor.engine.life.experiment import schema
-from arbor.engine.life.experiment.measure import METRICS, Meters, measure
+from arbor.engine.life.experiment.measure import METRICS, Meters, crown_shape, measure
 from arbor.engine.life.experiment.schema import Reader
 from arbor.engine.life.rules.rules import Rules, check_rules, set_rule
 from arbor.engine.life.world.actions import Action
@@ -30,7 +30,7 @@ from arbor.engine.life.world.world import World, sense_light
 from arbor.engine.lsystem.lsys import LSystem, load_lsystem
 
 MAX_TREES = 6
-__all__ = ["METRICS", "Experiment", "Lab", "Regime", "Watering", "load_experiment", "measure"]
+__all__ = ["METRICS", "Experiment", "Lab", "Regime", "Watering", "crown_shape", "load_experiment", "measure"]
 
 
 @dataclass
