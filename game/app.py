@@ -9,6 +9,7 @@ import time
 from pathlib import Path
 
 from arbor.game.errors import NO_DISPLAY, NO_DISPLAY_FOUND, UserError
+from arbor.game.signals import StopSignals
 from arbor.game.watchdog import STAFF_EXIT
 
 WINDOW = (1280, 720)
@@ -103,22 +104,23 @@ def _main_loop(ctx, size: tuple[int, int], poll, frame, on_first_frame=None) -> 
     clock = pygame.time.Clock()
     heart = Heartbeat()
     frames, limit, last = 0, _frames_limit(), time.perf_counter()
-    while True:
-        now = time.perf_counter()
-        heart.beat(now)
-        if not frame(poll(pygame.event.get(), now), now - last):
-            return
-        last = now
-        frames += 1
-        if limit and frames >= limit:
-            if os.environ.get("ARBOR_SCREENSHOT"):
-                ctx.finish()
-                _save_screen(ctx, size, os.environ["ARBOR_SCREENSHOT"])
-            return
-        pygame.display.flip()
-        if frames == 1 and on_first_frame is not None:
-            on_first_frame()
-        clock.tick(60)
+    with StopSignals() as signals:  # Ctrl-C, SIGTERM, SIGHUP: leave the loop; the caller saves and exits 0
+        while not signals.stop:
+            now = time.perf_counter()
+            heart.beat(now)
+            if not frame(poll(pygame.event.get(), now), now - last):
+                return
+            last = now
+            frames += 1
+            if limit and frames >= limit:
+                if os.environ.get("ARBOR_SCREENSHOT"):
+                    ctx.finish()
+                    _save_screen(ctx, size, os.environ["ARBOR_SCREENSHOT"])
+                return
+            pygame.display.flip()
+            if frames == 1 and on_first_frame is not None:
+                on_first_frame()
+            clock.tick(60)
 
 
 def _screen_frame(screen, fbo):

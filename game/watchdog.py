@@ -10,7 +10,9 @@
 * the child touches a heartbeat file (``ARBOR_HEARTBEAT``) every second; if it stays silent for
   HANG_SECONDS it is killed and restarted (a hung app is never left on screen);
 * when the child dies young CRASH_LOOP times in a row, the kiosk's saved garden is moved aside
-  (``*.crashed``): a save that crashes the start must not keep the kiosk in a restart loop.
+  (``*.crashed``): a save that crashes the start must not keep the kiosk in a restart loop;
+* SIGTERM, SIGINT or SIGHUP to the watchdog (a shutdown) is passed on to the child, which saves and
+  exits, and the watchdog stops.
 """
 
 from __future__ import annotations
@@ -24,6 +26,8 @@ import time
 from collections.abc import Callable
 from pathlib import Path
 
+from arbor.game.signals import StopSignals
+
 log = logging.getLogger("arbor.watchdog")
 STAFF_EXIT = 3  # staff quit with the PIN: the watchdog stops
 USAGE_EXIT = 2  # the child refused its arguments (argparse): the watchdog stops, a restart would repeat it
@@ -32,6 +36,7 @@ HANG_SECONDS = 30.0  # no heartbeat for this long (after the start-up grace) = h
 START_GRACE = 60.0  # seconds a starting app may take before its first heartbeat
 YOUNG = 20.0  # a run shorter than this counts as a crash at start
 CRASH_LOOP = 3  # young crashes in a row before the saved garden is moved aside
+PASS_ON_SECONDS = 10.0  # after passing a stop signal on, the child is killed if it has not exited by then
 
 
 def _saves_folder(args: list[str]) -> Path:
@@ -47,9 +52,11 @@ def _saves_folder(args: list[str]) -> Path:
     return (Path(saves) if saves else default_saves()) / "kiosk"
 
 
-def _run_once(command: list[str], heartbeat: Path, clock, poll: float, hang: float, grace: float) -> int:
+def _run_once(command: list[str], heartbeat: Path, clock, poll: float, hang: float, grace: float,
+              signals: StopSignals | None = None) -> int:
     """Run the child until it exits or its heartbeat stops for ``hang`` seconds (``grace`` seconds are
-    allowed before the first beat); returns its status (-9 when killed as hung)."""
+    allowed before the first beat); returns its status (-9 when killed as hung). A stop signal to the
+    watchdog is passed on to the child, which saves and exits (killed after PASS_ON_SECONDS)."""
     heartbeat.unlink(missing_ok=True)
     started = clock()
     child = subprocess.Popen(command, env=dict(os.environ, ARBOR_HEARTBEAT=str(heartbeat)))
@@ -58,6 +65,14 @@ def _run_once(command: list[str], heartbeat: Path, clock, poll: float, hang: flo
             return child.wait(timeout=poll)
         except subprocess.TimeoutExpired:
             pass
+        if signals is not None and signals.stop:
+            log.info("signal %d: passing it on to arbor and stopping", signals.received)
+            child.send_signal(signals.received)
+            try:
+                return child.wait(timeout=PASS_ON_SECONDS)
+            except subprocess.TimeoutExpired:
+                child.kill()
+                return child.wait()
         beat = heartbeat.stat().st_mtime if heartbeat.exists() else None
         silent = time.time() - beat if beat is not None else clock() - started - grace + hang
         if silent > hang:
@@ -74,11 +89,13 @@ def watch(command: list[str], sleep: Callable[[float], None] = time.sleep, clock
     ``saves``: the kiosk's folder, whose garden is moved aside after a crash loop. Returns the last
     status."""
     delay, restarts, young = 1.0, 0, 0
-    with tempfile.TemporaryDirectory(prefix="arbor-watchdog-") as tmp:
+    with tempfile.TemporaryDirectory(prefix="arbor-watchdog-") as tmp, StopSignals() as signals:
         heartbeat = Path(tmp) / "heartbeat"
-        while True:
+        while not signals.stop:
             started = clock()
-            status = _run_once(command, heartbeat, clock, poll, hang, grace)
+            status = _run_once(command, heartbeat, clock, poll, hang, grace, signals)
+            if signals.stop:  # SIGTERM at shutdown: the child had it too; nothing is restarted
+                return status
             if status == STAFF_EXIT:
                 log.info("staff quit the kiosk: the watchdog stops")
                 return status
@@ -96,6 +113,7 @@ def watch(command: list[str], sleep: Callable[[float], None] = time.sleep, clock
                 return status
             sleep(delay)
             delay = 1.0 if lived > 60 else min(delay * 2, 30.0)
+        return 0
 
 
 def _move_garden_aside(folder: Path) -> None:
