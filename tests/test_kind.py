@@ -71,3 +71,50 @@ def test_status_follows_one_ranking_of_the_real_state(system, rules):
     assert world.status() == "starting" and world.sim.settle_left() == pytest.approx(rules.growth.hold_time)
     s.water_cycle.above = rules.growth.hold_time - 7.0
     assert world.sim.settle_left() == pytest.approx(7.0)  # the HUD's wait counts down
+
+
+def test_r_asks_once_and_restore_brings_a_replaced_tree_back(gl_ctx, tmp_path):
+    """R on a grown tree, confirm, autosaves, quit, restart, Settings -> Restore: the old tree is back."""
+    from arbor.engine.life.keep.generations import generations
+    from arbor.engine.life.world.actions import Action
+    from arbor.game.screens.game import Game, GameConfig
+    from tests.conftest import FakeClock
+
+    clock = FakeClock()
+    make = lambda: Game(gl_ctx, (640, 360), GameConfig(saves=tmp_path, seed=5), clock=clock,  # noqa: E731
+                        wall_clock=lambda: 1.7e9 + clock.t)
+    game = make()
+    game.world.sim.state.length_time = 77.0  # the tree worth keeping (its clock is saved)
+    game.save()
+    game.act(Action.REPLANT, 1.0)
+    assert game.world.sim.state.length_time == 77.0  # one key asked, destroyed nothing
+    game.act(Action.REPLANT, 1.0)
+    assert game.world.sim.state.length_time < 77.0
+    for _ in range(4):  # four autosaves later (4 minutes) the tree is the 5th generation back
+        clock.t += 61.0
+        game.world.sim.state.time += 1.0
+        game.save()
+    assert len(generations(game.keeper.autosave_path)) == 4
+    game.quit()
+    assert len(generations(game.keeper.autosave_path)) == 5  # the tree is now the oldest kept
+    game = make()
+    assert game.world.sim.state.length_time < 77.0
+    for _ in range(5):
+        game.act(Action.RESTORE, 1.0)
+        if game.world.sim.state.length_time >= 77.0:
+            break
+    assert game.world.sim.state.length_time >= 77.0, "restore did not bring the tree back"
+
+
+def test_a_first_start_at_dusk_opens_in_daylight(gl_ctx, tmp_path):
+    """A fresh saves folder at 20:15 local time, home pace: the sun is up and the sapling comfortable."""
+    import time as _time
+
+    from arbor.game.screens.game import Game, GameConfig
+    from tests.conftest import FakeClock
+
+    now = _time.mktime((2025, 6, 1, 20, 15, 0, 0, 0, -1))
+    game = Game(gl_ctx, (640, 360), GameConfig(saves=tmp_path, seed=8, pace="home"), clock=FakeClock(),
+                wall_clock=lambda: now)
+    sim = game.world.sim
+    assert sim.sun_height() > 0.8 and sim.state.water_meter > 0.65 and game.coach.hints

@@ -55,7 +55,7 @@ PAGES = {
     "care": [["orbit_height"], ["sun_speed"], ["water", "speed"], ["garden", "tools", "settings", "journal"]],
     "garden": [["plant", "sow"], ["cross", "family"], ["next", "replant"], ["rock", "back"]],
     "tools": [["modeler", "crown", "shape"], ["prune", "symbols", "edit"], ["undo", "redo", "back"]],
-    "settings": [["save", "load"], ["roots", "devices"], ["back"]],
+    "settings": [["save", "load"], ["restore", "roots", "devices"], ["back"]],
     "journal": [["back"]],
 }
 ICONS = {"orbit_height": "sun", "sun_speed": "clock", "water": "can", "speed": "clock", "garden": "sapling",

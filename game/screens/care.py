@@ -10,6 +10,7 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 
+from arbor.engine.life.keep.generations import generations
 from arbor.engine.life.lineage.lineage import new_lineage
 from arbor.engine.life.rules.rules import Rules
 from arbor.engine.life.world.actions import Action
@@ -22,7 +23,9 @@ from arbor.game.screens.family import FamilyScreen
 from arbor.game.screens.modeler import ModelingMode
 from arbor.game.screens.saves import SaveKeeper
 from arbor.game.screens.state import GameState
-from arbor.game.strings import text
+from arbor.game.strings import duration, text
+
+CONFIRM_SECONDS = 5.0  # a destructive key asks once; a second press within this long confirms
 
 Handler = Callable[[float], None]
 
@@ -41,6 +44,8 @@ class CareActions:
         self.state, self.menu, self.modeling, self.keeper = state, menu, modeling, keeper
         self.family, self.coach, self.rules, self.system, self.wall_clock = family, coach, rules, system, wall_clock
         self.crossing = None  # the mother of a cross, while the player picks the father
+        self.replant_asked, self.replant_at = None, 0.0  # the tree a first Replant press asked about, and when
+        self.restored = 0  # the autosave generation Restore brought back last (0: none)
         state.on_halt.append(self.sync_sliders)
         tool = lambda switch: pressed(lambda: self._tool(switch))  # noqa: E731
         self.handlers: dict[Action, Handler] = {
@@ -48,7 +53,8 @@ class CareActions:
             Action.SUN_SPEED: lambda value: self._sun(Action.SUN_SPEED, value),
             Action.REPLANT: pressed(self.replant), Action.SPEED: pressed(self._next_speed),
             Action.GO_ON: pressed(self.go_on),
-            Action.SAVE: pressed(self._save), Action.LOAD: pressed(self._load), Action.PLANT: pressed(self.plant),
+            Action.SAVE: pressed(self._save), Action.LOAD: pressed(self._load),
+            Action.RESTORE: pressed(self.restore), Action.PLANT: pressed(self.plant),
             Action.SOW: pressed(self.sow), Action.CROSS: pressed(self.start_cross),
             Action.FAMILY: pressed(family.open), Action.ROCK: pressed(self.place_rock),
             Action.ROOTS: pressed(self._roots), Action.NEXT: pressed(self._next_tree),
@@ -73,10 +79,17 @@ class CareActions:
         """A sun slider: one sun over the whole garden."""
         self.state.garden.apply_sun(action, self.slider_value(action, value))
 
-    def replant(self) -> None:
-        """A fresh sapling, of a new line, in the cared-for tree's place."""
+    def replant(self, confirmed: bool = False) -> None:
+        """A fresh sapling, of a new line, in the cared-for tree's place: the first press only asks, a
+        second within CONFIRM_SECONDS replants (one key never destroys a tree)."""
         state = self.state
         world = state.world
+        asked = self.replant_asked is world and state.clock() - self.replant_at <= CONFIRM_SECONDS
+        if not (confirmed or asked):
+            self.replant_asked, self.replant_at = world, state.clock()
+            state.say(text("messages.replant_confirm", number=state.garden.current + 1), CONFIRM_SECONDS)
+            return
+        self.replant_asked = None
         world.apply(Action.REPLANT, 1.0)
         world.lineage = new_lineage(world.lineage.seed, self.wall_clock(), world.lineage.species)
         state.garden.family.add(world.lineage)
@@ -107,6 +120,22 @@ class CareActions:
         if garden is not None:
             self.state.use(garden)
             self.state.say(text("messages.loaded"))
+
+    def restore(self) -> None:
+        """Settings -> Restore: play the next older autosave generation (autosave.1.arbor, then .2 ...)."""
+        state, path = self.state, self.keeper.autosave_path
+        kept = generations(path)
+        if not kept:
+            state.say(text("messages.no_generations"), 5)
+            return
+        self.restored = self.restored % len(kept) + 1
+        chosen = kept[self.restored - 1]
+        garden = self.keeper.load(chosen)
+        if garden is not None:
+            state.use(garden)
+            self.sync_sliders()
+            age = max(self.wall_clock() - chosen.stat().st_mtime, 0.0)
+            state.say(text("messages.restored", when=duration(age), n=self.restored, count=len(kept)), 8)
 
     def _roots(self) -> None:
         self.state.cutaway = not self.state.cutaway

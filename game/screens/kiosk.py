@@ -23,7 +23,6 @@ import pygame
 from arbor.engine.base.config import fill_dataclass, toml_position
 from arbor.engine.base.errors import SettingsError
 from arbor.engine.life.keep.save import SavedGarden, write_garden
-from arbor.engine.life.world.actions import Action
 from arbor.game.input.events import DOWN, KEY_DOWN, KEY_UP, MOVE, QUIT, UP, InputEvent, Player, load_recording
 from arbor.game.paths import ASSETS
 from arbor.game.strings import set_language, text
@@ -252,7 +251,7 @@ class Kiosk:
         folder.mkdir(parents=True, exist_ok=True)
         stamp = time.strftime("%Y%m%d-%H%M%S")
         write_garden(SavedGarden([self.game.world]), folder / f"visitor-{stamp}.arbor")
-        self.game.act(Action.REPLANT, 1.0)
+        self.game.care.replant(confirmed=True)  # (the visitor's tree is saved first; nobody to ask)
         self.game.coach.first_run()
         self.game.say(text("messages.visitor_reset"), 5)
         self.visitor_saved = True

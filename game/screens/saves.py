@@ -17,6 +17,7 @@ from pathlib import Path
 from arbor.engine.base.errors import LSysError
 from arbor.engine.base.files import set_aside
 from arbor.engine.life.keep.away import AwaySummary, away_seconds, live_away
+from arbor.engine.life.keep.generations import rotate
 from arbor.engine.life.keep.save import SavedGarden, read_garden, write_garden
 from arbor.engine.life.lineage.lineage import new_lineage, species_of
 from arbor.engine.life.plant.sim import sun_angle_at
@@ -113,6 +114,8 @@ class SaveKeeper:
         try:
             path.parent.mkdir(parents=True, exist_ok=True)
             garden = self.state.garden
+            if path == self.autosave_path:  # the last 5 autosaves are kept (engine/life/keep/generations.py)
+                rotate(path)
             write_garden(SavedGarden.of(garden, self.config.lsystem.name, self.wall_clock()), path)
             if path == self.autosave_path:
                 for legacy in path.parent.glob("garden-*.arbor"):

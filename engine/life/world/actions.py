@@ -23,6 +23,7 @@ class Action(Enum):
     GO_ON = "go_on"  # after the fast-forward guardian's stop: tend the garden and fly on
     SAVE = "save"
     LOAD = "load"
+    RESTORE = "restore"  # bring back an earlier autosave (each press one generation further back)
     PLANT = "plant"
     SOW = "sow"
     CROSS = "cross"
