@@ -21,6 +21,9 @@ from arbor.game.input.events import DEVICE, DOWN, MOVE, UP, InputEvent
 DEFAULT_PORT = 3333
 MAX_MESSAGES = 64  # messages used from one bundle
 MAX_CURSORS = 20  # fingers down at once; more is a hostile or broken sender
+MAX_DATAGRAM = 16 * 1024  # bytes: a TUIO frame of MAX_CURSORS cursors is well under 2 KB
+MAX_DEPTH = 4  # bundles inside bundles (TUIO senders use one)
+BUNDLE = b"#bundle\0"
 log = logging.getLogger("arbor.tuio")
 
 
@@ -36,8 +39,10 @@ class TuioParser:
     def packet(self, data: bytes, now: float) -> list[InputEvent]:
         """Events for one UDP datagram (a bundle or a message)."""
         try:
+            if len(data) > MAX_DATAGRAM or not _shallow(data, MAX_DEPTH):
+                raise ParseError("too large or nested too deeply")  # before python-osc recurses into it
             packet = OscPacket(data)
-        except (ParseError, ValueError, IndexError, TypeError, OverflowError, struct.error):
+        except (ParseError, ValueError, IndexError, TypeError, OverflowError, struct.error, RecursionError):
             self.bad_packets += 1
             return [InputEvent(DEVICE, now, self.source, text="ignoring a malformed TUIO packet")] \
                 if self.bad_packets == 1 else []
@@ -73,6 +78,25 @@ class TuioParser:
         log.warning("dropped a TUIO message with bad arguments (%d so far)", self.bad_packets)
         return [InputEvent(DEVICE, now, self.source, text="ignoring a malformed TUIO message")] \
             if self.bad_packets == 1 else []
+
+
+def _shallow(data: bytes, depth: int) -> bool:
+    """True when ``data`` nests bundles at most ``depth`` deep (each bundle: '#bundle\\0', an 8-byte time
+    tag, then elements of a 4-byte big-endian size and that many bytes). Malformed sizes are left to
+    the OSC parser to refuse; this only keeps it from recursing without end."""
+    if not data.startswith(BUNDLE):
+        return True
+    if depth <= 0:
+        return False
+    at = len(BUNDLE) + 8
+    while at + 4 <= len(data):
+        (size,) = struct.unpack_from(">i", data, at)
+        if size <= 0 or at + 4 + size > len(data):
+            return True
+        if not _shallow(data[at + 4:at + 4 + size], depth - 1):
+            return False
+        at += 4 + size
+    return True
 
 
 def _session(value) -> bool:
