@@ -118,3 +118,28 @@ def test_seedlings_differ_within_their_species_ranges_and_keep_their_traits(syst
     assert back.genome == pytest.approx(a.genome) and back.tree.system.constants["BA"] == pytest.approx(a.genome["BA"])
     hostile = checked(system, {"BA": 1e9, "IL": 5.0, "WAKE": float("nan")})
     assert hostile == {"BA": pytest.approx(system.constants["BA"] * (1 + spread["BA"]))}  # clamped; others dropped
+
+
+def test_old_straight_bare_wood_is_consolidated_with_its_geometry_girth_and_age(system):
+    from arbor.engine.life.form.interpret import CONSTANT_DEFAULTS, Clocks, grow_geometry
+    from arbor.engine.life.plant.consolidate import consolidated
+    from arbor.engine.lsystem.lstring import parse_lstring
+
+    text = ("I(0,0,0,0,0.02)+(0.3)^(-0.2)/(137.5)I(1,1,0,0,0.018)+(0.2)^(0.1)/(137.5)I(2,2,0,0,0.016)"
+            "+(-0.4)^(0.3)/(137.5)I(3,3,0,0,0.015)[+(40)I(3,3,1,0,0.002)[&(62)L(3,1,0)]]"  # a branch: the run ends
+            "+(0.1)^(0)/(137.5)I(4,4,0,0,0.01)+(0.1)^(0)/(137.5)I(90,90,0,0,0.002)[&(62)L(90,1,0)]A(0,0,6,1,0,0)")
+    ls, now, const = parse_lstring(text), 100.0, dict(CONSTANT_DEFAULTS)
+    merged, saved = consolidated(ls, now, const["TAU"])
+    # the first piece has no roll of its own to take the others' rolls: the run starts at the second;
+    # the branch ends it; the last internode is young
+    assert saved == 2 * 4 and len(merged) == len(ls) - saved
+    assert "+(0.3)^(-0.2)/(412.5)I(1,1,0,0,0.018,3)[+(40)" in merged.to_text()  # three pieces, their rolls
+    assert "I(4,4,0,0,0.01)+(0.1)^(0)/(137.5)I(90,90,0,0,0.002)" in merged.to_text()  # young wood stays
+    before = grow_geometry(ls, Clocks(now, now), const).turtle
+    after = grow_geometry(merged, Clocks(now, now), const).turtle
+    np.testing.assert_allclose(after.leaves.position, before.leaves.position, atol=0.05)  # the tree stands as it did
+    assert after.segments.end[:, 1].max() == pytest.approx(before.segments.end[:, 1].max(), abs=0.01)
+    assert after.segments.radius[1] == pytest.approx(before.segments.radius[1])  # the run keeps its base's girth
+    again, more = consolidated(merged, now, const["TAU"])
+    assert more == 0 and again.to_text() == merged.to_text()
+    assert parse_lstring(merged.to_text()).to_text() == merged.to_text()  # saves as text like any string

@@ -24,9 +24,11 @@ SIZE = (640, 360)
 def grown(lsys_dir):
     world = World(load_lsystem(lsys_dir / "game_tree.lsys"), load_rules("assets/rules.toml", pace="demo"), seed=3)
     world.sim.state.sun_meter = world.sim.state.water_meter = 0.9
-    for _ in range(2000):  # about 8 simulated days
+    for step in range(6000):  # about 8 simulated days, and on until a branch has just been shed
         world.apply(Action.WATER, float(world.sim.state.water_meter < 0.6))
         world.step(0.5)
+        if step >= 2000 and world.tree.fallen:
+            break
     return world
 
 

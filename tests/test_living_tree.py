@@ -4,7 +4,7 @@ growing within its budget; garden trees shade each other."""
 import numpy as np
 import pytest
 
-from arbor.engine.life.experiment.lab import crown_shape
+from arbor.engine.life.experiment.measure import crown_shape
 from arbor.engine.life.form.interpret import Clocks
 from arbor.engine.life.plant.growth import GrowingTree
 from arbor.engine.life.plant.light import exposure, optical_depth

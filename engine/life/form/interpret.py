@@ -96,13 +96,20 @@ def leaf_sizes(ls: LString, idx: np.ndarray, now: float, const: dict[str, float]
     return const["LS"] * vigour * saturate(now - birth, const["TAU"]) * wither
 
 
+def leaf_area(ls: LString, now: float, const: dict[str, float]) -> float:
+    """Area (scene units²) of the leaf clusters of ``ls`` at length time ``now``, wilt ignored (no turtle needed)."""
+    idx = np.flatnonzero((ls.sym == LEAF) & (ls.nparams >= 1))
+    return float((CLUSTER_AREA * LEAF_ASPECT * leaf_sizes(ls, idx, now, const) ** 2).sum())
+
+
 def render_view(ls: LString, clocks: Clocks, const: dict[str, float]) -> LString:
     """Map I -> F(length), L(...) -> L(size), K(birth) -> K(size) and O(birth) -> O(size) at the given
     clocks; droop pitch angles with wilt."""
     now = clocks.length_time
     idx = np.flatnonzero((ls.sym == INTERNODE) & (ls.nparams >= 3))
     birth, order = ls.params[ls.offsets[idx]], ls.params[ls.offsets[idx] + 2]
-    length = const["IL"] * const["IO"] ** order * saturate(now - birth, const["TAU"])
+    pieces = params_where(ls.params, ls.nparams[idx] >= 6, ls.offsets[idx] + 5, 1.0)  # consolidated runs
+    length = const["IL"] * const["IO"] ** order * saturate(now - birth, const["TAU"]) * pieces
     view = replace_modules(ls, idx, ord("F"), length[:, None])
     leaves = np.flatnonzero((ls.sym == LEAF) & (ls.nparams >= 1))
     size = leaf_sizes(ls, leaves, now, const) * leaf_keep(ls.params[ls.offsets[leaves]], clocks.wilt)

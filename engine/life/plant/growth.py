@@ -46,7 +46,7 @@ from arbor.engine.life.form.interpret import (
     LEAF_BUD,
     Clocks,
     grow_geometry,
-    leaf_sizes,
+    leaf_area,
     pipe_area,
     render_view,
     turtle_config,
@@ -54,12 +54,14 @@ from arbor.engine.life.form.interpret import (
 from arbor.engine.life.plant import carbon
 from arbor.engine.life.plant.carbon import Economy
 from arbor.engine.life.plant.collide import Obstacles, avoidance
+from arbor.engine.life.plant.consolidate import consolidated
 from arbor.engine.life.plant.light import memory_weight
 from arbor.engine.lsystem import brackets
 from arbor.engine.lsystem.derive import Deriver, StepReport
 from arbor.engine.lsystem.lstring import LString, params_where
 from arbor.engine.lsystem.lsys import LSystem
 
+CONSOLIDATE_AT = 0.5  # share of the module budget in use from which old wood is consolidated
 FALL_KEEP = 40.0  # physiological time a shed branch stays in `fallen` for the game to show its fall
 AROUND = np.array([[1.0, 0, 0], [-1, 0, 0], [0, 1, 0], [0, -1, 0], [0, 0, 1], [0, 0, -1]])  # light probes
 GRADIENT_REACH = 1.5  # internode lengths from an apex to its light probes
@@ -160,6 +162,8 @@ class GrowingTree:
             self.confine = None
         new, self.last_report = self.deriver.step(self.lstring, extern, only=only)
         self.lstring = remove_empty_branches(new)
+        if self.budget_used > CONSOLIDATE_AT:  # old wood merged so the budget goes to the living crown
+            self.lstring, _ = consolidated(self.lstring, length_time, self.geometry_constants["TAU"])
         self.last_rewrite_T = length_time
         return self.last_report
 
@@ -177,9 +181,7 @@ class GrowingTree:
 
     def leaf_area(self, now: float) -> float:
         """Area (scene units²) of the leaf clusters on the tree at length time ``now``, counted from the string."""
-        idx = np.flatnonzero((self.lstring.sym == LEAF) & (self.lstring.nparams >= 1))
-        sizes = leaf_sizes(self.lstring, idx, now, self.geometry_constants)
-        return float((CLUSTER_AREA * LEAF_ASPECT * sizes**2).sum())
+        return leaf_area(self.lstring, now, self.geometry_constants)
 
     def render_view(self, clocks: Clocks) -> LString:
         """The L-string the turtle draws at these clocks: ages turned into lengths and leaf sizes."""
@@ -296,7 +298,7 @@ class GrowingTree:
         segs = scene.turtle.segments
         if len(segs) == 0:
             return np.zeros(0, bool)
-        grown = (ls.sym[segs.module] == INTERNODE) & (ls.nparams[segs.module] == 5)
+        grown = (ls.sym[segs.module] == INTERNODE) & (ls.nparams[segs.module] >= 5)
         off = ls.offsets[segs.module[grown]]
         pipes = pipe_area(ls, segs, const)[grown]
         rings = const["RING"] * dg * pipes
@@ -344,29 +346,30 @@ class GrowingTree:
         np.add.at(delta, opened, 1)
         np.add.at(delta, close + 1, -1)
         removed = np.cumsum(delta[:-1]) > 0
-        self._remember_fall(scene, removed, now)
+        self.fallen.append(fallen_pieces(scene, removed, now))
         self.lstring = ls.select(~removed)
         self.shed_total += len(opened)
         return len(opened)
 
-    def _remember_fall(self, scene: LightScene, removed: np.ndarray, now: float) -> None:
-        turtle = scene.turtle
-        segs, leaves = turtle.segments, turtle.leaves
-        s = removed[segs.module]
-        lv = removed[leaves.module]
-        index = np.full(len(segs) + 1, -1, dtype=np.int64)
-        index[np.flatnonzero(s)] = np.arange(int(s.sum()))
-        parent = index[segs.parent[s]]  # -1 (the last entry) for a parent that stays on the tree
-        pieces = Segments(segs.start[s], segs.end[s], segs.radius[s], segs.radius_end[s], segs.frame[s],
-                          segs.order[s], segs.module[s], parent, segs.continues[s] & (parent >= 0), segs.colour[s])
-        self.fallen.append(Fallen(now, pieces, Leaves(leaves.position[lv], leaves.frame[lv], leaves.size[lv],
-                                                      leaves.module[lv])))
 
 
 
 
 
 
+
+def fallen_pieces(scene: LightScene, removed: np.ndarray, now: float) -> Fallen:
+    """The segments and leaves of a branch just shed (``removed``: the modules cut), as they were when it fell."""
+    turtle = scene.turtle
+    segs, leaves = turtle.segments, turtle.leaves
+    s = removed[segs.module]
+    lv = removed[leaves.module]
+    index = np.full(len(segs) + 1, -1, dtype=np.int64)
+    index[np.flatnonzero(s)] = np.arange(int(s.sum()))
+    parent = index[segs.parent[s]]  # -1 (the last entry) for a parent that stays on the tree
+    pieces = Segments(segs.start[s], segs.end[s], segs.radius[s], segs.radius_end[s], segs.frame[s],
+                      segs.order[s], segs.module[s], parent, segs.continues[s] & (parent >= 0), segs.colour[s])
+    return Fallen(now, pieces, Leaves(leaves.position[lv], leaves.frame[lv], leaves.size[lv], leaves.module[lv]))
 
 
 def new_axis_text(system: LSystem, now: float, girth: float) -> str:
