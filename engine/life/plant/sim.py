@@ -213,7 +213,8 @@ class Simulation:
 
     def _health(self, dt: float) -> None:
         s, h, w = self.state, self.rules.health, self.rules.water
-        s.drowning = s.drowning + dt if s.water_meter > w.drown_level else 0.0
+        # waterlogged soil drains as slowly as it floods, and a dying tree needs a lasting recovery to live
+        s.drowning = s.drowning + dt if s.water_meter > w.drown_level else max(s.drowning - dt, 0.0)
         starved = self.starving > self.rules.carbon.starve_time
         neglected = min(s.sun_meter, s.water_meter) < h.neglect_level or starved
         if not s.alive:
@@ -222,7 +223,7 @@ class Simulation:
             s.wilt = min(1.0, s.wilt + h.wilt_rate * dt)
         else:
             s.wilt = max(0.0, s.wilt - h.recover_rate * dt)
-        s.dead_for = s.dead_for + dt if s.wilt >= 1.0 else 0.0
+        s.dead_for = s.dead_for + dt if s.wilt >= 1.0 else max(s.dead_for - dt, 0.0)
         if s.dead_for > h.death_time:
             s.alive = False
 
