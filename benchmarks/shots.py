@@ -91,9 +91,6 @@ def main() -> None:
     ctx.release()
 
 
-if __name__ == "__main__":
-    main()
-
 
 LOOK = (1280, 720)
 SUMMER, AUTUMN, SPRING = 13.0, 18.0, 28.5  # days of the game's tree's first year: full crown, turning, in blossom
@@ -207,3 +204,7 @@ def look(folder: Path) -> list[Path]:
     looks.renderer.release()
     looks.ctx.release()
     return looks.paths
+
+
+if __name__ == "__main__":
+    main()

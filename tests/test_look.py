@@ -149,8 +149,19 @@ def test_the_night_sky_has_stars_and_a_moon_and_the_day_sky_has_neither(scene):
     assert (day > np.median(day, axis=1, keepdims=True) + 40).sum() == 0  # a clear day sky: no points in it
 
 
-def test_grass_sways_in_the_wind_and_stands_still_in_still_air(scene):
-    renderer, draw = scene
+def test_grass_sways_in_the_wind_and_stands_still_in_still_air(gl_ctx, scene):
+    renderer = GardenRenderer(gl_ctx, samples=4)  # a GPU's path (a software GL keeps its grass still)
+    fbo = gl_ctx.framebuffer(color_attachments=[gl_ctx.renderbuffer(SIZE)],
+                             depth_attachment=gl_ctx.depth_renderbuffer(SIZE))
+
+    def draw(view: StaticView, camera: OrbitCamera, sun: np.ndarray) -> np.ndarray:
+        buffers = TreeBuffers()
+        renderer.trees.sync(buffers, view)
+        renderer.place([Placed(buffers, np.zeros(3))], view.lo, view.hi)
+        renderer.render(fbo, camera, np.asarray(sun, float), SIZE)
+        buffers.release()
+        return np.frombuffer(fbo.read(components=3), np.uint8).reshape(SIZE[1], SIZE[0], 3)[::-1].astype(float)
+
     camera = OrbitCamera(yaw=0.0, pitch=20.0, distance=30.0, target=np.array([0.0, 5.0, 0.0]))
     sun = np.array([0.3, 0.8, 0.5])
     lower = slice(SIZE[1] * 2 // 3, SIZE[1])  # the ground in front of the trunk
@@ -160,7 +171,7 @@ def test_grass_sways_in_the_wind_and_stands_still_in_still_air(scene):
         for t in (10.0, 11.3):
             renderer.time = t
             pictures[wind, t] = draw(trunk_view(), camera, sun)[lower]
-    renderer.wind, renderer.time = np.zeros(3), 0.0
+    renderer.release()
     assert np.array_equal(pictures[0.0, 10.0], pictures[0.0, 11.3])
     moved = np.abs(pictures[2.0, 10.0] - pictures[2.0, 11.3]).sum(axis=2) > 40
     assert moved.sum() > 50  # blades moved
@@ -178,3 +189,18 @@ def test_clouds_drift_across_the_sky(scene):
     renderer.time = 0.0
     assert np.array_equal(skies[0], skies[1])
     assert (np.abs(skies[0] - skies[2]).sum(axis=2) > 30).sum() > 100  # two minutes on, the clouds are elsewhere
+
+
+def test_a_software_gl_keeps_its_grass_in_the_ground_picture(scene):
+    renderer, draw = scene
+    assert renderer.samples == 1  # (llvmpipe here)
+    camera = OrbitCamera(yaw=0.0, pitch=20.0, distance=30.0, target=np.array([0.0, 5.0, 0.0]))
+    sun = np.array([0.3, 0.8, 0.5])
+    lower = slice(SIZE[1] * 2 // 3, SIZE[1])
+    grassy = draw(trunk_view(), camera, sun)[lower]
+    blades, renderer.grass.draw = renderer.grass.draw, lambda uniforms, shadowed=True: None
+    renderer.grass.version += 1  # (the picture is drawn again, without the grass)
+    bare = draw(trunk_view(), camera, sun)[lower]
+    renderer.grass.draw = blades
+    renderer.grass.version += 1
+    assert (np.abs(grassy - bare).sum(axis=2) > 30).sum() > 200  # blades drawn on the ground

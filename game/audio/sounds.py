@@ -84,7 +84,7 @@ class Audio:
         """Open pygame's mixer and make the sounds; if no mixer can start, stay silent."""
         try:
             if not pygame.mixer.get_init():
-                pygame.mixer.init(synth.RATE, -16, 2, 1024)
+                pygame.mixer.init(synth.RATE, -16, 2, 4096)  # (few wake-ups of the mixing thread)
             pygame.mixer.set_num_channels(len(LOOPS) + 6)
             pygame.mixer.set_reserved(len(LOOPS))
             make = pygame.sndarray.make_sound

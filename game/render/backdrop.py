@@ -262,10 +262,10 @@ class Backdrop:
     def _clouds(self, vp: bytes, eye: np.ndarray, radius: float, day: float, horizon: tuple) -> None:
         """The clouds, drifted ``self.drift`` steps, white by day and dim blue-grey at night."""
         self.cloud_texture.use(location=0)
-        light = tuple(0.25 + 0.75 * day * c for c in (1.0, 0.99, 0.96))
+        light = tuple(h * (1.0 - day) + day * c for h, c in zip(horizon, (1.0, 0.99, 0.96), strict=True))
         shade = tuple(0.6 * h + 0.15 * day for h in horizon)
         set_uniforms(self.cloud_prog, {"u_vp": vp, "u_eye": tuple(eye), "u_radius": radius * 0.93, "u_tex": 0,
-                                       "u_light": light, "u_shade": shade})
+                                       "u_light": light, "u_shade": shade, "u_alpha": 0.35 + 0.57 * day})
         for azimuth, elevation, size in self.cloud_places:
             a = azimuth + self.drift * CLOUD_STEP
             ring = math.cos(elevation)

@@ -175,6 +175,9 @@ class GardenRenderer:
         pixel = 2.0 * math.tan(math.radians(camera.fov_y) / 2) / size[1]
         uniforms = self._lit_uniforms(_gl(vp), _gl(light), sun, sky_colors(sun)[2])
         uniforms.update(u_eye=tuple(camera.eye), u_pixel=pixel / scale)
+        if self.samples <= 1:  # a software GL: the grass stands still in the backdrop's picture (see grass.py)
+            self.stage.cover = lambda: self.grass.draw(uniforms, shadowed=False)
+            self.stage.cover_version = self.grass.version
         boxes = [(np.asarray(p.buffers.view.lo) + p.offset, np.asarray(p.buffers.view.hi) + p.offset)
                  for p in self.placed if p.buffers.view is not None]
         if scale >= 1.0:
@@ -225,7 +228,7 @@ class GardenRenderer:
             for placed, detail in zip(self.placed, details, strict=True):
                 uniforms["u_offset"] = tuple(placed.offset)
                 self.trees.draw(placed.buffers, "lit", detail, uniforms, self.textures, piece)
-            if "tube" in piece.names and not self.stage.backdrop.cutaway:  # (with the wood: once a picture)
+            if self.samples > 1 and "tube" in piece.names and not self.stage.backdrop.cutaway:  # (with the wood)
                 self.grass.draw(uniforms)
         return run, True
 

@@ -1,9 +1,11 @@
 """Grass around the trees: a few thousand blades (a triangle each) scattered on the ground near every
 tree, swaying in the trees' wind (assets/shaders/grass.vert).
 
-Cheap on a software GL: the blades are one static buffer (made again only when the trees move or grow a
-lot), three vertices each, the shadow looked up per vertex; far from the trees there is no grass, only
-the ground's own colour.
+The blades are one static buffer (made again only when the trees move or grow a lot), three vertices
+each, the shadow looked up per vertex; far from the trees there is no grass, only the ground's own
+colour. A GPU draws them every frame with the trees, swaying; a software GL, where they cost two thirds
+of a sapling's frame, draws them still, into the sky-and-ground picture it keeps (game/render/stage.py),
+where the ground's shade pass darkens them under the trees.
 """
 
 from __future__ import annotations
@@ -55,6 +57,7 @@ class Grass:
         self.buffer: moderngl.Buffer | None = None
         self.vao: moderngl.VertexArray | None = None
         self.key: tuple | None = None
+        self.version = 0  # counts the rebuilds (a picture with the grass in it is stale after one)
 
     def update(self, centres: list[np.ndarray], radius: float, tree_height: float) -> None:
         """Blades around ``centres`` for trees of crown ``radius`` and ``tree_height`` (made again only
@@ -64,6 +67,7 @@ class Grass:
         if key == self.key:
             return
         self.key = key
+        self.version += 1
         reach = max(REACH * radius, MIN_REACH)
         height = float(np.clip(0.035 * tree_height, 0.5, 2.5))  # (a sapling is not lost in the sward)
         data = blades(centres, reach, height)
@@ -75,11 +79,11 @@ class Grass:
                                          skip_errors=True)
         self.sway = 1.6 * height / max(tree_height, 1.0)
 
-    def draw(self, uniforms: dict) -> None:
-        """Draw the blades (the shadow map bound at unit 1, depth test on)."""
+    def draw(self, uniforms: dict, shadowed: bool = True) -> None:
+        """Draw the blades (with ``shadowed``, the shadow map bound at unit 1)."""
         if self.vao is None:
             return
         set_uniforms(self.prog, {k: v for k, v in uniforms.items() if k != "tints"})
-        set_uniforms(self.prog, {"u_shadow": 1, "u_sway": self.sway})
+        set_uniforms(self.prog, {"u_shadow": 1, "u_sway": self.sway, "u_shadowed": float(shadowed)})
         self.ctx.disable(moderngl.CULL_FACE)
         self.vao.render(moderngl.TRIANGLES)

@@ -36,7 +36,7 @@ LENGTH = 9  # column of a leaf record's length (its width next)
 LEAF_LAYOUT = ("2f 3f 3f 3f 3f 1f", ("i_base", "i_axis", "i_normal", "i_size", "i_hash"))  # a corner, then the record
 CORNERS = np.array([[0, 0], [1, 0], [1, 1], [0, 1]], "f4")  # of a leaf's quad (four vertices per leaf: a
 QUAD = np.array([0, 1, 2, 0, 2, 3], "u4")  # software GL draws them faster than one instance per leaf)
-MIN_PIXELS = (0.0, 0.0, 5.0, 6.5, 0.0)  # per kind: blossoms and fruit are drawn at least this many pixels across
+MIN_PIXELS = (0.0, 0.0, 7.0, 6.5, 0.0)  # per kind: blossoms and fruit are drawn at least this many pixels across
 BARK_UV = (2.0, 1.0)  # the bark texture twice around a branch (u), once per growth step along it (v)
 
 

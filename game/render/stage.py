@@ -29,12 +29,14 @@ class Stage:
         self._backdrop_key: tuple | None = None
         self._scene: moderngl.Framebuffer | None = None  # backdrop and trees' picture (layered frames)
         self._scene_key: tuple | None = None
+        self.cover = None  # () -> draws what covers the ground into the backdrop's picture (software GL: grass)
+        self.cover_version = 0  # changes when what it draws changed
 
     def _state(self, size: tuple[int, int], vp: np.ndarray, sun: np.ndarray, radius: float) -> tuple:
         """What the sky and ground picture shows: frame, camera, the sun (to SUN_STEP), the cutaway, the
-        clouds' drift and the ground's size (in 2 % steps)."""
+        clouds' drift, what covers the ground and the ground's size (in 2 % steps)."""
         return (size, _gl(vp), tuple(np.round(sun / SUN_STEP)), self.backdrop.cutaway, self.backdrop.drift,
-                round(math.log(max(radius, 1e-3)) / 0.02))
+                self.cover_version, round(math.log(max(radius, 1e-3)) / 0.02))
 
     def target(self, fbo: moderngl.Framebuffer, size: tuple[int, int]) -> moderngl.Framebuffer:
         """The multisampled framebuffer the scene is drawn into (resolved into ``fbo``)."""
@@ -123,6 +125,8 @@ class Stage:
         self.backdrop.draw_sky(vp, camera.eye, camera.distance * 20.0, sun)
         self.backdrop.set_ground(max(radius, 1.0) * 12)
         self.backdrop.draw_ground(_gl(vp), sun, (radius * 3, radius * 11))
+        if self.cover is not None and not self.backdrop.cutaway:
+            self.cover()
 
 
 def _clear_depth(target: moderngl.Framebuffer) -> None:
