@@ -2,7 +2,9 @@
 
 from __future__ import annotations
 
+import errno
 import os
+import stat
 from pathlib import Path
 
 
@@ -14,13 +16,13 @@ def atomic_write(path: str | Path, data: bytes) -> None:
     path = Path(path)
     tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
     try:
-        with open(tmp, "wb") as fh:
+        with open(_new_file(tmp), "wb") as fh:
             fh.write(data)
             fh.flush()
             os.fsync(fh.fileno())
         os.replace(tmp, path)
     finally:
-        if tmp.exists():
+        if tmp.exists() or tmp.is_symlink():
             tmp.unlink()
     try:
         dir_fd = os.open(path.parent, os.O_RDONLY)
@@ -30,6 +32,31 @@ def atomic_write(path: str | Path, data: bytes) -> None:
         os.fsync(dir_fd)
     finally:
         os.close(dir_fd)
+
+
+def _new_file(tmp: Path) -> int:
+    """A new regular file at ``tmp``, never opened through a link planted there (O_EXCL | O_NOFOLLOW):
+    whatever sits at the temp name (a stale temp file, a symlink to a file elsewhere) is removed first,
+    the link itself and never what it points to."""
+    flags = os.O_WRONLY | os.O_CREAT | os.O_EXCL | getattr(os, "O_NOFOLLOW", 0)
+    try:
+        return os.open(tmp, flags, 0o644)
+    except FileExistsError:
+        tmp.unlink()
+        return os.open(tmp, flags, 0o644)
+
+
+def read_regular(path: str | Path, limit: int) -> bytes:
+    """At most ``limit + 1`` bytes of ``path`` if it is a regular file itself: a symlink (to a file
+    outside the folder, say), a FIFO (which would block the start) or a device is an OSError, not read."""
+    fd = os.open(path, os.O_RDONLY | getattr(os, "O_NOFOLLOW", 0) | getattr(os, "O_NONBLOCK", 0))
+    try:
+        if not stat.S_ISREG(os.fstat(fd).st_mode):
+            raise OSError(errno.EINVAL, "not a regular file (a save must be a plain file)")
+        with os.fdopen(os.dup(fd), "rb") as fh:
+            return fh.read(limit + 1)
+    finally:
+        os.close(fd)
 
 
 def set_aside(path: str | Path, suffix: str = ".broken") -> Path:

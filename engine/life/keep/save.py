@@ -12,6 +12,7 @@ file, line and column. Format 1 (one tree per file) still loads.
 from __future__ import annotations
 
 import codecs
+import errno
 import functools
 import hashlib
 import json
@@ -25,7 +26,7 @@ from pathlib import Path
 import numpy as np
 
 from arbor.engine.base.errors import LSysError
-from arbor.engine.base.files import atomic_write
+from arbor.engine.base.files import atomic_write, read_regular
 from arbor.engine.life.keep import save_blocks
 from arbor.engine.life.keep.save_check import (
     BIG,
@@ -300,14 +301,13 @@ def write_garden(saved: SavedGarden, path: str | Path) -> None:
 
 
 def _read(path: Path) -> tuple[dict, str]:
-    """The TOML of a save: only a regular file, at most MAX_BYTES, UTF-8 (a BOM is allowed)."""
+    """The TOML of a save: only a regular file (not a link, FIFO or device), at most MAX_BYTES, UTF-8 (a BOM
+    is allowed)."""
     try:
-        if not path.is_file():
-            raise SaveError("not a regular file (a save must be a plain file)", str(path))
-        with open(path, "rb") as fh:
-            raw = fh.read(MAX_BYTES + 1)
+        raw = read_regular(path, MAX_BYTES)
     except OSError as exc:
-        raise SaveError(f"cannot read: {exc.strerror}", str(path)) from None
+        reason = "it is a link (a save must be a plain file)" if exc.errno == errno.ELOOP else exc.strerror
+        raise SaveError(f"cannot read: {reason}", str(path)) from None
     if len(raw) > MAX_BYTES:
         raise SaveError(f"too large (more than {MAX_BYTES:,} bytes)", str(path))
     bom = len(codecs.BOM_UTF8) if raw.startswith(codecs.BOM_UTF8) else 0
