@@ -163,7 +163,7 @@ def axis_label(factor) -> str:
     watering keys, the rule schema's rules, e.g. "Drain (meter per s)"), so a figure says what its numbers
     count; a species axis is named, it has no unit."""
     if factor.key == "species":
-        return f"{factor.name} (.lsys file)"
+        return factor.name
     key = FACTOR_KEYS.get(factor.key)
     unit = key.unit if key else getattr(find_rule(factor.key), "unit", "")
     return f"{factor.name} ({unit})" if unit and f"({unit})" not in factor.name else factor.name
