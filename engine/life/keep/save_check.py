@@ -44,7 +44,7 @@ CARBON_FIELDS = {  # [trees.carbon] (engine/life/plant/carbon.py); g, s, g per s
     "pool": ("float", 0.0, BIG), "starving": ("float", 0.0, BIG), "fixed": ("float", 0.0, BIG),
     "respired": ("float", 0.0, BIG), "built": ("float", 0.0, BIG), "last_fixed_rate": ("float", 0.0, BIG),
     "last_upkeep_rate": ("float", 0.0, BIG), "vigour": ("float", 0.0, 1.0), "leaf_area": ("float", 0.0, 1e8),
-    "sapwood": ("float", 0.0, 1e8), "fill_at_next_reading": ("bool", 0, 1),
+    "sapwood": ("float", 0.0, 1e8), "fill_at_next_reading": ("bool", 0, 1), "roots_built": ("float", 0.0, BIG),
 }
 TREE_FIELDS = {"seed": ("int", 0, 2**63 - 1), "steps": ("int", 0, 2**53)}  # [[trees]]
 GROWTH_FIELDS = {  # [trees.growth]
@@ -190,7 +190,9 @@ def carbon_budget(data: dict | None, where: Where) -> CarbonBudget:
     unknown = set(data) - set(CARBON_FIELDS)
     if unknown:
         raise where.error(f"unknown field '{sorted(unknown)[0]}' in [carbon]", sorted(unknown)[0])
-    return CarbonBudget(**{k: value(data, k, *spec, where) for k, spec in CARBON_FIELDS.items()})
+    optional = {"roots_built": 0.0}  # saves from before roots were counted apart
+    return CarbonBudget(**{k: value(data, k, *spec, where, default=optional.get(k))
+                           for k, spec in CARBON_FIELDS.items()})
 
 
 def restore_rng(rng: np.random.Generator, state_text: str, key: str, where: Where) -> None:

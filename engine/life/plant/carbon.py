@@ -50,6 +50,7 @@ class CarbonBudget:
     fixed: float = 0.0  # g fixed since planting
     respired: float = 0.0  # g respired since planting
     built: float = 0.0  # g built into leaves, shoots, wood and roots since planting
+    roots_built: float = 0.0  # g of it built into roots (root:shoot = roots_built / (built - roots_built))
     last_fixed_rate: float = 0.0  # g per s at the last reading (gross)
     last_upkeep_rate: float = 0.0  # g per s at the last reading (maintenance respiration)
     vigour: float = 1.0  # share of the shoots' growth the pool paid for at the last rewrite

@@ -134,7 +134,9 @@ class World:
         and the simulation hears whether the tree is starving."""
         rules = self.rules
         boost = 1.0 + rules.carbon.root_drought * self.sim.drought()
-        paid = self.carbon.fund(rules, rules.carbon.root_cost * boost * seconds)
+        demand = rules.carbon.root_cost * boost * seconds
+        paid = self.carbon.fund(rules, demand)
+        self.carbon.roots_built += paid * demand
         self.sim.root_vigour = paid * boost
         self.sim.starving = self.carbon.starving
 
