@@ -22,8 +22,9 @@ def test_a_symlinked_autosave_is_neither_read_nor_written_through(gl_ctx, tmp_pa
     saves = tmp_path / "saves"
     saves.mkdir()
     (saves / "autosave.arbor").symlink_to(outside)
-    with pytest.raises(SaveError, match="link"):
+    with pytest.raises(SaveError) as info:
         read_garden(saves / "autosave.arbor")
+    assert "it is a link" in info.value.message  # refused as a link, not read as a bad save
     clock = FakeClock()
     game = Game(gl_ctx, SIZE, GameConfig(saves=saves, seed=1), clock=clock, wall_clock=lambda: 1.7e9)
     assert "Could not load autosave.arbor" in game.hud_info().message
@@ -42,8 +43,9 @@ def test_a_link_planted_at_the_temp_name_is_not_written_through(tmp_path):
 
 def test_a_fifo_save_is_refused_without_blocking(tmp_path):
     os.mkfifo(tmp_path / "autosave.arbor")
-    with pytest.raises(SaveError, match="regular file"):
+    with pytest.raises(SaveError) as info:
         read_garden(tmp_path / "autosave.arbor")
+    assert "not a regular file" in info.value.message
 
 
 def test_a_full_disk_keeps_the_last_good_save_and_the_game_goes_on(gl_ctx, tmp_path, monkeypatch):
