@@ -59,6 +59,6 @@ def test_the_home_game_survives_a_deep_bundle_and_random_bytes(tmp_path):
             out.sendto(data, ("127.0.0.1", port))
     time.sleep(2.0)
     assert proc.poll() is None  # still running
-    seconds, code, err = _stop_and_time(proc, pid, beat)
+    _, code, err = _stop_and_time(proc, pid, beat)
     assert code == 0, err[-2000:]
     assert "RecursionError" not in err and "Traceback" not in err
