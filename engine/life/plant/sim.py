@@ -213,8 +213,11 @@ class Simulation:
 
     def _health(self, dt: float) -> None:
         s, h, w = self.state, self.rules.health, self.rules.water
-        # waterlogged soil drains as slowly as it floods, and a dying tree needs a lasting recovery to live
-        s.drowning = s.drowning + dt if s.water_meter > w.drown_level else max(s.drowning - dt, 0.0)
+        # waterlogged soil drains (three times as fast as it floods), not at once; resting roots (winter) do not
+        # drown; a dying tree needs a lasting recovery to live
+        resting = seasons.growth_factor(s.sun_turns, self.rules) <= 0
+        flooded = s.water_meter > w.drown_level and not resting
+        s.drowning = s.drowning + dt if flooded else max(s.drowning - 3.0 * dt, 0.0)
         starved = self.starving > self.rules.carbon.starve_time
         neglected = min(s.sun_meter, s.water_meter) < h.neglect_level or starved
         if not s.alive:
