@@ -15,10 +15,10 @@ from __future__ import annotations
 import copy
 import csv
 import hashlib
-import tomllib
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 
+from arbor.engine.base.config import read_toml
 from arbor.engine.base.errors import ExperimentError
 from arbor.engine.base.units import METRE
 from arbor.engine.life.experiment import schema
@@ -85,15 +85,8 @@ class Experiment:
 def load_experiment(path: str | Path, lsystem_dir: Path) -> Experiment:
     """Read and check an experiment file against the schema (engine/life/experiment/schema.py): every
     problem is one ExperimentError naming the file, the key's line and column, and the fix."""
-    path = Path(path)
     file = str(path)
-    try:
-        text = path.read_text(encoding="utf-8")
-        data = tomllib.loads(text)
-    except (OSError, UnicodeDecodeError) as exc:
-        raise ExperimentError(f"cannot read: {exc}", file) from None
-    except tomllib.TOMLDecodeError as exc:
-        raise ExperimentError(f"not valid TOML: {exc}", file, *toml_error_position(exc)) from None
+    text, data = read_toml(path, ExperimentError)
     reader = Reader(file, text, ExperimentError)
     reader.table(data, schema.EXPERIMENT, (), "the experiment")
     trees = reader.value(data, "tree", schema.EXPERIMENT["tree"], (), [])
@@ -113,14 +106,6 @@ def load_experiment(path: str | Path, lsystem_dir: Path) -> Experiment:
             data, "duration", schema.EXPERIMENT["duration"], ()), sample_every=get("sample_every", 30.0),
         regimes=regimes, lsystem=lsystem_dir / species_name(reader, data, "lab"), file=file,
         pace=pace_value(reader, data), seasons=get("seasons", True), spacing=spacing, notes=reader.notes)
-
-
-def toml_error_position(exc: tomllib.TOMLDecodeError) -> tuple[int, int]:
-    """The line and column tomllib names in its message ("... (at line 3, column 7)"), or (1, 1)."""
-    import re
-
-    match = re.search(r"line (\d+), column (\d+)", str(exc))
-    return (int(match.group(1)), int(match.group(2))) if match else (1, 1)
 
 
 def species_name(reader: Reader, data: dict, kind: str) -> str:

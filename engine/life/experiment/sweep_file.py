@@ -20,12 +20,12 @@ Example (assets/experiments/sweep_sun_height.toml)::
 from __future__ import annotations
 
 import math
-import tomllib
 from pathlib import Path
 
+from arbor.engine.base.config import read_toml
 from arbor.engine.base.errors import SweepError
 from arbor.engine.life.experiment import schema
-from arbor.engine.life.experiment.lab import pace_value, parse_regime, species_name, toml_error_position
+from arbor.engine.life.experiment.lab import pace_value, parse_regime, species_name
 from arbor.engine.life.experiment.schema import Reader
 from arbor.engine.life.experiment.sweep import (
     MAX_FACTORS,
@@ -45,15 +45,8 @@ MAX_SAMPLES = 2000  # per run
 def load_sweep(path: str | Path, lsystem_dir: Path) -> Sweep:
     """Read and check a sweep file against the schema (engine/life/experiment/schema.py); species must be
     .lsys files in ``lsystem_dir``. Every problem is one SweepError naming the key's line and column."""
-    path = Path(path)
     file = str(path)
-    try:
-        source = path.read_text(encoding="utf-8")
-        data = tomllib.loads(source)
-    except (OSError, UnicodeDecodeError) as exc:
-        raise SweepError(f"cannot read: {exc}", file) from None
-    except tomllib.TOMLDecodeError as exc:
-        raise SweepError(f"not valid TOML: {exc}", file, *toml_error_position(exc)) from None
+    source, data = read_toml(path, SweepError)
     reader = Reader(file, source, SweepError)
     reader.table(data, schema.SWEEP, (), "the sweep")
     get = lambda key, default=None: reader.value(data, key, schema.SWEEP[key], (), default)  # noqa: E731
