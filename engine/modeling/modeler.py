@@ -37,7 +37,7 @@ DRAWN = ord("F")
 GROWTH_POINT = ord("A")
 F_PARAMS = 11
 MAX_PIECES = 400  # pieces of one stroke at most (a longer stroke gets longer pieces)
-SMOOTH_WINDOW = 0.2  # of a stroke's points: the span the jitter filter fits a cubic over
+SMOOTH_WINDOW = 0.15  # of a stroke's points: the span the jitter filter fits a cubic over
 CHUNK_PAIRS = 250_000  # point x segment pairs held at once while bending a stroke around trunks
 
 
