@@ -13,9 +13,8 @@ from arbor.game.render.instanced import TreeBuffers
 SIZE = (320, 240)
 
 
-@pytest.fixture(scope="module")
-def scene(gl_ctx):
-    renderer = GardenRenderer(gl_ctx)
+def drawer(gl_ctx, renderer: GardenRenderer):
+    """draw(view, camera, sun) -> the frame's pixels (rows top first), one static tree at the origin."""
     fbo = gl_ctx.framebuffer(color_attachments=[gl_ctx.renderbuffer(SIZE)],
                              depth_attachment=gl_ctx.depth_renderbuffer(SIZE))
 
@@ -27,7 +26,13 @@ def scene(gl_ctx):
         buffers.release()
         return np.frombuffer(fbo.read(components=3), np.uint8).reshape(SIZE[1], SIZE[0], 3)[::-1].astype(float)
 
-    yield renderer, draw
+    return draw
+
+
+@pytest.fixture(scope="module")
+def scene(gl_ctx):
+    renderer = GardenRenderer(gl_ctx)
+    yield renderer, drawer(gl_ctx, renderer)
     renderer.release()
 
 
@@ -151,16 +156,7 @@ def test_the_night_sky_has_stars_and_a_moon_and_the_day_sky_has_neither(scene):
 
 def test_grass_sways_in_the_wind_and_stands_still_in_still_air(gl_ctx, scene):
     renderer = GardenRenderer(gl_ctx, samples=4)  # a GPU's path (a software GL keeps its grass still)
-    fbo = gl_ctx.framebuffer(color_attachments=[gl_ctx.renderbuffer(SIZE)],
-                             depth_attachment=gl_ctx.depth_renderbuffer(SIZE))
-
-    def draw(view: StaticView, camera: OrbitCamera, sun: np.ndarray) -> np.ndarray:
-        buffers = TreeBuffers()
-        renderer.trees.sync(buffers, view)
-        renderer.place([Placed(buffers, np.zeros(3))], view.lo, view.hi)
-        renderer.render(fbo, camera, np.asarray(sun, float), SIZE)
-        buffers.release()
-        return np.frombuffer(fbo.read(components=3), np.uint8).reshape(SIZE[1], SIZE[0], 3)[::-1].astype(float)
+    draw = drawer(gl_ctx, renderer)
 
     camera = OrbitCamera(yaw=0.0, pitch=20.0, distance=30.0, target=np.array([0.0, 5.0, 0.0]))
     sun = np.array([0.3, 0.8, 0.5])
