@@ -16,6 +16,7 @@ from pathlib import Path
 import numpy as np
 
 from arbor.engine.base.units import METRE
+from arbor.engine.life.experiment.measure import crown_shape
 from arbor.engine.life.rules.rules import load_rules
 from arbor.engine.life.world.actions import Action
 from arbor.engine.life.world.world import World
@@ -38,12 +39,10 @@ def grown(species: str, seed: int, days: int) -> World:
 
 
 def size(world: World) -> tuple[float, float]:
-    """(height, crown width) in metres: the top of the wood, and the widest spread of the leaves in x or z."""
+    """(height, crown width) in metres, as the lab measures them (experiment/measure.crown_shape)."""
     turtle = world.tree.geometry(world.clocks()).turtle
-    height = float(turtle.segments.end[:, 1].max()) if len(turtle.segments) else 0.0
-    pts = turtle.leaves.position if len(turtle.leaves) else turtle.segments.end
-    width = float(np.max(pts[:, [0, 2]].max(axis=0) - pts[:, [0, 2]].min(axis=0))) if len(pts) else 0.0
-    return height / METRE, width / METRE
+    shape = crown_shape(turtle.segments, turtle.leaves)
+    return shape["height"] / METRE, shape["width"] / METRE
 
 
 def main(seeds: int = 20, days: int = 20, species: str = "game_tree") -> None:

@@ -27,7 +27,8 @@ from benchmarks.home_pace import ASSETS, STEP, water
 
 
 def crown(world: World) -> tuple[float, float]:
-    """(height, crown width) in metres from the tree's geometry now."""
+    """(height, crown width) in metres from the tree's geometry now; unlike the lab's crown_shape (leaves only)
+    the width spans wood and leaves, so a bare winter crown has one."""
     turtle = world.tree.geometry(world.clocks()).turtle
     if not len(turtle.segments):
         return 0.0, 0.0
