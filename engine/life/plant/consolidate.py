@@ -17,7 +17,7 @@ from __future__ import annotations
 import numpy as np
 
 from arbor.engine.life.form.interpret import INTERNODE
-from arbor.engine.lsystem.lstring import LString
+from arbor.engine.lsystem.lstring import LString, params_where
 
 OLD_TAUS = 6.0  # an internode this many elongation time constants old is fully grown (99.75 %)
 STRAIGHT_DEG = 1.0  # turns between two pieces at most this large (degrees) count as a straight run
@@ -32,18 +32,10 @@ def consolidated(ls: LString, now: float, tau: float) -> tuple[LString, int]:
     if len(node) < 2:
         return ls, 0
     params, off = ls.params, ls.offsets
-    pieces = np.where(ls.nparams[node] >= 6, params[np.minimum(off[node] + 5, len(params) - 1)], 1.0)
+    pieces = params_where(params, ls.nparams[node] >= 6, off[node] + 5, 1.0)
     can, rolled = _joins(ls, node, now - params[off[node]] > OLD_TAUS * tau)
     own_roll = (node >= 1) & (ls.sym[np.maximum(node - 1, 0)] == ROLL) & (ls.nparams[np.maximum(node - 1, 0)] == 1)
-    joins = can
-    for _ in range(8):  # a swallowed roll must land in the roll before its run's head, else the piece starts a run
-        head = _heads(joins)
-        before = np.concatenate([[0], head[:-1]])  # the head a piece would join
-        settled = can & (~rolled | own_roll[before])
-        if np.array_equal(settled, joins):
-            break
-        joins = settled
-    joins &= ~rolled | own_roll[np.concatenate([[0], _heads(joins)[:-1]])]
+    joins = _rolls_landed(can, rolled, own_roll)
     head = _heads(joins)
     total = np.cumsum(pieces)
     in_run = total - (total[head] - pieces[head])
@@ -69,6 +61,18 @@ def _joins(ls: LString, node: np.ndarray, old: np.ndarray) -> tuple[np.ndarray, 
     ok &= ~rolled | ((sym[roll] == ROLL) & (npar[roll] == 1))
     ok[0] = False
     return ok, rolled & ok
+
+
+def _rolls_landed(can: np.ndarray, rolled: np.ndarray, own_roll: np.ndarray) -> np.ndarray:
+    """The joins kept so that every swallowed roll lands in the roll before its run's head (a piece whose
+    run has no roll to take its own starts a run of its own); a few passes settle it."""
+    joins = can
+    for _ in range(8):
+        settled = can & (~rolled | own_roll[np.concatenate([[0], _heads(joins)[:-1]])])
+        if np.array_equal(settled, joins):
+            break
+        joins = settled
+    return joins & (~rolled | own_roll[np.concatenate([[0], _heads(joins)[:-1]])])
 
 
 def _heads(joins: np.ndarray) -> np.ndarray:
