@@ -46,3 +46,13 @@ def test_the_watchdog_runs_help_once_and_stops_on_a_usage_error(capfd):
     assert watch([sys.executable, "-m", "arbor.game.cli", "--pace", "never"], sleep=pauses.append,
                  poll=0.05, max_restarts=2) == USAGE_EXIT
     assert pauses == []  # not restarted
+
+
+def test_derive_with_a_full_budget_stops_and_says_so(tmp_path, capsys):
+    source = tmp_path / "double.lsys"
+    source.write_text("w: F\np1: F -> FF\n")
+    assert main(["derive", str(source), "--budget", "5000", "--steps", "1000"]) == 0
+    out, err = capsys.readouterr()
+    assert out.strip() == "F" * 5000
+    assert err.strip().splitlines() == ["module budget 5,000 full at step 14 of 1,000: derivation stopped there "
+                                        "(5,000 modules; every further step would only copy them)"]

@@ -226,3 +226,11 @@ def test_symbols_only_steps_equal_the_general_path(lsys_dir, name):
             (a, ra), (b, rb) = fast.step(a), general.step(b)
             assert a.equals(b) and (ra.rewritten, ra.deferred) == (rb.rewritten, rb.deferred)
         assert len(a) <= (budget or len(a))
+
+
+def test_derivation_stops_once_the_budget_is_full():
+    system = parse_lsystem("w: F\np1: F -> FF")
+    result, reports = Deriver(system, budget=1000).derive(steps=1000)
+    assert len(result) == 1000 and result.to_text() == "F" * 1000
+    # 2^9 = 512 modules after 9 steps, the 10th fills the budget, the 11th only copies and ends it
+    assert len(reports) == 11 and reports[-1].only_copied and not reports[-2].only_copied

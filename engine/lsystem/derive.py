@@ -39,6 +39,12 @@ class StepReport:
         """True when the module budget held back at least one rewrite."""
         return self.deferred > 0
 
+    @property
+    def only_copied(self) -> bool:
+        """True when the budget held back every rewrite: the string came out as it went in, and every
+        further step would copy it again (so :meth:`Deriver.derive` stops there)."""
+        return self.deferred > 0 and self.rewritten == 0
+
 
 @dataclass
 class _Match:
@@ -139,12 +145,18 @@ class Deriver:
     def derive(
         self, ls: LString | None = None, steps: int | None = None, extern: dict[str, float] | None = None
     ) -> tuple[LString, list[StepReport]]:
-        """Apply ``steps`` steps (default: the source's ``n:``) starting from ``ls`` (default: axiom)."""
+        """Apply ``steps`` steps (default: the source's ``n:``) starting from ``ls`` (default: axiom).
+
+        Stops early at a step that only copied (the budget full and held back every rewrite: see
+        :attr:`StepReport.only_copied`, the last report), so a huge step count costs no more than the
+        steps that grow; ``len(reports)`` says how many steps were taken."""
         current = self.system.axiom if ls is None else ls
         reports = []
         for _ in range(self.system.iterations if steps is None else steps):
             current, report = self.step(current, extern)
             reports.append(report)
+            if report.only_copied:
+                break
         return current, reports
 
     def _match_all(self, ls: LString, only: np.ndarray | None = None) -> list[_Match]:

@@ -41,8 +41,12 @@ def derive_source(source: TreeSource):
         raise LSysError(f"this L-system needs values from the game at every step (#extern {names}); "
                         "grow it in the game and render its save (.arbor) instead", str(source.path))
     deriver = Deriver(system, seed=source.seed, budget=source.budget)
-    result, reports = deriver.derive(steps=source.steps)
-    if any(r.budget_hit for r in reports):
+    asked = system.iterations if source.steps is None else source.steps
+    result, reports = deriver.derive(steps=asked)
+    if reports and reports[-1].only_copied and len(reports) < asked:
+        print(f"module budget {deriver.budget:,} full at step {len(reports)} of {asked:,}: derivation stopped "
+              f"there ({len(result):,} modules; every further step would only copy them)", file=sys.stderr)
+    elif any(r.budget_hit for r in reports):
         held = sum(r.deferred for r in reports)
         print(f"module budget {deriver.budget:,} reached: {held:,} rewrites held back", file=sys.stderr)
     return system, result
