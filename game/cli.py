@@ -72,10 +72,11 @@ def _size(text: str) -> tuple[int, int]:
 
 
 def _cmd_render(args: argparse.Namespace) -> int:
-    from arbor.game.commands.trees import tree_geometry
+    from arbor.game.commands.trees import check_render_memory, tree_geometry
     from arbor.game.render.renderer import render_image, save_png
 
-    geometry, ls = tree_geometry(_source(args), args.lod)
+    check_render_memory(args.size, 0, args.lod)  # the picture alone, before any derivation
+    geometry, ls = tree_geometry(_source(args), args.lod, check=lambda n: check_render_memory(args.size, n, args.lod))
     pixels = render_image(geometry.mesh, args.size, yaw=args.yaw, pitch=args.pitch)
     save_png(pixels, args.out)
     print(f"{args.out}: {len(ls):,} modules, {len(geometry.turtle.segments):,} segments, "

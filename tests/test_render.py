@@ -88,6 +88,21 @@ def test_cli_render_writes_png(tmp_path, lsys_dir, capsys):
     assert "segments" in capsys.readouterr().out
 
 
+def test_cli_render_refuses_what_would_not_fit_in_memory(tmp_path, capsys):
+    source, out = tmp_path / "double.lsys", tmp_path / "tree.png"
+    source.write_text("w: F\np1: F -> FF\n")
+    big = ["render", str(source), "--out", str(out), "--size", "8192x8192", "--steps", "1000", "--budget", "20000000"]
+    assert main(big) == 1  # refused on the pixels alone, before 20 M modules are derived
+    many = ["render", str(source), "--out", str(out), "--size", "320x200", "--steps", "20"]  # 1,048,576 modules
+    assert main(many) == 1
+    lines = capsys.readouterr().err.strip().splitlines()
+    assert lines[-2] == ("arbor: rendering 8192x8192 pixels needs about 3.3 GB, over the limit of 2 GB: "
+                         "ask for a smaller --size, fewer --steps or a higher --lod")
+    assert lines[-1].startswith("arbor: rendering 320x200 pixels of a tree of 1,048,576 modules at --lod 0 needs")
+    assert not out.exists()
+    assert main([*many, "--lod", "3"]) == 0 and out.exists()  # the same tree at its coarsest level fits
+
+
 @pytest.mark.skipif(shutil.which("xvfb-run") is None, reason="needs xvfb-run (CI installs it)")
 def test_arbor_opens_a_window(tmp_path):
     shot = tmp_path / "window.png"
