@@ -74,11 +74,14 @@ def warm_kernels() -> None:
 
 
 def headless_notice(stream=None) -> bool:
-    """Print one line before a headless command compiles the kernels; True when it did."""
+    """Before a headless command, when some kernel has no build on disk: say so in one line and build them
+    all (not only the ones this command uses), so the notice's "first start only" holds for the next
+    command too. True when it did."""
     if not kernels_cold():
         return False
     print(f"arbor: {FIRST_START}: compiling its kernels, about half a minute...", file=stream or sys.stderr,
           flush=True)
+    warm_kernels()
     return True
 
 
