@@ -4,8 +4,9 @@
 
 * the child exits with STAFF_EXIT only when staff entered the PIN: then the watchdog stops too, and so it
   does when the child refused its arguments (USAGE_EXIT: restarting would only repeat the refusal) and for
-  `arbor watchdog --help` / `--version` (run once); any other end (a crash, a kill, even status 0) is
-  restarted after a pause that grows while crashes come quickly (1 s, 2 s, 4 s, ... at most 30 s) and
+  `arbor watchdog --help` / `--version` (run once), and for a clean quit (status 0) of anything but the kiosk
+  (whose app never quits by itself: a 0 there means it alone was stopped, so it is restarted); any other
+  end (a crash, a kill, a hang) is restarted after a pause that grows while crashes come quickly (1 s, 2 s, 4 s, ... at most 30 s) and
   shrinks back after a good long run;
 * the child touches a heartbeat file (``ARBOR_HEARTBEAT``) every second; if it stays silent for
   HANG_SECONDS it is killed and restarted (a hung app is never left on screen);
@@ -84,9 +85,10 @@ def _run_once(command: list[str], heartbeat: Path, clock, poll: float, hang: flo
 
 def watch(command: list[str], sleep: Callable[[float], None] = time.sleep, clock=time.monotonic,
           max_restarts: int | None = None, saves: Path | None = None, poll: float = 1.0,
-          hang: float = HANG_SECONDS, grace: float = START_GRACE) -> int:
+          hang: float = HANG_SECONDS, grace: float = START_GRACE, restart_clean: bool = True) -> int:
     """Run ``command`` until it exits with STAFF_EXIT; restart it otherwise (also when it hangs).
-    ``saves``: the kiosk's folder, whose garden is moved aside after a crash loop. Returns the last
+    ``saves``: the kiosk's folder, whose garden is moved aside after a crash loop. ``restart_clean``:
+    whether a clean quit (status 0) is restarted too (the kiosk) or ends the watch. Returns the last
     status."""
     delay, restarts, young = 1.0, 0, 0
     with tempfile.TemporaryDirectory(prefix="arbor-watchdog-") as tmp, StopSignals() as signals:
@@ -98,6 +100,9 @@ def watch(command: list[str], sleep: Callable[[float], None] = time.sleep, clock
                 return status
             if status == STAFF_EXIT:
                 log.info("staff quit the kiosk: the watchdog stops")
+                return status
+            if status == 0 and not restart_clean:
+                log.info("arbor quit cleanly: the watchdog stops")
                 return status
             if status == USAGE_EXIT:
                 log.error("arbor refused its arguments (status %d): the watchdog stops", status)
@@ -132,4 +137,4 @@ def main(args: list[str]) -> int:
     command = [sys.executable, "-m", "arbor.game.cli", *args]
     if any(arg in ONCE for arg in args):
         return subprocess.call(command)
-    return watch(command, saves=_saves_folder(args))
+    return watch(command, saves=_saves_folder(args), restart_clean="--kiosk" in args)

@@ -46,6 +46,9 @@ def test_the_watchdog_runs_help_once_and_stops_on_a_usage_error(capfd):
     assert watch([sys.executable, "-m", "arbor.game.cli", "--pace", "never"], sleep=pauses.append,
                  poll=0.05, max_restarts=2) == USAGE_EXIT
     assert pauses == []  # not restarted
+    assert watch([sys.executable, "-c", "pass"], sleep=pauses.append, poll=0.05, max_restarts=2,
+                 restart_clean=False) == 0
+    assert pauses == []  # a clean quit of the home game is not restarted either
 
 
 def test_derive_with_a_full_budget_stops_and_says_so(tmp_path, capsys):
