@@ -9,6 +9,7 @@ from arbor.game.render.camera import OrbitCamera
 from arbor.game.render.falling import StaticView
 from arbor.game.render.garden import GardenRenderer, Placed
 from arbor.game.render.instanced import TreeBuffers
+from arbor.game.render.species import GAME_TREE, SpeciesLook, look_of
 
 SIZE = (320, 240)
 
@@ -18,10 +19,10 @@ def drawer(gl_ctx, renderer: GardenRenderer):
     fbo = gl_ctx.framebuffer(color_attachments=[gl_ctx.renderbuffer(SIZE)],
                              depth_attachment=gl_ctx.depth_renderbuffer(SIZE))
 
-    def draw(view: StaticView, camera: OrbitCamera, sun: np.ndarray) -> np.ndarray:
+    def draw(view: StaticView, camera: OrbitCamera, sun: np.ndarray, look: SpeciesLook = GAME_TREE) -> np.ndarray:
         buffers = TreeBuffers()
         renderer.trees.sync(buffers, view)
-        renderer.place([Placed(buffers, np.zeros(3))], view.lo, view.hi)
+        renderer.place([Placed(buffers, np.zeros(3), look=look)], view.lo, view.hi)
         renderer.render(fbo, camera, np.asarray(sun, float), SIZE)
         buffers.release()
         return np.frombuffer(fbo.read(components=3), np.uint8).reshape(SIZE[1], SIZE[0], 3)[::-1].astype(float)
@@ -98,6 +99,30 @@ def test_the_bark_normal_map_changes_shading_across_a_branch(scene):
     assert difference.mean() > 12  # furrows and ridges shade differently from a smooth tube
     # along a smooth tube's line (one normal) the shading is the texture's alone; relief adds to it
     assert relief[band, SIZE[0] // 2].std() > 1.3 * smooth[band, SIZE[0] // 2].std()
+
+
+def test_two_species_differ_in_bark_and_leaf_colour(scene):
+    _, draw = scene
+    poplar = look_of("game_poplar")
+    assert look_of("game_tree") == GAME_TREE and look_of("a_save_from_the_future") == GAME_TREE
+    camera = OrbitCamera(yaw=0.0, pitch=0.0, distance=9.0, target=np.array([0.0, 10.0, 0.0]))
+    sun = (camera.eye - camera.target) / 9.0 + np.array([0.3, 0.6, 0.0])  # (lit from the front)
+    band = (slice(SIZE[1] // 2 - 40, SIZE[1] // 2 + 40), slice(SIZE[0] // 2 - 20, SIZE[0] // 2 + 20))
+    tree_bark, poplar_bark = (draw(trunk_view(), camera, sun, look)[band].reshape(-1, 3).mean(axis=0)
+                              for look in (GAME_TREE, poplar))
+    assert poplar_bark.mean() > 1.2 * tree_bark.mean()  # the poplar's pale bark
+    camera = OrbitCamera(yaw=0.0, pitch=0.0, distance=9.0, target=np.array([0.0, 5.0, 0.0]))
+    to_eye = (camera.eye - camera.target) / np.linalg.norm(camera.eye - camera.target)
+    view = leaf_view(to_eye)
+    empty = StaticView(TubeInstances.empty(), LeafInstances.empty(), LeafInstances.empty(), view.lo, view.hi)
+    sky = draw(empty, camera, to_eye + np.array([0.0, 0.5, 0.0]))
+    tree_leaf, poplar_leaf = (card_pixels(draw(view, camera, to_eye + np.array([0.0, 0.5, 0.0]), look), sky)
+                              for look in (GAME_TREE, poplar))
+    assert len(tree_leaf) > 500 and len(poplar_leaf) > 500
+    tree_green, poplar_green = tree_leaf.mean(axis=0), poplar_leaf.mean(axis=0)
+    assert poplar_green.mean() > 1.1 * tree_green.mean()  # a lighter green ...
+    assert poplar_green[0] / poplar_green[1] > 1.1 * tree_green[0] / tree_green[1]  # ... more yellow
+    assert abs(len(poplar_leaf) - len(tree_leaf)) > 0.1 * len(tree_leaf)  # other leaves on the card
 
 
 def test_a_branch_swells_where_it_leaves_its_parent_and_the_trunk_flares_at_its_foot():

@@ -34,6 +34,7 @@ from arbor.game.render.instanced import (
 from arbor.game.render.layer import MIN_SCALE, Pictures, Step
 from arbor.game.render.renderer import _gl, _load_texture
 from arbor.game.render.shadows import SHADOW_SIZE, ShadowMaps
+from arbor.game.render.species import CLUSTERS, GAME_TREE, SpeciesLook
 from arbor.game.render.stage import Stage
 
 LOD_PIXELS = (520, 260, 120)  # on-screen height (px) above which a tree gets level 0, 1, 2 (else 3)
@@ -60,6 +61,7 @@ class Placed:
     buffers: TreeBuffers
     offset: np.ndarray
     version: int = 0  # changes when the tree changed enough to need new shadows
+    look: SpeciesLook = GAME_TREE  # its species' bark tint and leaf cards (game/render/species.py)
 
 
 @dataclass
@@ -83,7 +85,7 @@ class GardenRenderer:
         self.trees = InstancedTrees(ctx)
         self.grass = Grass(ctx)
         self.textures = {name: _load_texture(ctx, name, name.startswith("bark"))
-                         for name in ("bark", "bark_normal", "leaf_cluster", "blossom")}
+                         for name in ("bark", "bark_normal", *CLUSTERS, "blossom")}
         self.shadows = ShadowMaps(ctx)
         self.samples = samples if samples is not None else (1 if software_gl(ctx) else 4)
         self.vertex_budget = 60_000 if software_gl(ctx) else 10_000_000  # shaded per tree and frame
@@ -225,12 +227,22 @@ class GardenRenderer:
         def run() -> None:
             self.ctx.enable(moderngl.DEPTH_TEST)
             self.shadows.texture.use(location=1)
+            bark, leaf, blossom = uniforms["tints"]
             for placed, detail in zip(self.placed, details, strict=True):
-                uniforms["u_offset"] = tuple(placed.offset)
-                self.trees.draw(placed.buffers, "lit", detail, uniforms, self.textures, piece)
+                look = placed.look
+                tints = (tuple(a * b for a, b in zip(bark, look.bark, strict=True)),
+                         tuple(a * b for a, b in zip(leaf, look.leaf, strict=True)), blossom)
+                self.trees.draw(placed.buffers, "lit", detail, {**uniforms, "u_offset": tuple(placed.offset),
+                                                                "tints": tints}, self._textures(look), piece)
             if self.samples > 1 and "tube" in piece.names and not self.stage.backdrop.cutaway:  # (with the wood)
                 self.grass.draw(uniforms)
         return run, True
+
+    def _textures(self, look: SpeciesLook) -> dict:
+        """The textures a tree of ``look`` is drawn with: its species' leaf cards."""
+        if look.cluster == "leaf_cluster":
+            return self.textures
+        return {**self.textures, "leaf_cluster": self.textures[look.cluster]}
 
     def _grow_grass(self) -> None:
         """The grass around the grown trees (not the falling branches), as big as the trees are."""
@@ -288,7 +300,7 @@ class GardenRenderer:
             for tree, detail in zip(self.placed, details, strict=True):
                 uniforms["u_offset"] = tuple(tree.offset)
                 coarser = replace(detail, lod=min(detail.lod + 1, len(SIDES) - 1))
-                self.trees.draw(tree.buffers, "shadow", coarser, uniforms, self.textures, piece)
+                self.trees.draw(tree.buffers, "shadow", coarser, uniforms, self._textures(tree.look), piece)
         return self.shadows.steps(sun, versions, draw, pieces)
 
     def release(self) -> None:

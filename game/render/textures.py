@@ -92,10 +92,32 @@ def bark_normal_rgb(size: int = 256, seed: int = 3, depth: float = 5.0) -> np.nd
     return _to_bytes(normal * 0.5 + 0.5, None)
 
 
-def leaf_cluster_rgba(size: int = 128, seed: int = 11) -> np.ndarray:
-    """A spray of seven leaves on one stem for a leaf card (alpha outside), each leaf its own shade
-    and size. The card is half as wide as it is long, so the drawing is made in the card's own
+CLUSTERS = {  # per species' look (game/render/species.py): leaves along the stem (where, side, length),
+    # the leaf's outline, its green and how far out the stem carries it (a petiole) before the blade starts
+    "oval": ([(0.12, -1, 0.30), (0.22, 1, 0.32), (0.36, -1, 0.34), (0.46, 1, 0.33), (0.58, -1, 0.30),
+              (0.66, 1, 0.28), (0.74, 0, 0.28)], (0.20, 0.50, 0.13), 0.0),
+    "deltoid": ([(0.10, -1, 0.27), (0.26, 1, 0.29), (0.42, -1, 0.28), (0.56, 1, 0.27), (0.70, 0, 0.28)],
+                (0.30, 0.56, 0.15), 0.22),
+}
+
+
+def _blade(along: np.ndarray, across: np.ndarray, shape: str) -> np.ndarray:
+    """Where a leaf blade is, in its own frame (along 0 base .. 1 tip, across in lengths): an oval
+    pointed leaf, or a poplar's broad-based triangle with a drawn-out tip."""
+    a = np.clip(along, 0, 1)
+    if shape == "deltoid":
+        half = 0.42 * np.sin(np.pi * 0.5 * np.minimum(a / 0.3, 1.0)) ** 0.6 * (1 - a) ** 1.15
+    else:
+        half = 0.23 * np.sin(np.pi * a) ** 0.75 * (1 - 0.3 * along)
+    return (along > 0) & (along < 1) & (np.abs(across) < half)
+
+
+def leaf_cluster_rgba(size: int = 128, seed: int = 11, shape: str = "oval") -> np.ndarray:
+    """A spray of leaves on one stem for a leaf card (alpha outside), each leaf its own shade and size:
+    seven oval leaves (the game tree) or five broad triangular ones on long stalks (the poplar), see
+    CLUSTERS. The card is half as wide as it is long, so the drawing is made in the card's own
     proportions (x across -0.25..0.25, y along 0..1) and squeezed into the square texture."""
+    leaves, green0, petiole = CLUSTERS[shape]
     rng = np.random.default_rng(seed)
     u, v = _grid(size)
     x, y = (u - 0.5) * 0.5, v
@@ -103,19 +125,20 @@ def leaf_cluster_rgba(size: int = 128, seed: int = 11) -> np.ndarray:
     alpha = np.zeros((size, size))
     stem = (np.abs(x) < 0.006) & (y < 0.8)
     rgb[stem], alpha[stem] = (0.32, 0.42, 0.16), 1.0
-    leaves = [(0.12, -1, 0.30), (0.22, 1, 0.32), (0.36, -1, 0.34), (0.46, 1, 0.33), (0.58, -1, 0.30),
-              (0.66, 1, 0.28), (0.74, 0, 0.28)]
     for at, sideways, length in leaves:
         angle = sideways * (0.7 + 0.2 * rng.random())
         axis = np.array([np.sin(angle), np.cos(angle)])
         dx, dy = x - 0.0, y - at
         along = (dx * axis[0] + dy * axis[1]) / length
         across = (dx * axis[1] - dy * axis[0]) / length
-        half = 0.23 * np.sin(np.pi * np.clip(along, 0, 1)) ** 0.75 * (1 - 0.3 * along)
-        inside = (along > 0) & (along < 1) & (np.abs(across) < half)
+        if petiole:  # the stalk out to the blade, then the blade on the rest of the length
+            stalk = (along > 0) & (along < petiole) & (np.abs(across) < 0.012)
+            rgb[stalk], alpha[stalk] = (0.40, 0.45, 0.18), 1.0
+            along = (along - petiole) / (1 - petiole)
+        inside = _blade(along, across, shape)
         tone = 0.85 + 0.3 * rng.random()
         shade = tone * (0.82 + 0.18 * np.cos(across * 14)) * (0.9 + 0.1 * along)
-        green = np.array([0.20 + 0.06 * rng.random(), 0.50 + 0.08 * rng.random(), 0.13])
+        green = np.array([green0[0] + 0.06 * rng.random(), green0[1] + 0.08 * rng.random(), green0[2]])
         color = green[None, None, :] * shade[..., None]
         vein = np.abs(across) < 0.012
         color[vein] = color[vein] * 1.25 + 0.04
@@ -131,13 +154,14 @@ def _to_bytes(rgb: np.ndarray, alpha: np.ndarray | None) -> np.ndarray:
 
 
 def save_all(folder: Path = TEXTURES) -> None:
-    """Write leaf.png, leaf_cluster.png, blossom.png, bark.png and bark_normal.png (rows top to bottom =
-    v from 1 to 0)."""
+    """Write leaf.png, leaf_cluster.png (and leaf_cluster_deltoid.png, the poplar's), blossom.png, bark.png
+    and bark_normal.png (rows top to bottom = v from 1 to 0)."""
     import pygame
 
     folder.mkdir(parents=True, exist_ok=True)
-    for name, img in (("leaf", leaf_rgba()), ("leaf_cluster", leaf_cluster_rgba()), ("blossom", blossom_rgba()),
-                      ("bark", bark_rgb()), ("bark_normal", bark_normal_rgb())):
+    for name, img in (("leaf", leaf_rgba()), ("leaf_cluster", leaf_cluster_rgba()),
+                      ("leaf_cluster_deltoid", leaf_cluster_rgba(seed=13, shape="deltoid")),
+                      ("blossom", blossom_rgba()), ("bark", bark_rgb()), ("bark_normal", bark_normal_rgb())):
         img = np.ascontiguousarray(img[::-1])
         fmt = "RGBA" if img.shape[2] == 4 else "RGB"
         surf = pygame.image.frombuffer(img.tobytes(), img.shape[1::-1], fmt)

@@ -17,6 +17,7 @@ from arbor.game.render.falling import FALL_SECONDS, falling_view
 from arbor.game.render.garden import BARK, GardenRenderer, Placed
 from arbor.game.render.instanced import Detail, TreeBuffers, prepare_upload
 from arbor.game.render.roots import rocks_view, roots_view
+from arbor.game.render.species import look_of
 from arbor.game.screens.modeler import ModelingMode
 from arbor.game.screens.state import GameState
 
@@ -65,7 +66,7 @@ class GameView:
             _, view, buffers, version = entry
             renderer.trees.sync(buffers, view)
             offset = np.array([world.position[0], 0.0, world.position[1]]) - here
-            placed.append(Placed(buffers, offset, version))
+            placed.append(Placed(buffers, offset, version, look_of(world.lineage.species)))
             seen.add(id(world))
         for gone in set(self.views) - seen:
             self.views.pop(gone)[2].release()

@@ -1,0 +1,36 @@
+"""How each species looks in the garden: its bark's tint and its leaf-cluster card (shape and green).
+
+A tree's species is its lineage's (``game_tree``, ``game_poplar``: the .lsys it grows by; a cross of two
+species is ``cross``). The bark's albedo and relief are shared (game/render/textures.py) and tinted per
+species here; age darkens every bark alike in the shader (by the branch's radius). Unknown species (a
+save from a newer game, an .lsys of the player's) look like the game tree.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+
+@dataclass(frozen=True)
+class SpeciesLook:
+    """A species' look: ``bark`` and ``leaf`` multiply the renderer's tints (which carry the tree's
+    health and the season), ``cluster`` names its leaf-cluster texture in assets/textures."""
+
+    bark: tuple[float, float, float] = (1.0, 1.0, 1.0)
+    leaf: tuple[float, float, float] = (1.0, 1.0, 1.0)
+    cluster: str = "leaf_cluster"
+
+
+GAME_TREE = SpeciesLook()  # grey-brown furrowed bark, sprays of dark oval leaves
+LOOKS = {
+    "game_tree": GAME_TREE,
+    # a poplar: pale grey-white bark, lighter yellow-green broad triangular leaves on long stalks
+    "game_poplar": SpeciesLook(bark=(1.32, 1.34, 1.36), leaf=(1.08, 1.1, 0.9), cluster="leaf_cluster_deltoid"),
+    "cross": SpeciesLook(bark=(1.15, 1.15, 1.16), leaf=(1.04, 1.05, 0.95)),  # between its parents
+}
+CLUSTERS = sorted({look.cluster for look in LOOKS.values()})  # the textures the renderer loads
+
+
+def look_of(species: str) -> SpeciesLook:
+    """The look of ``species`` (a lineage's species name); the game tree's when it is not known."""
+    return LOOKS.get(species, GAME_TREE)
