@@ -308,6 +308,11 @@ def _read(path: Path) -> tuple[dict, str]:
     except OSError as exc:
         reason = "it is a link (a save must be a plain file)" if exc.errno == errno.ELOOP else exc.strerror
         raise SaveError(f"cannot read: {reason}", str(path)) from None
+    return _decode(raw, path)
+
+
+def _decode(raw: bytes, path: Path) -> tuple[dict, str]:
+    """The TOML of a save's bytes (read from ``path``, or carried inside it: a postcard)."""
     if len(raw) > MAX_BYTES:
         raise SaveError(f"too large (more than {MAX_BYTES:,} bytes)", str(path))
     bom = len(codecs.BOM_UTF8) if raw.startswith(codecs.BOM_UTF8) else 0
@@ -469,7 +474,18 @@ def read_garden(path: str | Path, rules: Rules | None = None, budget_slack: floa
     planting order, the cared-for one, when it was saved (NaN when its clock cannot be read: the caller
     then counts no time away), seeds, rocks and family. ``budget_slack`` widens the trees' size limit."""
     path = Path(path)
-    data, text = _read(path)
+    return _garden(*_read(path), path, rules, budget_slack)
+
+
+def read_garden_bytes(raw: bytes, label: str | Path, rules: Rules | None = None) -> SavedGarden:
+    """A save carried inside another file (a postcard PNG): the same checks as :func:`read_garden`, with
+    ``label`` naming the carrier in every error."""
+    label = Path(label)
+    return _garden(*_decode(raw, label), label, rules, 1.0)
+
+
+def _garden(data: dict, text: str, path: Path, rules: Rules | None, budget_slack: float) -> SavedGarden:
+    """The checked garden of a save's parsed TOML ``data`` and its ``text`` (for line numbers)."""
     where = Where(path, text)
     data = _upgraded(data, where)
     parts = _tree_parts(data, path, text)
