@@ -143,7 +143,10 @@ def run_app(args: argparse.Namespace | None = None) -> int:
     import pygame
 
     from arbor.game.first_start import show_until_ready, timing
+    from arbor.game.paths import default_saves, lock_saves
 
+    saves = getattr(args, "saves", None) or os.environ.get("ARBOR_SAVES")
+    lock = lock_saves(Path(saves) if saves else default_saves())  # before the window: a second Arbor ends here
     ctx = open_window(WINDOW, "Arbor")  # first: the title screen is up before the game's modules load
     if not show_until_ready(ctx, WINDOW, lambda: importlib.import_module("arbor.game.screens.game")):
         pygame.quit()  # closed while the kernels compiled: nothing was played, nothing to save
@@ -151,9 +154,7 @@ def run_app(args: argparse.Namespace | None = None) -> int:
     from arbor.game.screens.game import Game, GameConfig
 
     config = GameConfig()
-    saves = getattr(args, "saves", None) or os.environ.get("ARBOR_SAVES")
-    if saves:
-        config.saves = Path(saves)
+    config.saves = lock.folder
     if getattr(args, "pace", None):
         config.pace = args.pace
     game = Game(ctx, WINDOW, config, clock=time.perf_counter)
@@ -163,16 +164,15 @@ def run_app(args: argparse.Namespace | None = None) -> int:
     hub.close()
     pygame.quit()
     timing("closed")
+    lock.release()
     return 0
 
 
 def run_kiosk(args: argparse.Namespace) -> int:
     """Kiosk mode: fullscreen, touch only, never quits without the staff PIN, recovers from faults."""
-    import logging
-
     import pygame
 
-    from arbor.game.paths import ASSETS
+    from arbor.game.paths import ASSETS, lock_saves
     from arbor.game.screens.game import Game, GameConfig
     from arbor.game.screens.kiosk import Kiosk, load_kiosk_config
 
@@ -181,9 +181,8 @@ def run_kiosk(args: argparse.Namespace) -> int:
     if saves:
         config.saves = Path(saves)
     config.saves = config.saves / "kiosk"  # the kiosk keeps its own garden: never the home autosave
-    config.saves.mkdir(parents=True, exist_ok=True)
-    logging.basicConfig(filename=config.saves / "kiosk.log", level=logging.INFO,
-                        format="%(asctime)s %(name)s %(levelname)s %(message)s")
+    lock = lock_saves(config.saves)  # (the watchdog's restart takes over the lock its killed child left)
+    _kiosk_log(config.saves / "kiosk.log")
     settings = load_kiosk_config(ASSETS / "kiosk.toml")
     config.pace = settings.pace
     ctx = open_window(WINDOW, "Arbor", fullscreen=not args.windowed)
@@ -196,7 +195,21 @@ def run_kiosk(args: argparse.Namespace) -> int:
     kiosk.game.quit()
     hub.close()
     pygame.quit()
+    lock.release()
     return STAFF_EXIT if kiosk.quit_requested else 0
+
+
+def _kiosk_log(path: Path) -> None:
+    """The kiosk logs to saves/kiosk/kiosk.log; a folder that cannot be written (read-only, full) logs to
+    stderr instead, so the kiosk still starts."""
+    import logging
+
+    form = "%(asctime)s %(name)s %(levelname)s %(message)s"
+    try:
+        logging.basicConfig(filename=path, level=logging.INFO, format=form)
+    except OSError as exc:
+        logging.basicConfig(level=logging.INFO, format=form)
+        logging.getLogger("arbor.kiosk").error("cannot write %s (%s): logging here instead", path, exc.strerror)
 
 
 def make_input_hub(args: argparse.Namespace | None, size: tuple[int, int], now: float):

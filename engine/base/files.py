@@ -1,4 +1,5 @@
-"""Crash-safe file writing: nothing already saved is ever left half-written."""
+"""Crash-safe file writing (nothing already saved is ever left half-written), reading only regular files,
+setting bad files aside under names of their own, and a folder lock (one writer per saves folder)."""
 
 from __future__ import annotations
 
@@ -78,3 +79,85 @@ def set_aside(path: str | Path, suffix: str = ".broken") -> Path:
         os.unlink(path)
         return kept
     raise FileExistsError(f"too many kept copies of {path.name}")
+
+
+LOCK_NAME = ".arbor.lock"  # in a saves folder: the pid of the process that has it open
+
+
+class FolderBusyError(OSError):
+    """Another live process holds a folder's lock; ``pid`` is that process (0 when it cannot be read)."""
+
+    def __init__(self, folder: Path, pid: int) -> None:
+        super().__init__(errno.EBUSY, f"in use by another Arbor (pid {pid or 'unknown'})", str(folder))
+        self.folder, self.pid = folder, pid
+
+
+class FolderLock:
+    """An advisory lock on a folder for as long as this process lives (or until :meth:`release`): a file
+    ``.arbor.lock`` holding the holder's pid, locked with ``flock``. The operating system drops the lock
+    when the holder dies, even by kill -9, so a stale lock (a dead pid in the file) is simply taken over:
+    a watchdog's restart never waits for one. A folder where the lock file cannot be made (read-only) is
+    not locked: nothing can be written there, so nothing can be lost (``held`` is False)."""
+
+    def __init__(self, folder: str | Path) -> None:
+        self.folder = Path(folder)
+        self.fd: int | None = None
+
+    @property
+    def held(self) -> bool:
+        """True while this process holds the lock."""
+        return self.fd is not None
+
+    def acquire(self) -> FolderLock:
+        """Take the lock and write our pid into it; raises :class:`FolderBusyError` naming the live holder."""
+        import fcntl
+
+        path = self.folder / LOCK_NAME
+        try:
+            self.folder.mkdir(parents=True, exist_ok=True)
+            fd = os.open(path, os.O_RDWR | os.O_CREAT | getattr(os, "O_NOFOLLOW", 0), 0o644)
+        except OSError as exc:
+            if exc.errno in (errno.EROFS, errno.EACCES, errno.EPERM, errno.ENOENT):
+                return self  # a folder nothing can be written to: no lock needed
+            raise
+        try:
+            fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except BlockingIOError:
+            pid = _pid_in(fd)
+            os.close(fd)
+            raise FolderBusyError(self.folder, pid) from None
+        except OSError as exc:  # a file system without flock: the pid alone says who holds it
+            if exc.errno not in (errno.ENOLCK, errno.EOPNOTSUPP, errno.EINVAL):
+                os.close(fd)
+                raise
+            pid = _pid_in(fd)
+            if pid and pid != os.getpid() and _pid_alive(pid):
+                os.close(fd)
+                raise FolderBusyError(self.folder, pid) from None
+        os.ftruncate(fd, 0)
+        os.pwrite(fd, f"{os.getpid()}\n".encode("ascii"), 0)
+        self.fd = fd
+        return self
+
+    def release(self) -> None:
+        """Give the lock up (the file stays: the next holder rewrites it)."""
+        if self.fd is not None:
+            os.close(self.fd)
+            self.fd = None
+
+
+def _pid_in(fd: int) -> int:
+    """The pid written in a lock file (0 when it holds none)."""
+    text = os.pread(fd, 32, 0).decode("ascii", "replace").strip()
+    return int(text) if text.isdigit() else 0
+
+
+def _pid_alive(pid: int) -> bool:
+    """Whether a process with this pid exists (signal 0 is sent to nobody; it only checks)."""
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except OSError:  # it exists, owned by someone else
+        return True
+    return True
