@@ -54,8 +54,8 @@ def read_regular(path: str | Path, limit: int) -> bytes:
     try:
         if not stat.S_ISREG(os.fstat(fd).st_mode):
             raise OSError(errno.EINVAL, "not a regular file (a save must be a plain file)")
-        with os.fdopen(os.dup(fd), "rb") as fh:
-            return fh.read(limit + 1)
+        with os.fdopen(os.dup(fd), "rb") as fh:  # read(n) allocates n bytes first: ask for no more than the file
+            return fh.read(min(limit, os.fstat(fd).st_size) + 1)
     finally:
         os.close(fd)
 
