@@ -53,6 +53,12 @@ SWEEP_CASES = [  # (what is replaced, by what, line, column, words of the messag
     ("seeds = 3", "seeds = [1, 2.7]", 4, 1, "'seeds' must be a whole number, not 2.7"),
     ("seeds = 3", "seeds = [1, -3]", 4, 1, "'seeds' must be from 0 to"),
     ('title = "Sun"', 'title = "Sun"\nspecies = "game_oak.lsys"', 2, 1, "no species 'game_oak.lsys'"),
+    ('key = "orbit_height"\nlevels = [0.0, 1.0]', 'key = "prune.every_days"\nlevels = [3, 7]', 11, 1,
+     "needs what to cut: give [base] a prune"),
+    ('key = "orbit_height"\nlevels = [0.0, 1.0]', 'key = "prune.lowest"\nlevels = [0, 2]', 12, 1,
+     "'levels' must be from 0 to 1 share (0..1) (it is 2)"),
+    ("watering = { below = 0.5, until = 0.7 }", "prune = { every_days = 7, keep_hight = 2 }", 7, 27,
+     "unknown key 'keep_hight' in 'prune' (did you mean 'keep_height'?)"),
 ]
 
 
@@ -83,6 +89,14 @@ LAB_CASES = [
     ('name = "Dry"', 'name = "Watered"', 12, 1, "two trees are named 'Watered'"),
     ("sample_every = 30", "sample_evry = 30", 4, 1, "did you mean 'sample_every'?"),
     ('title = "Two trees"', 'title = "Two trees"\nspecies = "../x.lsys"', 2, 1, "'species' must be a file name"),
+    ("watering = { below = 0.55, until = 0.75 }", "prune = { every_dayz = 7, keep_height = 2 }", 9, 11,
+     "did you mean 'every_days'?"),
+    ("watering = { below = 0.55, until = 0.75 }", "prune = { keep_height = -1 }", 9, 11,
+     "'keep_height' must be above 0 and at most 50 m (it is -1)"),
+    ("watering = { below = 0.55, until = 0.75 }", "prune = { every_days = 7 }", 9, 1, "'prune' cuts nothing"),
+    ("watering = { below = 0.55, until = 0.75 }", "prune = { lowest = 1.5 }", 9, 11, "'lowest' must be from 0 to 1"),
+    ("watering = { below = 0.55, until = 0.75 }", "prune = { every_days = 0, lowest = 0.2 }", 9, 11,
+     "'every_days' must be above 0"),
 ]
 
 

@@ -22,10 +22,12 @@ TITLES = {"height": "Height", "width": "Crown width", "offset": "Lean toward the
           "wilt": "Wilt (mean)", "alive": "Alive (share)", "fruit": "Fruit", "biomass": "Above-ground biomass",
           "leaf_area": "Leaf area", "lai": "Leaf area index", "light_share": "Light reaching the leaves",
           "light_day": "Light intercepted a day", "net_carbon": "Net carbon (fixed - respired)",
-          "pool": "Sugar in store", "day_of_death": "Day of death"}
+          "pool": "Sugar in store", "day_of_death": "Day of death", "root_shoot": "Root:shoot (carbon built)",
+          "pruned": "Branches cut by pruning"}
 YLABELS = {"alive": "share of seeds alive (0..1)", "modules": "modules (count)", "leaves": "clusters (count)",
            "shed": "branches (count)", "fruit": "fruit (count)", "lai": "m² of leaf per m² of ground",
-           "light_share": "share of full sun (0..1)", "light_day": "m² of leaf x hours of full sun"}
+           "light_share": "share of full sun (0..1)", "light_day": "m² of leaf x hours of full sun",
+           "root_shoot": "g into roots per g into shoots", "pruned": "branches (count)"}
 plt.rcParams.update({"font.size": 13, "axes.titlesize": 15, "axes.titleweight": "bold", "lines.linewidth": 2.5,
                      "svg.hashsalt": "arbor", "axes.spines.top": False, "axes.spines.right": False})
 

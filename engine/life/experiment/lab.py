@@ -2,7 +2,9 @@
 
 An experiment file (TOML, read strictly by engine/life/experiment/schema.py) names the trees and their
 regimes: the sun (orbit height or day length in hours, noon elevation in degrees, speed), a watering
-schedule (keep the water meter between two levels, water on a timetable, or never) and rule overrides
+schedule (keep the water meter between two levels, water on a timetable, or never), a pruning
+schedule (every so many game days: back to a height in metres, and/or the lowest share of the
+branches cut) and rule overrides
 (any number in rules.toml, e.g. ``"water.drain_rate" = 0.01``). Every tree starts from the same seed,
 each with a lineage of its own; with ``spacing`` (metres) the trees stand in a row on one plot and
 shade each other (competition). The run samples every ``sample_every`` seconds; meters and wilt are
@@ -15,6 +17,7 @@ from __future__ import annotations
 import copy
 import csv
 import hashlib
+import math
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 
@@ -30,7 +33,7 @@ from arbor.engine.life.world.world import World, sense_light
 from arbor.engine.lsystem.lsys import LSystem, load_lsystem
 
 MAX_TREES = 6
-__all__ = ["METRICS", "Experiment", "Lab", "Regime", "Watering", "crown_shape", "load_experiment", "measure"]
+__all__ = ["METRICS", "Experiment", "Lab", "Pruning", "Regime", "Watering", "crown_shape", "load_experiment", "measure"]
 
 
 @dataclass
@@ -52,6 +55,20 @@ class Watering:
 
 
 @dataclass
+class Pruning:
+    """A pruning schedule: every ``every_days`` game days, head the tree back to ``keep_height`` m and/or
+    cut the ``lowest`` share of its trunk's branches (engine/life/world/prune.py)."""
+
+    every_days: float = 7.0
+    keep_height: float | None = None
+    lowest: float = 0.0
+
+    def apply(self, world: World) -> int:
+        """Prune ``world`` now; the branches cut."""
+        return world.prune(self.keep_height, self.lowest)
+
+
+@dataclass
 class Regime:
     """One tree's conditions."""
 
@@ -62,6 +79,7 @@ class Regime:
     sun_elevation: float | None = None  # degrees at noon (sets the rule sun.side)
     watering: Watering = field(default_factory=Watering)
     rules: dict[str, float | bool] = field(default_factory=dict)
+    prune: Pruning | None = None  # (None: never pruned)
 
 
 @dataclass
@@ -164,6 +182,18 @@ def parse_watering(reader: Reader, water, path: tuple) -> Watering:
     return watering
 
 
+def parse_pruning(reader: Reader, prune, path: tuple) -> Pruning | None:
+    """A pruning schedule: { every_days = 7, keep_height = 2.5 } and/or lowest = a share of the branches."""
+    if prune is None:
+        return None
+    reader.table(prune, schema.PRUNE, path, "'prune'")
+    get = lambda key, default: reader.value(prune, key, schema.PRUNE[key], path, default)  # noqa: E731
+    pruning = Pruning(get("every_days", 7.0), get("keep_height", 0.0) or None, get("lowest", 0.0))
+    if pruning.keep_height is None and not pruning.lowest > 0:
+        raise reader.fail("'prune' cuts nothing: give 'keep_height' (m) and/or 'lowest' (a share above 0)", path)
+    return pruning
+
+
 def parse_regime(reader: Reader, t, path: tuple, keys: dict) -> Regime:
     """One tree's regime from its table (sun, watering, rule overrides), checked against ``keys``."""
     reader.table(t, keys, path, f"[[{path[0]}]] #{path[1] + 1}" if len(path) > 1 else f"[{path[0]}]")
@@ -181,7 +211,9 @@ def parse_regime(reader: Reader, t, path: tuple, keys: dict) -> Regime:
                           (*path, "day_length"))
     if sun["sun_elevation"] is not None and "sun.side" in rules:
         raise reader.fail("give 'sun_elevation' or the rule \"sun.side\", not both", (*path, "sun_elevation"))
-    return Regime(name=name, watering=watering, rules=dict(rules), **sun)
+    prune = parse_pruning(reader, reader.value(t, "prune", schema.TREE["prune"], path) if "prune" in t else None,
+                          (*path, "prune"))
+    return Regime(name=name, watering=watering, rules=dict(rules), prune=prune, **sun)
 
 
 def regime_rules(base: Rules, regime: Regime) -> Rules:
@@ -228,6 +260,7 @@ class Lab:
         self.series = [Series(r.name) for r in experiment.regimes]
         self.time = 0.0
         self._next_sample = 0.0
+        self._next_prune = [r.prune.every_days if r.prune else math.inf for r in experiment.regimes]
 
     def _world(self, index: int, regime: Regime, base_rules: Rules) -> World:
         """One tree's world: its rules, its sun, its own lineage and (on a shared plot) its place in the row."""
@@ -251,11 +284,14 @@ class Lab:
         if self.time >= self._next_sample - 1e-9:
             self.sample()
             self._next_sample += self.experiment.sample_every
-        for world, regime in zip(self.worlds, self.experiment.regimes, strict=True):
+        for i, (world, regime) in enumerate(zip(self.worlds, self.experiment.regimes, strict=True)):
             s = world.sim.state
             wanted = regime.watering.wants_water(s.time, s.water_meter, s.watering)
             if wanted != s.watering:
                 world.apply(Action.WATER, float(wanted))
+            if s.sun_turns >= self._next_prune[i] and regime.prune is not None:
+                regime.prune.apply(world)
+                self._next_prune[i] += regime.prune.every_days
         if self.experiment.spacing:
             for world in self.worlds:
                 world.advance(dt)

@@ -20,12 +20,13 @@ from arbor.engine.life.world.world import World
 SWUNG = ("sun", "water", "wilt")  # sampled as mean, min and max since the last sample
 METRICS = ("height", "width", "offset", "girth", "modules", "leaves", "density", "shed", "roots",
            *(f"{m}{s}" for m in SWUNG for s in ("", "_min", "_max")), "alive", "day_of_death", "fruit",
-           "biomass", "leaf_area", "lai", "light_share", "light_day", "net_carbon", "pool")
+           "biomass", "leaf_area", "lai", "light_share", "light_day", "net_carbon", "pool", "root_shoot", "pruned")
 UNITS = {"height": "m", "width": "m", "offset": "m", "girth": "cm", "modules": "count", "leaves": "count",
          "density": "per m³", "shed": "count", "roots": "m", **{f"{m}{s}": "0..1" for m in SWUNG
                                                                for s in ("", "_min", "_max")},
          "alive": "1 or 0", "day_of_death": "game day", "fruit": "count", "biomass": "kg", "leaf_area": "m²",
-         "lai": "m² per m²", "light_share": "0..1", "light_day": "m² x h per day", "net_carbon": "g", "pool": "g"}
+         "lai": "m² per m²", "light_share": "0..1", "light_day": "m² x h per day", "net_carbon": "g", "pool": "g",
+         "root_shoot": "g per g", "pruned": "count"}
 
 
 @dataclass
@@ -96,7 +97,15 @@ def measure(world: World, meters: Meters | None = None) -> dict[str, float]:
             "lai": budget.leaf_area / max(math.pi * (width / 2) ** 2, 0.01),
             "light_share": meters.lit / meters.shine if meters.shine > 0 else world.tree.mean_light,
             "light_day": meters.light / meters.seconds * 24.0 if meters.seconds > 0 else 0.0,
-            "net_carbon": budget.fixed - budget.respired, "pool": budget.pool}
+            "net_carbon": budget.fixed - budget.respired, "pool": budget.pool, "root_shoot": root_shoot(budget),
+            "pruned": float(sum(v for _, kind, v in world.journal.entries if kind == "pruned"))}
+
+
+def root_shoot(budget: carbon.CarbonBudget) -> float:
+    """Root:shoot ratio of what the tree has built since planting: sugar into roots over sugar into
+    leaves, shoots and wood (g per g; 0 before anything above ground is built)."""
+    shoot = budget.built - budget.roots_built
+    return budget.roots_built / shoot if shoot > 0 else 0.0
 
 
 def biomass(world: World, segs) -> float:

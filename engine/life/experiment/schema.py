@@ -59,6 +59,14 @@ WATERING = {
     "every": Key("number", "or: water on a timetable, this long between waterings", "s", 0.0, WEEK, above=True),
     "seconds": Key("number", "how long each timetable watering lasts", "s", 0.0, 3600.0, above=True),
 }
+PRUNE = {
+    "every_days": Key("number", "prune this often (the first time after this many game days)", "game days",
+                      0.0, 365.0, above=True),
+    "keep_height": Key("number", "head the tree back: cut every shoot at the first piece of wood above this", "m",
+                       0.0, 50.0, above=True),
+    "lowest": Key("number", "raise the crown: cut this share of the trunk's branches, the lowest first",
+                  "share (0..1)", 0.0, 1.0),
+}
 SUN = {
     "orbit_height": Key("number", "height of the sun's orbit centre (-1 always night, 1 always day)", "orbit radii",
                         -1.0, 1.0),
@@ -71,6 +79,7 @@ TREE = {
     "name": Key("text", "the tree's name in charts, tables and save names (unique)"),
     **SUN,
     "watering": Key("any", "\"never\", or a table { below = 0.5, until = 0.7 } or { every = 120, seconds = 5 }"),
+    "prune": Key("table", "a pruning schedule: { every_days = 7, keep_height = 2.5 } and/or { lowest = 0.25 }"),
     "rules": Key("table", "overrides of rules.toml: { \"water.drain_rate\" = 0.01 } (docs/rules.md)"),
 }
 BASE = {k: v for k, v in TREE.items() if k != "name"}
@@ -102,7 +111,8 @@ FACTOR = {
     "key": Key("text", "what it varies: a sun or watering key, species, or a \"section.key\" of rules.toml"),
     "levels": Key("list", "the values it takes"),
 }
-FACTOR_KEYS = {**SUN, "watering.every": WATERING["every"], "watering.below": WATERING["below"]}
+FACTOR_KEYS = {**SUN, "watering.every": WATERING["every"], "watering.below": WATERING["below"],
+               **{f"prune.{key}": spec for key, spec in PRUNE.items()}}
 
 
 class Locator:

@@ -1,10 +1,10 @@
 """Sweeps: one or two factors x many seeds, each run a headless one-tree lab experiment.
 
 A sweep file (TOML) names the factors (sun orbit height or speed, a watering interval or threshold,
-the species, or any number in rules.toml) with their levels, the seeds, the simulated duration and
-the responses to record. Every run is independent and reproducible from its seed and levels alone:
-a :class:`Task` carries the L-system source and the rules, so a run needs no files and can go to
-another process or another machine.
+a pruning schedule's interval, height or share, the species, or any number in rules.toml) with their
+levels, the seeds, the simulated duration and the responses to record. Every run is independent and
+reproducible from its seed and levels alone: a :class:`Task` carries the L-system source and the
+rules, so a run needs no files and can go to another process or another machine.
 """
 
 from __future__ import annotations
@@ -16,13 +16,14 @@ from pathlib import Path
 
 import numpy as np
 
-from arbor.engine.life.experiment.lab import METRICS, Experiment, Lab, Regime
+from arbor.engine.life.experiment.lab import METRICS, Experiment, Lab, Pruning, Regime
 from arbor.engine.life.keep.save import save_text
 from arbor.engine.life.rules.rules import Rules
 from arbor.engine.lsystem.lsys import parse_lsystem
 
 RESPONSES = tuple(m for m in METRICS if m != "day_of_death")  # (no number for a tree still alive)
-REGIME_KEYS = ("orbit_height", "sun_speed", "day_length", "sun_elevation", "watering.every", "watering.below")
+REGIME_KEYS = ("orbit_height", "sun_speed", "day_length", "sun_elevation", "watering.every", "watering.below",
+               "prune.every_days", "prune.keep_height", "prune.lowest")
 MAX_FACTORS, MAX_LEVELS, MAX_SEEDS, MAX_RUNS = 2, 24, 500, 5000
 
 
@@ -134,8 +135,10 @@ def _set_regime(regime: Regime, key: str, value: float) -> None:
             regime.orbit_height = None
     elif key == "watering.every":
         regime.watering = replace(regime.watering, every=value, below=None)
-    else:
+    elif key == "watering.below":
         regime.watering = replace(regime.watering, below=value, every=None)
+    else:  # prune.every_days, prune.keep_height, prune.lowest (on the base's schedule, or a weekly one)
+        regime.prune = replace(regime.prune or Pruning(), **{key.removeprefix("prune."): value})
 
 
 STATS = ("n", "mean", "sd", "p10", "median", "p90")

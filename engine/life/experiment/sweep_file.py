@@ -14,7 +14,8 @@ Example (assets/experiments/sweep_sun_height.toml)::
     [[factor]]
     name = "Sun orbit height"
     key = "orbit_height"       # orbit_height, sun_speed, day_length, sun_elevation, watering.every,
-    levels = [-0.4, 0.0, 0.35, 0.7, 1.0]   # watering.below, species, or any "section.key" of rules.toml
+    levels = [-0.4, 0.0, 0.35, 0.7, 1.0]   # watering.below, prune.every_days, prune.keep_height,
+                                           # prune.lowest, species, or any "section.key" of rules.toml
 """
 
 from __future__ import annotations
@@ -56,7 +57,12 @@ def load_sweep(path: str | Path, lsystem_dir: Path) -> Sweep:
                           ("sample_every",))
     base = parse_regime(reader, get("base", {}), ("base",), schema.BASE)
     species = _species_file(reader, species_name(reader, data, "sweep"), lsystem_dir, ("species",))
-    sweep = Sweep(title=str(get("title", path.stem)), factors=_factors(reader, data, lsystem_dir),
+    factors = _factors(reader, data, lsystem_dir)
+    for i, factor in enumerate(factors):
+        if factor.key == "prune.every_days" and base.prune is None:
+            raise reader.fail("a factor 'prune.every_days' needs what to cut: give [base] a prune = { keep_height = "
+                              "2.5 } or { lowest = 0.25 }", ("factor", i, "key"))
+    sweep = Sweep(title=str(get("title", path.stem)), factors=factors,
                   seeds=_seeds(reader, data.get("seeds", 10)), duration=duration, sample_every=every,
                   responses=_responses(reader, get("responses", list(RESPONSES))), base=base, species=species,
                   pace=pace_value(reader, data), seasons=get("seasons", True), file=file, source=source)

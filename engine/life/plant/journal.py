@@ -1,6 +1,7 @@
 """A tree's journal: the milestones of its life, kept in its save and shown in the game's menu.
 
-First branch, first flower, first fruit, every new metre of height, every season survived, fruit picked.
+First branch, first flower, first fruit, every new metre of height, every season survived, fruit picked,
+every pruning (how many branches were cut).
 Entries are (game time, what, number); a shared save is untrusted, so only known kinds with sane
 numbers are read back (the rest is dropped and counted, never trusted).
 """
@@ -12,7 +13,7 @@ from dataclasses import dataclass, field
 
 from arbor.engine.base.units import METRE
 
-KINDS = ("planted", "branch", "flower", "fruit", "height", "season", "harvest")
+KINDS = ("planted", "branch", "flower", "fruit", "height", "season", "harvest", "pruned")
 MAX_ENTRIES = 400
 MAX_METRES = 150  # the "every metre" milestones stop here (the tallest trees on Earth are about 116 m): a hostile
 # save's F(1e12) must not write (or even look for) one entry per metre
@@ -28,9 +29,10 @@ class Journal:
         """True when a milestone of ``kind`` (with ``value``, if given) is written already."""
         return any(k == kind and (value is None or v == value) for _, k, v in self.entries)
 
-    def write(self, time: float, kind: str, value: float = 0.0) -> bool:
-        """Add a milestone (once per kind and value); False when it was there already or the journal is full."""
-        if self.has(kind, value) or len(self.entries) >= MAX_ENTRIES:
+    def write(self, time: float, kind: str, value: float = 0.0, once: bool = True) -> bool:
+        """Add a milestone (once per kind and value, unless not ``once``: a pruning is written each time);
+        False when it was there already or the journal is full."""
+        if (once and self.has(kind, value)) or len(self.entries) >= MAX_ENTRIES:
             return False
         self.entries.append((float(time), kind, float(value)))
         return True

@@ -21,6 +21,7 @@ from arbor.engine.life.plant.journal import Journal
 from arbor.engine.life.plant.light import exposure
 from arbor.engine.life.plant.roots import Roots
 from arbor.engine.life.plant.sim import Rules, SimState, Simulation
+from arbor.engine.life.world import prune
 from arbor.engine.life.world.actions import Action
 from arbor.engine.lsystem.lsys import LSystem
 
@@ -139,6 +140,11 @@ class World:
         self.carbon.roots_built += paid * demand
         self.sim.root_vigour = paid * boost
         self.sim.starving = self.carbon.starving
+
+    def prune(self, keep_height: float | None = None, lowest: float = 0.0) -> int:
+        """Cut the tree back to ``keep_height`` metres and/or cut the ``lowest`` share of its trunk's
+        branches (engine/life/world/prune.py); recorded in the journal. Returns the branches cut."""
+        return prune.prune(self, keep_height, lowest)
 
     def sync_roots(self) -> None:
         """Tell the simulation how big the roots are (they spare water)."""
