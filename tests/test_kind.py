@@ -118,3 +118,19 @@ def test_a_first_start_at_dusk_opens_in_daylight(gl_ctx, tmp_path):
                 wall_clock=lambda: now)
     sim = game.world.sim
     assert sim.sun_height() > 0.8 and sim.state.water_meter > 0.65 and game.coach.hints
+
+
+def test_a_replanted_tree_reads_its_light_at_once(system, rules):
+    """The sapling planted in a grown tree's place (Replant, the kiosk's next visitor) is fed by its light
+    from its first steps: its clock starts again at 0, so the light reading must not wait for the old
+    tree's time (it starved through a whole year, then died in its first winter)."""
+    from arbor.engine.life.world.actions import Action
+
+    world = World(system, rules, seed=2)
+    for _ in range(1500):  # 150 s: the last light reading is at about 150 s of the old tree's clock
+        world.step(0.1)
+    world.apply(Action.REPLANT, 1.0)
+    assert world.carbon.leaf_area == 0.0
+    for _ in range(int(rules.light.interval / 0.1) + 2):
+        world.step(0.1)
+    assert world.carbon.leaf_area > 0.0 and world.carbon.last_fixed_rate + world.carbon.last_upkeep_rate > 0

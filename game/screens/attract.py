@@ -2,14 +2,88 @@
 
 `python -m game.screens.attract` rewrites assets/attract/demo.jsonl (slow one-finger turns, a tap that opens
 the menu, a tap that closes it). Any session can be recorded with `arbor --record FILE` instead.
+
+:class:`AttractShow` plays it on a copy of the settings: whatever slider its gestures move (the sun's
+height and speed, time speed) goes back before the frame goes on, and each run ends with the menu closed.
 """
 
 from __future__ import annotations
 
-from arbor.game.input.events import DOWN, MOVE, UP, InputEvent, Recorder
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
+from arbor.engine.life.world.actions import Action
+from arbor.game.input.events import DOWN, MOVE, UP, InputEvent, Player, Recorder
 from arbor.game.paths import ASSETS
 
+if TYPE_CHECKING:
+    from arbor.game.screens.game import Game
+
 OUT = ASSETS / "attract" / "demo.jsonl"
+
+
+@dataclass(frozen=True)
+class Settings:
+    """What an attract run could move: the one sun's height and speed over the garden, and time speed."""
+
+    orbit_height: float
+    sun_speed: float
+    speed: float
+
+    @classmethod
+    def of(cls, game: Game) -> Settings:
+        """The game's settings now (the sun as the cared-for tree has it: one sun shines on the garden)."""
+        s = game.world.sim.state
+        return cls(s.orbit_height, s.sun_speed, game.state.loop.speed)
+
+    def put_back(self, game: Game) -> bool:
+        """Set the game's settings back to these (only what moved is touched); True when anything had."""
+        garden, moved = game.garden, False
+        for action, value, field in ((Action.ORBIT_HEIGHT, self.orbit_height, "orbit_height"),
+                                     (Action.SUN_SPEED, self.sun_speed, "sun_speed")):
+            if any(getattr(w.sim.state, field) != value for w in garden.worlds):
+                garden.apply_sun(action, value)
+                moved = True
+        if game.state.loop.speed != self.speed:
+            game.set_speed(self.speed)
+            moved = True
+        if moved:
+            game.care.sync_sliders()
+        return moved
+
+
+class AttractShow:
+    """The attract loop over a game, on a copy of its settings (see module docstring). ``runs`` counts
+    the recording's runs played to their end and ``after_run`` holds the settings each left behind."""
+
+    def __init__(self, events: list[InputEvent], now: float) -> None:
+        self.player = Player(events, now, loop=True)
+        self.runs = 0
+        self.after_run: Settings | None = None
+
+    def play(self, game: Game, now: float) -> None:
+        """Feed the gestures due by ``now`` to ``game``, then put back every setting they moved."""
+        kept, start = Settings.of(game), self.player.start
+        for e in self.player.poll(now):
+            game.handle_input(e)
+        over = self.player.start != start  # the recording came round: one run is over
+        if over or game.modeling.active or game.family.visible:  # (the show is the garden, not the tools)
+            self.tidy(game)
+        kept.put_back(game)
+        if over:
+            self.runs += 1
+            self.after_run = Settings.of(game)
+
+    @staticmethod
+    def tidy(game: Game) -> None:
+        """Leave the game as a visitor should find it: no gesture held, the menu, the family page and the
+        modeler closed."""
+        game.gestures.cancel_all()
+        if game.modeling.active:
+            game.modeling.toggle()
+        game.family.visible = False
+        if game.menu.visible:
+            game.tap(0, 0)  # (closes the menu as a tap outside it does, letting go of a held button)
 
 
 def demo_events(size: tuple[int, int] = (1280, 720)) -> list[InputEvent]:

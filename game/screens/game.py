@@ -20,7 +20,6 @@ import moderngl
 import pygame
 
 from arbor.engine.life.form.interpret import Clocks
-from arbor.engine.life.plant.sim import sun_angle_at
 from arbor.engine.life.rules.rules import load_rules
 from arbor.engine.life.world.actions import Action
 from arbor.engine.life.world.world import World
@@ -46,8 +45,6 @@ from arbor.game.screens.saves import SaveKeeper
 from arbor.game.screens.state import GameState
 
 __all__ = ["Game", "GameConfig"]
-
-FIRST_HOUR = 10.0  # the hour of the sun's day a new garden starts at (the home pace runs on with the clock)
 
 
 class Game:
@@ -77,8 +74,7 @@ class Game:
         state.use(self.keeper.start())
         self._parts()
         if self.keeper.fresh:
-            if self.world.sim.sun_height() < 0.3:  # a new player meets daylight, whatever the clock says
-                self.world.sim.state.sun_angle = sun_angle_at(FIRST_HOUR * 3600.0)
+            state.daylight()  # a new player meets daylight, whatever the clock says
             self.coach.first_run()
         self.care.sync_sliders()
 

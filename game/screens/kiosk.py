@@ -2,7 +2,10 @@
 
 * touch only: keys and window-close do nothing; staff hold the top-left corner for a few seconds to
   get a PIN pad, and the right PIN (assets/kiosk.toml) quits;
-* after a while without touches an attract loop replays recorded gestures; the first real touch ends it;
+* half a minute without a touch and the garden is cared for (the autopilot: the can pours and the sun is
+  raised whenever a tree comes near a need), so a visitor always finds a living tree, in daylight;
+* after a while without touches an attract loop replays recorded gestures on a copy of the settings
+  (game/screens/attract.py: every slider it moves goes back); the first real touch ends it;
 * after a longer while the visitor's tree is saved (saves/kiosk/visitor-*.arbor) and a fresh sapling
   is planted for the next visitor;
 * the app loop hands every frame to :meth:`Kiosk.frame`, which logs any exception and carries on with
@@ -23,8 +26,9 @@ import pygame
 from arbor.engine.base.config import fill_dataclass, toml_position
 from arbor.engine.base.errors import SettingsError
 from arbor.engine.life.keep.save import SavedGarden, write_garden
-from arbor.game.input.events import DOWN, KEY_DOWN, KEY_UP, MOVE, QUIT, UP, InputEvent, Player, load_recording
+from arbor.game.input.events import DOWN, KEY_DOWN, KEY_UP, MOVE, QUIT, UP, InputEvent, load_recording
 from arbor.game.paths import ASSETS
+from arbor.game.screens.attract import AttractShow
 from arbor.game.strings import set_language, text
 
 CORNER = 90  # px: the staff corner
@@ -39,6 +43,7 @@ class KioskConfig:
 
     pin: str = "2468"
     admin_hold: float = 3.0
+    care_after: float = 30.0  # seconds without a touch before the autopilot cares for the garden
     attract_after: float = 90.0
     reset_after: float = 300.0
     attract: str = "attract/demo.jsonl"
@@ -146,7 +151,8 @@ class Kiosk:
         self.last_touch = clock()
         self.corner_down: float | None = None
         self.pin_pad: PinPad | None = None
-        self.attract: Player | None = None
+        self.attract: AttractShow | None = None
+        self.attract_runs = 0  # attract runs played to their end (of every show)
         self.quit_requested = False
         self.recoveries = 0
         self.visitor_saved = False
@@ -179,9 +185,10 @@ class Kiosk:
         self.visitor_saved = False
         if self.attract is not None:  # a visitor: stop the show and give them a clean view
             self.attract = None
-            self.game.gestures.cancel_all()
-            if self.game.menu.visible:
-                self.game.tap(0, 0)
+            AttractShow.tidy(self.game)
+        if self.game.state.autopilot:  # the visitor takes over the care, in daylight
+            self.game.state.autopilot = False
+            self.game.state.daylight()
 
     def guarded(self, poll):
         """``poll`` (the input layer) inside the kiosk's guard: a device or packet that makes it raise is
@@ -228,22 +235,34 @@ class Kiosk:
         if self.corner_down is not None and now - self.corner_down >= self.config.admin_hold:
             self.corner_down = None
             self.pin_pad = PinPad(self.game.size, self.config.pin, self.pin_lock, self.clock)
+        if idle >= self.config.care_after and not self.game.state.autopilot:
+            self.start_autopilot()
         if idle >= self.config.reset_after and not self.visitor_saved:
             self.reset_visitor()
         if idle >= self.config.attract_after and self.attract is None and self.pin_pad is None:
             self.start_attract(now)
         if self.attract is not None:
-            for e in self.attract.poll(now):
-                self.game.handle_input(e)
+            runs = self.attract.runs
+            self.attract.play(self.game, now)
+            self.attract_runs += self.attract.runs - runs
         self.game.update(real_seconds)
+
+    def start_autopilot(self) -> None:
+        """Nobody is there: the garden is cared for every step from now on (the guardian's tending,
+        engine/life/world/guardian.py), at the kiosk's own speed (a stop the guardian made is gone on)."""
+        state = self.game.state
+        state.autopilot = True
+        if state.halted is not None:
+            state.go_on()
+        self.game.set_speed(self.config.speed)
 
     def start_attract(self, now: float) -> None:
         """Begin the attract loop (if its recording can be read; a bad file is logged, not fatal)."""
         try:
-            self.attract = Player(load_recording(ASSETS / self.config.attract), now, loop=True)
+            self.attract = AttractShow(load_recording(ASSETS / self.config.attract), now)
         except (OSError, ValueError) as exc:
             log.error("attract recording unusable: %s", exc)
-            self.attract = Player([], now)
+            self.attract = AttractShow([], now)
 
     def reset_visitor(self) -> None:
         """Save the visitor's tree and plant a fresh sapling for the next one."""

@@ -12,6 +12,7 @@ import copy
 from collections.abc import Callable
 
 from arbor.engine.life.form.interpret import Clocks
+from arbor.engine.life.plant.sim import sun_angle_at
 from arbor.engine.life.rules.rules import Rules
 from arbor.engine.life.world.garden import Garden
 from arbor.engine.life.world.guardian import Guardian, Need
@@ -19,6 +20,9 @@ from arbor.engine.life.world.world import World
 from arbor.game.input.gestures import CameraControl
 from arbor.game.loop import FixedStepLoop
 from arbor.game.strings import text
+
+FIRST_HOUR = 10.0  # the hour of the sun's day a player arriving in the dark is shown (a new game, a visitor)
+LOW_SUN = 0.3  # orbit radii: a sun lower than this is too dark a welcome
 
 
 class GameState:
@@ -58,6 +62,17 @@ class GameState:
         """Draw from the cared-for tree's state as it is now (after a jump: a new tree, another tree
         cared for), not from a state of another tree."""
         self.previous = copy.deepcopy(self.world.sim.state)
+
+    def daylight(self) -> bool:
+        """A player arriving (a new game, the kiosk's next visitor) meets daylight: when the sun is low,
+        the one sun over the garden is moved to FIRST_HOUR of its day. True when it was moved."""
+        if self.world.sim.sun_height() >= LOW_SUN:
+            return False
+        angle = sun_angle_at(FIRST_HOUR * 3600.0)
+        for world in self.garden.worlds:
+            world.sim.state.sun_angle = angle
+        self.remember()
+        return True
 
     def care_for(self, index: int) -> None:
         """Care for tree ``index`` of the garden."""

@@ -183,6 +183,7 @@ class World:
         self.lineage = new_lineage(seed, self.lineage.planted, self.lineage.species)  # a new line starts
         self.roots = Roots(seed=seed)
         self.carbon = CarbonBudget.for_seedling(self.rules)
+        self.last_light = float("-inf")  # (the new sim's clock starts at 0: its light is read at once)
         self.sync_roots()
 
     def catch_up(self, seconds: float, dt: float = 1.0, max_steps: int = MAX_CATCH_UP_STEPS) -> int:
