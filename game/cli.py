@@ -154,6 +154,32 @@ def _cmd_lineage(args: argparse.Namespace) -> int:
     return 0
 
 
+def _cmd_card(args: argparse.Namespace) -> int:
+    from arbor.game.commands.card import make_card
+
+    world = make_card(args.save, args.out, args.tree)
+    print(f"{args.out}: a postcard of {world.lineage.species} {world.lineage.id} carrying its save "
+          f"(arbor import {args.out} plants it in a garden)")
+    return 0
+
+
+def _cmd_import(args: argparse.Namespace) -> int:
+    import os
+
+    from arbor.game.commands.card import import_card
+    from arbor.game.paths import default_saves, lock_saves
+
+    saves = args.saves or (Path(os.environ["ARBOR_SAVES"]) if os.environ.get("ARBOR_SAVES") else default_saves())
+    lock = lock_saves(saves)  # a game playing this garden would overwrite the import at its next autosave
+    try:
+        world, count = import_card(args.card, lock.folder)
+    finally:
+        lock.release()
+    print(f"{lock.folder / 'autosave.arbor'}: planted {world.lineage.species} {world.lineage.id} from {args.card} "
+          f"beside the others ({count} trees in the garden)")
+    return 0
+
+
 def _add_growth_args(p: argparse.ArgumentParser, saves: bool = False) -> None:
     p.add_argument("source", type=Path, help=".lsys file, or a save (.arbor)" if saves else ".lsys file")
     if saves:
@@ -234,6 +260,14 @@ def build_parser() -> argparse.ArgumentParser:
     view = sub.add_parser("view", help="open a window showing an .lsys tree (drag, wheel, space)")
     view.add_argument("source", type=Path)
     view.set_defaults(run=lambda a: __import__("arbor.game.app", fromlist=["run_viewer"]).run_viewer(a.source))
+    card = sub.add_parser("card", help="share a tree as a postcard PNG that carries its save (arbor import reads it)")
+    card.add_argument("save", type=Path, help="the save (.arbor) the tree is in")
+    card.add_argument("--tree", type=_bounded(0, 5, "--tree"), default=None, help="which tree (default: cared-for)")
+    card.add_argument("--out", type=Path, default=Path("tree.png"))
+    card.set_defaults(run=_cmd_card)
+    imp = sub.add_parser("import", help="plant the tree of a postcard PNG (arbor card) in your garden")
+    imp.add_argument("card", type=Path, help="the postcard (.png)")
+    imp.set_defaults(run=_cmd_import)
     sub.add_parser("watchdog", help="arbor watchdog ARGS...: keep `arbor ARGS...` running (restarts it when it "
                    "crashes or hangs; for kiosks: arbor watchdog --kiosk)")
     parser.add_argument("--saves", type=Path, default=None, help="folder for save files (default: saves/)")

@@ -75,18 +75,10 @@ class Garden:
         if self.full:
             raise ValueError(f"a garden holds at most {MAX_GARDEN} trees")
         k = len(self.worlds)
-        angle = k * 2.39996  # golden angle: the garden spirals outwards without crowding
-        radius = GARDEN_SPACING * math.sqrt(k)
         seed = (self.world.seed * 7919 + k * 104729) % 2**31 if seed is None else seed
         world = World(system, rules, seed=seed)
         world.apply(Action.REPLANT, 1.0)
-        sun = self.world.sim.state
-        world.apply(Action.ORBIT_HEIGHT, sun.orbit_height)
-        world.apply(Action.SUN_SPEED, sun.sun_speed)
-        world.sim.state.sun_angle = sun.sun_angle  # one sun: the new tree sees it where the others do
-        world.position = (radius * math.cos(angle), radius * math.sin(angle))
-        world.sim.state.sun_turns = sun.sun_turns  # the same calendar (and the same weather) for all
-        world.sim.state.weather_seed = sun.weather_seed
+        self._place(world)
         world.journal.write(world.sim.state.time, "planted", float(world.seed))
         world.lineage = new_lineage(world.seed, now, species or species_of(system.file),
                                     tuple(p.lineage for p in parents))
@@ -94,6 +86,29 @@ class Garden:
         self.worlds.append(world)
         self.current = len(self.worlds) - 1
         return world
+
+    def adopt(self, world: World) -> World:
+        """Plant a grown tree from elsewhere (a shared card) beside the others, under this garden's sun and
+        calendar; it keeps its own growth, lineage and meters and becomes the cared-for tree."""
+        if self.full:
+            raise ValueError(f"a garden holds at most {MAX_GARDEN} trees")
+        self._place(world)
+        self.family.add(world.lineage)
+        self.worlds.append(world)
+        self.current = len(self.worlds) - 1
+        return world
+
+    def _place(self, world: World) -> None:
+        """Put a newcomer at the garden's next free spot, under the one sun the others see."""
+        k = len(self.worlds)
+        angle = k * 2.39996  # golden angle: the garden spirals outwards without crowding
+        radius = GARDEN_SPACING * math.sqrt(k)
+        world.position = (radius * math.cos(angle), radius * math.sin(angle))
+        sun, state = self.world.sim.state, world.sim.state
+        world.apply(Action.ORBIT_HEIGHT, sun.orbit_height)
+        world.apply(Action.SUN_SPEED, sun.sun_speed)
+        state.sun_angle = sun.sun_angle  # one sun: the new tree sees it where the others do
+        state.sun_turns, state.weather_seed = sun.sun_turns, sun.weather_seed  # one calendar, one weather
 
     def harvest(self, world: World, fruit_module: int) -> Seed | None:
         """Pick the fruit that is module ``fruit_module`` of ``world``'s tree: it leaves the tree and its
