@@ -77,10 +77,19 @@ def _cmd_render(args: argparse.Namespace) -> int:
 
     check_render_memory(args.size, 0, args.lod)  # the picture alone, before any derivation
     geometry, ls = tree_geometry(_source(args), args.lod, check=lambda n: check_render_memory(args.size, n, args.lod))
-    pixels = render_image(geometry.mesh, args.size, yaw=args.yaw, pitch=args.pitch)
+    scale = ""
+    if args.scale_bar is None:
+        pixels = render_image(geometry.mesh, args.size, yaw=args.yaw, pitch=args.pitch)
+    else:
+        from arbor.game.render.scale_bar import frame_for, render_to_scale
+
+        height = float(geometry.turtle.bounds()[1][1]) / METRE
+        frame = args.scale_bar or frame_for(height)
+        pixels = render_to_scale(geometry.mesh, args.size, frame, yaw=args.yaw, pitch=args.pitch)
+        scale = f", {height:.2f} m tall in a frame {frame:g} m high (metre bar at the left)"
     save_png(pixels, args.out)
     print(f"{args.out}: {len(ls):,} modules, {len(geometry.turtle.segments):,} segments, "
-          f"{geometry.mesh.n_triangles:,} triangles")
+          f"{geometry.mesh.n_triangles:,} triangles{scale}")
     return 0
 
 
@@ -205,6 +214,10 @@ def build_parser() -> argparse.ArgumentParser:
     render.add_argument("--pitch", type=float, default=12.0)
     render.add_argument("--lod", type=_bounded(0, MAX_LOD, "--lod"), default=0, help="level of detail 0-3")
     render.add_argument("--out", type=Path, default=Path("tree.png"))
+    render.add_argument("--scale-bar", type=_metres("--scale-bar"), nargs="?", const=0.0, default=None,
+                        metavar="METRES", help="frame METRES high round the trunk (the same for every tree "
+                        "rendered so: one shared scale; default: the tree's height rounded up to a whole metre) "
+                        "and draw a metre bar")
     render.set_defaults(run=_cmd_render)
     export = sub.add_parser("export", help="export a tree (.lsys or a save) as GLB or OBJ+MTL")
     _add_growth_args(export, saves=True)

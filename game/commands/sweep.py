@@ -136,9 +136,11 @@ def _series(sweep: Sweep, rows: list[dict]) -> dict:
 
 
 def _thumbnails(sweep: Sweep, store: RunStore, everything: list, echo: Callable[[str], None]) -> list[Path]:
-    """Render the kept final trees alike (same framing, so sizes compare) into a grid."""
+    """Render the kept final trees alike (one shared scale with a metre bar, so sizes compare) into a grid."""
+    from arbor.engine.base.units import METRE
     from arbor.game.render import figures
-    from arbor.game.render.renderer import headless_context, render_image
+    from arbor.game.render.renderer import headless_context
+    from arbor.game.render.scale_bar import frame_for, render_to_scale
 
     kept = {r.levels: store.trees_dir / r.tree_name(sweep) for r in everything if r.seed == sweep.seeds[0]}
     rules = load_rules(ASSETS / "rules.toml", sweep.pace)
@@ -156,9 +158,8 @@ def _thumbnails(sweep: Sweep, store: RunStore, everything: list, echo: Callable[
         echo(f"thumbnails skipped: no OpenGL for headless rendering ({exc})")
         return []
     try:
-        top = max([float(g.turtle.bounds()[1][1]) for g in meshes.values()] + [1.0])
-        images = {k: render_image(g.mesh, (300, 360), pitch=8.0, ctx=ctx, frame_height=top, samples=4)
-                  for k, g in meshes.items()}
+        frame = frame_for(max(float(g.turtle.bounds()[1][1]) for g in meshes.values()) / METRE)
+        images = {k: render_to_scale(g.mesh, (300, 360), frame, pitch=8.0, ctx=ctx) for k, g in meshes.items()}
     finally:
         ctx.release()
     return figures.thumbnails(sweep, images, store.out / "thumbnails")

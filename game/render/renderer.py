@@ -331,6 +331,15 @@ def sun_direction(azimuth_deg: float = 135.0, elevation_deg: float = 50.0) -> np
     return np.array([math.sin(az) * math.cos(el), math.sin(el), math.cos(az) * math.cos(el)])
 
 
+def shared_camera(frame_height: float, size: tuple[int, int], yaw: float = 30.0, pitch: float = 12.0) -> OrbitCamera:
+    """The camera :func:`render_image` frames a box ``frame_height`` scene units high round the trunk with:
+    the same for every tree, so trees rendered with it share one scale (and a scale bar can be measured)."""
+    camera = OrbitCamera(yaw=yaw, pitch=pitch)
+    half = frame_height * 0.35
+    camera.frame_bounds(np.array([-half, 0.0, -half]), np.array([half, frame_height, half]), size[0] / size[1])
+    return camera
+
+
 def render_image(tree: TreeMesh, size: tuple[int, int] = (1280, 720), yaw: float = 30.0, pitch: float = 12.0,
                  sun: np.ndarray | None = None, ctx: moderngl.Context | None = None, samples: int = 4,
                  frame_height: float | None = None) -> np.ndarray:
@@ -344,12 +353,11 @@ def render_image(tree: TreeMesh, size: tuple[int, int] = (1280, 720), yaw: float
     try:
         renderer = TreeRenderer(ctx)
         renderer.set_tree(tree)
-        camera = OrbitCamera(yaw=yaw, pitch=pitch)
         if frame_height is None:
+            camera = OrbitCamera(yaw=yaw, pitch=pitch)
             camera.frame_bounds(renderer.lo, renderer.hi, size[0] / size[1])
         else:
-            half = frame_height * 0.35
-            camera.frame_bounds(np.array([-half, 0.0, -half]), np.array([half, frame_height, half]), size[0] / size[1])
+            camera = shared_camera(frame_height, size, yaw, pitch)
             if renderer.radius < frame_height * 0.6:  # ground and shadows at the shared scale
                 renderer.radius = frame_height * 0.6
                 renderer._make_ground()
