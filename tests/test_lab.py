@@ -131,3 +131,30 @@ def test_lab_window_opens(tmp_path):
     proc = subprocess.run(cmd, env=env, capture_output=True, timeout=120)
     assert proc.returncode == 0, proc.stderr.decode()[-2000:]
     assert shot.stat().st_size > 10_000
+
+
+def test_the_live_charts_mark_where_a_tree_died():
+    import pygame
+
+    from arbor.engine.life.experiment.lab import Series
+    from arbor.game.render.charts import COLORS, draw_panel
+
+    pygame.font.init()
+    font = pygame.font.Font(None, 26)
+    trees = []
+    for name, alive in (("Lives", [1.0] * 6), ("Dies", [1.0, 1.0, 1.0, 0.0, 0.0, 0.0])):
+        s = Series(name, time=[0.0, 1.0, 2.0, 3.0, 4.0, 5.0], day=[0.0, 1.0, 2.0, 3.0, 4.0, 5.0])
+        s.values["wilt"] = [0.0, 0.2, 0.6, 1.0, 1.0, 1.0] if name == "Dies" else [0.0] * 6
+        s.values["alive"] = alive
+        trees.append(s)
+    surface = pygame.Surface((600, 300))
+    rect = pygame.Rect(0, 0, 600, 300)
+    draw_panel(surface, rect, "wilt", trees, font, font)
+    plot = pygame.Rect(rect.left + 64, rect.top + 40, rect.width - 80, rect.height - 76)
+    x, y = plot.left + plot.width * 3 / 5, plot.top  # day 3, fully wilted: where the Dies line ends alive
+    arms = [surface.get_at((int(x + dx), int(y + dy)))[:3] for dx, dy in ((-8, -8), (8, 8))]
+    assert all(tuple(c) == COLORS[1] for c in arms)  # two arms of the cross (off the line) in the tree's colour
+    plain = pygame.Surface((600, 300))
+    trees[1].values["alive"] = [1.0] * 6
+    draw_panel(plain, rect, "wilt", trees, font, font)
+    assert all(tuple(plain.get_at((int(x + dx), int(y + dy)))[:3]) != COLORS[1] for dx, dy in ((-8, -8), (8, 8)))

@@ -1,7 +1,8 @@
 """Live line charts of lab time series, drawn with pygame in the lab screen (exports: figures.py).
 
-Small multiples: one panel per measurement, one coloured line per tree, with a shared legend. Thick
-lines and large type so a class can read them on a projector.
+Small multiples: one panel per measurement, one coloured line per tree, with a shared legend; the line of
+a tree that died ends in a cross (its day of death). Thick lines and large type so a class can read
+them on a projector.
 """
 
 from __future__ import annotations
@@ -49,6 +50,16 @@ def draw_panel(surface: pygame.Surface, rect: pygame.Rect, metric: str, series: 
                for t, v in zip(s.time, s.values[metric], strict=True)]
         if len(pts) > 1:
             pygame.draw.lines(surface, COLORS[i % len(COLORS)], False, pts, 4)
+        dead = [k for k, alive in enumerate(s.values.get("alive", ())) if not alive]
+        if dead and dead[0] < len(pts):  # the line of a tree that died ends in a cross, as in the export
+            draw_cross(surface, pts[dead[0]], COLORS[i % len(COLORS)])
+
+
+def draw_cross(surface: pygame.Surface, at: tuple[float, float], color, arm: int = 11) -> None:
+    """An X centred on ``at``: where a tree's line shows that it died."""
+    x, y = at
+    pygame.draw.line(surface, color, (x - arm, y - arm), (x + arm, y + arm), 5)
+    pygame.draw.line(surface, color, (x - arm, y + arm), (x + arm, y - arm), 5)
 
 
 def draw_charts(surface: pygame.Surface, rect: pygame.Rect, series: list,
