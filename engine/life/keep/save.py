@@ -66,6 +66,9 @@ WRAP = 100
 MAX_BYTES = 64 * 1024 * 1024
 MAX_TREES = 6
 MAX_SOURCE = 256 * 1024  # characters of an embedded .lsys source
+MAX_RULE_CHARACTERS = 20_000  # of all the trees' sources, comments aside (parsed 3 times: at most about 2.4 s)
+MAX_SAVED_BUDGET = 16_000  # an embedded .lsys's module budget at most (the game's species: 12,000)
+_LSYS_COMMENTS = re.compile(r"//[^\n]*|^[ \t]*#(?:[ \t#][^\n]*)?$", re.M)
 _CONTROLS = re.compile(r"[\x00-\x08\x0b-\x1f\x7f]")
 _CONTROLS_AND_NEWLINE = re.compile(r"[\x00-\x08\x0a-\x1f\x7f]")
 
@@ -326,6 +329,8 @@ def _decode(raw: bytes, path: Path) -> tuple[dict, str]:
         raise SaveError(f"not a valid save: {exc}", str(path), line, col) from None
     except RecursionError:
         raise SaveError("not a valid save: nested too deeply", str(path)) from None
+    except save_blocks.TooMuchWorkError as exc:
+        raise SaveError(str(exc), str(path)) from None
 
 
 def _table_lines(text: str, header: str) -> list[int]:
@@ -373,8 +378,29 @@ def _tree_parts(data: dict, path: Path, text: str) -> list[tuple[dict, Where]]:
 @functools.lru_cache(maxsize=16)
 def _parsed(source: str, label: str):
     """An embedded .lsys parsed once per file: the trees of a garden mostly share one (systems are
-    never changed after parsing, so sharing is safe; failures are not cached)."""
-    return parse_lsystem(source, label)
+    never changed after parsing, so sharing is safe; failures are not cached). Its module budget is
+    kept within MAX_SAVED_BUDGET here, so a tree grown from it never outgrows what loading accepts."""
+    system = parse_lsystem(source, label)
+    system.budget = min(system.budget or MAX_SAVED_BUDGET, MAX_SAVED_BUDGET)
+    return system
+
+
+def _rule_characters(source: str) -> int:
+    """The characters of an .lsys source its parser works on (comment lines, trailing // comments and
+    white space aside): what parsing it costs, up to about 50 us each (a long axiom)."""
+    code = _LSYS_COMMENTS.sub("", source)
+    return len(code) - sum(code.count(c) for c in " \t\r\n")
+
+
+def _check_sources(parts: list[tuple[dict, Where]], path: Path) -> None:
+    """Every tree's embedded .lsys is parsed up to three times while loading (the species, the empty tree,
+    its genome): their rules all together within MAX_RULE_CHARACTERS, counted before any is parsed."""
+    total = sum(_rule_characters(tree["lsystem_source"]) for tree, _ in parts
+                if isinstance(tree.get("lsystem_source"), str))
+    if total > MAX_RULE_CHARACTERS:
+        raise SaveError(f"too complex to load in time: its trees' embedded .lsys sources hold {total:,} characters "
+                        f"of rules in all (comments and spaces aside), at most {MAX_RULE_CHARACTERS:,} (the game's "
+                        "own tree has about 2,600)", str(path))
 
 
 def _system(data: dict, where: Where):
@@ -493,6 +519,7 @@ def _garden(data: dict, text: str, path: Path, rules: Rules | None, budget_slack
     if isinstance(saved_at, bool) or not isinstance(saved_at, int | float) or not math.isfinite(saved_at):
         saved_at = float("nan")
     current = value(data, "current", "int", 0, len(parts) - 1, where, default=0)
+    _check_sources(parts, path)
     worlds = [_load_tree(tree, part, rules or Rules(), budget_slack) for tree, part in parts]
     family, dropped = Family.from_rows(data.get("family", []))
     dropped += sum(w.dropped_lineage for w in worlds)

@@ -16,13 +16,37 @@ import secrets
 import tomllib
 
 _KEYS = (b"\nlstring = '''\n", b"\nroots = '''\n")  # at a line start, as the writer puts them
+MAX_WORK = 2_000_000  # reading work TOML may be given (at most 1.6 s on this machine): see :func:`reading_work`
+_COSTLY = (b",", b"[", b"{", b"=", b"\\")  # a value, a table, a key or an escape: about 8-34 us each
+COSTLY_WORK, LINE_WORK = 32, 2
+
+
+class TooMuchWorkError(ValueError):
+    """The text TOML would have to read is too much work (checked before it starts)."""
+
+    def __init__(self, work: int) -> None:
+        super().__init__(f"too complex to load in time: reading it outside its L-strings is {work:,} units of work, "
+                         f"at most {MAX_WORK:,} (every byte 1, every line {LINE_WORK}, every value, key, table or "
+                         f"escape {COSTLY_WORK}: a long journal, family or list)")
+        self.work = work
+
+
+def reading_work(text: bytes) -> int:
+    """A bound of the time the standard library's TOML reader takes on ``text``, in units of 0.2-0.8 us
+    (measured on shapes from lists of numbers to table headers): it is pure Python and spends 8-34 us on
+    every value, key, table header or escape (a 33 MB journal took 65 s), about 0.5 us on a line and
+    less on other bytes. Counted with
+    bytes.count, before any parsing, so a hostile save cannot make the start hang in TOML."""
+    return len(text) + LINE_WORK * text.count(b"\n") + COSTLY_WORK * sum(text.count(c) for c in _COSTLY)
 
 
 def loads(raw: bytes) -> tuple[dict, str]:
     """``tomllib.loads`` of the UTF-8 file ``raw``, faster for saves with big L-strings; also the text
     that line numbers refer to (the L-strings' lines kept as empty lines). Raises UnicodeDecodeError
-    and TOMLDecodeError as decoding and reading the whole file would."""
+    and TOMLDecodeError as decoding and reading the whole file would, and :class:`TooMuchWorkError`
+    (before reading) when the text TOML would read is more than MAX_WORK."""
     lifted, blocks = _lift(raw)
+    _check_work(lifted)
     if blocks:
         try:
             text = lifted.decode("utf-8")
@@ -33,8 +57,15 @@ def loads(raw: bytes) -> tuple[dict, str]:
         else:
             if _put_back(data, texts) == len(blocks):
                 return data, text
+    _check_work(raw)
     text = raw.decode("utf-8")
     return tomllib.loads(text), text
+
+
+def _check_work(text: bytes) -> None:
+    work = reading_work(text)
+    if work > MAX_WORK:
+        raise TooMuchWorkError(work)
 
 
 def _lift(raw: bytes) -> tuple[bytes, dict[str, bytes]]:

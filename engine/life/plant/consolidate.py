@@ -54,9 +54,11 @@ def _joins(ls: LString, node: np.ndarray, old: np.ndarray) -> tuple[np.ndarray, 
     order = params[off[node] + 2]
     ok = old & np.concatenate([[False], old[:-1]]) & ((gap == 2) | (gap == 3))
     ok &= np.concatenate([[False], order[1:] == order[:-1]])
-    yaw, pitch, roll = prev + 1, prev + 2, np.minimum(prev + 3, len(ls) - 1)
+    last = len(ls) - 1  # (a saved string may end in internodes: no turn after the last one)
+    yaw, pitch, roll = prev + 1, np.minimum(prev + 2, last), np.minimum(prev + 3, last)
     ok &= (sym[yaw] == YAW) & (sym[pitch] == PITCH) & (npar[yaw] == 1) & (npar[pitch] == 1)
-    ok &= (np.abs(params[off[yaw]]) <= STRAIGHT_DEG) & (np.abs(params[off[pitch]]) <= STRAIGHT_DEG)
+    ok &= (np.abs(params_where(params, ok, off[yaw])) <= STRAIGHT_DEG)
+    ok &= (np.abs(params_where(params, ok, off[pitch])) <= STRAIGHT_DEG)
     rolled = gap == 3
     ok &= ~rolled | ((sym[roll] == ROLL) & (npar[roll] == 1))
     ok[0] = False
