@@ -48,6 +48,30 @@ def _report(name: str, ms: np.ndarray) -> None:
     print(f"{name:<40} frames {len(ms):>4}  p50 {p50:7.1f}  p95 {p95:7.1f}  p99 {p99:7.1f}  max {ms.max():7.1f} ms")
 
 
+LOOKS = {"new look": (True, 1.0), "old look": (False, 0.0)}  # (edge smoothing, shadow filter texels)
+
+
+def _looks(game, ctx, fbo, n: int, each, name: str) -> None:
+    """Frame times of the look as it is against the old look (no edge smoothing, one shadow tap) in the
+    same run: blocks of frames taken in turn, so a machine's changing load falls on both alike."""
+    renderer = game.renderer
+    kept = renderer.fxaa, renderer.soft_shadows
+    times: dict[str, list] = {look: [] for look in LOOKS}
+    block = max(n // 6, 10)
+    for _ in range(max(n // block // len(LOOKS), 1)):
+        for look, (fxaa, soft) in LOOKS.items():
+            renderer.fxaa, renderer.soft_shadows = fxaa and kept[0], soft
+            times[look].append(_frames(game, ctx, fbo, block, each))
+    renderer.fxaa, renderer.soft_shadows = kept
+    p50 = {}
+    for look, parts in times.items():
+        ms = np.concatenate(parts)
+        _report(f"{name}, {look}", ms)
+        p50[look] = float(np.median(ms))
+    print(f"  (new look / old look, p50: {p50['new look'] / p50['old look']:.2f}; edge smoothing "
+          f"{'on' if kept[0] else 'off'} here)")
+
+
 def grown_tree(days: float):
     """A world grown ``days`` simulated days by a careful player (the living model)."""
     from arbor.engine.life.rules.rules import load_rules
@@ -144,9 +168,9 @@ def main() -> None:
         def tick(_):
             clock[0] += 1 / FPS
 
-        _report("sapling, 1x", _frames(game, ctx, fbo, n, tick))
+        _looks(game, ctx, fbo, n, tick, "sapling, 1x")
         game.garden.worlds[0] = grown_tree(6 if quick else 25)
-        _report(f"tree after {'6' if quick else '25'} days, 1x", _frames(game, ctx, fbo, n, tick))
+        _looks(game, ctx, fbo, n, tick, f"tree after {'6' if quick else '25'} days, 1x")
         game.set_speed(100.0)
         _report("same tree, 100x", _frames(game, ctx, fbo, n, tick))
         game.set_speed(1.0)

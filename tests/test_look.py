@@ -125,6 +125,75 @@ def test_two_species_differ_in_bark_and_leaf_colour(scene):
     assert abs(len(poplar_leaf) - len(tree_leaf)) > 0.1 * len(tree_leaf)  # other leaves on the card
 
 
+def twig_view(radius: float, tip=(1.6, 14.0, 2.0)) -> StaticView:
+    """One thin straight twig from the ground to ``tip``."""
+    data = np.zeros((1, TUBE_FLOATS), np.float32)
+    axis = np.asarray(tip) / np.linalg.norm(tip)
+    side = np.cross(axis, [0.0, 0.0, 1.0])
+    side /= np.linalg.norm(side)
+    data[0, 0:3], data[0, 3:6], data[0, 6:9] = (0.0, 0.0, 0.0), axis, side
+    data[0, 9:12], data[0, 12:15], data[0, 15:18] = tip, axis, side
+    data[0, 18:20], data[0, 20:22] = radius, (0.0, 1.0)
+    return StaticView(TubeInstances(data, np.zeros(1, np.int64)), LeafInstances.empty(), LeafInstances.empty(),
+                      np.minimum(tip, 0.0) - 0.1, np.maximum(tip, 0.0) + 0.1)
+
+
+@pytest.mark.parametrize("distance", [12.0, 30.0, 70.0, 140.0])
+def test_a_twig_thinner_than_a_pixel_is_an_unbroken_line_at_every_level_of_detail(scene, distance):
+    renderer, draw = scene
+    renderer.fxaa = False  # (the geometry alone: the edge smoothing would hide gaps)
+    camera = OrbitCamera(yaw=0.0, pitch=0.0, distance=distance, target=np.array([0.8, 7.0, 1.0]))
+    pixel = 2 * distance * np.tan(np.radians(camera.fov_y) / 2) / SIZE[1]  # (scene units at the twig)
+    sun = np.array([0.3, 0.8, 0.5])
+    twig = twig_view(0.45 * pixel)  # (drawn: the levels leave out only twigs under 0.35 px)
+    background = draw(StaticView(TubeInstances.empty(), LeafInstances.empty(), LeafInstances.empty(), twig.lo,
+                                 twig.hi), camera, sun)
+    image = draw(twig, camera, sun)
+    renderer.fxaa = renderer.samples <= 1
+    rows = np.nonzero(np.abs(image - background).sum(axis=2) > 12)[0]
+    lod = renderer.last_details[0].lod
+    span = np.arange(rows.min() + 1, rows.max())
+    assert len(span) > 8, lod
+    assert np.isin(span, rows).all(), f"rows without a twig pixel at level {lod}"
+
+
+def test_a_software_gl_smooths_the_edges_of_the_trees_and_leaves_the_sky_alone(scene):
+    renderer, draw = scene
+    if renderer.samples > 1:
+        pytest.skip("multisampled: no edge smoothing pass")
+    camera = OrbitCamera(yaw=0.0, pitch=0.0, distance=30.0, target=np.array([0.8, 7.0, 1.0]))
+    pixel = 2 * 30.0 * np.tan(np.radians(camera.fov_y) / 2) / SIZE[1]
+    twig, sun = twig_view(1.5 * pixel), np.array([0.3, 0.8, 0.5])
+    renderer.fxaa = False
+    jagged = draw(twig, camera, sun)
+    renderer.fxaa = True
+    smooth = draw(twig, camera, sun)
+    sky = draw(StaticView(TubeInstances.empty(), LeafInstances.empty(), LeafInstances.empty(), twig.lo, twig.hi),
+               camera, sun)
+    on_twig = np.abs(jagged - sky).sum(axis=2) > 12
+    changed = np.abs(smooth - jagged).sum(axis=2) > 6
+    assert not changed[~on_twig].any()  # the sky and ground are not touched
+    assert changed[on_twig].mean() > 0.2  # the twig's stair steps are ...
+    step = on_twig & changed
+    toward = np.abs(smooth[step] - sky[step]).sum(axis=1) < np.abs(jagged[step] - sky[step]).sum(axis=1)
+    assert toward.mean() > 0.75  # ... blended toward what lies beside them
+
+
+def test_shadow_edges_on_the_ground_are_soft(scene):
+    renderer, draw = scene
+    camera = OrbitCamera(yaw=0.0, pitch=60.0, distance=40.0, target=np.array([10.0, 0.0, 0.0]))
+    sun = np.array([-1.0, 1.2, 0.3])
+    widths = {}
+    for soft in (0.0, 1.0):
+        renderer.soft_shadows = soft
+        luma = draw(trunk_view(), camera, sun)[50:130, 90:230].mean(axis=2)  # (the ground round the shadow)
+        lit, dark = np.percentile(luma, 95), np.percentile(luma, 2)
+        assert lit - dark > 20  # (a shadow is there)
+        widths[soft] = ((luma > dark + 0.15 * (lit - dark)) & (luma < lit - 0.15 * (lit - dark))).sum()
+    renderer.soft_shadows = 1.0
+    assert widths[1.0] > 1.5 * widths[0.0]  # more pixels between shade and sun: a soft edge
+
+
 def test_a_branch_swells_where_it_leaves_its_parent_and_the_trunk_flares_at_its_foot():
     from arbor.engine.geometry.instances import tube_instances
     from arbor.engine.geometry.mesh import wood_rings

@@ -1,5 +1,5 @@
 #version 330
-// Lit bark (kind 0), leaf cards (1), blossoms (2) and fruit (3): sun with a soft shadow map, a sky/ground
+// Lit bark (kind 0), leaf cards (1), blossoms (2) and fruit (3): sun with a filtered shadow map, a sky/ground
 // hemisphere ambient, and an ambient-occlusion term that darkens the inside of the crown. Bark has relief
 // from a tangent-space normal map (x around the branch, y along it) and darkens with age (its radius);
 // leaves vary in shade card by card and let the sun through when it is behind them (u_translucency; 0 =
@@ -24,6 +24,7 @@ uniform float u_shadowed = 1.0;  // 0: skip the shadow lookup (far leaves; the c
 uniform float u_autumn = 0.0;
 uniform float u_relief = 1.0;  // strength of the bark's normal map (0: smooth tubes)
 uniform float u_translucency = 1.0;
+uniform float u_soft = 1.0;  // shadow edges filtered over this many texels (0: one tap)
 in vec3 v_pos;
 in vec3 v_normal;
 in vec3 v_tangent;
@@ -35,9 +36,14 @@ out vec4 f_color;
 float sun_visibility() {
     vec3 p = v_light.xyz / v_light.w * 0.5 + 0.5;
     if (p.x < 0.0 || p.x > 1.0 || p.y < 0.0 || p.y > 1.0) return 1.0;
-    // one comparison tap, bilinear-filtered by the sampler: soft enough at 1024 texels, and cheap on a
-    // software GL (every tap is shaded on the CPU)
-    return texture(u_shadow, vec3(p.xy, p.z - 0.003));
+    float z = p.z - 0.003;
+    // bilinear-filtered comparison taps: one for leaves (cheap on a software GL, where every tap is shaded
+    // on the CPU, and the crown's own clutter hides it), four on a rotated grid u_soft texels apart for the
+    // wood (soft shadow edges along the branches; u_soft 0: one tap everywhere)
+    if (u_soft <= 0.0 || u_kind != 0) return texture(u_shadow, vec3(p.xy, z));
+    vec2 d = vec2(u_shadow_texel * u_soft);
+    return 0.25 * (texture(u_shadow, vec3(p.xy + d * vec2(-1.5, -0.5), z)) + texture(u_shadow, vec3(p.xy + d * vec2(0.5, -1.5), z))
+                   + texture(u_shadow, vec3(p.xy + d * vec2(1.5, 0.5), z)) + texture(u_shadow, vec3(p.xy + d * vec2(-0.5, 1.5), z)));
 }
 
 vec3 autumn_leaf(vec3 green) {

@@ -8,6 +8,7 @@ uniform vec3 u_offset;
 uniform vec3 u_eye;
 uniform float u_pixel;  // size of a pixel at unit distance (0 in the shadow pass)
 uniform float u_thinnest = 0.0;  // segments thinner than this are left out (as the level's grown ones are)
+uniform float u_min_radius = 0.55;  // pixels: the thinnest twig's radius (its polygon at least a pixel wide)
 in vec4 in_ring;
 in float in_cap;
 in vec3 i_c0;
@@ -39,9 +40,10 @@ void main() {
     vec3 y = cross(t, x);
     vec3 n = in_ring.x * x + in_ring.y * y;
     vec3 c = mix(i_c0, i_c1, s);
-    // a twig thinner than a pixel is drawn a pixel wide: no dotted lines where it would fall between
-    // pixel centres (multisampling is too slow on a software GL)
-    float r = max(mix(i_r.x, i_r.y, s), 0.55 * u_pixel * distance(c + u_offset, u_eye));
+    // a twig thinner than a pixel is drawn a pixel wide however it turns (a ring of few sides is narrower
+    // across its flats than its radius says): no dotted lines where it would fall between pixel centres
+    // (multisampling is too slow on a software GL)
+    float r = max(mix(i_r.x, i_r.y, s), u_min_radius * u_pixel * distance(c + u_offset, u_eye));
     vec3 p = c + r * n;
     float v = mix(i_v.x, i_v.y, s);
     if (in_cap > 0.5) {

@@ -133,6 +133,7 @@ class Backdrop:
     def __init__(self, ctx: moderngl.Context) -> None:
         self.ctx = ctx
         self.cutaway = False
+        self.soft = (0.0, 1.0 / 1024)  # shadow edges filtered over this many texels, and a texel (the renderer's)
         self.dome_prog = program(ctx, "dome.vert", "dome.frag")
         self.sun_prog = program(ctx, "sun.vert", "sun.frag")
         self.ground_prog = program(ctx, "ground_plain.vert", "ground_plain.frag")
@@ -221,7 +222,8 @@ class Backdrop:
         vertices = np.column_stack([tris[:, 0], np.zeros(len(tris)), tris[:, 1]]).astype("f4")
         self.shade_buffer.orphan(vertices.nbytes)
         self.shade_buffer.write(vertices.tobytes())
-        set_uniforms(self.shade_prog, {"u_mvp": mvp, "u_light_mvp": light, "u_shadow": 1, "u_sun_dir": tuple(sun)})
+        set_uniforms(self.shade_prog, {"u_mvp": mvp, "u_light_mvp": light, "u_shadow": 1, "u_sun_dir": tuple(sun),
+                                       "u_soft": self.soft[0], "u_shadow_texel": self.soft[1]})
         ctx = self.ctx
         ctx.enable(moderngl.BLEND)
         ctx.blend_func = moderngl.DST_COLOR, moderngl.ZERO

@@ -19,6 +19,7 @@ import numpy as np
 
 from arbor.game.render.backdrop import CLOUD_DRIFT, CLOUD_STEP, Backdrop, sky_colors
 from arbor.game.render.camera import OrbitCamera, look_at, orthographic
+from arbor.game.render.fxaa import Fxaa
 from arbor.game.render.grass import Grass
 from arbor.game.render.instanced import (
     LEAF_KEPT,
@@ -31,7 +32,7 @@ from arbor.game.render.instanced import (
     TreeBuffers,
     cover_grow,
 )
-from arbor.game.render.layer import MIN_SCALE, Pictures, Step
+from arbor.game.render.layer import MIN_SCALE, Pictures, Step, screen_rect
 from arbor.game.render.renderer import _gl, _load_texture
 from arbor.game.render.shadows import SHADOW_SIZE, ShadowMaps
 from arbor.game.render.species import CLUSTERS, GAME_TREE, SpeciesLook
@@ -95,6 +96,9 @@ class GardenRenderer:
         self.leaf_tint, self.bark_tint, self.blossom_tint = (1.0, 1.0, 1.0), BARK, BLOSSOM
         self.autumn, self.leaf_keep = 0.0, 1.0  # autumn colour (0..1) and share of leaves still on
         self.relief, self.translucency = 1.0, 1.0  # bark normal map and light through leaves (0: left out)
+        self.fxaa = self.samples <= 1  # smoothed edges where there is no multisampling (see fxaa.py)
+        self.soft_shadows = 1.0  # shadow edges filtered over this many texels (0: one bilinear tap)
+        self.post = Fxaa(ctx)
         self.wind = np.zeros(3)  # direction x strength (scene units at the outermost twigs)
         self.time = 0.0
         self.last_details: list[Detail] = []
@@ -172,11 +176,13 @@ class GardenRenderer:
         self.last_scale = scale = self._scale(details, camera, size[1])
         self._grow_grass()
         self.backdrop.drift = int(self.time * CLOUD_DRIFT / CLOUD_STEP)
+        self.backdrop.soft = (self.soft_shadows, 1.0 / SHADOW_SIZE)
         self.shadows.age += 1
-        target = self.stage.target(fbo, size)
+        smooth = self.fxaa and self.samples <= 1 and scale >= 1.0  # (a layer's picture is soft already)
+        target = self.post.target(size) if smooth else self.stage.target(fbo, size)
         pixel = 2.0 * math.tan(math.radians(camera.fov_y) / 2) / size[1]
         uniforms = self._lit_uniforms(_gl(vp), _gl(light), sun, sky_colors(sun)[2])
-        uniforms.update(u_eye=tuple(camera.eye), u_pixel=pixel / scale)
+        uniforms.update(u_eye=tuple(camera.eye), u_pixel=pixel / scale, u_soft=self.soft_shadows)
         if self.samples <= 1:  # a software GL: the grass stands still in the backdrop's picture (see grass.py)
             self.stage.cover = lambda: self.grass.draw(uniforms, shadowed=False)
             self.stage.cover_version = self.grass.version
@@ -191,7 +197,9 @@ class GardenRenderer:
         else:
             self._render_layered(target, size, _Scene(camera, vp, sun, light, boxes, self._scene_bounds()[1]),
                                  details, uniforms, scale)
-        if target is not fbo:
+        if smooth:
+            self.post.resolve(fbo, size, screen_rect(camera, size, boxes, margin=0.15))
+        elif target is not fbo:
             self.ctx.copy_framebuffer(fbo, target)
 
     def _render_layered(self, target: moderngl.Framebuffer, size: tuple[int, int], scene: _Scene,

@@ -25,6 +25,9 @@ from arbor.game.render.backdrop import program, set_uniforms
 
 SIDES = (8, 6, 4, 3)  # ring sides per level of detail
 TEMPLATE_VERTICES = tuple(3 * (s + 1) + 1 for s in SIDES)  # two rings, the cap ring and the tip
+# per level: the least radius (pixels) at which a ring of its sides is a pixel wide across its flats too
+# (a square's flats are 1.41 radii apart, a triangle's height 1.5 radii), so no twig falls between pixels
+TWIG_RADIUS = tuple(1.02 / (2 * math.cos(math.pi / s) if s % 2 == 0 else 1 + math.cos(math.pi / s)) for s in SIDES)
 LEAF_KEPT = (1.0, 0.75, 0.5, 0.3)  # share of leaves drawn per level (the rest grow to cover the same area)
 TUBE_LAYOUT = ("3f 3f 3f 3f 3f 3f 2f 2f 2f 1f 4x/i",  # the last float (branch order) is not read
                ("i_c0", "i_t0", "i_x0", "i_c1", "i_t1", "i_x1", "i_r", "i_v", "i_flex", "i_tip"))
@@ -271,6 +274,7 @@ class InstancedTrees:
             textures["bark" if kind in (0, 4) else "leaf_cluster" if kind == 1 else "blossom"].use(location=0)
             per_part = {"u_tex": 0, "u_fraction": share if kind == 1 else 1.0, "u_min_pixels": MIN_PIXELS[kind],
                         "u_grow": detail.leaf_grow if kind == 1 else 1.0, "u_thinnest": detail.thinnest,
+                        "u_min_radius": TWIG_RADIUS[lod],
                         "u_keep": uniforms.get("u_keep", 1.0) if kind == 1 else 1.0, "u_ball": int(kind >= 3),
                         # far away, leaves skip the shadow lookup (their shade is the AO)
                         "u_shadowed": float(pass_ != "lit" or kind == 0 or lod < 2)}
