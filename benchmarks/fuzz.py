@@ -12,12 +12,14 @@ suite runs the same mutators on fewer cases (tests/test_fuzz.py).
 from __future__ import annotations
 
 import functools
+import hashlib
 import random
 import re
 import resource
 import signal
 import sys
 import time
+import tomllib
 import traceback
 from pathlib import Path
 from tempfile import TemporaryDirectory
@@ -46,9 +48,45 @@ NASTY_TEXT = ["[", "]", "(", ")", ",", "\\", '"', "'''", "\x00", "é", "\ufeff",
               "->", ":", "#define", "F(", "1e999", "nan", "A(1,2,3,4,5,6,7,8,9)", "[[[[", "]]]]"]
 
 
+SOURCE_BLOCK = re.compile(r'lsystem_source = """\n(.*?)"""', re.S)
+
+
+def hostile_edit(text: str, rng: random.Random) -> str:
+    """One edit aimed at the load-time budgets (what made loads slow): a flooded journal or family, an
+    embedded .lsys with a long axiom or a huge module budget (its hash made to match, as a hostile
+    file can), a tree much larger than its budget."""
+    kind = rng.randrange(5)
+    if kind == 0:  # a journal of many rows (a 33 MB one took 65 s in TOML)
+        rows = '[1.0, "height", 2.0], ' * rng.choice([500, 20_000, 300_000])
+        return text.replace("entries = [", "entries = [" + rows, 1)
+    if kind == 1:  # a family of many members (lineage entries)
+        row = '{id = "a", parents = [], generation = 0, seed = 1, planted = 0.0, species = "x"},'
+        return text.replace("\n[[trees]]", "\nfamily = [" + row * rng.choice([100, 5_000, 50_000]) + "]\n[[trees]]", 1)
+    if kind == 4:  # far more modules than any budget
+        n = rng.choice([30_000, 200_000])
+        text = LSTRING_BLOCK.sub(lambda _: "lstring = '''\n" + "F(1)[L(1,1,0)]" * (n // 3) + "'''", text, count=1)
+        return re.sub(r"(?m)^modules = \d+$", f"modules = {n}", text, count=1)
+    try:
+        source = tomllib.loads(text)["trees"][0]["lsystem_source"]
+    except (tomllib.TOMLDecodeError, KeyError, IndexError, TypeError):
+        return text
+    if kind == 2:  # a long axiom (its parse evaluates every module)
+        source = re.sub(r"(?m)^w: .*$", lambda m: m.group(0) + " F(1,2)[+(3)A(4)]" * rng.choice([100, 700, 3000]),
+                        source, count=1)
+    else:  # a huge module budget, so the tree's size limit would be huge too
+        source = re.sub(r"(?m)^budget: \d+", "budget: 20000000", source)
+    from arbor.engine.life.keep.save import _toml_text
+
+    digest = hashlib.sha256(source.encode("utf-8")).hexdigest()
+    text = SOURCE_BLOCK.sub(lambda _: "lsystem_source = " + _toml_text(source), text)
+    return re.sub(r'lsystem_sha256 = "[0-9a-f]+"', f'lsystem_sha256 = "{digest}"', text)
+
+
 def mutate_text(text: str, rng: random.Random) -> str:
     """One to three random edits: swap a number for a nasty one, insert nasty text, drop or duplicate a
-    line, flip a byte, truncate."""
+    line, flip a byte, truncate; or (one case in twenty) an edit aimed at the load-time budgets."""
+    if "[[trees]]" in text and rng.random() < 0.05:
+        return hostile_edit(text, rng)
     for _ in range(rng.randint(1, 3)):
         op = rng.randrange(8)
         if op in (0, 6):  # a nasty number, or one at the edge of a range
@@ -177,7 +215,8 @@ class HangError(Exception):
     """A case that ran past HANG_SECONDS (the alarm stopped it)."""
 
 
-HANG_SECONDS = 60.0  # a case is stopped here and counted as a hang (slow: over 5 s)
+HANG_SECONDS = 60.0  # a case is stopped here and counted as a hang
+SLOW_SECONDS = 5.0  # a case slower than this is counted (and kept with --keep): the issue's bound on a start
 
 
 def _alarm(signum, frame):
@@ -190,7 +229,7 @@ def campaign(n_saves: int, n_lsys: int, n_osc: int, seed: int = 0, keep: Path | 
     from arbor.game.input.tuio import TuioParser
 
     rng = random.Random(seed)
-    failures, slow, outcomes = [], 0, {"loaded": 0, "refused": 0, "round trip": 0, "hang": 0}
+    failures, slow, slowest, outcomes = [], 0, [], {"loaded": 0, "refused": 0, "round trip": 0, "hang": 0}
     base_save, sources, parser = sample_garden_text(), sample_sources(), TuioParser((1280, 720))
     signal.signal(signal.SIGALRM, _alarm)
     with TemporaryDirectory() as tmp:
@@ -218,13 +257,20 @@ def campaign(n_saves: int, n_lsys: int, n_osc: int, seed: int = 0, keep: Path | 
                     failures.append((kind, traceback.format_exc(limit=4), case))
                     if keep is not None:
                         _keep(keep, kind, len(failures), case)
-                slow += time.perf_counter() - t0 > 5.0
+                took = time.perf_counter() - t0
+                if took > SLOW_SECONDS:
+                    slow += 1
+                    slowest.append((took, kind, case))
+                    if keep is not None:
+                        _keep(keep, f"slow-{kind}", slow, case)
     peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
     print(f"cases: {n_saves:,} saves, {n_lsys:,} .lsys, {n_osc:,} OSC packets in {time.perf_counter() - start:.0f} s")
     print(f"saves: {outcomes['loaded']:,} loaded and round-tripped, {outcomes['refused']:,} refused with one line, "
           f"{outcomes['round trip']} failed their own round trip")
-    print(f"uncaught: {len(failures)} (hangs over {HANG_SECONDS:g} s: {outcomes['hang']}); slower than 5 s: {slow}; "
-          f"peak RSS {peak:.0f} MiB")
+    print(f"uncaught: {len(failures)} (hangs over {HANG_SECONDS:g} s: {outcomes['hang']}); slower than "
+          f"{SLOW_SECONDS:g} s: {slow}; peak RSS {peak:.0f} MiB (every load below it)")
+    for took, kind, case in sorted(slowest, key=lambda s: -s[0])[:5]:
+        print(f"slow {kind} case: {took:.1f} s ({len(case):,} characters)")
     for kind, text, case in failures[:5]:
         print(f"--- {kind}: {case[:300]!r}\n{text}")
     return len(failures)
