@@ -215,10 +215,8 @@ def _kiosk_log(path: Path) -> None:
 def make_input_hub(args: argparse.Namespace | None, size: tuple[int, int], now: float):
     """The input layer for the window: HID trackers always, TUIO, recording and replay on request."""
     from arbor.game.input.events import InputHub, Player, Recorder, load_recording
-    from arbor.game.input.hid import HidManager, load_profiles
-    from arbor.game.paths import ASSETS
 
-    sources: list = [HidManager(profiles=load_profiles(ASSETS / "input" / "devices.toml"))]
+    sources: list = [_trackers()]
     if getattr(args, "tuio", False):
         from arbor.game.input.tuio import TuioListener
 
@@ -230,6 +228,26 @@ def make_input_hub(args: argparse.Namespace | None, size: tuple[int, int], now: 
             raise UserError(f"cannot replay {args.replay}: {getattr(exc, 'strerror', None) or exc}") from None
     recorder = Recorder(args.record) if getattr(args, "record", None) else None
     return InputHub(size, sources, recorder)
+
+
+def _trackers():
+    """The HID trackers: SpaceMice, and the absolute trackers devices.toml describes. A bad devices.toml
+    is said in one line (stderr and the log) and its trackers are left out: the mouse, touch and
+    SpaceMice still work, so the game and the kiosk still start."""
+    import logging
+    import sys
+
+    from arbor.game.input.hid import DevicesError, HidManager, load_profiles
+    from arbor.game.paths import ASSETS
+
+    try:
+        profiles = load_profiles(ASSETS / "input" / "devices.toml")
+    except DevicesError as err:
+        line = f"arbor: {err} (the trackers it describes are not used)"
+        print(line, file=sys.stderr)
+        logging.getLogger("arbor.input").error(line)
+        profiles = []
+    return HidManager(profiles=profiles)
 
 
 def run_lab_window(experiment: Path) -> int:

@@ -8,6 +8,9 @@ JSON-lines file and replayed with their timestamps (tests, kiosk attract mode, b
 from __future__ import annotations
 
 import json
+import math
+import os
+import stat
 from collections.abc import Iterable
 from dataclasses import asdict, dataclass, fields
 from pathlib import Path
@@ -18,6 +21,11 @@ DOWN, MOVE, UP = "down", "move", "up"
 KEY_DOWN, KEY_UP, WHEEL, ROTATE, QUIT, FOCUS_LOST, DEVICE = (
     "key_down", "key_up", "wheel", "rotate", "quit", "focus_lost", "device")
 MOUSE_ID = -1
+KINDS = (DOWN, MOVE, UP, KEY_DOWN, KEY_UP, WHEEL, ROTATE, QUIT, FOCUS_LOST, DEVICE)
+EVENT_LIMIT = 1e9  # any number in a recorded event (times, pixels, ids, keys) within +- this ...
+FIELD_LIMITS = {"x": 1e6, "y": 1e6, "z": 1e6, "pressure": 10.0, "amount": 100.0, "rx": 100.0, "ry": 100.0,
+                "rz": 100.0}  # ... and these within +- their own (a wheel turns, rates: what devices send)
+MAX_RECORDING = 64 * 1024 * 1024  # bytes of a recording file
 
 
 @dataclass(frozen=True)
@@ -55,11 +63,33 @@ class InputEvent:
 
     @classmethod
     def from_json(cls, line: str) -> InputEvent:
-        """Inverse of :meth:`to_json`; raises ValueError for anything that is not an event."""
-        data = json.loads(line)
-        names = {f.name: f.type for f in fields(cls)}
-        if not isinstance(data, dict) or not set(data) <= set(names) or "kind" not in data or "t" not in data:
-            raise ValueError("not an input event")
+        """Inverse of :meth:`to_json`; raises ValueError (one line) for anything that is not an event: not
+        a JSON object, an unknown kind or field, a value of the wrong type, a number that is not finite
+        or beyond EVENT_LIMIT (a recording is edited and shared, and replayed into the game)."""
+        try:
+            data = json.loads(line)
+        except RecursionError:
+            raise ValueError("not an input event (nested too deeply)") from None
+        if not isinstance(data, dict) or "kind" not in data or "t" not in data:
+            raise ValueError("not an input event (an object with at least 'kind' and 't')")
+        defaults = {f.name: f.default for f in fields(cls)}
+        for key, value in data.items():
+            if key not in defaults:
+                raise ValueError(f"unknown field {key[:40]!r}")
+            want = type(defaults[key]) if key not in ("kind", "t") else (str if key == "kind" else float)
+            if want is float and isinstance(value, int) and not isinstance(value, bool):
+                data[key] = value = float(value)
+            if isinstance(value, bool) or not isinstance(value, want):
+                raise ValueError(f"'{key}' must be {'text' if want is str else 'a number'}")
+            limit = FIELD_LIMITS.get(key, EVENT_LIMIT)
+            if want is not str and not (math.isfinite(value) and abs(value) <= limit):
+                raise ValueError(f"'{key}' must be a finite number from {-limit:g} to {limit:g}")
+            if want is str and len(value) > 1000:
+                raise ValueError(f"'{key}' is too long (at most 1,000 characters)")
+        if data.get("dims", 2) not in (2, 3):
+            raise ValueError("'dims' must be 2 or 3")
+        if data["kind"] not in KINDS:
+            raise ValueError(f"unknown kind {data['kind'][:40]!r} (one of {', '.join(KINDS)})")
         return cls(**data)
 
 
@@ -117,18 +147,26 @@ class Recorder:
 
 
 def load_recording(path: str | Path) -> list[InputEvent]:
-    """Read a recording; bad lines raise ValueError naming the file and line."""
+    """Read a recording; a bad line raises ValueError naming the file and line, in one line (so does a
+    file that is not UTF-8 text, not a regular file or larger than MAX_RECORDING)."""
+    with open(os.open(path, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0)), "rb") as fh:  # a FIFO: no wait
+        if not stat.S_ISREG(os.fstat(fh.fileno()).st_mode):
+            raise ValueError(f"{path}: not a regular file")
+        raw = fh.read(MAX_RECORDING + 1)
+    if len(raw) > MAX_RECORDING:
+        raise ValueError(f"{path}: too large (more than {MAX_RECORDING:,} bytes)")
+    try:
+        content = raw.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        raise ValueError(f"{path}: not UTF-8 text (byte {exc.start})") from None
     events = []
-    with open(path, encoding="utf-8") as fh:
-        for number, line in enumerate(fh, start=1):
-            if number == 1 and "arbor_input_recording" in line:
-                continue
-            if not line.strip():
-                continue
-            try:
-                events.append(InputEvent.from_json(line))
-            except (ValueError, TypeError) as exc:
-                raise ValueError(f"{path}:{number}: {exc}") from None
+    for number, line in enumerate(content.splitlines(), start=1):
+        if (number == 1 and "arbor_input_recording" in line) or not line.strip():
+            continue
+        try:
+            events.append(InputEvent.from_json(line))
+        except (ValueError, TypeError) as exc:
+            raise ValueError(f"{path}:{number}: {exc}") from None
     return events
 
 

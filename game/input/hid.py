@@ -13,12 +13,16 @@ messages (DEVICE events), never exceptions.
 from __future__ import annotations
 
 import contextlib
+import difflib
+import math
+import re
 import struct
-import tomllib
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from arbor.engine.base.config import read_toml, toml_position
+from arbor.engine.base.errors import SettingsError
 from arbor.game.input.events import DEVICE, DOWN, MOVE, ROTATE, UP, InputEvent
 
 THREEDCONNEXION = 0x256F
@@ -94,29 +98,96 @@ class Profile:
     buttons: Field | None = None
 
 
+class DevicesError(SettingsError, ValueError):
+    """A problem in devices.toml: ``str()`` is one line, ``file:line:col: device #N: what is wrong``."""
+
+
+DEVICE_KEYS = ("name", "vendor_id", "product_id", "report_id", "x", "y", "z", "buttons")
+FIELD_KEYS = ("offset", "type", "scale")
+REPORT_BYTES = 64  # a HID input report at most (full-speed USB)
+
+
 def load_profiles(path: str | Path) -> list[Profile]:
-    """Read device profiles; a bad entry raises ValueError naming the file and the entry."""
-    data = tomllib.loads(Path(path).read_text(encoding="utf-8"))
-    profiles = []
-    for i, entry in enumerate(data.get("device", [])):
-        try:
-            profiles.append(Profile(
-                str(entry["name"]), int(entry["vendor_id"]), int(entry["product_id"]), int(entry["report_id"]),
-                *(_field(entry[a]) for a in "xyz"),
-                _field(entry["buttons"]) if "buttons" in entry else None,
-            ))
-        except (KeyError, TypeError, ValueError) as exc:
-            raise ValueError(f"{path}: device #{i + 1}: {exc!r}") from None
-    return profiles
+    """Read device profiles strictly (the file is edited by hand): an unreadable file, bad TOML, an
+    unknown key, a missing or mistyped value, an id or offset out of range is a :class:`DevicesError`
+    naming the file, the line, the column and the entry."""
+    text, data = read_toml(path, DevicesError)
+    file = str(path)
+    unknown = sorted(set(data) - {"device"})
+    if unknown:
+        raise DevicesError(f"unknown key {unknown[0]!r} (devices are [[device]] tables)", file,
+                           *toml_position(text, "", unknown[0]))
+    devices = data.get("device", [])
+    if not isinstance(devices, list):
+        raise DevicesError("'device' must be [[device]] tables", file, *toml_position(text, "", "device"))
+    return [_profile(entry, i, _Entry(file, text, i)) for i, entry in enumerate(devices)]
 
 
-def _field(spec: dict) -> Field:
-    if spec["type"] not in TYPES:
-        raise ValueError(f"unknown type {spec['type']!r}")
-    offset = int(spec["offset"])
-    if not 0 <= offset < 64:
-        raise ValueError("offset out of range")
-    return Field(offset, TYPES[spec["type"]], float(spec.get("scale", 1.0)))
+@dataclass
+class _Entry:
+    """Where the ``index``-th [[device]] table is in the file (for one-line errors)."""
+
+    file: str
+    text: str
+    index: int
+
+    def error(self, message: str, key: str | None = None) -> DevicesError:
+        """The error about this entry (at ``key``'s line when it can be found)."""
+        headers = [m.start() for m in re.finditer(r"^\s*\[\[\s*device\s*\]\]", self.text, re.M)]
+        line, col = 1, 1
+        if self.index < len(headers):
+            start = headers[self.index]
+            end = headers[self.index + 1] if self.index + 1 < len(headers) else len(self.text)
+            found = re.search(rf"^\s*{re.escape(key)}\s*=", self.text[start:end], re.M) if key else None
+            at = start + (found.start() + len(found.group()) - len(found.group().lstrip()) if found else 0)
+            line = self.text.count("\n", 0, at) + 1
+            col = at - self.text.rfind("\n", 0, at)
+        return DevicesError(f"device #{self.index + 1}: {message}", self.file, line, col)
+
+
+def _profile(entry, i: int, where: _Entry) -> Profile:
+    if not isinstance(entry, dict):
+        raise where.error("must be a table of name, vendor_id, product_id, report_id, x, y, z (and buttons)")
+    for key in entry:
+        if key not in DEVICE_KEYS:
+            near = difflib.get_close_matches(key, DEVICE_KEYS, 1)
+            raise where.error(f"unknown key {key!r}" + (f" (did you mean {near[0]!r}?)" if near else ""), key)
+    for key in DEVICE_KEYS[:-1]:
+        if key not in entry:
+            raise where.error(f"missing {key!r}")
+    name = entry["name"]
+    if not isinstance(name, str) or not 0 < len(name.strip()) <= 200:
+        raise where.error("'name' must be text (1 to 200 characters)", "name")
+    ids = [_whole(entry, key, high, where) for key, high in (("vendor_id", 0xFFFF), ("product_id", 0xFFFF),
+                                                            ("report_id", 0xFF))]
+    axes = [_field(entry[key], key, where) for key in ("x", "y", "z")]
+    buttons = _field(entry["buttons"], "buttons", where) if "buttons" in entry else None
+    return Profile(name, *ids, *axes, buttons)
+
+
+def _whole(entry: dict, key: str, high: int, where: _Entry) -> int:
+    v = entry[key]
+    if isinstance(v, bool) or not isinstance(v, int) or not 0 <= v <= high:
+        raise where.error(f"{key!r} must be a whole number from 0 to {high:#x}", key)
+    return v
+
+
+def _field(spec, key: str, where: _Entry) -> Field:
+    """One value's place in the report: { offset = N, type = "int16", scale = 0.001 }."""
+    if not isinstance(spec, dict) or "offset" not in spec or "type" not in spec:
+        raise where.error(f"{key!r} must be a table like {{ offset = 1, type = \"int16\", scale = 0.001 }}", key)
+    bad = sorted(set(spec) - set(FIELD_KEYS))
+    if bad:
+        raise where.error(f"{key!r}: unknown key {bad[0]!r} (known: offset, type, scale)", key)
+    kind, offset, scale = spec["type"], spec["offset"], spec.get("scale", 1.0)
+    if not isinstance(kind, str) or kind not in TYPES:
+        raise where.error(f"{key!r}: unknown type {kind!r} (one of {', '.join(TYPES)})", key)
+    size = struct.calcsize(TYPES[kind])
+    if isinstance(offset, bool) or not isinstance(offset, int) or not 0 <= offset <= REPORT_BYTES - size:
+        raise where.error(f"{key!r}: offset must be a whole number from 0 to {REPORT_BYTES - size} for {kind}", key)
+    if isinstance(scale, bool) or not isinstance(scale, int | float) or not math.isfinite(scale) or abs(scale) > 1e6:
+        raise where.error(f"{key!r}: scale must be a finite number (at most 1e6 either way)", key)
+    return Field(offset, TYPES[kind], float(scale))
 
 
 class HidBackend:
