@@ -23,6 +23,7 @@ CONSTANT_DEFAULTS = {
     "IL": 1.0, "IO": 0.72, "LS": 1.2, "TIP": 0.012, "GMAX": 3.0, "GT": 200.0, "TAU": 4.0, "LFADE": 3.0,
     "SHED": 14.0, "SHQ": 0.25, "PHOTO": 7.0, "PHOTOB": 12.0, "UPW": 1.2, "UPB": 0.15, "RING": 0.012,
     "STRAIGHT": 1.0, "SUNW": 0.35, "LIGHTW": 1.2, "RIPEN": 12.0,
+    "BHL": 0.5,  # apical control of the Borchert-Honda vigour sharing (engine/life/plant/vigour.py)
 }
 DROOP = 0.6  # branch and leaf angles grow by this fraction at full wilt
 LEAF_ASPECT = 0.5  # leaf quads are half as wide as long (engine/geometry/mesh.py)

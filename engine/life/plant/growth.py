@@ -56,6 +56,7 @@ from arbor.engine.life.plant.carbon import Economy
 from arbor.engine.life.plant.collide import Obstacles, avoidance
 from arbor.engine.life.plant.consolidate import consolidated
 from arbor.engine.life.plant.light import memory_weight
+from arbor.engine.life.plant.vigour import borchert_honda
 from arbor.engine.lsystem import brackets
 from arbor.engine.lsystem.derive import Deriver, StepReport
 from arbor.engine.lsystem.lstring import LString, params_where
@@ -247,8 +248,12 @@ class GrowingTree:
 
     def _remember_light(self, ls: LString, params: np.ndarray, scene: LightScene, light: np.ndarray,
                         weight: float) -> None:
-        slot = np.where(ls.sym[scene.probe_idx] == APEX, 3, 2)
-        at = ls.offsets[scene.probe_idx] + slot
+        """Buds remember the light they catch; apices the vigour the Borchert-Honda sharing gives them from
+        the whole tree's light (plant/vigour.py: at the species' BHL 0.5 that is their own light)."""
+        apex = ls.sym[scene.probe_idx] == APEX
+        light = light.copy()
+        light[apex] = borchert_honda(ls.sym, scene.probe_idx[apex], light[apex], self.geometry_constants["BHL"])
+        at = ls.offsets[scene.probe_idx] + np.where(apex, 3, 2)
         params[at] += weight * (light - params[at])
 
     def _turn_apices(self, ls: LString, params: np.ndarray, scene: LightScene, around: np.ndarray,

@@ -1,0 +1,70 @@
+"""How a tree shares its vigour among its shoots: the extended Borchert-Honda model of Palubicki et al.
+2009 ("Self-organizing tree models for image synthesis", section 4.2).
+
+The light every growing apex catches is summed down the tree: an internode's ``Q`` is the light of all
+the shoots above it. The vigour then flows back up from the base (where it is the whole tree's ``Q``): at
+every branch point the continuing axis ``m`` and the lateral ``l`` share it as
+
+    v_m = v * lam * Q_m / (lam * Q_m + (1 - lam) * Q_l)
+    v_l = v * (1 - lam) * Q_l / (lam * Q_m + (1 - lam) * Q_l)
+
+with the species' apical control ``lam``. At ``lam`` = 0.5 each apex gets exactly its own light (the
+shares telescope); above 0.5 the main axes draw vigour from the laterals (strong apical control, a
+conical crown), below it the laterals win (a spreading crown). The total is always the tree's light.
+
+In an L-string a lateral is a bracketed group; the continuing axis is everything after the group up to
+the end of the axis that holds it. The product of shares along every apex's path is a prefix sum of
+log-shares over the string (no Python loop over modules).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from arbor.engine.lsystem.brackets import CLOSE, OPEN, _by_depth, depths, match
+
+TINY = 1e-30  # a share of nothing: its logarithm stays finite
+
+
+def borchert_honda(sym: np.ndarray, apex: np.ndarray, light: np.ndarray, lam: float) -> np.ndarray:
+    """The vigour (in units of light) each apex at string positions ``apex`` (ascending) receives, given
+    the ``light`` each catches and the apical control ``lam`` (0..1)."""
+    light = np.clip(np.asarray(light, dtype=np.float64), 0.0, None)
+    n = len(sym)
+    if len(apex) == 0 or abs(lam - 0.5) < 1e-12:
+        return light.copy()
+    caught = np.zeros(n + 1)
+    caught[np.asarray(apex) + 1] = light
+    total = np.cumsum(caught)  # total[i]: light of the apices before position i
+    opens = np.flatnonzero(sym == OPEN)
+    if len(opens) == 0:
+        return light.copy()
+    d = depths(sym)
+    close = match(sym, d)[opens]
+    end = _parent_ends(sym, d, opens, close)
+    lateral = total[close] - total[opens]
+    main = total[end] - total[close + 1]
+    weigh_l, weigh_m = (1.0 - lam) * lateral, lam * main
+    shared = weigh_l + weigh_m
+    some = shared > 0
+    share_l = np.where(some, weigh_l / np.where(some, shared, 1.0), 1.0)
+    share_m = np.where(some, weigh_m / np.where(some, shared, 1.0), 1.0)
+    log_l, log_m = np.log(np.maximum(share_l, TINY)), np.log(np.maximum(share_m, TINY))
+    delta = np.zeros(n + 1)
+    np.add.at(delta, opens, log_l)  # inside the lateral: its share
+    np.add.at(delta, close + 1, log_m - log_l)  # after it, on the axis that holds it: the axis' share
+    np.add.at(delta, end, -log_m)  # beyond that axis: neither
+    path = np.cumsum(delta)[np.asarray(apex)]
+    return total[-1] * np.exp(path)
+
+
+def _parent_ends(sym: np.ndarray, d: np.ndarray, opens: np.ndarray, close: np.ndarray) -> np.ndarray:
+    """For each bracketed group (its '[' at ``opens``, ']' at ``close``), the position of the ']' that
+    ends the axis holding it (``len(sym)`` for the main axis)."""
+    n = len(sym)
+    closes = _by_depth(np.flatnonzero(sym == CLOSE), d)
+    key = d[closes].astype(np.int64) * (n + 1) + closes
+    outer = d[opens].astype(np.int64) - 1
+    at = np.searchsorted(key, outer * (n + 1) + close)
+    found = closes[np.minimum(at, len(closes) - 1)]
+    return np.where(outer > 0, found, n)
