@@ -143,3 +143,21 @@ def test_old_straight_bare_wood_is_consolidated_with_its_geometry_girth_and_age(
     again, more = consolidated(merged, now, const["TAU"])
     assert more == 0 and again.to_text() == merged.to_text()
     assert parse_lstring(merged.to_text()).to_text() == merged.to_text()  # saves as text like any string
+
+
+def test_blossoms_and_fruit_are_paid_for_and_set_only_as_far_as_the_pool_pays(system):
+    from arbor.engine.life.plant.carbon import built_cost
+    from arbor.engine.lsystem.derive import Deriver
+    from arbor.engine.lsystem.lstring import parse_lstring
+
+    rules, const = Rules(), {**system.constants, "IL": 1.0, "IO": 0.75, "TIP": 0.012, "LS": 1.2}
+    plain = built_cost(parse_lstring("I(5,0,0,0,0)L(5,1,0)"), 5.0, const, rules, 6.5e5)
+    flowering = built_cost(parse_lstring("I(5,0,0,0,0)L(5,1,0)K(5)K(5)O(5)K(4)"), 5.0, const, rules, 6.5e5)
+    assert flowering - plain == pytest.approx(2 * rules.carbon.blossom_cost + rules.carbon.fruit_cost)
+    blossoms = parse_lstring("".join(f"[K({t})]" for t in range(200)))
+    externs = {"T": 400.0, "G": 0.0, "DT": 1.0, "R": 1.0, "B": 0.0, "WL": 1.0, "SF": 1.0, "AF": 0.0, "SP": 1.0}
+    fruit = []
+    for pays in (1.0, 0.0):  # what the pool pays for: everything, nothing
+        ls, _ = Deriver(system, seed=1).step(blossoms, {**externs, "C": pays})
+        fruit.append(ls.count("O"))
+    assert fruit[0] > 80 and fruit[1] == 0  # SET = 0.6 of 200 blossoms in full; none from an empty pool

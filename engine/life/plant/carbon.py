@@ -24,7 +24,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from arbor.engine.base.units import METRE
-from arbor.engine.life.form.interpret import APEX, CLUSTER_AREA, INTERNODE, LEAF, LEAF_ASPECT
+from arbor.engine.life.form.interpret import APEX, BLOSSOM, CLUSTER_AREA, FRUIT, INTERNODE, LEAF, LEAF_ASPECT
 from arbor.engine.life.rules.rules import Rules
 from arbor.engine.lsystem.lstring import LString
 
@@ -193,15 +193,17 @@ def shoot_demand(ls: LString, dt: float, const: dict[str, float], rules: Rules, 
 
 
 def built_cost(ls: LString, born: float, const: dict[str, float], rules: Rules, density: float) -> float:
-    """Sugar (g) of the nodes born at physiological time ``born`` (the last rewrite): new internodes and
-    the leaves on them, at their full size."""
+    """Sugar (g) of the organs born at physiological time ``born`` (the last rewrite): new internodes and
+    the leaves on them at their full size, blossoms that opened and fruit that set."""
     if len(ls.params) == 0:
         return 0.0
     first = np.where(ls.nparams > 0, ls.params[np.where(ls.nparams > 0, ls.offsets, 0)], np.nan)
     new = first == born
     internodes = np.flatnonzero(new & (ls.sym == INTERNODE) & (ls.nparams >= 3))
     leaves = int(np.count_nonzero(new & (ls.sym == LEAF)))
+    flowers = rules.carbon.blossom_cost * np.count_nonzero(new & (ls.sym == BLOSSOM))
+    fruit = rules.carbon.fruit_cost * np.count_nonzero(new & (ls.sym == FRUIT))
     order = ls.params[ls.offsets[internodes] + 2]
     wood = const["IL"] * const["IO"] ** order * const["TIP"] ** 2 * VOLUME * density
     leaf = CLUSTER_AREA * LEAF_ASPECT * const["LS"] ** 2 * AREA * rules.carbon.leaf_mass
-    return float(wood.sum()) + leaves * leaf
+    return float(wood.sum()) + leaves * leaf + float(flowers + fruit)

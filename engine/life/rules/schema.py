@@ -151,6 +151,9 @@ SCHEMA: tuple[Rule, ...] = (
     Rule("carbon.seed_reserve", 2.0, 0.0, 1e6, "g", "a new sapling's reserve (in its seed and roots)"),
     Rule("carbon.starve_time", 40.0, 0.0, 1e8, "s", "upkeep unpaid (or no leaf at all in a leafy season) for this "
          "long wilts the tree", "time"),
+    Rule("carbon.blossom_cost", 0.3, 0.0, 1000.0, "g", "what a blossom costs when it opens (blossoms open, and fruit "
+         "sets, only as far as the pool pays for the shoots: extern C)"),
+    Rule("carbon.fruit_cost", 4.0, 0.0, 1000.0, "g", "what a fruit costs when it sets (about five leaf clusters)"),
     Rule("carbon.root_cost", 0.02, 0.0, 100.0, "g per s", "what roots growing at full speed cost", "rate"),
     Rule("carbon.root_drought", 2.0, 0.0, 10.0, "x", "roots grow up to 1 + this times as fast in drought "
          "(a functional balance: more roots where water is short)"),
