@@ -43,9 +43,9 @@ class Fxaa:
         ctx = self.ctx
         if rect is not None:
             ctx.copy_framebuffer(into, self.fbo)
-            if rect[2] <= 0 or rect[3] <= 0:
-                return
-        into.use()
+        into.use()  # (what is drawn next goes over the frame: the HUD)
+        if rect is not None and (rect[2] <= 0 or rect[3] <= 0):
+            return
         ctx.viewport = (0, 0, *size)
         ctx.scissor = rect
         ctx.disable(moderngl.BLEND)
