@@ -1,42 +1,99 @@
-"""Sweep benchmark: a 100-run sweep in one process against the local process pool (every core).
+"""Sweep benchmark: one process against a 2-worker pool on the same sweep, and a single 30-day run.
 
-Run: python -m benchmarks.sweep [DAYS]
-The sweep is the sun-height example (5 levels x 20 seeds) shortened to DAYS game days (default 10).
-Prints the wall time of each way, the speed-up, and whether the two tidy CSVs are byte for byte equal.
+Run: python -m benchmarks.sweep [--days DAYS] [--seeds SEEDS] [--workers N] [--profile]
+
+1. The sun-height example (5 levels) with SEEDS seeds (default 4: 20 runs) shortened to DAYS game days
+   (default 10), run in one process and then on a pool of N worker processes (default 2); prints both
+   wall times, the speed-up (goal: at least 1.8x on 2 workers), whether the two tidy CSVs are byte for
+   byte equal, and the load average before and after: on a shared machine the speed-up is only as good
+   as the cores the others leave free.
+2. One run of that sweep at its full 30 game days (orbit height 0.7, seed 1, kept watered), timed as
+   wall and CPU time (goal: at most 3 s); with ``--profile``, cProfile's top functions of that run.
 """
 
 from __future__ import annotations
 
+import argparse
+import contextlib
+import cProfile
+import io
 import os
-import sys
+import pstats
 import tempfile
 import time
 from pathlib import Path
 
-from arbor.game.commands.sweep import run_sweep
+from arbor.engine.life.experiment.sweep import execute, runs
+from arbor.engine.life.experiment.sweep_file import load_sweep
+from arbor.game.commands.sweep import _tasks, run_sweep
 from arbor.game.paths import ASSETS
 
 DAY = 125.66667  # game seconds per day of the sun at the demo pace
+EXAMPLE = ASSETS / "experiments" / "sweep_sun_height.toml"
 
 
-def main(days: float) -> None:
-    """Both runs of the shortened sweep, timed."""
-    source = (ASSETS / "experiments" / "sweep_sun_height.toml").read_text(encoding="utf-8")
-    source = source.replace("duration = 3770", f"duration = {days * DAY:.0f}")
+def load() -> str:
+    """The load average (1, 5, 15 min) as text, with the cores it is shared by."""
+    one, five, fifteen = os.getloadavg()
+    return f"load average {one:.1f} {five:.1f} {fifteen:.1f} on {os.cpu_count()} cores"
+
+
+def pool_speedup(days: float, seeds: int, workers: int) -> None:
+    """The shortened sweep in one process, then on ``workers`` processes, timed (same runs, same tables)."""
+    source = EXAMPLE.read_text(encoding="utf-8")
+    source = source.replace("duration = 3770", f"duration = {days * DAY:.0f}").replace("seeds = 20",
+                                                                                     f"seeds = {seeds}")
     with tempfile.TemporaryDirectory() as tmp:
         path = Path(tmp) / "sweep.toml"
         path.write_text(source, encoding="utf-8")
+        count = len(runs(load_sweep(path, ASSETS / "lsystems")))
+        print(f"before: {load()}", flush=True)
         times = {}
-        for name, workers in (("one process", 1), (f"pool of {os.cpu_count()}", None)):
+        for name, n in (("one process", 1), (f"{workers} workers", workers)):
             start = time.perf_counter()
-            status = run_sweep(path, Path(tmp) / name, workers=workers, plots=False, echo=lambda _: None)
+            with contextlib.redirect_stderr(io.StringIO()):  # (the progress bar)
+                status = run_sweep(path, Path(tmp) / name, workers=n, plots=False, echo=lambda _: None)
             times[name] = time.perf_counter() - start
             assert status == 0, f"{name}: the sweep failed"
-            print(f"{name:>14}: 100 runs of {days:g} days in {times[name]:6.1f} s", flush=True)
+            print(f"{name:>14}: {count} runs of {days:g} days in {times[name]:6.1f} s", flush=True)
         one, pool = times.values()
         tables = [(Path(tmp) / name / "tidy.csv").read_bytes() for name in times]
-        print(f"speed-up {one / pool:.2f}x on {os.cpu_count()} cores; identical tidy CSVs: {tables[0] == tables[1]}")
+        print(f"speed-up {one / pool:.2f}x on {workers} workers (goal >= 1.8x); identical tidy CSVs: "
+              f"{tables[0] == tables[1]}")
+        print(f"after: {load()}")
+
+
+def single_run(profile: bool) -> None:
+    """One 30-day run of the example (orbit height 0.7, seed 1), after a warm-up run (numba, caches)."""
+    sweep = load_sweep(EXAMPLE, ASSETS / "lsystems")
+    everything = runs(sweep)
+    task = _tasks(sweep, [r for r in everything if r.levels == (0.7,) and r.seed == sweep.seeds[0]], "none")[0]
+    execute(task)
+    wall, cpu = time.perf_counter(), time.process_time()
+    outcome = execute(task)
+    wall, cpu = time.perf_counter() - wall, time.process_time() - cpu
+    final = outcome.rows[-1]
+    print(f"one 30-day run: {wall:.2f} s wall, {cpu:.2f} s CPU (goal <= 3 s); {load()}; final height "
+          f"{final['height']:.3f} m, {final['modules']:.0f} modules")
+    if profile:
+        profiler = cProfile.Profile()
+        profiler.runcall(execute, task)
+        text = io.StringIO()
+        pstats.Stats(profiler, stream=text).sort_stats("tottime").print_stats(15)
+        print(text.getvalue())
+
+
+def main() -> None:
+    """Parse the options and run both parts."""
+    parser = argparse.ArgumentParser(prog="python -m benchmarks.sweep", description=__doc__.split("\n")[0])
+    parser.add_argument("--days", type=float, default=10.0, help="game days of each pooled run (default 10)")
+    parser.add_argument("--seeds", type=int, default=4, help="seeds per level (5 levels; default 4)")
+    parser.add_argument("--workers", type=int, default=2, help="worker processes of the pool (default 2)")
+    parser.add_argument("--profile", action="store_true", help="cProfile the 30-day run")
+    args = parser.parse_args()
+    pool_speedup(args.days, args.seeds, args.workers)
+    single_run(args.profile)
 
 
 if __name__ == "__main__":
-    main(float(sys.argv[1]) if len(sys.argv) > 1 else 10.0)
+    main()

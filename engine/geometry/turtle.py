@@ -221,18 +221,25 @@ def _segments(ls: LString, walked: _Walk, cfg: TurtleConfig) -> Segments:
     return Segments(start, end, radius, radius_end, walked.frame, depth, idx, parent, continues, walked.colour)
 
 
-def subtree_sums(ls: LString, segs: Segments, values: np.ndarray) -> np.ndarray:
+def subtree_sums(ls: LString, segs: Segments, values: np.ndarray, ends: np.ndarray | None = None) -> np.ndarray:
     """For every segment, the sum of ``values`` (one per segment) over it and all segments above it.
 
     A bracketed string lists a segment's descendants right after it, up to the ']' closing its branch,
-    so subtree sums are differences of one cumulative sum (no per-segment loop).
+    so subtree sums are differences of one cumulative sum (no per-segment loop). ``ends``: the segments'
+    :func:`subtree_ends`, when several sums over one string are taken (they cost a bracket pass each).
     """
     n = len(ls)
-    subtree_end = brackets.branch_ends(ls.sym, segs.module)
+    subtree_end = subtree_ends(ls, segs) if ends is None else ends
     per_module = np.zeros(n + 1)
     per_module[segs.module] = values
     cum = np.cumsum(per_module)
     return cum[subtree_end - 1] - cum[segs.module] + per_module[segs.module]
+
+
+def subtree_ends(ls: LString, segs: Segments) -> np.ndarray:
+    """Per segment, the index of the ']' closing its branch (``len(ls)`` on the main axis): where the
+    modules growing from it end."""
+    return brackets.branch_ends(ls.sym, segs.module)
 
 
 def set_radii(segs: Segments, radius: np.ndarray) -> None:

@@ -14,6 +14,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from arbor.engine.base.units import METRE
+from arbor.engine.life.form.interpret import grown_turtle
 from arbor.engine.life.plant import carbon
 from arbor.engine.life.world.world import World
 
@@ -78,8 +79,8 @@ class Meters:
 def measure(world: World, meters: Meters | None = None) -> dict[str, float]:
     """Every metric of METRICS for ``world`` now (see UNITS and docs/columns.md)."""
     meters = meters or Meters()
-    geometry = world.tree.geometry(world.clocks())
-    segs, leaves = geometry.turtle.segments, geometry.turtle.leaves
+    turtle = grown_turtle(world.tree.lstring, world.clocks(), world.tree.geometry_constants)  # (no meshes)
+    segs, leaves = turtle.segments, turtle.leaves
     shape = crown_shape(segs, leaves)
     big = leaves.size > 0.05 * leaves.size.max() if len(leaves) else np.zeros(0, bool)
     on_tree = len(np.unique(leaves.module[big]))

@@ -14,7 +14,15 @@ import numpy as np
 
 from arbor.engine.geometry.mesh import LOD_LEVELS, tree_mesh
 from arbor.engine.geometry.tree import TreeGeometry
-from arbor.engine.geometry.turtle import Leaves, Segments, TurtleConfig, interpret, set_radii, subtree_sums
+from arbor.engine.geometry.turtle import (
+    Leaves,
+    Segments,
+    TurtleConfig,
+    TurtleResult,
+    interpret,
+    set_radii,
+    subtree_sums,
+)
 from arbor.engine.lsystem.lstring import LString, params_where, replace_modules
 
 INTERNODE, LEAF, BLOSSOM, PITCH, APEX, BUD, FRUIT, LEAF_BUD = (ord(c) for c in "ILK&ADOV")
@@ -127,9 +135,10 @@ def render_view(ls: LString, clocks: Clocks, const: dict[str, float]) -> LString
     return view
 
 
-def pipe_area(ls: LString, segs: Segments, const: dict[str, float]) -> np.ndarray:
+def pipe_area(ls: LString, segs: Segments, const: dict[str, float], ends: np.ndarray | None = None) -> np.ndarray:
     """Pipe-model cross-section of every segment: TIP^2 per leaf carried, each internode counting one
-    leaf as far as it has grown; a drawn tip (a stroke's or a crown's) feeds one leaf's pipes."""
+    leaf as far as it has grown; a drawn tip (a stroke's or a crown's) feeds one leaf's pipes. ``ends``:
+    the segments' subtree ends when the caller has them (engine/geometry/turtle.py subtree_ends)."""
     grown = (ls.sym[segs.module] == INTERNODE) & (ls.nparams[segs.module] >= 3)
     offsets = ls.offsets[segs.module]
     seg_len = np.linalg.norm(segs.end - segs.start, axis=1)
@@ -139,7 +148,7 @@ def pipe_area(ls: LString, segs: Segments, const: dict[str, float]) -> np.ndarra
     drawn = ~grown & (ls.sym[segs.module] == ord("F")) & (ls.nparams[segs.module] == 11)
     drawn_below = np.bincount(segs.parent[drawn & (segs.parent >= 0)], minlength=len(segs)) > 0
     weight[drawn & ~drawn_below] = 1.0
-    return const["TIP"] ** 2 * np.maximum(subtree_sums(ls, segs, weight), 1e-6)
+    return const["TIP"] ** 2 * np.maximum(subtree_sums(ls, segs, weight, ends), 1e-6)
 
 
 def radii(ls: LString, segs: Segments, clocks: Clocks, const: dict[str, float]) -> np.ndarray:
@@ -169,13 +178,20 @@ def droop_angles(ls: LString) -> np.ndarray:
     return pitch[carried]
 
 
-def grow_geometry(ls: LString, clocks: Clocks, const: dict[str, float], lod: int = 0) -> TreeGeometry:
-    """Turtle and meshes of the growing tree, with continuous radii (see module docstring)."""
+def grown_turtle(ls: LString, clocks: Clocks, const: dict[str, float]) -> TurtleResult:
+    """The growing tree's segments (with their continuous radii) and leaf clusters, without meshes: what
+    measuring a tree needs (the lab samples it), for a fraction of the cost of :func:`grow_geometry`."""
     view = render_view(ls, clocks, const)
     turtle = interpret(view, turtle_config(const))
     segs = turtle.segments
     if len(segs):
         set_radii(segs, radii(ls, segs, clocks, const))
     turtle.leaves = leaf_clusters(turtle.leaves)
+    return turtle
+
+
+def grow_geometry(ls: LString, clocks: Clocks, const: dict[str, float], lod: int = 0) -> TreeGeometry:
+    """Turtle and meshes of the growing tree, with continuous radii (see module docstring)."""
+    turtle = grown_turtle(ls, clocks, const)
     level = LOD_LEVELS[max(0, min(lod, len(LOD_LEVELS) - 1))]
     return TreeGeometry(turtle, tree_mesh(turtle, level))

@@ -33,6 +33,7 @@ from arbor.engine.geometry.turtle import (
     TurtleResult,
     interpret,
     module_positions,
+    subtree_ends,
     subtree_sums,
 )
 from arbor.engine.life.form.interpret import (
@@ -305,7 +306,8 @@ class GrowingTree:
             return np.zeros(0, bool)
         grown = (ls.sym[segs.module] == INTERNODE) & (ls.nparams[segs.module] >= 5)
         off = ls.offsets[segs.module[grown]]
-        pipes = pipe_area(ls, segs, const)[grown]
+        ends = subtree_ends(ls, segs)  # (one bracket pass for the pipes and the shade sums below)
+        pipes = pipe_area(ls, segs, const, ends)[grown]
         rings = const["RING"] * dg * pipes
         if economy is not None:
             length = np.linalg.norm(segs.end - segs.start, axis=1)[grown]
@@ -316,15 +318,12 @@ class GrowingTree:
             carrier = scene.turtle.carriers(scene.leaf_idx)
             ok = carrier >= 0
             got = np.bincount(carrier[ok], (leaf_light * scene.leaf_area)[ok], minlength=len(segs))
-            has = np.bincount(carrier[ok], scene.leaf_area[ok], minlength=len(segs))
-            got_above = subtree_sums(ls, segs, got)  # the view keeps the string's module positions
-            has_above = subtree_sums(ls, segs, has)
+            got_above = subtree_sums(ls, segs, got, ends)  # the view keeps the string's module positions
             # Light income against what the branch must feed: a full leaf cluster's area per internode
             # it carries. A long branch with a few lit leaves at its tip starves like a shaded one.
             need = np.where(grown, CLUSTER_AREA * LEAF_ASPECT * const["LS"] ** 2, 0.0)
-            need_above = subtree_sums(ls, segs, need)
+            need_above = subtree_sums(ls, segs, need, ends)
             ratio = (got_above / np.maximum(need_above, 1e-12))[grown]
-            del has_above
             shade = params[off + 3]
             deep = ratio < const["SHQ"]
             params[off + 3] = np.where(deep, shade + dt * (1.0 + 2.0 * drought), np.maximum(shade - dt, 0.0))

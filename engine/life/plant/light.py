@@ -25,12 +25,19 @@ UP = np.array([0.0, 1.0, 0.0])
 
 
 def _basis(direction: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The light's direction and two unit vectors across it (the shadow grid's axes)."""
     d = np.asarray(direction, float)
     d = d / np.linalg.norm(d)
     ref = np.array([1.0, 0.0, 0.0]) if abs(d[0]) < 0.9 else np.array([0.0, 0.0, 1.0])
-    u = np.cross(d, ref)
+    u = _cross(d, ref)
     u /= np.linalg.norm(u)
-    return d, u, np.cross(d, u)
+    return d, u, _cross(d, u)
+
+
+def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """np.cross of two 3-vectors, term for term (the same roundings), without its general-shape overhead
+    (measured: 30 us a basis instead of 250 us; two bases a light reading)."""
+    return np.array([a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]])
 
 
 def optical_depth(occluders: np.ndarray, area: np.ndarray, queries: np.ndarray, direction: np.ndarray,
