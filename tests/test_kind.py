@@ -134,3 +134,52 @@ def test_a_replanted_tree_reads_its_light_at_once(system, rules):
     for _ in range(int(rules.light.interval / 0.1) + 2):
         world.step(0.1)
     assert world.carbon.leaf_area > 0.0 and world.carbon.last_fixed_rate + world.carbon.last_upkeep_rate > 0
+
+
+def test_a_new_game_s_seedling_unfolds_its_first_leaves_within_a_minute(gl_ctx, tmp_path):
+    """At the default (home) pace a new game's sapling is first drawn as its seed, and within the first
+    minute it stands with its leaves at their planted size (time to the first leaf drawn, measured)."""
+    from arbor.game.screens.game import Game, GameConfig
+    from benchmarks.first_minute import leaf_length
+    from tests.conftest import FakeClock
+
+    clock = FakeClock()
+    game = Game(gl_ctx, (640, 360), GameConfig(saves=tmp_path, seed=5, resume=False, pace="home"), clock=clock)
+    fbo = gl_ctx.framebuffer(color_attachments=[gl_ctx.renderbuffer((640, 360))],
+                             depth_attachment=gl_ctx.depth_renderbuffer((640, 360)))
+    lengths = []
+    for _second in range(61):
+        game.draw(fbo)
+        lengths.append(leaf_length(game))
+        for _ in range(10):
+            clock.t += 0.1
+            game.update(0.1)
+    assert lengths[0] < 0.05  # a seed at first
+    first = next(t for t, length in enumerate(lengths) if length > 0.05)
+    assert first < 60 and lengths[60] > 0.5 and lengths[60] == pytest.approx(max(lengths))
+
+
+def test_hints_show_only_while_they_apply_and_go_once_done(gl_ctx, tmp_path):
+    from arbor.engine.life.world.actions import Action
+    from arbor.game.screens.game import Game, GameConfig
+    from tests.conftest import FakeClock
+
+    game = Game(gl_ctx, (640, 360), GameConfig(saves=tmp_path, seed=5, resume=False, pace="home"), clock=FakeClock())
+    s, hint = game.world.sim.state, lambda: game.hud_info().hint
+    s.water_meter, s.sun_meter = 0.85, 0.9  # (comfortable: no care to teach yet)
+    assert "Drag" in hint()
+    s.water_meter = 0.6
+    assert "watering can" in hint()
+    s.sun_meter = 0.5
+    game.act(Action.WATER, 1.0)  # the player waters: that hint is gone for good
+    game.act(Action.WATER, 0.0)
+    assert "sun higher" in hint()
+    s.sun_meter = 0.9
+    assert "Drag" in hint()  # (the sun hint waits while the sun meter is comfortable)
+    s.sun_meter = 0.5
+    game.act(Action.ORBIT_HEIGHT, 0.7)
+    game.control.yaw += 45.0
+    assert hint() == ""
+    game.coach.first_run()
+    s.alive = False
+    assert hint() == ""  # nothing to teach over a dead tree

@@ -10,14 +10,13 @@ height and speed, time speed) goes back before the frame goes on, and each run e
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from typing import Any
 
 from arbor.engine.life.world.actions import Action
 from arbor.game.input.events import DOWN, MOVE, UP, InputEvent, Player, Recorder
 from arbor.game.paths import ASSETS
 
-if TYPE_CHECKING:
-    from arbor.game.screens.game import Game
+Game = Any  # the kiosk's game (game/screens/game.py; not imported here: the parts never import it)
 
 OUT = ASSETS / "attract" / "demo.jsonl"
 

@@ -77,6 +77,7 @@ class CareActions:
 
     def _sun(self, action: Action, value: float) -> None:
         """A sun slider: one sun over the whole garden."""
+        self.coach.done("sun")
         self.state.garden.apply_sun(action, self.slider_value(action, value))
 
     def replant(self, confirmed: bool = False) -> None:
@@ -94,6 +95,7 @@ class CareActions:
         world.lineage = new_lineage(world.lineage.seed, self.wall_clock(), world.lineage.species)
         state.garden.family.add(world.lineage)
         state.remember()
+        state.sow()  # (the new sapling is seen rising from its seed)
         state.say(text("messages.planted"))
 
     def go_on(self) -> None:

@@ -1,7 +1,8 @@
 """What the game tells a player besides the meters: first-run hints, gentle reminders, the journal.
 
-Hints teach the three things a new player must find (open the menu, water, turn the view), one at a
-time, each gone once done. Reminders are one calm line about what is worth doing now (rain, ripe fruit,
+Hints teach the three things a new player must find (water, sun, turning the view), one at a time,
+each shown only while it applies (the water meter or the sun meter below comfortable, the tree alive)
+and gone once the player has done it. Reminders are one calm line about what is worth doing now (rain, ripe fruit,
 seeds to sow, another tree in need). New journal entries of any tree are announced as they happen;
 the menu's journal page lists the cared-for tree's milestones by day.
 """
@@ -14,7 +15,7 @@ from arbor.engine.life.world.world import World
 from arbor.game.screens.state import GameState
 from arbor.game.strings import text
 
-HINTS = ("open_menu", "water", "turn")
+HINTS = ("water", "sun", "turn")
 ATTENTION = ("dead", "wilting", "starving", "drowning", "thirsty", "needs_light")  # statuses worth a reminder
 JOURNAL_SHOWN = 12  # latest milestones listed on the journal page
 
@@ -40,11 +41,25 @@ class Coach:
             self.hints.remove(what)
 
     def hint(self) -> str:
-        """The hint to show now ('' when none)."""
+        """The first hint not yet done that applies now ('' when none)."""
         turned = abs(self.state.control.yaw - self.start_yaw) % 360.0
         if "turn" in self.hints and min(turned, 360.0 - turned) > 20:
             self.done("turn")
-        return text(f"hints.{self.hints[0]}") if self.hints else ""
+        shown = next((what for what in self.hints if self.applies(what)), None)
+        return text(f"hints.{shown}") if shown else ""
+
+    def applies(self, what: str) -> bool:
+        """Whether hint ``what`` fits the cared-for tree now: water while its meter is below comfortable
+        and the can is not pouring, sun while the sun meter is below comfortable; none on a dead tree."""
+        s = self.state.world.sim.state
+        comfort = self.state.rules.health.comfort
+        if not s.alive:
+            return False
+        if what == "water":
+            return s.water_meter < comfort and not s.watering
+        if what == "sun":
+            return s.sun_meter < comfort
+        return True
 
     def watch(self) -> None:
         """Announce milestones written since the last look (every tree of the garden)."""

@@ -75,6 +75,7 @@ class Game:
         self._parts()
         if self.keeper.fresh:
             state.daylight()  # a new player meets daylight, whatever the clock says
+            state.sow()  # (and sees its seedling rise from the seed)
             self.coach.first_run()
         self.care.sync_sliders()
 

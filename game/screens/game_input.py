@@ -177,7 +177,6 @@ class GameInput:
         elif self.modeling.active or not self.picker.tap(x, y, self.camera()):
             self.care.sync_sliders()
             self.menu.show_at(x, y, "tools" if self.modeling.active else None)
-            self.coach.done("open_menu")
         self.gestures.menu_open = self.menu.visible
 
     def _key(self, key: int, down: bool) -> bool:

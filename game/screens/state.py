@@ -23,6 +23,7 @@ from arbor.game.strings import text
 
 FIRST_HOUR = 10.0  # the hour of the sun's day a player arriving in the dark is shown (a new game, a visitor)
 LOW_SUN = 0.3  # orbit radii: a sun lower than this is too dark a welcome
+SPROUT_SECONDS = 24.0  # real seconds a new game's seedling takes to rise from its seed to the planted sapling
 
 
 class GameState:
@@ -37,7 +38,8 @@ class GameState:
     def __init__(self, loop: FixedStepLoop, control: CameraControl, clock: Callable[[], float],
                  rules: Rules | None = None) -> None:
         self.loop, self.control, self.clock = loop, control, clock
-        self.guardian = Guardian(rules or Rules())  # watches every tree while time flies (engine/life/world)
+        self.rules = rules or Rules()
+        self.guardian = Guardian(self.rules)  # watches every tree while time flies (engine/life/world)
         self.halted: Need | None = None  # the need the guardian stopped fast-forward for (until "go on")
         self.resume_speed = 1.0  # the speed "go on" returns to
         self.autopilot = False  # the kiosk with nobody there: the garden is tended every step
@@ -47,6 +49,8 @@ class GameState:
         self.cutaway = False  # the roots' view: the ground turns to soil and the roots show
         self.cursor3d: tuple[float, float, float] | None = None
         self.devices: dict[str, str] = {}  # input devices seen -> their kind
+        self.sprout_from: float | None = None  # when a new game's seed was sown (its seedling is unfolding)
+        self.sprouting: World | None = None  # the tree whose seedling unfolds (another tree cared for ends it)
 
     @property
     def world(self) -> World:
@@ -114,9 +118,24 @@ class GameState:
         self.halted = None
         self.message_until = 0.0
 
+    def sow(self) -> None:
+        """A new game (or the kiosk's next visitor): the planted sapling is first drawn as the seed it grew
+        from, and rises and unfolds its leaves over SPROUT_SECONDS of real time (the sim is not changed)."""
+        self.sprout_from, self.sprouting = self.clock(), self.world
+
     def clocks(self) -> Clocks:
-        """Growth clocks to draw: interpolated between the last two sim states."""
-        return self.world.clocks(self.previous, self.alpha)
+        """Growth clocks to draw: interpolated between the last two sim states (replayed from the seed
+        while a new game's seedling unfolds)."""
+        clocks = self.world.clocks(self.previous, self.alpha)
+        if self.sprout_from is not None:
+            f = (self.clock() - self.sprout_from) / SPROUT_SECONDS
+            if f >= 1.0 or f < 0.0 or self.sprouting is not self.world:
+                self.sprout_from = self.sprouting = None
+            else:
+                ease = f * f * (3.0 - 2.0 * f)
+                clocks.length_time *= ease
+                clocks.girth_time *= ease
+        return clocks
 
     def say(self, text: str, seconds: float = 3.0) -> None:
         """Show a message at the bottom of the screen for a while."""
