@@ -98,3 +98,11 @@ def test_a_visitor_after_the_autopilot_takes_over_in_daylight(left_alone):
     kiosk.frame([InputEvent(DOWN, kiosk.fake.t, "touch:1", 5, 640, 400)], 0.0, kiosk.fbo)
     assert not kiosk.game.state.autopilot
     assert all(w.sim.sun_height() >= LOW_SUN for w in kiosk.game.garden.worlds)
+
+
+def test_a_visitor_after_the_attract_loop_gets_every_hint(left_alone):
+    kiosk = left_alone
+    idle(kiosk, 120.0)  # the show has turned the view
+    assert kiosk.attract is not None
+    kiosk.frame([InputEvent(DOWN, kiosk.fake.t, "touch:1", 5, 640, 400)], 0.0, kiosk.fbo)
+    assert kiosk.attract is None and kiosk.game.coach.hints == ["water", "sun", "turn"]

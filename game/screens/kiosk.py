@@ -186,6 +186,7 @@ class Kiosk:
         if self.attract is not None:  # a visitor: stop the show and give them a clean view
             self.attract = None
             AttractShow.tidy(self.game)
+            self.game.coach.first_run()  # (the show turned the view: the visitor still gets every hint)
         if self.game.state.autopilot:  # the visitor takes over the care, in daylight
             self.game.state.autopilot = False
             self.game.state.daylight()
