@@ -1,6 +1,6 @@
 """The living tree over 30 simulated days, and what one light reading costs at the module budget.
 
-Run: python -m benchmarks.living [DAYS]
+Run: python -m benchmarks.living [DAYS] [SAVE]
 A scripted careful player keeps the water meter between 0.55 and 0.75 under the default rules; the
 table has one row per simulated day (126 s at the demo pace): height, trunk girth, modules, leaf
 clusters and branches shed that day. It checks that modules never pass the budget and that no day
@@ -10,6 +10,7 @@ on the grown tree, median of 20.
 
 from __future__ import annotations
 
+import copy
 import sys
 import time
 from pathlib import Path
@@ -72,10 +73,37 @@ def light_cost(world: World) -> None:
           f"whole reading (incl. writing the string) {ms_all:.1f} ms")
 
 
+def step_cost(world: World, runs: int = 10) -> None:
+    """Time one whole growth step on ``world``'s tree: a light reading with its carbon booking, and a
+    rewrite paid for by the pool (each on a fresh copy, so every run does the same work)."""
+    world.sim.state.sun_angle = np.pi / 2  # noon
+    ms_light, _ = median_ms(lambda: sense_light([world]), runs)
+    times = []
+    for _ in range(runs):
+        w = copy.deepcopy(world)
+        w.tree.last_rewrite_T = w.sim.state.length_time - w.rules.growth.rewrite_step
+        start = time.perf_counter()
+        w._rewrite()
+        times.append(time.perf_counter() - start)
+    ms_rewrite = float(np.median(times)) * 1e3
+    print(f"one growth step at {len(world.tree.lstring):,} modules (budget {world.tree.deriver.budget:,}): "
+          f"light and carbon {ms_light:.1f} ms + rewrite {ms_rewrite:.1f} ms = {ms_light + ms_rewrite:.1f} ms "
+          "(goal <= 15 ms)")
+
+
 def main() -> None:
-    """Run the 30-day table and the light timing."""
+    """Run the 30-day table and the light timing; with a save (e.g. `python -m benchmarks.years 3 DIR`'s
+    DIR/spring_3.arbor, a tree near the budget), time a growth step on its tree instead."""
+    if len(sys.argv) > 2:
+        from arbor.engine.life.keep.save import read_garden
+
+        world = read_garden(sys.argv[2]).world
+        step_cost(world)
+        return
     days = float(sys.argv[1]) if len(sys.argv) > 1 else 30.0
-    light_cost(careful_player(days))
+    world = careful_player(days)
+    light_cost(world)
+    step_cost(world)
 
 
 if __name__ == "__main__":

@@ -5,7 +5,7 @@ The home-pace player of benchmarks.home_pace (the can twice a day, nothing else)
 years of 28 days. One row per season (at its last day, 13:00): height and crown width (m), width/height,
 the most leaf clusters the season saw, modules (the most, against the budget), the carbon pool and the
 days of the growing seasons (spring, summer) on which the tree did not grow. With OUTDIR, the tree's save
-at every summer's end (`summer_N.arbor`: `arbor render` it).
+at every summer's end and every year's end (`summer_N.arbor`, `winter_N.arbor`: `arbor render` them).
 """
 
 from __future__ import annotations
@@ -45,7 +45,7 @@ def main(years: int = 3, out: Path | None = None) -> None:
     garden, budget = Garden([world]), world.tree.deriver.budget
     print(f"{'year':>4} {'season':>7} {'height':>6} {'width':>6} {'w/h':>5} {'leaves':>6} {'modules':>8} "
           f"{'pool g':>8} {'still days':>10}")
-    start, peak_leaves, peak_modules, still = time.perf_counter(), 0, 0, 0
+    start, peak_leaves, peak_modules, still, leaves_now = time.perf_counter(), 0, 0, 0, 0
     names, year, current = ("spring", "summer", "autumn", "winter"), 1, world.sim.season().index
     for _ in range(years * int(rules.seasons.year_days) + 1):
         season = world.sim.season().index  # the season this day begins in
@@ -53,18 +53,21 @@ def main(years: int = 3, out: Path | None = None) -> None:
             h, w = crown(world)
             print(f"{year:4d} {names[current]:>7} {h:6.2f} {w:6.2f} {w / max(h, 1e-9):5.2f} {peak_leaves:6d} "
                   f"{peak_modules:8,d} {world.carbon.pool:8.0f} {still:10d}", flush=True)
-            if out is not None and current == 1:
+            if out is not None and current in (1, 3):  # the crown in leaf, and bare at the year's end
                 out.mkdir(parents=True, exist_ok=True)
-                write_garden(SavedGarden.of(garden, "game_tree.lsys"), out / f"summer_{year}.arbor")
+                name = f"{names[current]}_{year}.arbor"
+                write_garden(SavedGarden.of(garden, "game_tree.lsys"), out / name)
             year += current == 3
-            current, peak_leaves, peak_modules, still = season, 0, 0, 0
+            current, peak_leaves, peak_modules, still = season, leaves_now, 0, 0
         before = (world.sim.state.length_time, world.sim.state.girth_time)
         for minute in range(24 * 60):
             if minute in (8 * 60, 20 * 60):
                 water(garden)
             garden.step(STEP)
             peak_modules = max(peak_modules, len(world.tree.lstring))
-        peak_leaves = max(peak_leaves, world.tree.lstring.count("L"))
+        leaves_now = world.tree.lstring.count("L")
+        if world.sim.season().index == current:  # (a day that ended in the next season counts there)
+            peak_leaves = max(peak_leaves, leaves_now)
         still += season in (0, 1) and (world.sim.state.length_time, world.sim.state.girth_time) == before
     print(f"{years} years in {time.perf_counter() - start:.0f} s; budget {budget:,}; alive {world.sim.state.alive}")
 
