@@ -80,6 +80,22 @@ class OrbitCamera:
         self.distance = need + max(ext[0], ext[2]) / 2
 
 
+def zoom_out(near: OrbitCamera, whole_lo: np.ndarray, whole_hi: np.ndarray, zoom: float, max_zoom: float,
+             aspect: float) -> None:
+    """Zoom ``near`` (framing one tree) out by ``zoom`` (1: as framed): the distance grows with it, and
+    past 1 the view glides toward the box [whole_lo, whole_hi] (the whole garden) so that at ``max_zoom``
+    it frames all of it (at least ``max_zoom`` times as far as the tree's view)."""
+    if zoom <= 1.0 or max_zoom <= 1.0:
+        near.distance *= zoom
+        return
+    whole = OrbitCamera(yaw=near.yaw, pitch=near.pitch, fov_y=near.fov_y)
+    whole.frame_bounds(np.asarray(whole_lo, float), np.asarray(whole_hi, float), aspect, fill=0.8)
+    t = min((zoom - 1.0) / (max_zoom - 1.0), 1.0)
+    far = max(whole.distance, near.distance * max_zoom)
+    near.target = near.target + (whole.target - near.target) * t
+    near.distance = near.distance + (far - near.distance) * t
+
+
 def project_points(camera: OrbitCamera, size: tuple[int, int], points: np.ndarray) -> np.ndarray:
     """Window pixels of many 3D points (NaN for points behind the camera)."""
     clip = np.c_[points, np.ones(len(points))] @ (camera.projection(size[0] / size[1]) @ camera.view()).T

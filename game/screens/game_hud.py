@@ -42,6 +42,7 @@ class GameHud:
         self.hooks = hooks  # extra overlay layers (kiosk attract text, PIN pad)
         self.surface = pygame.Surface(size, pygame.SRCALPHA)
         self._key: tuple | None = None
+        self.marker_boxes: list[pygame.Rect] = []  # the garden markers last painted (none overlaps another)
 
     def draw(self, camera: OrbitCamera) -> None:
         """Repaint the overlay if anything on it changed, and composite it over the frame."""
@@ -131,20 +132,22 @@ class GameHud:
         """Over every tree of a garden: its number, and an icon when it needs something (water, sun);
         a ring at the foot of the tree being cared for."""
         state = self.state
+        self.marker_boxes = []
         if len(state.garden.worlds) < 2 or self.modeling.active:
             return
         here = np.array(state.world.position)
+        shown = []
         for number, world in enumerate(state.garden.worlds, 1):
             entry = self.views.get(id(world))
             top = max(float(entry[1].hi[1]), 1.0) if entry else 2.0
             dx, dz = np.array(world.position) - here
             at = self.project(camera, (dx, top * 1.08, dz))
-            if at is None or not (0 <= at[0] < self.size[0] and 0 <= at[1] < self.size[1]):
-                continue
+            if at is not None and 0 <= at[0] < self.size[0] and 0 <= at[1] < self.size[1]:
+                shown.append((number, world, (int(at[0]), int(max(at[1], BADGE + 4)))))
+        self.marker_boxes = place_badges([foot for _, _, foot in shown], self.size)
+        for (number, world, _), box in zip(shown, self.marker_boxes, strict=True):
             cared = world is state.world
             status = world.status()
-            box = pygame.Rect(0, 0, BADGE, BADGE)
-            box.midbottom = (int(at[0]), int(max(at[1], BADGE + 4)))
             colour = (250, 250, 240, 230) if cared else (30, 40, 30, 190)
             pygame.draw.circle(self.surface, colour, box.center, BADGE // 2)
             icon = NEEDS_ICON.get(status)
@@ -174,3 +177,20 @@ class GameHud:
         if ground is not None:
             pygame.draw.line(self.surface, (255, 255, 255, 120), at, ground, 1)
         pygame.draw.circle(self.surface, (255, 230, 120, 230), (int(at[0]), int(at[1])), 10, 3)
+
+
+def place_badges(anchors: list[tuple[int, int]], size: tuple[int, int], badge: int = BADGE) -> list[pygame.Rect]:
+    """A badge's square for each anchor (the midbottom it wants), none overlapping another: a badge that
+    would cover one already placed moves up (then down) a badge and a gap at a time, kept on the screen."""
+    placed: list[pygame.Rect] = []
+    step = badge + 4
+    for x, y in anchors:
+        for k in range(2 * len(anchors) + 1):
+            shift = -((k + 1) // 2) * step if k % 2 else (k // 2) * step
+            box = pygame.Rect(0, 0, badge, badge)
+            box.midbottom = (x, y + shift)
+            box.clamp_ip(pygame.Rect(0, 0, *size))
+            if box.collidelist(placed) < 0:
+                break
+        placed.append(box)
+    return placed

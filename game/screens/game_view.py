@@ -12,7 +12,7 @@ import numpy as np
 from arbor.engine.life.form.growth_view import GrowthView
 from arbor.engine.life.plant import seasons
 from arbor.engine.life.rules.rules import Rules
-from arbor.game.render.camera import OrbitCamera
+from arbor.game.render.camera import OrbitCamera, zoom_out
 from arbor.game.render.falling import FALL_SECONDS, falling_view
 from arbor.game.render.garden import BARK, GardenRenderer, Placed
 from arbor.game.render.instanced import Detail, TreeBuffers, prepare_upload
@@ -177,9 +177,29 @@ class GameView:
         width = max(float(np.max(r_hi[[0, 2]] - r_lo[[0, 2]])), 1.0)
         bottom = self.roots_bottom if self.state.cutaway and not modeling else 0.0
         lo, hi = np.array([-width / 2, bottom, -width / 2]), np.array([width / 2, height, width / 2])
-        cam.frame_bounds(lo, hi, self.size[0] / self.size[1], fill=0.8)
-        cam.distance *= control.distance
+        aspect = self.size[0] / self.size[1]
+        cam.frame_bounds(lo, hi, aspect, fill=0.8)
+        if modeling:
+            cam.distance *= control.distance
+        else:  # zoomed far out, the view frames the whole garden
+            zoom_out(cam, *self.garden_bounds(lo, hi), control.distance, control.max_distance, aspect)
         return cam
+
+    def garden_bounds(self, lo: np.ndarray, hi: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """The box round every tree of the garden (scene units, from the cared-for tree's foot, whose own
+        box is [lo, hi]), each tree as tall as it is drawn."""
+        state = self.state
+        here = np.array(state.world.position)
+        boxes_lo, boxes_hi = [lo], [hi]
+        for world in state.garden.worlds:
+            entry = self.views.get(id(world))
+            if world is state.world or entry is None:
+                continue
+            dx, dz = np.array(world.position) - here
+            offset = np.array([dx, 0.0, dz])
+            boxes_lo.append(np.array(entry[1].lo) + offset)
+            boxes_hi.append(np.maximum(np.array(entry[1].hi), (0.0, 2.0, 0.0)) + offset)
+        return np.min(boxes_lo, axis=0), np.max(boxes_hi, axis=0)
 
     def draw(self, fbo: moderngl.Framebuffer) -> OrbitCamera:
         """Render the scene into ``fbo``; returns the camera it was seen through (the HUD projects with it)."""
