@@ -6,12 +6,13 @@
   does when the child refused its arguments (USAGE_EXIT: restarting would only repeat the refusal) and for
   `arbor watchdog --help` / `--version` (run once), and for a clean quit (status 0) of anything but the kiosk
   (whose app never quits by itself: a 0 there means it alone was stopped, so it is restarted); any other
-  end (a crash, a kill, a hang) is restarted after a pause that grows while crashes come quickly (1 s, 2 s, 4 s, ... at most 30 s) and
-  shrinks back after a good long run;
+  end (a crash, a kill, a hang) is restarted after a pause that grows while crashes come quickly (1 s,
+  2 s, 4 s, ... at most 30 s) and shrinks back after a good long run;
 * the child touches a heartbeat file (``ARBOR_HEARTBEAT``) every second; if it stays silent for
   HANG_SECONDS it is killed and restarted (a hung app is never left on screen);
 * when the child dies young CRASH_LOOP times in a row, the kiosk's saved garden is moved aside
-  (``*.crashed``): a save that crashes the start must not keep the kiosk in a restart loop;
+  (``*.crashed``): a save that crashes the start must not keep the kiosk in a restart loop; a child
+  killed as hung before its first heartbeat (a start that hangs, however long it took) counts as young;
 * SIGTERM, SIGINT or SIGHUP to the watchdog (a shutdown) is passed on to the child, which saves and
   exits, and the watchdog stops.
 """
@@ -53,11 +54,15 @@ def _saves_folder(args: list[str]) -> Path:
     return (Path(saves) if saves else default_saves()) / "kiosk"
 
 
+HUNG_AT_START = -10  # _run_once's status for a child killed as hung before it ever beat (a start that hangs)
+
+
 def _run_once(command: list[str], heartbeat: Path, clock, poll: float, hang: float, grace: float,
               signals: StopSignals | None = None) -> int:
     """Run the child until it exits or its heartbeat stops for ``hang`` seconds (``grace`` seconds are
-    allowed before the first beat); returns its status (-9 when killed as hung). A stop signal to the
-    watchdog is passed on to the child, which saves and exits (killed after PASS_ON_SECONDS)."""
+    allowed before the first beat); returns its status (-9 when killed as hung, HUNG_AT_START when it
+    never beat at all). A stop signal to the watchdog is passed on to the child, which saves and exits
+    (killed after PASS_ON_SECONDS)."""
     heartbeat.unlink(missing_ok=True)
     started = clock()
     child = subprocess.Popen(command, env=dict(os.environ, ARBOR_HEARTBEAT=str(heartbeat)))
@@ -77,10 +82,11 @@ def _run_once(command: list[str], heartbeat: Path, clock, poll: float, hang: flo
         beat = heartbeat.stat().st_mtime if heartbeat.exists() else None
         silent = time.time() - beat if beat is not None else clock() - started - grace + hang
         if silent > hang:
-            log.error("arbor stopped answering (no heartbeat for %.0f s): killing it", silent)
+            log.error("arbor stopped answering (no heartbeat for %.0f s%s): killing it", silent,
+                      "" if beat is not None else ", none since it started")
             child.kill()
             child.wait()
-            return -9
+            return -9 if beat is not None else HUNG_AT_START
 
 
 def watch(command: list[str], sleep: Callable[[float], None] = time.sleep, clock=time.monotonic,
@@ -108,7 +114,7 @@ def watch(command: list[str], sleep: Callable[[float], None] = time.sleep, clock
                 log.error("arbor refused its arguments (status %d): the watchdog stops", status)
                 return status
             lived = clock() - started
-            young = young + 1 if lived < YOUNG else 0
+            young = young + 1 if lived < YOUNG or status == HUNG_AT_START else 0
             if young >= CRASH_LOOP and saves is not None:
                 _move_garden_aside(saves)
                 young = 0

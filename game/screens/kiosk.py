@@ -25,10 +25,11 @@ import pygame
 
 from arbor.engine.base.config import fill_dataclass, toml_position
 from arbor.engine.base.errors import SettingsError
-from arbor.engine.life.keep.save import SavedGarden, write_garden
+from arbor.engine.life.keep.save import SavedGarden
 from arbor.game.input.events import DOWN, KEY_DOWN, KEY_UP, MOVE, QUIT, UP, InputEvent, load_recording
 from arbor.game.paths import ASSETS
 from arbor.game.screens.attract import AttractShow
+from arbor.game.screens.saves import VisitorSaves
 from arbor.game.strings import set_language, text
 
 CORNER = 90  # px: the staff corner
@@ -156,6 +157,7 @@ class Kiosk:
         self.quit_requested = False
         self.recoveries = 0
         self.visitor_saved = False
+        self.visitors = VisitorSaves(saves)
         self.pin_lock = PinLock()  # kept across pad openings: closing the pad does not reset the delay
         self.game.overlay_hooks.append(self._draw_extra)
 
@@ -266,14 +268,16 @@ class Kiosk:
             self.attract = AttractShow([], now)
 
     def reset_visitor(self) -> None:
-        """Save the visitor's tree and plant a fresh sapling for the next one."""
-        folder = self.saves  # the kiosk's own folder (saves/kiosk/)
-        folder.mkdir(parents=True, exist_ok=True)
-        stamp = time.strftime("%Y%m%d-%H%M%S")
-        write_garden(SavedGarden([self.game.world]), folder / f"visitor-{stamp}.arbor")
+        """Save the visitor's tree and plant a fresh sapling for the next one (a disk that refuses the save
+        keeps the tree in memory, said on the screen and in the log: game/screens/saves.VisitorSaves)."""
+        error = self.visitors.keep(SavedGarden([self.game.world]))  # (in the kiosk's own folder)
         self.game.care.replant(confirmed=True)  # (the visitor's tree is saved first; nobody to ask)
         self.game.coach.first_run()
-        self.game.say(text("messages.visitor_reset"), 5)
+        if error is None:
+            self.game.say(text("messages.visitor_reset"), 5)
+        else:
+            log.error("could not save the visitor's tree (%s): %d kept in memory", error, len(self.visitors.waiting))
+            self.game.say(text("messages.visitor_unsaved", error=error, count=len(self.visitors.waiting)), 8)
         self.visitor_saved = True
 
     def _draw_extra(self, surface: pygame.Surface) -> None:

@@ -15,10 +15,10 @@ from collections.abc import Callable
 from pathlib import Path
 
 from arbor.engine.base.errors import LSysError
-from arbor.engine.base.files import set_aside
+from arbor.engine.base.files import atomic_write, set_aside
 from arbor.engine.life.keep.away import AwaySummary, away_seconds, live_away
 from arbor.engine.life.keep.generations import rotate
-from arbor.engine.life.keep.save import SavedGarden, read_garden, write_garden
+from arbor.engine.life.keep.save import SavedGarden, garden_text, read_garden, write_garden
 from arbor.engine.life.lineage.lineage import new_lineage, species_of
 from arbor.engine.life.plant.sim import sun_angle_at
 from arbor.engine.life.rules.rules import Rules
@@ -130,6 +130,43 @@ class SaveKeeper:
         """Autosave when the configured interval has passed since the last save."""
         if self.state.clock() - self.last_autosave >= self.config.autosave_seconds:
             self.save()
+
+
+class VisitorSaves:
+    """The kiosk's visitor trees, each saved as ``visitor-STAMP.arbor`` in the kiosk's folder when its
+    visitor has gone. A save the disk refuses (full, read-only) is kept in memory as its text, the last
+    MAX_KEPT of them, and written at a later reset once there is room: the reset goes on (a fresh
+    sapling), never into a reload loop, and the tree is not lost while the kiosk runs."""
+
+    MAX_KEPT = 3
+
+    def __init__(self, folder: Path, wall_clock: Callable[[], float] = time.time) -> None:
+        self.folder, self.wall_clock = folder, wall_clock
+        self.waiting: list[tuple[str, bytes]] = []  # (file name, save text) not written yet
+
+    def keep(self, saved: SavedGarden) -> str | None:
+        """Save ``saved`` (and those kept before it); None when every one is written, else the reason
+        the disk gave (the unwritten ones stay in :attr:`waiting`)."""
+        stamp = time.strftime("%Y%m%d-%H%M%S", time.localtime(self.wall_clock()))
+        self.waiting.append((f"visitor-{stamp}.arbor", garden_text(saved).encode("utf-8")))
+        del self.waiting[:-self.MAX_KEPT]
+        while self.waiting:
+            name, data = self.waiting[0]
+            try:
+                self.folder.mkdir(parents=True, exist_ok=True)
+                atomic_write(_free_name(self.folder / name), data)
+            except OSError as exc:
+                return exc.strerror or str(exc)
+            self.waiting.pop(0)
+        return None
+
+
+def _free_name(path: Path) -> Path:
+    """``path``, or ``NAME-2.arbor``, ... when a save of that name is there already (two resets a second)."""
+    n = 1
+    while path.with_name(f"{path.stem}{'' if n == 1 else f'-{n}'}{path.suffix}").exists():
+        n += 1
+    return path.with_name(f"{path.stem}{'' if n == 1 else f'-{n}'}{path.suffix}")
 
 
 def remove_stale_temp_files(folder: Path) -> int:
