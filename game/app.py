@@ -153,7 +153,7 @@ def run_app(args: argparse.Namespace | None = None) -> int:
         return 0
     from arbor.game.screens.game import Game, GameConfig
 
-    config = GameConfig()
+    config = GameConfig(title=True)  # (the title screen follows the first start's preparing screen)
     config.saves = lock.folder
     if getattr(args, "pace", None):
         config.pace = args.pace

@@ -13,7 +13,7 @@ LEAF = (120, 200, 90)
 
 
 def draw_icon(surface: pygame.Surface, name: str, box: pygame.Rect) -> None:
-    """Draw icon ``name`` (sun, clock, can, sapling, seed, pencil, gear, book, back, cross) into ``box``."""
+    """Draw icon ``name`` (a key of ICONS: sun, clock, can, sapling, seed, speaker, ...) into ``box``."""
     cx, cy, r = box.centerx, box.centery, min(box.width, box.height) * 0.38
     draw = ICONS.get(name)
     if draw is not None:
@@ -93,6 +93,15 @@ def _stone(s, cx, cy, r):
     pygame.draw.arc(s, INK, pygame.Rect(cx - r, cy - r * 0.6, 2 * r, r * 1.3), 0.4, 2.6, 2)
 
 
-ICONS = {"stone": _stone, "cross": _cross, "sun": _sun, "clock": _clock, "can": _can, "sapling": _sapling,
-         "seed": _seed,
+def _speaker(s, cx, cy, r):
+    pygame.draw.polygon(s, INK, [(cx - r, cy - r * 0.35), (cx - r * 0.5, cy - r * 0.35), (cx, cy - r * 0.85),
+                                 (cx, cy + r * 0.85), (cx - r * 0.5, cy + r * 0.35), (cx - r, cy + r * 0.35)])
+    for k in (1, 2):
+        box = pygame.Rect(0, 0, int(r * 0.6 * k), int(r * 0.9 * k))
+        box.center = (int(cx), int(cy))
+        pygame.draw.arc(s, INK, box, -0.9, 0.9, 3)
+
+
+ICONS = {"stone": _stone, "speaker": _speaker, "cross": _cross, "sun": _sun, "clock": _clock, "can": _can,
+         "sapling": _sapling, "seed": _seed,
          "pencil": _pencil, "gear": _gear, "book": _book, "back": _back}

@@ -55,13 +55,13 @@ PAGES = {
     "care": [["orbit_height"], ["sun_speed"], ["water", "speed"], ["garden", "tools", "settings", "journal"]],
     "garden": [["plant", "sow"], ["cross", "family"], ["next", "replant"], ["rock", "back"]],
     "tools": [["modeler", "crown", "shape"], ["prune", "symbols", "edit"], ["undo", "redo", "back"]],
-    "settings": [["save", "load"], ["restore", "roots", "devices"], ["back"]],
+    "settings": [["save", "load"], ["restore", "roots", "devices"], ["volume"], ["mute", "back"]],
     "journal": [["back"]],
 }
 ICONS = {"orbit_height": "sun", "sun_speed": "clock", "water": "can", "speed": "clock", "garden": "sapling",
          "tools": "pencil", "settings": "gear", "journal": "book", "plant": "sapling", "sow": "seed",
          "replant": "sapling", "back": "back", "modeler": "pencil", "cross": "seed", "family": "book",
-         "roots": "sapling", "rock": "stone"}
+         "roots": "sapling", "rock": "stone", "volume": "speaker", "mute": "speaker"}
 NAV = {"garden", "tools", "settings", "journal", "back"}  # buttons that only change the page
 
 
@@ -80,10 +80,11 @@ class Menu:
         self.widgets = [
             Widget("orbit_height", text("menu.orbit_height"), "slider", icon="sun"),
             Widget("sun_speed", text("menu.sun_speed"), "slider", icon="clock"),
+            Widget("volume", text("menu.volume"), "slider", "settings", icon="speaker"),
             Widget("water", text("menu.water"), "button", hold=True, icon="can"),
             Widget("speed", text("menu.speed", speed="1"), "button", icon="clock"),
             *(Widget(name, text(f"menu.{name}"), "button", page_of.get(name, "care"), ICONS.get(name, ""))
-              for name in sorted(names - {"orbit_height", "sun_speed", "water", "speed", "edit", "sow"})),
+              for name in sorted(names - {"orbit_height", "sun_speed", "volume", "water", "speed", "edit", "sow"})),
             Widget("sow", text("menu.sow", count=0), "button", "garden", "seed"),
             Widget("edit", text("menu.edit", name=text("edits.add_leaves")), "button", "tools"),
         ]

@@ -19,6 +19,7 @@ from arbor.engine.lsystem.lsys import LSystem
 from arbor.game.loop import SPEEDS
 from arbor.game.render.ui import Menu, range_to_slider, slider_to_range
 from arbor.game.screens.coach import Coach
+from arbor.game.screens.config import SoundSettings
 from arbor.game.screens.family import FamilyScreen
 from arbor.game.screens.modeler import ModelingMode
 from arbor.game.screens.saves import SaveKeeper
@@ -40,8 +41,8 @@ class CareActions:
 
     def __init__(self, state: GameState, menu: Menu, modeling: ModelingMode, keeper: SaveKeeper,
                  family: FamilyScreen, coach: Coach, rules: Rules, system: LSystem,
-                 wall_clock: Callable[[], float]) -> None:
-        self.state, self.menu, self.modeling, self.keeper = state, menu, modeling, keeper
+                 wall_clock: Callable[[], float], sound: SoundSettings | None = None) -> None:
+        self.state, self.menu, self.modeling, self.keeper, self.sound = state, menu, modeling, keeper, sound
         self.family, self.coach, self.rules, self.system, self.wall_clock = family, coach, rules, system, wall_clock
         self.crossing = None  # the mother of a cross, while the player picks the father
         self.replant_asked, self.replant_at = None, 0.0  # the tree a first Replant press asked about, and when
@@ -63,6 +64,7 @@ class CareActions:
             Action.SYMBOLS: tool(lambda: modeling.tool("symbols")), Action.EDIT: pressed(self._next_edit),
             Action.UNDO: pressed(modeling.undo), Action.REDO: pressed(modeling.redo),
             Action.DEVICES: pressed(self._devices),
+            Action.VOLUME: self._volume, Action.MUTE: pressed(self._mute),
         }
 
     def act(self, action: Action, value: float = 0.0) -> None:
@@ -157,6 +159,18 @@ class CareActions:
 
     def _next_edit(self) -> None:
         self.menu.widget("edit").label = self.modeling.next_option()
+
+    def _volume(self, value: float) -> None:
+        """Settings -> the volume slider (0..1)."""
+        if self.sound is not None:
+            self.sound.set_volume(value)
+            self.sync_sliders()
+
+    def _mute(self) -> None:
+        """Settings -> Mute / Sound on."""
+        if self.sound is not None:
+            self.sound.toggle_mute()
+            self.sync_sliders()
 
     def _devices(self) -> None:
         names = sorted(self.state.devices) or [text("messages.no_devices")]
@@ -255,6 +269,9 @@ class CareActions:
         menu.widget("sow").label = text("menu.sow", count=len(state.garden.seeds))
         menu.widget("roots").label = text("menu.roots_hide" if state.cutaway else "menu.roots")
         menu.widget("modeler").label = text("menu.modeler_done" if self.modeling.active else "menu.modeler")
+        if self.sound is not None:
+            menu.widget("volume").value = 0.0 if self.sound.prefs.muted else self.sound.prefs.volume
+            menu.widget("mute").label = text("menu.unmute" if self.sound.prefs.muted else "menu.mute")
 
     def set_speed(self, speed: float) -> None:
         """Time speed: 0 (pause), 1, 10 or 100 (a speed chosen by hand answers a guardian's stop)."""

@@ -1,12 +1,22 @@
-"""Where a game finds its data and keeps its saves (read by the game and its save keeper)."""
+"""Where a game finds its data and keeps its saves (read by the game and its save keeper), and the
+player's own settings kept beside the saves (:class:`Preferences`, ``settings.toml``: the sound's volume
+and mute, set on the Settings page through :class:`SoundSettings`)."""
 
 from __future__ import annotations
 
 import os
+import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from arbor.engine.base.config import fill_dataclass, toml_position
+from arbor.engine.base.errors import SettingsError
+from arbor.engine.base.files import atomic_write, read_regular
 from arbor.game.paths import ASSETS, default_saves
+
+PREFERENCES = "settings.toml"  # in the saves folder
+PREFERENCES_LIMIT = 16_384  # bytes: a longer file is not ours
+SAVE_AFTER = 0.5  # seconds a changed setting waits before it is written (a dragged slider writes once)
 
 
 @dataclass
@@ -20,3 +30,101 @@ class GameConfig:
     resume: bool = True
     seed: int | None = None
     pace: str | None = field(default_factory=lambda: os.environ.get("ARBOR_PACE") or None)  # None: rules.toml's
+    title: bool = False  # the title screen over the garden until a key or touch (the window's game shows it)
+
+
+@dataclass
+class Preferences:
+    """The player's settings that are not the garden's: how loud the sound plays (0..1) and whether it
+    is muted. Kept in the saves folder's settings.toml, so they outlive a replant or a restored save."""
+
+    volume: float = 0.7
+    muted: bool = False
+
+
+def check_volume(volume: float, file: str, text: str, key: str = "volume") -> None:
+    """A volume outside 0..1 is a SettingsError at its key's line (settings.toml and kiosk.toml)."""
+    if not 0.0 <= volume <= 1.0:
+        raise SettingsError(f"{key} must be from 0 to 1 (0 silent, 1 loudest), not {volume:g}", file,
+                            *toml_position(text, "", key))
+
+
+def read_preferences(path: Path) -> Preferences:
+    """The preferences in ``path`` (defaults when there is no file); a file that is not a small plain
+    TOML file of known keys in range is a SettingsError naming it (and the key's line)."""
+    prefs = Preferences()
+    if not path.exists() and not path.is_symlink():
+        return prefs
+    try:
+        data = read_regular(path, PREFERENCES_LIMIT)
+        if len(data) > PREFERENCES_LIMIT:
+            raise SettingsError(f"longer than {PREFERENCES_LIMIT} bytes: not a settings file", str(path))
+        text = data.decode("utf-8")
+        values = tomllib.loads(text)
+    except OSError as exc:
+        raise SettingsError(f"cannot read: {exc.strerror or exc}", str(path)) from None
+    except (UnicodeDecodeError, tomllib.TOMLDecodeError) as exc:
+        raise SettingsError(f"not valid TOML: {exc}", str(path)) from None
+    fill_dataclass(prefs, values, str(path), "setting", SettingsError, text)
+    check_volume(prefs.volume, str(path), text)
+    return prefs
+
+
+def write_preferences(prefs: Preferences, path: Path) -> None:
+    """Write ``prefs`` to ``path`` atomically (the old file or the new one, never half of it)."""
+    text = ("# Arbor's own settings (Settings in the game's menu); the garden is in autosave.arbor.\n"
+            f"volume = {round(prefs.volume, 3)!r}\nmuted = {str(prefs.muted).lower()}\n")
+    atomic_write(path, text.encode("utf-8"))
+
+
+class SoundSettings:
+    """The Settings page's volume slider and mute button: they set the game's :class:`Audio
+    <arbor.game.audio.sounds.Audio>` at once and are written to settings.toml SAVE_AFTER seconds after
+    the last change (a dragged slider writes the file once), and on :meth:`flush`."""
+
+    def __init__(self, audio, folder: Path, clock) -> None:
+        self.audio, self.path, self.clock = audio, Path(folder) / PREFERENCES, clock
+        self.problem = ""  # one line about a settings file that could not be read ('' when it was fine)
+        try:
+            self.prefs = read_preferences(self.path)
+        except SettingsError as err:
+            self.prefs, self.problem = Preferences(), f"{err} (sound settings back to their defaults)"
+        self.changed_at: float | None = None  # when a change not yet written was made
+        audio.set_volume(self.prefs.volume, self.prefs.muted)
+
+    def use(self, volume: float) -> None:
+        """Play at ``volume``, unmuted, for now (the kiosk's volume for each visitor): not written."""
+        self.prefs.volume, self.prefs.muted = min(max(float(volume), 0.0), 1.0), False
+        self.audio.set_volume(self.prefs.volume, self.prefs.muted)
+
+    def set_volume(self, volume: float) -> None:
+        """The slider: the volume 0..1 (moving it also unmutes: the player wants to hear it)."""
+        self.prefs.volume, self.prefs.muted = min(max(float(volume), 0.0), 1.0), False
+        self._changed()
+
+    def toggle_mute(self) -> None:
+        """The mute button: sound off, or back on at the volume it had."""
+        self.prefs.muted = not self.prefs.muted
+        self._changed()
+
+    def _changed(self) -> None:
+        self.audio.set_volume(self.prefs.volume, self.prefs.muted)
+        self.changed_at = self.clock()
+
+    def save_if_due(self) -> str:
+        """Write a change SAVE_AFTER seconds old (called every frame); returns :meth:`flush`'s line."""
+        if self.changed_at is not None and self.clock() - self.changed_at >= SAVE_AFTER:
+            return self.flush()
+        return ""
+
+    def flush(self) -> str:
+        """Write a change not yet written (also on quit). Returns '' or, when the folder cannot be
+        written, one line saying so (the change then lasts for this run only)."""
+        if self.changed_at is None:
+            return ""
+        self.changed_at = None
+        try:
+            write_preferences(self.prefs, self.path)
+        except OSError as exc:
+            return f"{self.path}: the sound settings could not be kept ({exc.strerror or exc})"
+        return ""

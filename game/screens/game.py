@@ -34,7 +34,7 @@ from arbor.game.render.renderer import Overlay
 from arbor.game.render.ui import HudInfo, Menu
 from arbor.game.screens.care import CareActions
 from arbor.game.screens.coach import Coach
-from arbor.game.screens.config import GameConfig
+from arbor.game.screens.config import GameConfig, SoundSettings
 from arbor.game.screens.family import FamilyScreen
 from arbor.game.screens.game_hud import GameHud
 from arbor.game.screens.game_input import GameInput
@@ -43,6 +43,7 @@ from arbor.game.screens.modeler import ModelingMode
 from arbor.game.screens.picking import Picker
 from arbor.game.screens.saves import SaveKeeper
 from arbor.game.screens.state import GameState
+from arbor.game.screens.title import TitleScreen
 
 __all__ = ["Game", "GameConfig"]
 
@@ -63,12 +64,14 @@ class Game:
         self.menu = Menu(size)
         self.renderer = GardenRenderer(ctx)
         self.audio = Audio()
+        self.sound = SoundSettings(self.audio, self.config.saves, clock)  # (the player's volume and mute)
         self.overlay = Overlay(ctx, size)
         pygame.font.init()
         self.font = pygame.font.Font(None, 32)
         self.small_font = pygame.font.Font(None, 24)
         self.translator = PygameTranslator(size)
         self.overlay_hooks: list = []  # extra overlay layers (kiosk attract text, PIN pad)
+        self.title = TitleScreen(size, shown=self.config.title)
         self.state = state = GameState(self.loop, self.control, clock, self.rules)
         self.keeper = SaveKeeper(state, self.config, self.rules, self.system, wall_clock)
         state.use(self.keeper.start())
@@ -77,6 +80,8 @@ class Game:
             state.daylight()  # a new player meets daylight, whatever the clock says
             state.sow()  # (and sees its seedling rise from the seed)
             self.coach.first_run()
+        if self.sound.problem:
+            self.say(self.sound.problem, 8)
         self.care.sync_sliders()
 
     def _parts(self) -> None:
@@ -89,12 +94,13 @@ class Game:
         self.menu.journal_source = self.coach.journal_lines
         self.family = FamilyScreen(state, self.menu, size)
         self.care = CareActions(state, self.menu, self.modeling, self.keeper, self.family, self.coach, self.rules,
-                                self.system, self.wall_clock)
+                                self.system, self.wall_clock, self.sound)
         self.picker = Picker(state, self.view.views, size, self.care)
         self.hud = GameHud(state, self.rules, size, menu=self.menu, overlay=self.overlay, renderer=self.renderer,
                            views=self.view.views, fonts=(self.font, self.small_font), modeling=self.modeling,
                            family=self.family, coach=self.coach, hooks=self.overlay_hooks,
                            scene_sun=self.view.scene_sun)
+        self.hud.title = self.title
         self.input = GameInput(state, size, self.camera, menu=self.menu, gestures=self.gestures,
                                modeling=self.modeling, care=self.care, picker=self.picker, family=self.family,
                                coach=self.coach)
@@ -144,6 +150,8 @@ class Game:
 
     def handle_input(self, e: InputEvent) -> bool:
         """Handle one device-independent input event; returns False when the game should quit."""
+        if self.title.handle(e):  # (the title screen's press does nothing else)
+            return True
         return self.input.handle(e)
 
     def tap(self, x: float, y: float) -> None:
@@ -154,6 +162,9 @@ class Game:
         """Advance the simulation by one frame's worth of fixed steps; autosave when due."""
         self.state.advance(real_seconds)
         self.audio.hear(soundscape(self.world, self.rules.wind.strength, self.menu.presses), real_seconds)
+        problem = self.sound.save_if_due()
+        if problem:
+            self.say(problem, 8)
         self.keeper.autosave_if_due()
 
     def clocks(self) -> Clocks:
@@ -173,5 +184,6 @@ class Game:
         return self.hud.hud_info()
 
     def quit(self) -> None:
-        """Save on the way out."""
+        """Save on the way out (the garden and a settings change not yet written)."""
+        self.sound.flush()
         self.save()

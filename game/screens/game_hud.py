@@ -43,6 +43,7 @@ class GameHud:
         self.surface = pygame.Surface(size, pygame.SRCALPHA)
         self._key: tuple | None = None
         self.marker_boxes: list[pygame.Rect] = []  # the garden markers last painted (none overlaps another)
+        self.title = None  # the title screen (game/screens/title.py): while it is up it stands in for the HUD
 
     def draw(self, camera: OrbitCamera) -> None:
         """Repaint the overlay if anything on it changed, and composite it over the frame."""
@@ -69,7 +70,8 @@ class GameHud:
                 info.speed, info.message, info.watering, info.season, info.raining, info.hint, info.reminder,
                 menu.visible, menu.page, widgets, view, state.cursor3d, len(self.hooks),
                 tuple(w.status() for w in state.garden.worlds), state.garden.current, self.family.visible,
-                int(state.clock() * 4) if info.raining or info.watering else 0)  # (rain and cloud animate)
+                int(state.clock() * 4) if info.raining or info.watering else 0,  # (rain and cloud animate)
+                self.title is not None and self.title.shown)
 
     def hud_info(self) -> HudInfo:
         """What the HUD shows now."""
@@ -100,6 +102,9 @@ class GameHud:
     def paint(self, camera: OrbitCamera) -> None:
         """Draw the whole overlay into the surface."""
         self.surface.fill((0, 0, 0, 0))
+        if self.title is not None and self.title.shown:
+            self.title.paint(self.surface)
+            return
         info = self.hud_info()
         if info.raining:
             draw_rain(self.surface, self.state.clock())

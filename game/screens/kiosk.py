@@ -29,7 +29,9 @@ from arbor.engine.life.keep.save import SavedGarden
 from arbor.game.input.events import DOWN, KEY_DOWN, KEY_UP, MOVE, QUIT, UP, InputEvent, load_recording
 from arbor.game.paths import ASSETS
 from arbor.game.screens.attract import AttractShow
+from arbor.game.screens.config import check_volume
 from arbor.game.screens.saves import VisitorSaves
+from arbor.game.screens.title import TitleScreen
 from arbor.game.strings import set_language, text
 
 CORNER = 90  # px: the staff corner
@@ -51,6 +53,7 @@ class KioskConfig:
     language: str = "en"
     speed: float = 10.0
     pace: str = "demo"  # visitors stay minutes: seed 003's fast pace
+    volume: float = 0.5  # the sound's volume 0..1 (0: silent), set again for every visitor
 
 
 def load_kiosk_config(path: str | Path) -> KioskConfig:
@@ -59,6 +62,7 @@ def load_kiosk_config(path: str | Path) -> KioskConfig:
     fill_dataclass(config, tomllib.loads(text), str(path), "kiosk setting", SettingsError, text)
     if not config.pin.isdigit() or not 4 <= len(config.pin) <= 8:
         raise SettingsError("the kiosk PIN must be 4 to 8 digits", str(path), *toml_position(text, "", "pin"))
+    check_volume(config.volume, str(path), text)
     return config
 
 
@@ -149,6 +153,7 @@ class Kiosk:
         self.make_game, self.config, self.saves, self.clock = make_game, config, saves, clock
         self.game = make_game()
         self.game.set_speed(config.speed)
+        self._kiosk_volume()
         self.last_touch = clock()
         self.corner_down: float | None = None
         self.pin_pad: PinPad | None = None
@@ -159,6 +164,7 @@ class Kiosk:
         self.visitor_saved = False
         self.visitors = VisitorSaves(saves)
         self.pin_lock = PinLock()  # kept across pad openings: closing the pad does not reset the delay
+        self.title: TitleScreen | None = None  # drawn over the attract loop
         self.game.overlay_hooks.append(self._draw_extra)
 
     # ----- input ---------------------------------------------------------------------------------
@@ -228,6 +234,7 @@ class Kiosk:
             log.error("could not save while recovering:\n%s", traceback.format_exc())
         self.game = self.make_game()
         self.game.set_speed(self.config.speed)
+        self._kiosk_volume()
         self.game.overlay_hooks.append(self._draw_extra)
         self.game.say(text("messages.recovered"), 6)
 
@@ -272,6 +279,7 @@ class Kiosk:
         keeps the tree in memory, said on the screen and in the log: game/screens/saves.VisitorSaves)."""
         error = self.visitors.keep(SavedGarden([self.game.world]))  # (in the kiosk's own folder)
         self.game.care.replant(confirmed=True)  # (the visitor's tree is saved first; nobody to ask)
+        self._kiosk_volume()  # (whatever the last visitor set)
         self.game.coach.first_run()
         if error is None:
             self.game.say(text("messages.visitor_reset"), 5)
@@ -280,11 +288,15 @@ class Kiosk:
             self.game.say(text("messages.visitor_unsaved", error=error, count=len(self.visitors.waiting)), 8)
         self.visitor_saved = True
 
+    def _kiosk_volume(self) -> None:
+        """The sound at kiosk.toml's volume, unmuted, and the Settings slider showing it."""
+        self.game.sound.use(self.config.volume)
+        self.game.care.sync_sliders()
+
     def _draw_extra(self, surface: pygame.Surface) -> None:
-        if self.attract is not None:
-            msg = self.game.font.render(text("kiosk.attract"), True, (255, 255, 255))
-            box = msg.get_rect(center=(surface.get_width() // 2, surface.get_height() // 2)).inflate(40, 24)
-            pygame.draw.rect(surface, (20, 40, 20, 190), box, border_radius=14)
-            surface.blit(msg, msg.get_rect(center=box.center))
+        if self.attract is not None:  # the attract loop is the title screen, the garden playing behind it
+            if self.title is None or self.title.size != surface.get_size():
+                self.title = TitleScreen(surface.get_size(), prompt=text("kiosk.attract"))
+            self.title.paint(surface)
         if self.pin_pad is not None:
             self.pin_pad.draw(surface, self.game.font)

@@ -40,6 +40,8 @@ class Action(Enum):
     UNDO = "undo"
     REDO = "redo"
     DEVICES = "devices"
+    VOLUME = "volume"  # value: the sound's volume 0..1 (Settings)
+    MUTE = "mute"  # sound off / back on (Settings)
 
     @classmethod
     def named(cls, name: str) -> Action:
