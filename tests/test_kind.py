@@ -183,3 +183,22 @@ def test_hints_show_only_while_they_apply_and_go_once_done(gl_ctx, tmp_path):
     game.coach.first_run()
     s.alive = False
     assert hint() == ""  # nothing to teach over a dead tree
+
+
+def test_fourteen_days_away_end_honestly_or_watered_with_the_away_setting(system):
+    """Home pace, 14 days (the cap) away from a sapling: left alone it dies of thirst (the honest outcome
+    stays); with the Away setting a neighbour waters it at the need line and it lives on and grows."""
+    import copy
+
+    from arbor.engine.life.keep.away import live_away
+
+    home = load_rules("assets/rules.toml", pace="home")
+    garden = Garden([World(system, home, seed=3)])
+    garden.world.sim.state.water_meter = 0.9
+    alone, cared = copy.deepcopy(garden), copy.deepcopy(garden)
+    honest = live_away(alone, 14 * 86400.0)
+    assert honest.died and honest.thirsty and honest.waterings == 0 and not alone.world.sim.state.alive
+    watered = live_away(cared, 14 * 86400.0, watered=True)
+    s = cared.world.sim.state
+    assert s.alive and not watered.died and not watered.thirsty and watered.waterings >= 14
+    assert watered.grown > honest.grown and s.water_meter > home.growth.threshold

@@ -5,6 +5,11 @@ the save's clock cannot be read) is lived with the same rules, in at most MAX_CA
 and with a few light readings a day (``away.fast_light``) instead of the dozens of play: fourteen days
 take well under a second for a tree at its budget. The summary says what a player wants to know:
 how much the tree grew, what it shed, whether it flowered or fruited, whether it went thirsty or died.
+
+With the player's Away setting (``watered``: a neighbour looks after the garden) every tree whose water
+meter comes down to the need line (``growth.threshold`` + ``health.guard_margin``, where fast-forward
+stops) is watered back to comfortable (``health.comfort``) between two steps, whatever their length;
+rain, sun, seasons and everything else stay as they are. Without it the outcome stays the honest one.
 """
 
 from __future__ import annotations
@@ -35,6 +40,7 @@ class AwaySummary:
     thirsty: bool = False  # the water meter fell below the neglect level at some point
     wilted: bool = False
     died: bool = False
+    waterings: int = 0  # times the Away setting's neighbour watered a tree
     seasons: list[str] = field(default_factory=list)  # seasons passed through, in order
 
     @property
@@ -56,8 +62,9 @@ def tree_height(world) -> float:
     return float(segs.end[:, 1].max()) if len(segs) else 0.0
 
 
-def live_away(garden: Garden, seconds: float) -> AwaySummary:
-    """Let ``garden`` live ``seconds`` of game time unattended (see module docstring)."""
+def live_away(garden: Garden, seconds: float, watered: bool = False) -> AwaySummary:
+    """Let ``garden`` live ``seconds`` of game time unattended, or watered while away (see module
+    docstring)."""
     summary = AwaySummary(seconds=seconds)
     if seconds <= 0:
         return summary
@@ -73,6 +80,8 @@ def live_away(garden: Garden, seconds: float) -> AwaySummary:
     try:
         for i in range(steps):
             garden.step(dt)
+            if watered:
+                summary.waterings += water_away(garden)
             if i in marks:
                 _look(world, summary)
     finally:
@@ -83,6 +92,18 @@ def live_away(garden: Garden, seconds: float) -> AwaySummary:
     summary.shed = world.tree.shed_total - shed0
     summary.died = not world.sim.state.alive
     return summary
+
+
+def water_away(garden: Garden) -> int:
+    """The neighbour's round: every living tree at or under the need line is watered to comfortable.
+    Returns the trees watered."""
+    watered = 0
+    for world in garden.worlds:
+        s, rules = world.sim.state, world.rules
+        if s.alive and s.water_meter <= rules.growth.threshold + rules.health.guard_margin:
+            s.water_meter = max(s.water_meter, rules.health.comfort)
+            watered += 1
+    return watered
 
 
 def _look(world, summary: AwaySummary) -> None:
