@@ -121,3 +121,13 @@ def test_the_biggest_garden_the_game_writes_is_within_every_budget(tmp_path, rul
     lifted, _ = save_blocks._lift(path.read_bytes())
     assert save_blocks.reading_work(lifted) < save_blocks.MAX_WORK / 2
     assert len(read_garden(path, rules).worlds) == save.MAX_TREES
+
+
+def test_a_genome_value_no_float_can_hold_is_dropped(tmp_path, base_save, rules):
+    path = tmp_path / "genome.arbor"
+    text = re.sub(r"(?m)^(\[trees\.genome\]\n\w+ = ).*$", lambda m: m.group(1) + "10000000000000000000000000",
+                  base_save, count=1)
+    assert "= 10000000000000000000000000" in text
+    path.write_text(text)
+    world = read_garden(path, rules).worlds[0]  # (it was a TypeError from numpy)
+    assert all(abs(v) < 1e6 for v in world.genome.values())

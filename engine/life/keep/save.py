@@ -425,7 +425,8 @@ def _load_tree(data: dict, where: Where, rules: Rules, budget_slack: float) -> W
     state.orbit_height = min(max(state.orbit_height, rules.sun.orbit_height_min), rules.sun.orbit_height_max)
     state.sun_speed = min(max(state.sun_speed, rules.sun.speed_min), rules.sun.speed_max)
     world.sim = Simulation(rules, state)
-    saved_genome = table(data, "genome", where, required=False)  # (older saves: the species as it is)
+    saved_genome = {k: v for k, v in table(data, "genome", where, required=False).items()  # (older saves: none)
+                    if isinstance(v, int | float) and not isinstance(v, bool) and abs(v) <= BIG}  # (10**25: no float)
     world.genome = genome.checked(system, saved_genome) if "genome" in data else {}
     world.tree = GrowingTree(world.expressed(), seed=world.seed)
     growth = table(data, "growth", where)
