@@ -2,8 +2,9 @@
 (two moments), at night and a close-up of a joint, as the game draws them headless (EGL; on this
 machine Mesa llvmpipe, so with the software-GL budget).
 
-Then the look of the scene (:func:`look`): a 25-day tree in daylight, back-lit, at night, in autumn and in
-blossom, a bark close-up and a garden of three trees, each 1280x720, as docs/look_*.png beside OUT.png.
+Then the look of the scene (:func:`look`): a tree of the game's first summer in daylight, back-lit, at night,
+in autumn and in blossom, a bark close-up, a garden of three trees (one a poplar) and the title screen over
+the garden, each 1280x720, as docs/look_*.png beside OUT.png.
 
 Run: python -m benchmarks.shots [OUT.png] [DAYS]   (default docs/renderer.png, a tree grown 12 days)
      python -m benchmarks.shots --look              (the look pictures only)
@@ -96,9 +97,9 @@ LOOK = (1280, 720)
 SUMMER, AUTUMN, SPRING = 13.0, 18.0, 28.5  # days of the game's tree's first year: full crown, turning, in blossom
 
 
-def _grow(days: float, seed: int, world=None):
-    """A world of the game's tree grown to ``days`` simulated days by a careful player (or ``world``
-    grown on to that day)."""
+def _grow(days: float, seed: int, world=None, species: str = "game_tree"):
+    """A world of the game's tree (or another ``species``' .lsys) grown to ``days`` simulated days by a
+    careful player (or ``world`` grown on to that day)."""
     from arbor.engine.life.rules.rules import load_rules
     from arbor.engine.life.world.actions import Action
     from arbor.engine.life.world.world import World
@@ -107,7 +108,7 @@ def _grow(days: float, seed: int, world=None):
 
     if world is None:
         rules = load_rules(ASSETS / "rules.toml", pace="demo")
-        world = World(load_lsystem(ASSETS / "lsystems" / "game_tree.lsys"), rules, seed=seed)
+        world = World(load_lsystem(ASSETS / "lsystems" / f"{species}.lsys"), rules, seed=seed)
         world.sim.state.sun_meter = world.sim.state.water_meter = 0.9
     while world.sim.state.sun_turns < days:
         world.apply(Action.WATER, float(world.sim.state.water_meter < 0.6))
@@ -133,11 +134,12 @@ class _Looks:
         from arbor.engine.life.form.growth_view import GrowthView
         from arbor.game.render.garden import Placed
         from arbor.game.render.instanced import TreeBuffers
+        from arbor.game.render.species import look_of
 
         view = GrowthView(world.tree.lstring, world.clocks(), world.tree.geometry_constants)
         buffers = TreeBuffers()
         self.renderer.trees.sync(buffers, view)
-        return Placed(buffers, np.array(offset, float))
+        return Placed(buffers, np.array(offset, float), look=look_of(world.lineage.species))
 
     def camera(self, trees: list, yaw: float, pitch: float = 8.0, fill: float = 0.8):
         """An orbit camera framing ``trees``."""
@@ -179,7 +181,7 @@ def look(folder: Path) -> list[Path]:
     folder.mkdir(parents=True, exist_ok=True)
     looks = _Looks(folder)
     world = _grow(SUMMER, 3)
-    others = [_grow(SUMMER * 0.8, 8), _grow(SUMMER * 0.6, 12)]
+    others = [_grow(SUMMER, 8, species="game_poplar"), _grow(SUMMER * 0.7, 12)]  # (a poplar: its own look)
     tree = looks.placed(world)
     one = [tree]
     view = tree.buffers.view
@@ -192,7 +194,7 @@ def look(folder: Path) -> list[Path]:
     reach = float(foot[18]) * 9.0
     close = OrbitCamera(yaw=30.0, pitch=12.0, distance=reach, target=foot[0:3] + np.array([0.0, reach * 0.3, 0.0]))
     looks.shot("bark", close, sun_direction(75.0, 35.0), one, world)
-    garden = one + [looks.placed(w, offset) for w, offset in zip(others, ([-19.0, 0.0, -14.0], [18.0, 0.0, -16.0]),
+    garden = one + [looks.placed(w, offset) for w, offset in zip(others, ([-15.0, 0.0, 3.0], [18.0, 0.0, -16.0]),
                                                                    strict=True)]
     looks.shot("garden", looks.camera(garden, 20.0, 10.0, 0.9), sun_direction(80.0, 38.0), garden, world)
     for day, name in ((AUTUMN, "autumn"), (SPRING, "blossom")):
@@ -201,9 +203,31 @@ def look(folder: Path) -> list[Path]:
         v = seen[0].buffers.view
         print(f"day {day:g}: {len(v.leaves):,} leaf cards, {len(v.blossoms):,} blossoms, {len(v.fruits):,} fruit")
         looks.shot(name, looks.camera(seen, 30.0), sun_direction(85.0, 35.0), seen, world)
+    looks.paths.append(title_shot(looks.ctx, folder, _grow(SUMMER, 3)))
     looks.renderer.release()
     looks.ctx.release()
     return looks.paths
+
+
+def title_shot(ctx, folder: Path, world) -> Path:
+    """The title screen over a garden whose tree is ``world`` (the game itself, headless), as look_title.png."""
+    from PIL import Image
+
+    from arbor.game.screens.game import Game, GameConfig
+
+    with TemporaryDirectory() as saves:
+        clock = [1000.0]
+        game = Game(ctx, LOOK, GameConfig(saves=Path(saves), seed=3, resume=False, title=True),
+                    clock=lambda: clock[0])
+        game.garden.worlds[0] = world
+        game.state.remember()
+        fbo = ctx.framebuffer(color_attachments=[ctx.renderbuffer(LOOK)], depth_attachment=ctx.depth_renderbuffer(LOOK))
+        game.draw(fbo)
+        pixels = np.frombuffer(fbo.read(components=3), np.uint8).reshape(LOOK[1], LOOK[0], 3)[::-1]
+        path = folder / "look_title.png"
+        Image.fromarray(pixels.copy()).save(path)
+        game.renderer.release()
+    return path
 
 
 if __name__ == "__main__":
