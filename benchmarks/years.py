@@ -53,10 +53,9 @@ def main(years: int = 3, out: Path | None = None) -> None:
             h, w = crown(world)
             print(f"{year:4d} {names[current]:>7} {h:6.2f} {w:6.2f} {w / max(h, 1e-9):5.2f} {peak_leaves:6d} "
                   f"{peak_modules:8,d} {world.carbon.pool:8.0f} {still:10d}", flush=True)
-            if out is not None and current in (1, 3):  # the crown in leaf, and bare at the year's end
+            if out is not None and current == 1:
                 out.mkdir(parents=True, exist_ok=True)
-                name = f"{names[current]}_{year}.arbor"
-                write_garden(SavedGarden.of(garden, "game_tree.lsys"), out / name)
+                write_garden(SavedGarden.of(garden, "game_tree.lsys"), out / f"summer_{year}.arbor")
             year += current == 3
             current, peak_leaves, peak_modules, still = season, leaves_now, 0, 0
         before = (world.sim.state.length_time, world.sim.state.girth_time)
@@ -68,6 +67,9 @@ def main(years: int = 3, out: Path | None = None) -> None:
         leaves_now = world.tree.lstring.count("L")
         if world.sim.season().index == current:  # (a day that ended in the next season counts there)
             peak_leaves = max(peak_leaves, leaves_now)
+            if out is not None and current == 3:  # the bare crown on the year's last day (rewritten daily)
+                out.mkdir(parents=True, exist_ok=True)
+                write_garden(SavedGarden.of(garden, "game_tree.lsys"), out / f"winter_{year}.arbor")
         still += season in (0, 1) and (world.sim.state.length_time, world.sim.state.girth_time) == before
     print(f"{years} years in {time.perf_counter() - start:.0f} s; budget {budget:,}; alive {world.sim.state.alive}")
 

@@ -177,3 +177,20 @@ def test_journal_and_seeds_survive_a_save(tmp_path, year):
     assert saved_at == 1000.0
     assert worlds[0].journal.entries == garden.world.journal.entries
     assert saved.seeds == garden.seeds
+
+
+@pytest.mark.parametrize("species", ["game_tree", "game_poplar"])
+def test_with_seasons_a_leaf_lives_out_its_season_and_in_an_endless_summer_it_ages_out(species):
+    from arbor.engine.lsystem.derive import Deriver
+    from arbor.engine.lsystem.lstring import parse_lstring
+
+    system = load_lsystem(Path("assets/lsystems") / f"{species}.lsys")
+    old = parse_lstring("".join("[L(0,1,0)]" for _ in range(50)))  # leaves 200 T old, past LLIFE
+    summer = {"T": 200.0, "G": 0.0, "DT": 0.5, "R": 1.0, "B": 0.0, "WL": 1.0, "SF": 1.0, "AF": 0.0, "SP": 0.0,
+              "C": 1.0}
+    falling = []
+    for seasons_run in (1.0, 0.0):
+        ls, _ = Deriver(system, seed=2).step(old, {**summer, "SL": seasons_run})
+        leaf = np.flatnonzero(ls.sym == ord("L"))
+        falling.append(int(np.count_nonzero(ls.params[ls.offsets[leaf] + 2] > 0)))
+    assert falling == [0, 50]  # a summer leaf stays till autumn; without seasons every old leaf falls

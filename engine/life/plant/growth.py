@@ -148,12 +148,13 @@ class GrowingTree:
     def rewrite(self, length_time: float, girth_time: float, resources: float, leaf_vigour: float = 1.0,
                 season: dict[str, float] | None = None, vigour: float = 1.0) -> StepReport:
         """One derivation step at the given clocks (new modules are born now), then empty brackets go.
-        ``season``: the season's externs (SF, AF, SP; see Simulation.season_externs); ``vigour`` (0..1,
+        ``season``: the season's externs (SF, AF, SP, SL; see Simulation.season_externs); ``vigour`` (0..1,
         extern C): the share of its shoots' growth the carbon pool pays for (engine/life/plant/carbon.py).
         While a region confines growth (``confine``, for ``confine_left`` more rewrites) only modules
         inside it change."""
         extern = {"T": length_time, "G": girth_time, "DT": length_time - self.last_rewrite_T, "R": resources,
-                  "B": self.budget_used, "WL": leaf_vigour, "SF": 1.0, "AF": 0.0, "SP": 0.0, "C": vigour,
+                  "B": self.budget_used, "WL": leaf_vigour, "SF": 1.0, "AF": 0.0, "SP": 0.0, "SL": 0.0,
+                  "C": vigour,
                   **(season or {})}
         only = None
         if self.confine is not None and self.confine_left > 0:

@@ -102,13 +102,14 @@ class Simulation:
 
     def season_externs(self, tree_age: float) -> dict[str, float]:
         """What the L-system hears of the season: SF (bud flush), AF (autumn leaf fall per unit of T),
-        SP (1 while a mature, healthy tree may blossom in spring)."""
+        SP (1 while a mature, healthy tree may blossom in spring), SL (1 while the seasons run: a deciduous
+        leaf then lives until autumn's fall, not a fixed span)."""
         turns, rules = self.state.sun_turns, self.rules
         season = self.season()
         bloom = season.index == 0 and season.progress < 0.6 and tree_age >= rules.seasons.mature_age
         healthy = self.resources() > 0.5
         return {"SF": seasons.flush(turns, rules), "AF": seasons.leaf_fall(turns, rules),
-                "SP": 1.0 if bloom and healthy else 0.0}
+                "SP": 1.0 if bloom and healthy else 0.0, "SL": 1.0 if rules.seasons.enabled else 0.0}
 
     def sun_height(self) -> float:
         """Height of the sun above the horizon in orbit radii (negative at night): higher in summer."""
