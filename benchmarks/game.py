@@ -4,8 +4,10 @@ Run: python -m benchmarks.game [--quick]
 One run, three trees: a fresh sapling, a tree grown 25 simulated days by the living model (under its
 12,000-module budget) and a 50,000-segment tree grown by the game's own rules with the budget raised
 (every bud woken, no light limits). Each frame = input + fixed steps + record updates + 3D render +
-HUD, timed to ctx.finish(). The big tree grows at full speed (its clocks advance every frame, a rewrite
-every physiological time unit); light readings are left out for it (the benchmark is about drawing).
+HUD, timed to ctx.finish(). The sapling and the 25-day tree are timed in the look as it is and in the old
+look (no edge smoothing, one shadow tap) in alternating blocks of frames, for the ratio. The big tree grows
+at full speed (its clocks advance every frame, a rewrite every physiological time unit); light readings
+are left out for it (the benchmark is about drawing).
 The big tree's crown is drawn at a reduced resolution and over several frames (game/render/layer.py);
 the run says how many pictures it showed. Then the cost per growth step against tree size: a full
 rebuild of the records (what a rewrite costs, on a worker thread for big trees) against the per-frame
