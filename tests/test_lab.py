@@ -158,3 +158,24 @@ def test_the_live_charts_mark_where_a_tree_died():
     trees[1].values["alive"] = [1.0] * 6
     draw_panel(plain, rect, "wilt", trees, font, font)
     assert all(tuple(plain.get_at((int(x + dx), int(y + dy)))[:3]) != COLORS[1] for dx, dy in ((-8, -8), (8, 8)))
+
+
+def test_the_competition_figure_draws_the_plot_against_the_tree_alone(tmp_path):
+    import matplotlib.image as mpimg
+
+    from arbor.engine.life.experiment.lab import Series
+    from arbor.game.render.figures import competition
+
+    def series(name, light, share):
+        s = Series(name, time=list(range(8)), day=[float(d) for d in range(8)])
+        s.values["light_day"], s.values["light_share"] = light, share
+        return s
+
+    grow = [0.0, 1.0, 2.0, 4.0, 6.0, 9.0, 12.0, 15.0]
+    trees = [series(n, [g * f for g in grow], [0.5 * f] * 8) for n, f in (("West", 0.95), ("Middle", 0.9),
+                                                                          ("East", 0.95))]
+    png, svg = competition(trees, series("alone", grow, [0.5] * 8), tmp_path / "competition")
+    text = svg.read_text(encoding="utf-8")
+    assert "Middle: -10.0 % on average" in text and "time (game days)" in text  # the legend's mean, an axis unit
+    image = mpimg.imread(png)[..., :3]
+    assert image.shape[1] > 1000 and image.std() > 0.05

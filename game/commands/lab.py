@@ -7,12 +7,14 @@ from pathlib import Path
 
 import numpy as np
 
+from arbor.engine.base.units import METRE
 from arbor.engine.life.experiment.lab import Lab, load_experiment
 from arbor.engine.life.keep.save import SavedGarden, write_garden
 from arbor.engine.life.rules.rules import load_rules
 from arbor.game.paths import ASSETS
 from arbor.game.render.figures import lab_charts
-from arbor.game.render.renderer import headless_context, render_image, save_png
+from arbor.game.render.renderer import headless_context, save_png
+from arbor.game.render.scale_bar import frame_for, render_to_scale
 
 
 def new_lab(experiment_path: Path) -> Lab:
@@ -24,16 +26,16 @@ def new_lab(experiment_path: Path) -> Lab:
 
 
 def scene_png(lab: Lab, path: Path, tile: tuple[int, int] = (640, 720), ctx=None) -> None:
-    """The trees side by side (each framed alike, named), as one PNG."""
+    """The trees side by side (at one shared scale with a metre bar, named), as one PNG."""
     import pygame
 
     pygame.font.init()
     font = pygame.font.Font(None, 40)
     tiles = []
-    heights = [max(float(w.tree.geometry(w.clocks()).turtle.bounds()[1][1]), 1.0) for w in lab.worlds]
+    frame = frame_for(max(float(w.tree.geometry(w.clocks()).turtle.bounds()[1][1]) for w in lab.worlds) / METRE)
     for world, series in zip(lab.worlds, lab.series, strict=True):
         mesh = world.tree.geometry(world.clocks()).mesh
-        img = render_image(mesh, tile, pitch=10.0, ctx=ctx, frame_height=max(heights))
+        img = render_to_scale(mesh, tile, frame, pitch=10.0, ctx=ctx)
         surf = pygame.image.frombuffer(np.ascontiguousarray(img).tobytes(), tile, "RGB").copy()
         label = font.render(series.name, True, (20, 20, 20))
         surf.blit(label, ((tile[0] - label.get_width()) // 2, tile[1] - 50))

@@ -1,5 +1,6 @@
 """Exported figures, drawn with matplotlib (PNG and SVG): sweep dose-response, time series per level,
-a thumbnail grid of final trees, and the lab's charts. Large type and thick lines for a projector."""
+a thumbnail grid of final trees, the lab's charts, and trees on one plot against the same tree alone.
+Large type and thick lines for a projector."""
 
 from __future__ import annotations
 
@@ -138,7 +139,8 @@ def thumbnails(sweep, images: dict, path: Path) -> list[Path]:
 
 def lab_charts(series: list, path: Path, title: str = "", colors=((230, 90, 60), (60, 140, 230), (90, 180, 70),
                                                                    (200, 160, 30), (150, 80, 180), (60, 60, 60)),
-               metrics=("height", "biomass", "leaf_area", "light_day", "water", "wilt")) -> list[Path]:
+               metrics=("height", "biomass", "leaf_area", "light_share", "light_day", "net_carbon", "water",
+                        "wilt")) -> list[Path]:
     """The lab's time series as small multiples, one line per tree in the live charts' colours (the
     exported twin of the lab screen's charts), against game days; a dead tree's line ends in a cross."""
     fig, axes = _grid(len(metrics))
@@ -157,6 +159,37 @@ def lab_charts(series: list, path: Path, title: str = "", colors=((230, 90, 60),
     axes[0].legend(fontsize=10, frameon=False)
     if title:
         fig.suptitle(title, fontsize=16)
+    return save_both(fig, path)
+
+
+def competition(series: list, alone, path: Path, title: str = "",
+                colors=((230, 90, 60), (60, 140, 230), (90, 180, 70))) -> list[Path]:
+    """Trees sharing a plot against the same tree alone, against game days: the light each intercepts a day
+    (m² x h), and the light reaching its leaves (a share of full sun: the shade on each m² of leaf, whatever
+    the tree's size) as % more or less than on the lone tree's leaves the same day, with each tree's mean
+    over the run in the legend. ``alone`` is the lone tree's series (same seed and regime, own plot)."""
+    fig, axes = _grid(2, width=6.4, height=4.4)
+    lone = np.asarray(alone.values["light_share"])
+    for k, s in enumerate(series):
+        color = np.array(colors[k % len(colors)]) / 255.0
+        axes[0].plot(s.day, s.values["light_day"], color=color, label=s.name)
+        less = 100.0 * (np.asarray(s.values["light_share"]) / np.maximum(lone, 1e-9) - 1.0)
+        axes[1].plot(s.day[3:], less[3:], color=color,  # (the first days: a seedling's few leaves)
+                     label=f"{s.name}: {less[3:].mean():+.1f} % on average")
+    axes[0].plot(alone.day, alone.values["light_day"], "--", color="0.35", label="alone (same seed, own plot)")
+    axes[1].axhline(0.0, color="0.35", linestyle="--", linewidth=2, label="alone")
+    axes[0].set_title(TITLES["light_day"])
+    axes[0].set_ylabel(YLABELS["light_day"] + " per day")
+    axes[1].set_title("Light on the leaves, against the tree alone")
+    axes[1].set_ylabel("% more (+) or less (-) than alone")
+    axes[1].legend(fontsize=10, frameon=False)
+    for ax in axes:
+        ax.set_xlabel("time (game days)")
+        ax.grid(alpha=0.3)
+    axes[0].set_ylim(bottom=0)
+    axes[0].legend(fontsize=10, frameon=False)
+    if title:
+        fig.suptitle(title, fontsize=15)
     return save_both(fig, path)
 
 
