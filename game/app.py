@@ -8,6 +8,7 @@ import os
 import time
 from pathlib import Path
 
+from arbor.engine.base.files import FolderBusyError, FolderLock
 from arbor.game.errors import NO_DISPLAY, NO_DISPLAY_FOUND, UserError
 from arbor.game.signals import StopSignals
 from arbor.game.watchdog import STAFF_EXIT
@@ -143,7 +144,7 @@ def run_app(args: argparse.Namespace | None = None) -> int:
     import pygame
 
     from arbor.game.first_start import show_until_ready, timing
-    from arbor.game.paths import default_saves, lock_saves
+    from arbor.game.paths import default_saves
 
     saves = getattr(args, "saves", None) or os.environ.get("ARBOR_SAVES")
     lock = lock_saves(Path(saves) if saves else default_saves())  # before the window: a second Arbor ends here
@@ -172,7 +173,7 @@ def run_kiosk(args: argparse.Namespace) -> int:
     """Kiosk mode: fullscreen, touch only, never quits without the staff PIN, recovers from faults."""
     import pygame
 
-    from arbor.game.paths import ASSETS, lock_saves
+    from arbor.game.paths import ASSETS
     from arbor.game.screens.game import Game, GameConfig
     from arbor.game.screens.kiosk import Kiosk, load_kiosk_config
 
@@ -197,6 +198,17 @@ def run_kiosk(args: argparse.Namespace) -> int:
     pygame.quit()
     lock.release()
     return STAFF_EXIT if kiosk.quit_requested else 0
+
+
+def lock_saves(folder: Path) -> FolderLock:
+    """Hold ``folder``'s lock for this process's life (two games writing one folder would lose each
+    other's trees): a second Arbor on the same folder ends in one line naming the process that has it.
+    A lock left by a process that died (kill -9, a crash, a watchdog's restart) is taken over."""
+    try:
+        return FolderLock(folder).acquire()
+    except FolderBusyError as busy:
+        raise UserError(f"the saves folder {folder} is in use by another Arbor (pid {busy.pid or 'unknown'}): "
+                        "close that one first, or start this one with --saves ANOTHER_FOLDER") from None
 
 
 def _kiosk_log(path: Path) -> None:
