@@ -202,3 +202,28 @@ def test_fourteen_days_away_end_honestly_or_watered_with_the_away_setting(system
     s = cared.world.sim.state
     assert s.alive and not watered.died and not watered.thirsty and watered.waterings >= 14
     assert watered.grown > honest.grown and s.water_meter > home.growth.threshold
+
+
+@pytest.mark.parametrize("away", [False, True])
+def test_settings_away_is_kept_and_waters_the_garden_for_fourteen_days(gl_ctx, tmp_path, away):
+    """Home pace: Settings -> Away (or not), quit, come back 14 days later: with it the tree lived on,
+    watered, and the setting is still on; without it the honest outcome (a dead tree) stays."""
+    from arbor.engine.life.world.actions import Action
+    from arbor.game.screens.game import Game, GameConfig
+    from tests.conftest import FakeClock
+
+    now = 1.75e9
+    make = lambda when: Game(gl_ctx, (640, 360), GameConfig(saves=tmp_path, seed=3, pace="home"),  # noqa: E731
+                             clock=FakeClock(), wall_clock=lambda: when)
+    game = make(now - 14 * 86400)
+    game.world.sim.state.water_meter = 0.9
+    if away:
+        game.act(Action.AWAY, 1.0)
+        assert game.menu.widget("away").label == "Away: on"
+    game.quit()
+    kept = tmp_path / "settings.toml"
+    assert (kept.exists() and "away = true" in kept.read_text()) == away
+    again = make(now)
+    message = again.hud_info().message
+    assert again.sound.prefs.away == away and again.world.sim.state.alive == away
+    assert ("watered" in message and "died" not in message) if away else "died" in message

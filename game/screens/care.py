@@ -64,7 +64,7 @@ class CareActions:
             Action.SYMBOLS: tool(lambda: modeling.tool("symbols")), Action.EDIT: pressed(self._next_edit),
             Action.UNDO: pressed(modeling.undo), Action.REDO: pressed(modeling.redo),
             Action.DEVICES: pressed(self._devices),
-            Action.VOLUME: self._volume, Action.MUTE: pressed(self._mute),
+            Action.VOLUME: self._volume, Action.MUTE: pressed(self._mute), Action.AWAY: pressed(self._away),
         }
 
     def act(self, action: Action, value: float = 0.0) -> None:
@@ -172,6 +172,14 @@ class CareActions:
             self.sound.toggle_mute()
             self.sync_sliders()
 
+    def _away(self) -> None:
+        """Settings -> Away: the garden is watered while you are gone (up to the time-away cap), or not."""
+        if self.sound is not None:
+            on = self.sound.toggle_away()
+            self.state.say(text("messages.away_on" if on else "messages.away_off",
+                                days=f"{self.rules.away.cap_days:g}"), 6)
+            self.sync_sliders()
+
     def _devices(self) -> None:
         names = sorted(self.state.devices) or [text("messages.no_devices")]
         self.state.say(text("messages.devices", names=", ".join(names)), 8)
@@ -272,6 +280,7 @@ class CareActions:
         if self.sound is not None:
             menu.widget("volume").value = 0.0 if self.sound.prefs.muted else self.sound.prefs.volume
             menu.widget("mute").label = text("menu.unmute" if self.sound.prefs.muted else "menu.mute")
+            menu.widget("away").label = text("menu.away_on" if self.sound.prefs.away else "menu.away_off")
 
     def set_speed(self, speed: float) -> None:
         """Time speed: 0 (pause), 1, 10 or 100 (a speed chosen by hand answers a guardian's stop)."""

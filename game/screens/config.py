@@ -35,11 +35,13 @@ class GameConfig:
 
 @dataclass
 class Preferences:
-    """The player's settings that are not the garden's: how loud the sound plays (0..1) and whether it
-    is muted. Kept in the saves folder's settings.toml, so they outlive a replant or a restored save."""
+    """The player's settings that are not the garden's: how loud the sound plays (0..1), whether it is
+    muted, and Away (the garden is watered while the player is gone: engine/life/keep/away.py). Kept in
+    the saves folder's settings.toml, so they outlive a replant or a restored save."""
 
     volume: float = 0.7
     muted: bool = False
+    away: bool = False
 
 
 def check_volume(volume: float, file: str, text: str, key: str = "volume") -> None:
@@ -73,14 +75,16 @@ def read_preferences(path: Path) -> Preferences:
 def write_preferences(prefs: Preferences, path: Path) -> None:
     """Write ``prefs`` to ``path`` atomically (the old file or the new one, never half of it)."""
     text = ("# Arbor's own settings (Settings in the game's menu); the garden is in autosave.arbor.\n"
-            f"volume = {round(prefs.volume, 3)!r}\nmuted = {str(prefs.muted).lower()}\n")
+            f"volume = {round(prefs.volume, 3)!r}\nmuted = {str(prefs.muted).lower()}\n"
+            f"away = {str(prefs.away).lower()}  # the garden is watered while you are away\n")
     atomic_write(path, text.encode("utf-8"))
 
 
 class SoundSettings:
-    """The Settings page's volume slider and mute button: they set the game's :class:`Audio
-    <arbor.game.audio.sounds.Audio>` at once and are written to settings.toml SAVE_AFTER seconds after
-    the last change (a dragged slider writes the file once), and on :meth:`flush`."""
+    """The Settings page's volume slider and mute button (and its Away button, kept in the same file):
+    they set the game's :class:`Audio <arbor.game.audio.sounds.Audio>` at once and are written to
+    settings.toml SAVE_AFTER seconds after the last change (a dragged slider writes the file once), and
+    on :meth:`flush`."""
 
     def __init__(self, audio, folder: Path, clock) -> None:
         self.audio, self.path, self.clock = audio, Path(folder) / PREFERENCES, clock
@@ -106,6 +110,12 @@ class SoundSettings:
         """The mute button: sound off, or back on at the volume it had."""
         self.prefs.muted = not self.prefs.muted
         self._changed()
+
+    def toggle_away(self) -> bool:
+        """The Away button: the garden is watered while the player is gone, or not. Returns it."""
+        self.prefs.away = not self.prefs.away
+        self._changed()
+        return self.prefs.away
 
     def _changed(self) -> None:
         self.audio.set_volume(self.prefs.volume, self.prefs.muted)

@@ -73,7 +73,8 @@ class Game:
         self.overlay_hooks: list = []  # extra overlay layers (kiosk attract text, PIN pad)
         self.title = TitleScreen(size, shown=self.config.title)
         self.state = state = GameState(self.loop, self.control, clock, self.rules)
-        self.keeper = SaveKeeper(state, self.config, self.rules, self.system, wall_clock)
+        self.keeper = SaveKeeper(state, self.config, self.rules, self.system, wall_clock,
+                                 away=lambda: self.sound.prefs.away)
         state.use(self.keeper.start())
         self._parts()
         if self.keeper.fresh:

@@ -35,8 +35,9 @@ class SaveKeeper:
     """Loads, saves and autosaves one game's garden."""
 
     def __init__(self, state: GameState, config: GameConfig, rules: Rules, system: LSystem,
-                 wall_clock: Callable[[], float]) -> None:
+                 wall_clock: Callable[[], float], away: Callable[[], bool] = lambda: False) -> None:
         self.state, self.config, self.rules, self.system, self.wall_clock = state, config, rules, system, wall_clock
+        self.away = away  # the player's Away setting: the garden is watered while they are gone
         self.last_autosave = state.clock()
         self.last_summary: AwaySummary | None = None
         self.fresh = False  # True when start() found no garden to resume: a new player
@@ -74,7 +75,7 @@ class SaveKeeper:
             saved.worlds += self._legacy_trees(path, len(saved.worlds))
             garden = saved.garden()
             seconds = away_seconds(self.wall_clock(), saved.saved_at, self.rules.away.cap_days)
-            summary = live_away(garden, seconds)
+            summary = live_away(garden, seconds, watered=self.away())
         except Exception as err:  # a save that breaks loading (a bug it finds) must never break the start
             self._set_aside(path, err.message if isinstance(err, LSysError) else f"{type(err).__name__}: {err}")
             return None
@@ -208,6 +209,8 @@ def away_message(summary: AwaySummary) -> str:
     if summary.died:
         parts.append(text("away.died"))
     else:
+        if summary.waterings:
+            parts.append(text("away.watered", count=summary.waterings))
         if summary.grown >= 0.005:
             parts.append(text("away.grew", metres=summary.grown))
         if summary.shed:

@@ -42,6 +42,7 @@ class Action(Enum):
     DEVICES = "devices"
     VOLUME = "volume"  # value: the sound's volume 0..1 (Settings)
     MUTE = "mute"  # sound off / back on (Settings)
+    AWAY = "away"  # the garden watered while the player is away, or not (Settings)
 
     @classmethod
     def named(cls, name: str) -> Action:
