@@ -175,8 +175,9 @@ def _cmd_card(args: argparse.Namespace) -> int:
 def _cmd_import(args: argparse.Namespace) -> int:
     import os
 
+    from arbor.game.app import lock_saves
     from arbor.game.commands.card import import_card
-    from arbor.game.paths import default_saves, lock_saves
+    from arbor.game.paths import default_saves
 
     saves = args.saves or (Path(os.environ["ARBOR_SAVES"]) if os.environ.get("ARBOR_SAVES") else default_saves())
     lock = lock_saves(saves)  # a game playing this garden would overwrite the import at its next autosave

@@ -16,6 +16,8 @@ from arbor.engine.base.files import read_regular
 from arbor.engine.life.keep.save import MAX_BYTES, SavedGarden, garden_text, read_garden_bytes
 from arbor.engine.life.keep.save_check import SaveError
 from arbor.engine.life.plant.sim import Rules
+from arbor.engine.life.world.garden import MAX_GARDEN, Garden
+from arbor.engine.life.world.world import World
 
 SIGNATURE = b"\x89PNG\r\n\x1a\n"
 KEYWORD = b"Arbor save"  # the iTXt chunk's keyword (PNG keywords are 1-79 Latin-1 characters)
@@ -55,6 +57,19 @@ def card_save_bytes(path: str | Path) -> bytes:
 def read_card(path: str | Path, rules: Rules | None = None) -> SavedGarden:
     """The garden a card carries, checked like any shared save (errors name the card)."""
     return read_garden_bytes(card_save_bytes(path), path, rules)
+
+
+def plant_card(garden: Garden, shared: SavedGarden) -> World:
+    """Plant the tree a card carried (``shared``, from :func:`read_card`) beside the others of ``garden``,
+    with its ancestry; a ValueError saying why when the garden already holds that tree or is full."""
+    world = shared.world
+    if any(w.lineage.id == world.lineage.id for w in garden.worlds):
+        raise ValueError(f"this tree ({world.lineage.id}) is already in your garden")
+    if garden.full:
+        raise ValueError(f"your garden is full ({MAX_GARDEN} trees): make room first")
+    for member in shared.family.members.values():
+        garden.family.add(member)
+    return garden.adopt(world)
 
 
 def _chunk(kind: bytes, data: bytes) -> bytes:
