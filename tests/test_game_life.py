@@ -189,8 +189,8 @@ def test_the_menu_puts_care_first_with_big_targets_and_tools_in_the_modeler(gl_c
     assert {"save", "prune", "crown"}.isdisjoint(names)  # developer and modeler buttons live elsewhere
     settings = game.menu.widget("settings")
     tap(game, *settings.rect.center)
-    assert {w.name for w in game.menu.shown()} == {"save", "load", "restore", "roots", "devices", "volume", "mute",
-                                                   "away", "back"}
+    assert {w.name for w in game.menu.shown()} == {"save", "load", "share", "restore", "roots", "devices", "volume",
+                                                   "mute", "away", "back"}
     game.menu.hide()
     game.act(Action.MODELER, 1.0)
     assert game.modeling.active

@@ -102,6 +102,18 @@ def _speaker(s, cx, cy, r):
         pygame.draw.arc(s, INK, box, -0.9, 0.9, 3)
 
 
+def _card(s, cx, cy, r):
+    """A postcard with a little tree on it (Share, Import)."""
+    card = pygame.Rect(0, 0, int(r * 2.0), int(r * 1.4))
+    card.center = (int(cx), int(cy))
+    pygame.draw.rect(s, INK, card, 2, border_radius=3)
+    pygame.draw.line(s, (150, 110, 70), (cx - r * 0.4, cy + r * 0.5), (cx - r * 0.4, cy - r * 0.05), 3)
+    pygame.draw.circle(s, LEAF, (int(cx - r * 0.4), int(cy - r * 0.25)), int(r * 0.35))
+    for k in range(2):
+        y = cy - r * 0.2 + k * r * 0.35
+        pygame.draw.line(s, INK, (cx + r * 0.15, y), (cx + r * 0.75, y), 1)
+
+
 ICONS = {"stone": _stone, "speaker": _speaker, "cross": _cross, "sun": _sun, "clock": _clock, "can": _can,
-         "sapling": _sapling, "seed": _seed,
+         "sapling": _sapling, "seed": _seed, "card": _card,
          "pencil": _pencil, "gear": _gear, "book": _book, "back": _back}

@@ -42,6 +42,7 @@ from arbor.game.screens.game_view import GameView
 from arbor.game.screens.modeler import ModelingMode
 from arbor.game.screens.picking import Picker
 from arbor.game.screens.saves import SaveKeeper
+from arbor.game.screens.sharing import Sharing
 from arbor.game.screens.state import GameState
 from arbor.game.screens.title import TitleScreen
 
@@ -96,6 +97,8 @@ class Game:
         self.family = FamilyScreen(state, self.menu, size)
         self.care = CareActions(state, self.menu, self.modeling, self.keeper, self.family, self.coach, self.rules,
                                 self.system, self.wall_clock, self.sound)
+        self.sharing = Sharing(state, self.config.saves, self.rules, self.config.lsystem.name, self.renderer.ctx)
+        self.care.handlers.update(self.sharing.handlers())  # (Settings -> Share, Garden -> Import)
         self.picker = Picker(state, self.view.views, size, self.care)
         self.hud = GameHud(state, self.rules, size, menu=self.menu, overlay=self.overlay, renderer=self.renderer,
                            views=self.view.views, fonts=(self.font, self.small_font), modeling=self.modeling,
