@@ -12,6 +12,7 @@ cover the screen many times over is drawn at a lower resolution (game/render/lay
 from __future__ import annotations
 
 import math
+import os
 from dataclasses import dataclass, replace
 
 import moderngl
@@ -96,7 +97,8 @@ class GardenRenderer:
         self.leaf_tint, self.bark_tint, self.blossom_tint = (1.0, 1.0, 1.0), BARK, BLOSSOM
         self.autumn, self.leaf_keep = 0.0, 1.0  # autumn colour (0..1) and share of leaves still on
         self.relief, self.translucency = 1.0, 1.0  # bark normal map and light through leaves (0: left out)
-        self.fxaa = self.samples <= 1  # smoothed edges where there is no multisampling (see fxaa.py)
+        # smoothed edges where there is no multisampling (see fxaa.py); ARBOR_FXAA=0 leaves them out (a slow CPU)
+        self.fxaa = self.samples <= 1 and os.environ.get("ARBOR_FXAA", "1") != "0"
         self.soft_shadows = 1.0  # shadow edges filtered over this many texels (0: one bilinear tap)
         self.post = Fxaa(ctx)
         self.wind = np.zeros(3)  # direction x strength (scene units at the outermost twigs)
