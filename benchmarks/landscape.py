@@ -1,4 +1,4 @@
-"""Landscape benchmark (seed 001 tables 1 and 3): frame time and triangles per second for 1,500 to
+"""Landscape benchmark (Jung et al. tables 1 and 3): frame time and triangles per second for 1,500 to
 6,000 trees, every tree at each single resolution level, and with LOD by distance.
 
 Run: python -m benchmarks.landscape [--counts 1500 3000 4500 6000] [--frames 3]

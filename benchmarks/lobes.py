@@ -1,4 +1,4 @@
-"""Lobe benchmark: three drawn lobes -> attractors -> seed 004 growth -> L-string, and the modeler's
+"""Lobe benchmark: three drawn lobes -> attractors -> Zhang et al. growth -> L-string, and the modeler's
 crown cases with the game's module budget (issue 31).
 
 Run: python -m benchmarks.lobes

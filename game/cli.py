@@ -291,7 +291,7 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument("--record", type=Path, default=None, help="record this session's input to a file")
     parser.add_argument("--replay", type=Path, default=None, help="replay recorded input")
     parser.add_argument("--pace", choices=("home", "demo"), default=None,
-                        help="home: a day of the sun lasts a day (default); demo: seed 003's 2-minute days")
+                        help="home: a day of the sun lasts a day (default); demo: 2-minute days, as in the thesis")
     parser.add_argument("--kiosk", action="store_true", help="unattended touchscreen mode (see assets/kiosk.toml)")
     parser.add_argument("--windowed", action="store_true", help="with --kiosk: a window instead of fullscreen")
     parser.add_argument("--version", action="version", version=f"arbor {_version()}")

@@ -7,7 +7,7 @@ import pytest
 
 os.environ.setdefault("SDL_VIDEODRIVER", "dummy")
 os.environ.setdefault("SDL_AUDIODRIVER", "dummy")
-os.environ.setdefault("ARBOR_PACE", "demo")  # the game's tests run at seed 003's pace (20 s / 40 s, 2-minute days)
+os.environ.setdefault("ARBOR_PACE", "demo")  # the tests run at the thesis's pace (20 s / 40 s, 2-minute days)
 
 ROOT = Path(__file__).resolve().parent.parent
 LSYSTEMS = ROOT / "assets" / "lsystems"

@@ -1,4 +1,4 @@
-"""Region edits: built-in production sets applied only inside a region (seed 000 4.2, 5.2)."""
+"""Region edits: built-in production sets applied only inside a region (Onishi et al. 2003, 4.2, 5.2)."""
 
 from pathlib import Path
 

@@ -1,4 +1,4 @@
-"""Lobes from closed strokes and growth into them (seed 004, toward issue 6): engine/modeling/lobes.py and
+"""Lobes from closed strokes and growth into them (Zhang et al., toward issue 6): engine/modeling/lobes.py and
 engine/modeling/crown.py."""
 
 import numpy as np

@@ -92,7 +92,7 @@ def test_growth_points_follow_the_density_and_carry_attributes():
     heights = [p[1][2] for p in points]
     assert min(heights) > 2.9 and all(len(p[1]) == 5 for p in points)  # A(l, x, y, z, d)
     gaps = np.diff(sorted(heights))
-    assert gaps.std() > 0.1 * gaps.mean()  # at random places (seed 002 algorithm 2), not a regular comb
+    assert gaps.std() > 0.1 * gaps.mean()  # at random places (Wakabayashi & Durikovic algorithm 2), not a regular comb
 
 
 def test_branch_snaps_to_the_nearest_point_and_is_bracketed():

@@ -47,7 +47,7 @@ def year():
 
 def test_paces_scale_times_and_rates_but_keep_the_rules_shape():
     demo, home = load_rules(RULES, pace="demo"), load_rules(RULES, pace="home")
-    assert demo.growth.hold_time == 20.0 and demo.growth.deadline == 40.0  # seed 003's numbers
+    assert demo.growth.hold_time == 20.0 and demo.growth.deadline == 40.0  # the tamagotchi thesis's numbers
     k = home.time_scale
     assert 500 < k < 1000
     assert home.growth.hold_time == pytest.approx(20.0 * k) and home.growth.deadline == pytest.approx(40.0 * k)

@@ -11,7 +11,7 @@ from arbor.engine.life.rules.rules import GrowthRules, Rules, load_rules
 
 def test_rules_file_loads_and_is_strict(tmp_path):
     rules = load_rules("assets/rules.toml", pace="demo")
-    assert rules.growth.hold_time == 20.0 and rules.growth.deadline == 40.0  # seed 003's numbers
+    assert rules.growth.hold_time == 20.0 and rules.growth.deadline == 40.0  # the tamagotchi thesis's numbers
     bad = tmp_path / "rules.toml"
     bad.write_text("[growth]\nhold_tme = 3\n")
     with pytest.raises(LSysError, match="hold_tme"):

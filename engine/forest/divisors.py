@@ -1,4 +1,4 @@
-"""Divisor functions and their convolution sums: the branch and leaf propagation pattern of seed 001
+"""Divisor functions and their convolution sums: the branch and leaf propagation pattern of Jung et al.
 (section 4.2, eq. 3-4, Algorithm 2).
 
 Eq. 4's divisor functions (exact integer arithmetic):

@@ -1,4 +1,4 @@
-"""GeoMaTree species (seed 001 section 4): growth-model parameters as presets, grown by an L-system.
+"""GeoMaTree species (Jung et al. section 4): growth-model parameters as presets, grown by an L-system.
 
 A preset fills the #defines of assets/lsystems/geomatree.lsys; the tree's seed fixes the n_seed
 random seed points of its growth space (each branch picks one; eq. 1) and, through Algorithm 2,

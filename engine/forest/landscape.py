@@ -1,4 +1,4 @@
-"""Landscapes and gardens: many trees as instances of a few meshes (seed 001 sections 5.1 and 6).
+"""Landscapes and gardens: many trees as instances of a few meshes (Jung et al. sections 5.1 and 6).
 
 Trees of a few presets are meshed once per resolution level; a landscape places instances of them
 (position on a gentle terrain, yaw, scale). Each frame, instances outside the view frustum are culled

@@ -1,11 +1,11 @@
 """Tree meshes from turtle segments: generalized cylinders, leaf quads, multi-resolution levels.
 
 Wood is one tube per axis: one ring of ``n_surf`` vertices per joint, shared by the two segments that
-meet there, so there are no hidden caps inside the wood (seed 003, 6.7); only branch tips get a cap.
+meet there, so there are no hidden caps inside the wood (the tamagotchi thesis, 6.7); only branch tips get a cap.
 Ring frames are parallel-transported along each axis (products of minimal rotations, in one compiled
 pass: engine.geometry.mesh_kernel), so tubes do not twist when the turtle rolls. With ``n_div`` > 1
 each segment is a cubic Bezier whose control points sit a third of the way along, bent to match the
-joint tangents (the form of seed 001 eq. 2). UVs: u around the branch, v along it, one unit per growth step.
+joint tangents (the form of Jung et al. eq. 2). UVs: u around the branch, v along it, one unit per growth step.
 """
 
 from __future__ import annotations
@@ -56,7 +56,7 @@ class TreeMesh:
 
 @dataclass(frozen=True)
 class LodLevel:
-    """One resolution level (seed 001, 5.1): sides per ring, Bezier steps, thinnest twig kept."""
+    """One resolution level (Jung et al., 5.1): sides per ring, Bezier steps, thinnest twig kept."""
 
     n_surf: int
     n_div: int

@@ -291,7 +291,7 @@ def _auto_leaf_size(segs: Segments) -> float:
 
 
 def _tip_leaves(segs: Segments, k: int, size: float) -> Leaves:
-    """A cluster of ``k`` leaves at the end of every segment with no child (seed 003 added them at ']').
+    """A cluster of ``k`` leaves at the end of every segment with no child (the tamagotchi thesis added them at ']').
 
     Leaf i of a tip is rolled i/k of a turn about the twig (plus a per-tip offset) and pitched 40 deg
     away from it. With the twig's frame (H, L, U) and side = cos r L + sin r U, the leaf's frame is

@@ -1,4 +1,4 @@
-"""L-strings in memory: a symbol array plus parameters stored apart from the symbols (seed 003, 2.1).
+"""L-strings in memory: a symbol array plus parameters stored apart from the symbols (the tamagotchi thesis, 2.1).
 
 A module is one printable ASCII symbol with zero or more float parameters. An :class:`LString` holds
 

@@ -1,10 +1,10 @@
-"""Bend down (seed 000 section 5.2's gravitropism edit) in world terms: every branch piece that starts
+"""Bend down (Onishi et al. 2003 section 5.2's gravitropism edit) in world terms: every branch piece that starts
 inside a region turns toward the ground by a few degrees, whatever its turtle frame.
 
 A turn module pair ``+(a)&(b)`` is put before each such piece: the rotation, computed in the piece's own
 frame, that takes its heading toward -y by an angle in proportion to its length (a piece already
 pointing down stays). Turtle turns are relative, so everything that grows from the piece turns with it.
-The drawn pieces' stored start V and frame H, U (seed 000's F parameters) are then rewritten from the
+The drawn pieces' stored start V and frame H, U (Onishi et al. 2003's F parameters) are then rewritten from the
 bent tree, so they stay exactly where the turtle draws them.
 """
 

@@ -1,4 +1,4 @@
-"""Growth into lobes (seed 004 section 5) and the grown crown written into the L-string.
+"""Growth into lobes (Zhang et al. section 5) and the grown crown written into the L-string.
 
 All vectorised, no loop over nodes: every attractor joins its nearest active node; a node's cluster
 is split into ceil(theta_h/t) x ceil(theta_v/t) pieces by the azimuth/elevation span of its
@@ -281,7 +281,7 @@ def _piece(turn, pitch, length, start, d, up, variation, diameter) -> str:
 def grow_crown(modeler: Modeler, lobes: list[Lobe], rng: np.random.Generator, per_lobe: int = 1500,
                max_nodes: int = 6000, tip: str = "", step_fraction: float = 0.12,
                reach_fraction: float | None = None) -> int:
-    """Grow the modeled tree into ``lobes`` (seed 004 section 5) and commit the branches to its
+    """Grow the modeled tree into ``lobes`` (Zhang et al. section 5) and commit the branches to its
     L-string (undoable). Every node of the tree, drawn or grown, may grow toward the attractors of the
     lobes (each attractor joins its nearest node), so every lobe fills from the branches nearest to it;
     a lobe with no wood near it is first reached by an axis grown straight to it from the nearest node

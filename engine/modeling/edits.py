@@ -1,9 +1,9 @@
-"""Region edits (seed 000 sections 4.2 and 5.2): a chosen production set rewrites only the modules
+"""Region edits (Onishi et al. 2003 sections 4.2 and 5.2): a chosen production set rewrites only the modules
 whose turtle position lies inside a region of interest.
 
 The built-in sets are ordinary .lsys files (assets/edits/): add or erase leaves, add or erase
 blossoms and grow (the game tree's buds and apices in the region wake and are
-due at once; an empty region gets a new axis, seed 000 4.2). A system's own productions can be
+due at once; an empty region gets a new axis, Onishi et al. 2003, 4.2). A system's own productions can be
 applied in a region the same way. Prune removes the subtrees that start inside the region; Bend turns the
 pieces inside it toward the ground in world terms (engine/modeling/bend.py).
 """

@@ -1,4 +1,4 @@
-"""Lobes (seed 004 section 4): the crown drawn as a few closed strokes, as closed meshes.
+"""Lobes (Zhang et al. section 4): the crown drawn as a few closed strokes, as closed meshes.
 
 Closed strokes drawn around the crown at different heights are sampled by eq. 1 (key points where they
 bend, a smooth curve through them), ordered along the lobe's axis and given the same number of points
@@ -30,7 +30,7 @@ def resample_loop(points: np.ndarray, count: int) -> np.ndarray:
 
 
 def sampled_loop(points: np.ndarray) -> np.ndarray:
-    """A drawn closed stroke through its key points (seed 004 eq. 1: dense where it bends, sparse where
+    """A drawn closed stroke through its key points (Zhang et al. eq. 1: dense where it bends, sparse where
     it runs straight, jitter averaged away) and a smooth curve through them (the first key closes it)."""
     if len(points) < 8:
         return points
@@ -87,7 +87,7 @@ class Lobe:
         return self._with_rings(laplacian_edit(self.vertices, self.faces, handle, targets, fixed))
 
     def dragged(self, ring: int, index: int, to, width: int = 4) -> Lobe:
-        """One stroke point dragged to ``to`` by Laplacian surface editing (seed 004, as for squeeze):
+        """One stroke point dragged to ``to`` by Laplacian surface editing (Zhang et al., as for squeeze):
         the point goes exactly there, the surface farther than the stroke point ``width + 1`` steps
         along its stroke stays, and the surface between follows, keeping its shape as well as it can."""
         n = self.ring_size
@@ -238,7 +238,7 @@ def lobe_from_loops(loops: list[np.ndarray], points_per_loop: int = 32,
                     open_strokes: list[np.ndarray] = ()) -> Lobe:
     """Stitch two or more closed strokes into a closed lobe mesh (see module docstring).
 
-    Each of ``open_strokes`` (an arch drawn across an end loop, seed 004 condition 2) closes the end
+    Each of ``open_strokes`` (an arch drawn across an end loop, Zhang et al. condition 2) closes the end
     loop nearest to it instead of a flat fan; the last one drawn at an end wins.
     """
     if len(loops) < 2:
@@ -282,7 +282,7 @@ def lobe_from_loops(loops: list[np.ndarray], points_per_loop: int = 32,
 
 
 def _arch_cap(ring: np.ndarray, first: int, stroke: np.ndarray, next_index: int) -> tuple[np.ndarray, np.ndarray]:
-    """Close a loop with an open stroke across it (seed 004 condition 2): the stroke's ends go to the
+    """Close a loop with an open stroke across it (Zhang et al. condition 2): the stroke's ends go to the
     loop points whose barycentric directions best match the stroke's directions into itself; the
     loop's two arcs between them are each stitched to the stroke. Returns the stroke's new inner
     points and the cap's triangles (loop points keep their indices, ``first`` + k)."""

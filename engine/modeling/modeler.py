@@ -1,20 +1,20 @@
-"""Modeler I: drawn strokes become ordinary L-string modules (seed 000 section 4.1, seed 002).
+"""Modeler I: drawn strokes become ordinary L-string modules (Onishi et al. 2003 section 4.1, Wakabayashi & Durikovic).
 
 A stroke is sampled (curvature-adaptive), smoothed into an arc-length spline and cut into pieces of
 even length. Each piece becomes ``F(l, Vx, Vy, Vz, Hx, Hy, Hz, Ux, Uy, Uz, M)``: its length, start
 position V, frame (heading H, up U; L = U x H) and variation M (degrees turned from the previous
 piece). Between pieces, the rotation that takes the turtle's heading onto the next piece is written as
-a turn about U then a pitch about L (the U, L, H order of seed 000 4.1.3; no roll is ever needed),
+a turn about U then a pitch about L (the U, L, H order of Onishi et al. 2003, 4.1.3; no roll is ever needed),
 so the ordinary turtle redraws the stroke exactly. The width ``!(d)`` is inversely proportional to the
 drawing speed (clamped). Growth points ``A(l, Vx, Vy, Vz, d)`` carry the attributes of the F they sit
-on and are placed along the axis with a density lambda(s) (seed 002 algorithm 2); the active rule set
+on and are placed along the axis with a density lambda(s) (Wakabayashi & Durikovic algorithm 2); the active rule set
 grows branches from them (assets/lsystems/game_tree.lsys wakes them like dormant buds).
 
 A stroke that starts near an existing axis snaps to the nearest point on it and is inserted there as
 a bracketed branch (the F it starts on is split in two); one that starts farther away in the air is
 joined to the nearest branch by a connecting piece, and only one starting at the ground begins a new
 trunk. A branch is never drawn thicker than the drawn branch it grows from. A stroke passing through
-an existing trunk is bent around it (seed 000 4.1.5): away from it, or, when the axes nearly meet,
+an existing trunk is bent around it (Onishi et al. 2003, 4.1.5): away from it, or, when the axes nearly meet,
 towards the side of the tree with fewer polygons.
 """
 
@@ -66,7 +66,7 @@ class StrokeResult:
     pieces: int
     growth_points: int
     snapped_to: int | None = None  # module index of the F the stroke joined
-    snap_point: np.ndarray | None = None  # where the stroke joins the tree (the joint point, seed 000)
+    snap_point: np.ndarray | None = None  # where the stroke joins the tree (the joint point, Onishi et al. 2003)
     merged: bool = False  # a trunk drawn from the foot of a grown sapling, which now grows on top of it
     bypassed: int = 0  # samples moved to avoid a collision
     text: str = ""
@@ -167,7 +167,7 @@ def smooth_path(stroke: Stroke, piece: float, tolerance: float = 0.002) -> tuple
 
 
 def widths_from_speed(stroke: Stroke, s: np.ndarray, settings: ModelerSettings) -> np.ndarray:
-    """Diameter per piece, inversely proportional to drawing speed (seed 000), clamped, and tapering
+    """Diameter per piece, inversely proportional to drawing speed (Onishi et al. 2003), clamped, and tapering
     towards the end of the stroke."""
     mids = 0.5 * (s[1:] + s[:-1]) if len(s) > 1 else s
     speed = speeds_at(stroke.deduplicated(), mids * stroke.length / max(s[-1], 1e-12), 4 * settings.piece)
@@ -225,7 +225,7 @@ def _segments_near(segs: Segments, point: np.ndarray, distance: float) -> np.nda
 
 def bypass(path: np.ndarray, radius: np.ndarray, segs: Segments, skip: np.ndarray,
            settings: ModelerSettings, free: np.ndarray | None = None) -> tuple[np.ndarray, int]:
-    """Bend ``path`` around existing segments it would pass through (seed 000 4.1.5).
+    """Bend ``path`` around existing segments it would pass through (Onishi et al. 2003, 4.1.5).
 
     ``radius`` is the new axis' radius per path point; segments flagged in ``skip`` (the one the stroke
     starts on) are ignored, and so are path points not flagged in ``free`` (the joint region).

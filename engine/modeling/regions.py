@@ -1,4 +1,4 @@
-"""Regions of interest for editing a tree (seed 000 section 4.2): a sphere, or a supertoroid fitted
+"""Regions of interest for editing a tree (Onishi et al. 2003 section 4.2): a sphere, or a supertoroid fitted
 to two contour strokes; rules applied only inside a region; pruning a subtree.
 
 Eq. 3 (supertoroid, with the slopes b_x, b_z of its axis):
@@ -182,7 +182,7 @@ def prune(ls: LString, module: int) -> LString:
 
 
 def seed_in_region(ls: LString, axiom: str, point) -> LString:
-    """When no module lies in a region: start a new axis there, growing up (seed 000 4.2).
+    """When no module lies in a region: start a new axis there, growing up (Onishi et al. 2003, 4.2).
 
     The new axis is a bracket at the start of the string (where the turtle is at the base): a move to
     ``point`` without drawing, a turn back to vertical, then ``axiom``.

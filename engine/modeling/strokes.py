@@ -1,9 +1,9 @@
 """Strokes: time-stamped 3D point sequences from a pointer, sampled and smoothed for the modeler.
 
-* Curvature-adaptive sampling (seed 004, eq. 1): from point i the next key point is
+* Curvature-adaptive sampling (Zhang et al., eq. 1): from point i the next key point is
   i + floor(k * log2(2 + 1/rho)), rho = max(kappa_i, 0.01), k = 2, so steps run from 2 (sharp bends)
   to 13 (straight parts).
-* An arc-length spline through the key points (seed 002): a centripetal Catmull-Rom curve, tabulated
+* An arc-length spline through the key points (Wakabayashi & Durikovic): a centripetal Catmull-Rom curve, tabulated
   densely and inverted so it can be resampled at even arc-length steps.
 * Speed along the stroke (arc length over time), for the trunk width.
 """

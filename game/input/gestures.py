@@ -1,4 +1,4 @@
-"""Touch and mouse gestures for the camera and the menu (seed 003, sections 2.4.1-2.4.2).
+"""Touch and mouse gestures for the camera and the menu (the tamagotchi thesis, sections 2.4.1-2.4.2).
 
 * one finger dragged horizontally turns the tree about the vertical axis (a full 360 deg);
 * two fingers, one still and one moving vertically, tilt it, at most acos(0.8) ~ 36.9 deg;

@@ -1,4 +1,4 @@
-"""Instanced, LOD-aware rendering of a landscape of many trees (seed 001 section 6)."""
+"""Instanced, LOD-aware rendering of a landscape of many trees (Jung et al. section 6)."""
 
 from __future__ import annotations
 

@@ -1,6 +1,6 @@
 """Menu and HUD, drawn with pygame into a transparent overlay surface (composited over the 3D view).
 
-The menu (seed 003, 2.4.2) appears at the tap point: a sun-orbit height slider, a sun-speed slider,
+The menu (the tamagotchi thesis, 2.4.2) appears at the tap point: a sun-orbit height slider, a sun-speed slider,
 the watering can (water while held), the sapling (replant), time speed, save and load. Every touch
 target is at least 48 px tall. The HUD shows the yellow sun meter, the blue water meter, the growth
 state, the tree's age and messages (budget reached, saved, load problems).
@@ -319,7 +319,7 @@ def _boxed(surface: pygame.Surface, font: pygame.font.Font, line: str, at: tuple
 
 
 def draw_joint(surface: pygame.Surface, project, point) -> None:
-    """The joint point where the stroke being drawn will join the tree (seed 000 shows it)."""
+    """The joint point where the stroke being drawn will join the tree (Onishi et al. 2003 shows it)."""
     for x, y in project(np.asarray(point, float)[None]):
         pygame.draw.circle(surface, (255, 225, 90, 240), (int(x), int(y)), 11, 3)
         pygame.draw.circle(surface, (255, 225, 90, 240), (int(x), int(y)), 3)

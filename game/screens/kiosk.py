@@ -52,7 +52,7 @@ class KioskConfig:
     attract: str = "attract/demo.jsonl"
     language: str = "en"
     speed: float = 10.0
-    pace: str = "demo"  # visitors stay minutes: seed 003's fast pace
+    pace: str = "demo"  # visitors stay minutes: the tamagotchi thesis's fast pace
     volume: float = 0.5  # the sound's volume 0..1 (0: silent), set again for every visitor
 
 

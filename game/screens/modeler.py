@@ -46,7 +46,7 @@ class ModelingMode:
         self.points: list[np.ndarray] = []
         self.times: list[float] = []
         self.preview: LString | None = None
-        self.joint: np.ndarray | None = None  # where the stroke being drawn joins the tree (shown, seed 000)
+        self.joint: np.ndarray | None = None  # where the stroke being drawn joins the tree (shown, Onishi et al. 2003)
         self.plane: tuple[np.ndarray, np.ndarray] | None = None  # point, normal
         self.last_plane: tuple[np.ndarray, np.ndarray] | None = None
         self.stroke_camera: OrbitCamera | None = None  # the view a 2D stroke is drawn in

@@ -1,4 +1,4 @@
-"""The crown tools of the modeler (seed 004): draw lobes, close them with arches, reshape them; the
+"""The crown tools of the modeler (Zhang et al.): draw lobes, close them with arches, reshape them; the
 crown regrows into the lobes after every change, as one undoable step.
 
 Crown strokes: a closed outline drawn on the screen becomes a lobe (a silhouette); closed flat rings

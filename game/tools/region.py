@@ -1,4 +1,4 @@
-"""The symbols tool of the modeler (seed 000 sections 4.2, 5.2 and Fig. 7): a region of interest, the
+"""The symbols tool of the modeler (Onishi et al. 2003 sections 4.2, 5.2 and Fig. 7): a region of interest, the
 L-string symbols inside it, and region-limited edits.
 
 A short drag places a sphere that follows the pointer. A tall drag is a contour: the left and right

@@ -1,4 +1,4 @@
-"""The L-string overlay (seed 000 Fig. 7): the symbols of the modules inside a region, written where
+"""The L-string overlay (Onishi et al. 2003 Fig. 7): the symbols of the modules inside a region, written where
 the turtle is when it reaches them. Shape symbols are yellow, transformations (turns, widths,
 brackets) red; the text has a fixed pixel size, so it stays readable at any zoom. Modules at one
 spot (turns before a piece) read as one row; rows nearest the centre come first and a row that

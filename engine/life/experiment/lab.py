@@ -94,7 +94,7 @@ class Experiment:
     lsystem: Path
     dt: float = 0.5
     file: str = "<experiment>"
-    pace: str = "demo"  # experiments keep seed 003's numbers unless they ask for another pace
+    pace: str = "demo"  # experiments keep the tamagotchi thesis's numbers unless they ask for another pace
     seasons: bool = True  # false: an endless summer, to study light or water alone
     spacing: float | None = None  # m between trees sharing one plot (None: each tree alone)
     notes: list[str] = field(default_factory=list)  # what the reader noticed (an old key name)

@@ -1,4 +1,5 @@
-"""Breeding: two L-systems cross into a child L-system (the productions are the tree's DNA, seed 003 6.10).
+"""Breeding: two L-systems cross into a child L-system (the productions are the tree's DNA: the tamagotchi
+thesis, 6.10).
 
 The cross works on the parents' source text, line by line, so the child is ordinary, readable .lsys
 text that saves and shares like any other:

@@ -1,4 +1,4 @@
-"""Collisions (seed 003 6.3): grown shoots bend away from obstacles and other trees' wood, or stop.
+"""Collisions (the tamagotchi thesis, 6.3): grown shoots bend away from obstacles and other trees' wood, or stop.
 
 Obstacles are capsules (a segment with a radius; a rock is a capsule of zero length): the wood of the
 neighbouring trees and the garden's rocks. At every light reading each growing apex looks one

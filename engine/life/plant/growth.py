@@ -126,7 +126,7 @@ class GrowingTree:
     fallen: list[Fallen] = field(default_factory=list)
     last_report: StepReport | None = None
     confine: object | None = None  # a region (engine/modeling/regions.py): rewrites only inside it ...
-    confine_left: int = 0  # ... for this many more rewrites (seed 000 Fig. 11's region-limited growth)
+    confine_left: int = 0  # ... for this many more rewrites (Onishi et al. 2003 Fig. 11's region-limited growth)
 
     def __post_init__(self) -> None:
         self.deriver = Deriver(self.system, seed=self.seed, budget=self.budget)

@@ -1,4 +1,4 @@
-"""The sun and water simulation of the tamagotchi game (seed 003, sections 2.3-2.4).
+"""The sun and water simulation of the tamagotchi game (the tamagotchi thesis, sections 2.3-2.4).
 
 A sun orbits the tree on a vertical circle whose centre height and speed the player sets; the sun
 meter fills while it shines and drains at night. The water meter drains (faster in strong sun) and

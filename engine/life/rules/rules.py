@@ -1,6 +1,6 @@
 """Every game rule in one file (assets/rules.toml), read strictly, with named paces.
 
-A pace scales time: the same rules run at seed 003's demonstration pace (a day of the sun in about
+A pace scales time: the same rules run at the tamagotchi thesis's demonstration pace (a day of the sun in about
 two minutes, growth earned after 20 s above half) or at a home pace (a day of the sun in a day, meters
 that last about a day, seasons of a week). Times are multiplied by the pace's time scale and rates
 divided by it, so the 20 s / 40 s rules keep their shape; a pace may also override single rules.

@@ -2,7 +2,7 @@
 
 The rule dataclasses (rules.py), the validation of assets/rules.toml and of lab and sweep overrides,
 the table in docs/rules.md and the units on the sweep figures' axes are all made from this list, so a
-rule's default or range is written here and nowhere else. Defaults are seed 003's numbers at the demo
+rule's default or range is written here and nowhere else. Defaults are the tamagotchi thesis's numbers at the demo
 pace; ``scales`` says what a pace does to a rule: ``"time"`` is multiplied by its time scale,
 ``"rate"`` (per second) divided by it, None left alone (the watering can is held for seconds at any pace).
 """
