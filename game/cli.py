@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 import sys
+import time
 from pathlib import Path
 
 from arbor.engine.base.errors import LSysError
@@ -12,6 +13,7 @@ from arbor.engine.base.units import METRE
 from arbor.engine.lsystem.derive import DEFAULT_BUDGET, MAX_BUDGET
 from arbor.game.errors import UserError
 from arbor.game.paths import ASSETS
+from arbor.game.report import detail, say, set_level
 
 
 def _source(args: argparse.Namespace):
@@ -88,7 +90,7 @@ def _cmd_render(args: argparse.Namespace) -> int:
         pixels = render_to_scale(geometry.mesh, args.size, frame, yaw=args.yaw, pitch=args.pitch)
         scale = f", {height:.2f} m tall in a frame {frame:g} m high (metre bar at the left)"
     save_png(pixels, args.out)
-    print(f"{args.out}: {len(ls):,} modules, {len(geometry.turtle.segments):,} segments, "
+    say(f"{args.out}: {len(ls):,} modules, {len(geometry.turtle.segments):,} segments, "
           f"{geometry.mesh.n_triangles:,} triangles{scale}")
     return 0
 
@@ -108,7 +110,7 @@ def _cmd_export(args: argparse.Namespace) -> int:
         raise UserError("--height needs a tree with some height: this one has none (more --steps?)")
     metres = args.height / height if args.height is not None else args.scale or 1.0 / METRE
     files = export_tree(geometry.mesh, args.out, ASSETS / "textures", args.format, metres)
-    print(f"{args.out}: {geometry.mesh.n_triangles:,} triangles (lod {args.lod}), {height * metres:.2f} m tall; "
+    say(f"{args.out}: {geometry.mesh.n_triangles:,} triangles (lod {args.lod}), {height * metres:.2f} m tall; "
           f"wrote {len(files)} file(s)")
     return 0
 
@@ -121,7 +123,7 @@ def _cmd_lab(args: argparse.Namespace) -> int:
     from arbor.game.commands.lab import run_headless
 
     files = run_headless(args.experiment, args.out)
-    print("\n".join(str(f) for f in files))
+    say("\n".join(str(f) for f in files))
     return 0
 
 
@@ -142,7 +144,7 @@ def _cmd_landscape(args: argparse.Namespace) -> int:
 
         instances = scatter(args.trees, len(presets), landscape_size(args.trees), args.seed or 0)
         export_garden(presets, instances, args.glb, ASSETS / "textures")
-        print(f"{args.glb}: {args.trees:,} trees as glTF nodes sharing {len(presets)} trees' meshes")
+        say(f"{args.glb}: {args.trees:,} trees as glTF nodes sharing {len(presets)} trees' meshes")
     return 0
 
 
@@ -151,7 +153,7 @@ def _cmd_breed(args: argparse.Namespace) -> int:
 
     garden = breed_saves(args.a, args.b, args.seed, args.out, args.tree_a, args.tree_b)
     child = garden.world
-    print(f"{args.out}: {child.lineage.species} {child.lineage.id}, generation {child.lineage.generation}, "
+    say(f"{args.out}: {child.lineage.species} {child.lineage.id}, generation {child.lineage.generation}, "
           f"from {garden.worlds[0].lineage.id} x {child.lineage.parents[-1]} (seed {args.seed})")
     return 0
 
@@ -167,7 +169,7 @@ def _cmd_card(args: argparse.Namespace) -> int:
     from arbor.game.commands.card import make_card
 
     world = make_card(args.save, args.out, args.tree)
-    print(f"{args.out}: a postcard of {world.lineage.species} {world.lineage.id} carrying its save "
+    say(f"{args.out}: a postcard of {world.lineage.species} {world.lineage.id} carrying its save "
           f"(arbor import {args.out} plants it in a garden)")
     return 0
 
@@ -185,7 +187,7 @@ def _cmd_import(args: argparse.Namespace) -> int:
         world, count = import_card(args.card, lock.folder)
     finally:
         lock.release()
-    print(f"{lock.folder / 'autosave.arbor'}: planted {world.lineage.species} {world.lineage.id} from {args.card} "
+    say(f"{lock.folder / 'autosave.arbor'}: planted {world.lineage.species} {world.lineage.id} from {args.card} "
           f"beside the others ({count} trees in the garden)")
     return 0
 
@@ -294,6 +296,11 @@ def build_parser() -> argparse.ArgumentParser:
                         help="home: a day of the sun lasts a day (default); demo: 2-minute days, as in the thesis")
     parser.add_argument("--kiosk", action="store_true", help="unattended touchscreen mode (see assets/kiosk.toml)")
     parser.add_argument("--windowed", action="store_true", help="with --kiosk: a window instead of fullscreen")
+    talk = parser.add_mutually_exclusive_group()
+    talk.add_argument("-q", "--quiet", action="store_true", help="headless commands: no report of what was written "
+                      "and no progress bar (errors still say one line)")
+    talk.add_argument("-v", "--verbose", action="store_true", help="headless commands: each step of a long run "
+                      "(every finished sweep run) and the time taken")
     parser.add_argument("--version", action="version", version=f"arbor {_version()}")
     return parser
 
@@ -366,7 +373,10 @@ def main(argv: list[str] | None = None) -> int:
             from arbor.game.first_start import headless_notice
 
             headless_notice()
+        set_level(args.quiet, args.verbose)
+        started = time.perf_counter()
         status = args.run(args)
+        detail(f"arbor {args.command}: {time.perf_counter() - started:.1f} s")
         sys.stdout.flush()  # a broken pipe shows here, inside the try, not at interpreter exit
         return status
     except BrokenPipeError:

@@ -177,3 +177,20 @@ def test_example_sweeps_load():
     for path in sorted((ASSETS / "experiments").glob("sweep_*.toml")):
         sweep = load_sweep(path, ASSETS / "lsystems")
         assert sweep.factors and len(sweep.seeds) >= 10
+
+
+@pytest.mark.parametrize("flag, want", [("--quiet", 0), ("--verbose", 12)])
+def test_a_quiet_sweep_says_nothing_and_a_verbose_one_a_line_per_run(sweep_file, tmp_path, capsys, flag, want):
+    from arbor.game.cli import main
+    from arbor.game.report import set_level
+
+    try:
+        args = [flag, "sweep", str(sweep_file), "--out", str(tmp_path / "out"), "--workers", "1", "--no-plots"]
+        assert main(args) == 0
+    finally:
+        set_level()
+    out, err = capsys.readouterr()
+    runs = [line for line in out.splitlines() if line.startswith("run")]
+    assert len(runs) == want and (out == "" if flag == "--quiet" else "arbor sweep:" in out)
+    assert "%|" not in err  # no progress bar either way (tqdm draws on stderr)
+    assert (tmp_path / "out" / "tidy.csv").exists()

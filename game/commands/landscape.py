@@ -16,6 +16,7 @@ from arbor.game.errors import UserError
 from arbor.game.paths import ASSETS
 from arbor.game.render.camera import OrbitCamera
 from arbor.game.render.renderer import headless_context, save_png, sun_direction
+from arbor.game.report import say
 
 DEFAULT_PRESETS = (("abop_2_8_tree", 4), ("abop_2_6_monopodial", 7), ("abop_1_24e", 5))
 
@@ -106,7 +107,7 @@ def render_landscape(count: int, out: Path, size: tuple[int, int] = (1280, 720),
         ctx.copy_framebuffer(plain, msaa)
         pixels = np.frombuffer(plain.read(components=3), np.uint8).reshape(size[1], size[0], 3)[::-1]
         save_png(pixels, out)
-        print(f"{out}: {count:,} trees, {stats.drawn:,} drawn ({stats.culled:,} culled), "
+        say(f"{out}: {count:,} trees, {stats.drawn:,} drawn ({stats.culled:,} culled), "
               f"levels {stats.per_level}, {stats.triangles:,} triangles")
     finally:
         ctx.release()

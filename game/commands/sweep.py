@@ -23,6 +23,7 @@ from arbor.engine.life.experiment.sweep import STATS, Outcome, Sweep, Task, cell
 from arbor.engine.life.experiment.sweep_file import load_sweep
 from arbor.engine.life.keep.save import read_garden
 from arbor.engine.life.rules.rules import load_rules
+from arbor.game import report
 from arbor.game.commands.sweep_runs import RunStore, outcomes, progress_bar, write_atomic
 from arbor.game.paths import ASSETS
 
@@ -31,7 +32,7 @@ KEEP = ("all", "first", "none")
 
 
 def run_sweep(path: Path, out: Path, workers: int | None = None, scheduler: str | None = None,
-              plots: bool = True, echo: Callable[[str], None] = print, keep: str = "first") -> int:
+              plots: bool = True, echo: Callable[[str], None] = report.say, keep: str = "first") -> int:
     """Run what is not done yet of the sweep in ``path`` into ``out``; write tables and figures when every
     run is done. ``keep`` says which final trees are saved (all, each level's first seed, none). Returns
     the exit status (0 done, 1 some runs failed, 130 stopped by Ctrl-C)."""
@@ -46,13 +47,15 @@ def run_sweep(path: Path, out: Path, workers: int | None = None, scheduler: str 
     where = f"the Dask scheduler at {scheduler}" if scheduler else f"{workers} worker process(es)"
     echo(f"{sweep.title}: {len(everything)} runs, {len(everything) - len(todo)} already done, on {where}")
     tasks = _tasks(sweep, todo, keep)
-    bar = progress_bar(len(everything), len(everything) - len(todo), sweep.title)
+    bar = progress_bar(len(everything), len(everything) - len(todo), sweep.title, shown=report.level == report.NORMAL)
     failed, stopped = [], False
     try:
         with contextlib.closing(outcomes(tasks, workers, scheduler)) as finished:
             for outcome in finished:
                 if isinstance(outcome, Outcome):
                     store.keep(outcome)
+                    report.detail(f"{outcome.run.name}: seed {outcome.run.seed}, levels {outcome.run.levels}, "
+                                  f"{len(outcome.rows)} samples")
                 else:
                     failed.append(outcome)
                 bar.update()

@@ -118,8 +118,10 @@ def _dask(tasks: list[Task], scheduler: str) -> Iterable[Outcome | tuple[Run, st
         client.close()
 
 
-def progress_bar(total: int, done: int, title: str):
-    """A terminal progress bar with an ETA (tqdm): ``update()`` after each run, ``close()`` at the end."""
+def progress_bar(total: int, done: int, title: str, shown: bool = True):
+    """A terminal progress bar with an ETA (tqdm): ``update()`` after each run, ``close()`` at the end;
+    not drawn unless ``shown`` (--quiet, or --verbose's line per run)."""
     from tqdm import tqdm
 
-    return tqdm(total=total, initial=done, unit="run", desc=title[:40], mininterval=0.5, dynamic_ncols=True)
+    return tqdm(total=total, initial=done, unit="run", desc=title[:40], mininterval=0.5, dynamic_ncols=True,
+                disable=not shown)
