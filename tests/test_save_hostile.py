@@ -115,7 +115,7 @@ def test_a_bug_while_loading_sets_the_save_aside_in_one_line(gl_ctx, tmp_path, b
     import arbor.game.screens.saves as saves
 
     (tmp_path / "autosave.arbor").write_text(base_save)
-    monkeypatch.setattr(saves, "live_away", lambda garden, seconds: [][1])
+    monkeypatch.setattr(saves, "live_away", lambda garden, seconds, **_: [][1])
     game = start(gl_ctx, tmp_path)
     message = game.hud_info().message
     assert "IndexError" in message and "\n" not in message and (tmp_path / "autosave.arbor.broken").exists()
