@@ -75,10 +75,10 @@ def test_lesson_pruning_a_raised_crown_builds_less_and_roots_take_a_larger_share
     path = shortened("lesson_pruning.toml", tmp_path, 9 * 125.66667, seeds=1)
     out = tmp_path / "pruning"
     assert run_sweep(path, out, workers=1, plots=False, echo=lambda _: None, keep="none") == 0
-    biomass = finals(out, "Share of branches cut", "biomass")
+    biomass = finals(out, "Lowest branches cut", "biomass")
     assert biomass["0"] > biomass["0.2"] > biomass["0.6"]  # the guide: the more cut, the less the tree builds
-    assert finals(out, "Share of branches cut", "pruned")["0"] == 0  # the control is never cut
-    ratio = finals(out, "Share of branches cut", "root_shoot")
+    assert finals(out, "Lowest branches cut", "pruned")["0"] == 0  # the control is never cut
+    ratio = finals(out, "Lowest branches cut", "root_shoot")
     assert ratio["0.6"] > ratio["0"]  # the roots keep their share while the crown is cut
 
 

@@ -104,7 +104,7 @@ def write_outputs(sweep: Sweep, store: RunStore, everything: list, plots: bool =
     if plots:
         from arbor.game.render import figures
 
-        files += figures.dose_response(sweep, finals, out / "dose_response")
+        files += figures.dose_response(sweep, finals, out / "dose_response", day_seconds(sweep))
         files += figures.time_series(sweep, _series(sweep, rows), out / "time_series", day_seconds(sweep))
         files += _thumbnails(sweep, store, everything, echo)
     return files

@@ -58,9 +58,10 @@ def _positions(levels: tuple) -> tuple[np.ndarray, list[str] | None]:
     return np.arange(len(levels), dtype=float), [str(v).removesuffix(".lsys") for v in levels]
 
 
-def dose_response(sweep, finals: dict, path: Path) -> list[Path]:
+def dose_response(sweep, finals: dict, path: Path, day_seconds: float = 125.66) -> list[Path]:
     """Each response at the end of the runs against the first factor's levels: the mean over seeds, a
-    10-90 % band and every run as a dot; one line per level of the second factor."""
+    10-90 % band and every run as a dot; one line per level of the second factor (the title gives the
+    runs' length in game days of ``day_seconds``)."""
     first = sweep.factors[0]
     second = sweep.factors[1].levels if len(sweep.factors) > 1 else (None,)
     x, labels = _positions(first.levels)
@@ -89,7 +90,7 @@ def dose_response(sweep, finals: dict, path: Path) -> list[Path]:
         ax.grid(alpha=0.3)
     if len(second) > 1:
         axes[0].legend(fontsize=10, frameon=False)
-    fig.suptitle(f"{sweep.title}: after {_duration(sweep.duration)}, {len(sweep.seeds)} seeds per level "
+    fig.suptitle(f"{sweep.title}: after {_duration(sweep.duration, day_seconds)}, {len(sweep.seeds)} seeds per level "
                  "(line: mean; band: 10-90 %)", fontsize=16)
     return save_both(fig, path)
 
@@ -221,5 +222,6 @@ def _text(value) -> str:
     return str(value).removesuffix(".lsys") if isinstance(value, str) else f"{value:g}"
 
 
-def _duration(seconds: float) -> str:
-    return f"{seconds / 60:.0f} min" if seconds < 7200 else f"{seconds / 3600:.1f} h"
+def _duration(seconds: float, day_seconds: float) -> str:
+    """A run's length in game days (one turn of the sun, ``day_seconds`` of game time)."""
+    return f"{seconds / day_seconds:.3g} game days"
