@@ -44,7 +44,8 @@ def run(pace: str | None, out: Path | None, seconds: float = 60.0) -> dict:
     pygame.display.set_mode((64, 64))
     ctx, size = headless_context(), (1280, 720)
     clock = type("Clock", (), {"t": 100.0, "__call__": lambda self: self.t})()
-    game = Game(ctx, size, GameConfig(saves=Path(tempfile.mkdtemp()), seed=5, resume=False, pace=pace), clock=clock)
+    game = Game(ctx, size, GameConfig(saves=Path(tempfile.mkdtemp()), seed=5, resume=False, pace=pace,
+                                                sprout=True), clock=clock)
     fbo = ctx.framebuffer(color_attachments=[ctx.renderbuffer(size)], depth_attachment=ctx.depth_renderbuffer(size))
     draw_hud = game.hud.draw
     game.hud.draw = lambda camera: (fbo.use(), draw_hud(camera))  # (headless, the HUD goes over this target)

@@ -154,7 +154,7 @@ def run_app(args: argparse.Namespace | None = None) -> int:
         return 0
     from arbor.game.screens.game import Game, GameConfig
 
-    config = GameConfig(title=True)  # (the title screen follows the first start's preparing screen)
+    config = GameConfig(title=True, sprout=True)  # (the title screen follows the first start's preparing screen)
     config.saves = lock.folder
     if getattr(args, "pace", None):
         config.pace = args.pace
@@ -177,7 +177,7 @@ def run_kiosk(args: argparse.Namespace) -> int:
     from arbor.game.screens.game import Game, GameConfig
     from arbor.game.screens.kiosk import Kiosk, load_kiosk_config
 
-    config = GameConfig()
+    config = GameConfig(sprout=True)  # (each visitor's sapling rises from its seed)
     saves = getattr(args, "saves", None) or os.environ.get("ARBOR_SAVES")
     if saves:
         config.saves = Path(saves)

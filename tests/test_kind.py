@@ -144,7 +144,8 @@ def test_a_new_game_s_seedling_unfolds_its_first_leaves_within_a_minute(gl_ctx, 
     from tests.conftest import FakeClock
 
     clock = FakeClock()
-    game = Game(gl_ctx, (640, 360), GameConfig(saves=tmp_path, seed=5, resume=False, pace="home"), clock=clock)
+    game = Game(gl_ctx, (640, 360), GameConfig(saves=tmp_path, seed=5, resume=False, pace="home", sprout=True),
+                clock=clock)
     fbo = gl_ctx.framebuffer(color_attachments=[gl_ctx.renderbuffer((640, 360))],
                              depth_attachment=gl_ctx.depth_renderbuffer((640, 360)))
     lengths = []

@@ -31,6 +31,7 @@ class GameConfig:
     seed: int | None = None
     pace: str | None = field(default_factory=lambda: os.environ.get("ARBOR_PACE") or None)  # None: rules.toml's
     title: bool = False  # the title screen over the garden until a key or touch (the window's game shows it)
+    sprout: bool = False  # a new sapling is drawn rising from its seed (the window's and the kiosk's games)
 
 
 @dataclass

@@ -74,6 +74,7 @@ class Game:
         self.overlay_hooks: list = []  # extra overlay layers (kiosk attract text, PIN pad)
         self.title = TitleScreen(size, shown=self.config.title)
         self.state = state = GameState(self.loop, self.control, clock, self.rules)
+        state.sprouts = self.config.sprout
         self.keeper = SaveKeeper(state, self.config, self.rules, self.system, wall_clock,
                                  away=lambda: self.sound.prefs.away)
         state.use(self.keeper.start())

@@ -49,6 +49,7 @@ class GameState:
         self.cutaway = False  # the roots' view: the ground turns to soil and the roots show
         self.cursor3d: tuple[float, float, float] | None = None
         self.devices: dict[str, str] = {}  # input devices seen -> their kind
+        self.sprouts = False  # whether new saplings are drawn rising from their seeds (GameConfig.sprout)
         self.sprout_from: float | None = None  # when a new game's seed was sown (its seedling is unfolding)
         self.sprouting: World | None = None  # the tree whose seedling unfolds (another tree cared for ends it)
 
@@ -120,8 +121,10 @@ class GameState:
 
     def sow(self) -> None:
         """A new game (or the kiosk's next visitor): the planted sapling is first drawn as the seed it grew
-        from, and rises and unfolds its leaves over SPROUT_SECONDS of real time (the sim is not changed)."""
-        self.sprout_from, self.sprouting = self.clock(), self.world
+        from, and rises and unfolds its leaves over SPROUT_SECONDS of real time (the sim is not changed),
+        when the game :attr:`sprouts`."""
+        if self.sprouts:
+            self.sprout_from, self.sprouting = self.clock(), self.world
 
     def clocks(self) -> Clocks:
         """Growth clocks to draw: interpolated between the last two sim states (replayed from the seed
