@@ -64,8 +64,10 @@ class CareActions:
             Action.SYMBOLS: tool(lambda: modeling.tool("symbols")), Action.EDIT: pressed(self._next_edit),
             Action.UNDO: pressed(modeling.undo), Action.REDO: pressed(modeling.redo),
             Action.DEVICES: pressed(self._devices),
-            Action.VOLUME: self._volume, Action.MUTE: pressed(self._mute), Action.AWAY: pressed(self._away),
+            Action.AWAY: pressed(self._away),
         }
+        if sound is not None:  # Settings -> Volume and Mute (see config.SoundSettings)
+            self.handlers.update(sound.handlers(self.sync_sliders))
 
     def act(self, action: Action, value: float = 0.0) -> None:
         """Apply a player action (see module docstring): sliders carry their position, buttons 1 when
@@ -159,18 +161,6 @@ class CareActions:
 
     def _next_edit(self) -> None:
         self.menu.widget("edit").label = self.modeling.next_option()
-
-    def _volume(self, value: float) -> None:
-        """Settings -> the volume slider (0..1)."""
-        if self.sound is not None:
-            self.sound.set_volume(value)
-            self.sync_sliders()
-
-    def _mute(self) -> None:
-        """Settings -> Mute / Sound on."""
-        if self.sound is not None:
-            self.sound.toggle_mute()
-            self.sync_sliders()
 
     def _away(self) -> None:
         """Settings -> Away: the garden is watered while you are gone (up to the time-away cap), or not."""
@@ -278,8 +268,7 @@ class CareActions:
         menu.widget("roots").label = text("menu.roots_hide" if state.cutaway else "menu.roots")
         menu.widget("modeler").label = text("menu.modeler_done" if self.modeling.active else "menu.modeler")
         if self.sound is not None:
-            menu.widget("volume").value = 0.0 if self.sound.prefs.muted else self.sound.prefs.volume
-            menu.widget("mute").label = text("menu.unmute" if self.sound.prefs.muted else "menu.mute")
+            self.sound.show(menu)
             menu.widget("away").label = text("menu.away_on" if self.sound.prefs.away else "menu.away_off")
 
     def set_speed(self, speed: float) -> None:

@@ -12,7 +12,9 @@ from pathlib import Path
 from arbor.engine.base.config import fill_dataclass, toml_position
 from arbor.engine.base.errors import SettingsError
 from arbor.engine.base.files import atomic_write, read_regular
+from arbor.engine.life.world.actions import Action
 from arbor.game.paths import ASSETS, default_saves
+from arbor.game.strings import text
 
 PREFERENCES = "settings.toml"  # in the saves folder
 PREFERENCES_LIMIT = 16_384  # bytes: a longer file is not ours
@@ -117,6 +119,24 @@ class SoundSettings:
         self.prefs.away = not self.prefs.away
         self._changed()
         return self.prefs.away
+
+    def handlers(self, then) -> dict:
+        """The Settings page's actions (for the game's one dispatch table): the slider's position is the
+        volume, a press of Mute toggles; ``then()`` after each (the menu shows the change)."""
+        def volume(value: float) -> None:
+            self.set_volume(value)
+            then()
+
+        def mute(value: float) -> None:
+            if value:  # (pressed, not let go)
+                self.toggle_mute()
+                then()
+        return {Action.VOLUME: volume, Action.MUTE: mute}
+
+    def show(self, menu) -> None:
+        """Show the volume and mute on the Settings page of ``menu`` (a game/render/ui.Menu)."""
+        menu.widget("volume").value = 0.0 if self.prefs.muted else self.prefs.volume
+        menu.widget("mute").label = text("menu.unmute" if self.prefs.muted else "menu.mute")
 
     def _changed(self) -> None:
         self.audio.set_volume(self.prefs.volume, self.prefs.muted)
