@@ -187,6 +187,7 @@ def look(folder: Path) -> list[Path]:
     view = tree.buffers.view
     print(f"tree after {SUMMER:g} days: {len(view.tubes):,} segments, {len(view.leaves):,} leaf cards")
     looks.shot("day", looks.camera(one, 30.0), sun_direction(85.0, 40.0), one, world)
+    looks.paths.append(edges_shot(looks, one, world))
     looks.shot("backlit", looks.camera(one, 30.0, 4.0), sun_direction(210.0, 14.0), one, world)
     looks.shot("night", looks.camera(one, 30.0), sun_direction(30.0, -22.0), one, world)  # (the moon: opposite)
     tubes = view.tubes.data
@@ -207,6 +208,29 @@ def look(folder: Path) -> list[Path]:
     looks.renderer.release()
     looks.ctx.release()
     return looks.paths
+
+
+def edges_shot(looks: _Looks, trees: list, world) -> Path:
+    """The top of the day's crown at 3x, drawn without and with the software GL's edge smoothing (left and
+    right), as look_edges.png (on a multisampled GL both halves are the same)."""
+    from PIL import Image
+
+    from arbor.game.render.renderer import sun_direction
+
+    renderer, halves = looks.renderer, []
+    kept = renderer.fxaa
+    for smooth in (False, True):
+        renderer.fxaa = smooth
+        looks.shot("edges", looks.camera(trees, 30.0), sun_direction(85.0, 40.0), trees, world)
+        picture = Image.open(looks.paths.pop())
+        halves.append(picture.crop((LOOK[0] // 2 - 160, 110, LOOK[0] // 2 + 40, 330)).resize((600, 660), Image.NEAREST))
+    renderer.fxaa = kept
+    sheet = Image.new("RGB", (1210, 660), (255, 255, 255))
+    sheet.paste(halves[0], (0, 0))
+    sheet.paste(halves[1], (610, 0))
+    path = looks.folder / "look_edges.png"
+    sheet.save(path)
+    return path
 
 
 def title_shot(ctx, folder: Path, world) -> Path:
