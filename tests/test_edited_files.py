@@ -146,7 +146,7 @@ def test_lab_overrides_out_of_range_are_one_line(tmp_path, capsys, override, say
                    f"rules = {{ {override} }}\n")
     assert main(["lab", str(lab), "--out", str(tmp_path / "out")]) == 1
     [line] = capsys.readouterr().err.strip().splitlines()
-    assert line.startswith("arbor: ") and says in line
+    assert line.startswith(f"arbor: {lab}:") and says in line  # the file named, not the tree alone
 
 
 if __name__ == "__main__":

@@ -216,15 +216,19 @@ def parse_regime(reader: Reader, t, path: tuple, keys: dict) -> Regime:
     return Regime(name=name, watering=watering, rules=dict(rules), prune=prune, **sun)
 
 
-def regime_rules(base: Rules, regime: Regime) -> Rules:
+def regime_rules(base: Rules, regime: Regime, file: str = "<experiment>") -> Rules:
     """The base rules with the regime's overrides, each within its range and the sliders' ranges the right
-    way round (an override is at the pace's own scale, like a pace's overrides in rules.toml)."""
+    way round (an override is at the pace's own scale, like a pace's overrides in rules.toml); a problem
+    names the experiment ``file`` and the tree."""
     rules = copy.deepcopy(base)
-    for key, value in regime.rules.items():
-        set_rule(rules, key, value, regime.name, ExperimentError)
-    if regime.sun_elevation is not None:
-        rules.sun.side = schema.elevation_side(regime.sun_elevation, orbit_height(regime, rules))
-    check_rules(rules, regime.name, ExperimentError)
+    try:
+        for key, value in regime.rules.items():
+            set_rule(rules, key, value, file, ExperimentError)
+        if regime.sun_elevation is not None:
+            rules.sun.side = schema.elevation_side(regime.sun_elevation, orbit_height(regime, rules))
+        check_rules(rules, file, ExperimentError)
+    except ExperimentError as err:
+        raise ExperimentError(f"tree {regime.name!r}: {err.message}", err.file, err.line, err.col) from None
     return rules
 
 
@@ -264,7 +268,7 @@ class Lab:
 
     def _world(self, index: int, regime: Regime, base_rules: Rules) -> World:
         """One tree's world: its rules, its sun, its own lineage and (on a shared plot) its place in the row."""
-        rules = regime_rules(base_rules, regime)
+        rules = regime_rules(base_rules, regime, str(self.experiment.file))
         world = World(self.system, rules, seed=self.experiment.seed)
         ident = hashlib.sha256(f"{world.lineage.id}|lab|{index}|{regime.name}".encode()).hexdigest()[:16]
         world.lineage = replace(world.lineage, id=ident)  # every tree a line of its own
