@@ -86,9 +86,10 @@ def run(minutes: float, shot: str | None) -> None:
                 minute += 1
                 print(f"minute {minute}: {line(kiosk)}, frames {frames}", flush=True)
     elapsed = time.perf_counter() - start
-    if shot:
+    if shot:  # one more frame, read before it is flipped (after a flip the back buffer holds no frame)
         from arbor.game.app import _save_screen
 
+        kiosk.frame([], 0.0, ctx.screen)
         ctx.finish()
         _save_screen(ctx, size, shot)
     worlds = kiosk.game.garden.worlds
