@@ -46,7 +46,7 @@ def test_at_the_farthest_zoom_the_whole_garden_is_in_view(garden_game):
         for world in game.garden.worlds:
             view = game.view.views[id(world)][1]
             dx, dz = np.array(world.position) - here
-            pixels = project_points(camera, SIZE, corners(view.lo, view.hi) + (dx, 0.0, dz))
+            pixels = project_points(camera, SIZE, corners(view.lo, view.hi) + np.array([dx, 0.0, dz]))
             assert np.isfinite(pixels).all()
             assert (pixels >= 0).all() and (pixels[:, 0] <= SIZE[0]).all() and (pixels[:, 1] <= SIZE[1]).all(), yaw
     control.distance = 1.0
