@@ -122,6 +122,32 @@ def test_arbor_opens_a_window(tmp_path):
     assert (tmp_path / "saves" / "autosave.arbor").exists()  # saved on quit
 
 
+WINDOW_FXAA = """
+import numpy as np, pygame, moderngl
+from arbor.game.app import open_window
+from arbor.game.render.fxaa import Fxaa
+ctx = open_window((320, 200), "fxaa")
+fxaa = Fxaa(ctx)
+for colour in ((0.0, 0.0, 1.0), (1.0, 0.0, 0.0)):  # an old frame, then the new one
+    fxaa.target((320, 200)).use()
+    ctx.clear(*colour, 1.0)
+    fxaa.resolve(ctx.screen, (320, 200), (140, 90, 40, 20))  # the trees only in the middle
+px = np.frombuffer(ctx.screen.read(components=3), np.uint8).reshape(200, 320, 3)
+print(px[10, 10].tolist(), px[100, 160].tolist())
+"""
+
+
+@pytest.mark.skipif(shutil.which("xvfb-run") is None, reason="needs xvfb-run (CI installs it)")
+def test_a_window_shows_the_whole_new_frame_with_edge_smoothing(tmp_path):
+    env = dict(os.environ, SDL_VIDEODRIVER="x11", SDL_AUDIODRIVER="dummy")
+    cmd = ["xvfb-run", "-a", "-s", "-screen 0 640x480x24", sys.executable, "-c", WINDOW_FXAA]
+    proc = subprocess.run(cmd, env=env, capture_output=True, timeout=120, text=True)
+    assert proc.returncode == 0, proc.stderr[-2000:]
+    corner, middle = [list(map(int, part.strip(" []").split(","))) for part in
+                      proc.stdout.strip().splitlines()[-1].split("] [")]
+    assert corner == [255, 0, 0] and middle == [255, 0, 0]  # not the old frame outside the smoothed part
+
+
 def test_wilting_turns_leaves_yellow_brown(ctx):
     from arbor.engine.geometry.mesh import tree_mesh
     from arbor.engine.geometry.turtle import TurtleConfig, interpret

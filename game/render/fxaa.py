@@ -24,6 +24,7 @@ class Fxaa:
         tri = ctx.buffer(np.array([-1, -1, 3, -1, -1, 3], dtype="f4").tobytes())
         self.quad = ctx.vertex_array(self.prog, [(tri, "2f", "in_pos")])
         self.fbo: moderngl.Framebuffer | None = None
+        self.color_fbo: moderngl.Framebuffer | None = None  # the same picture without its depth
 
     def target(self, size: tuple[int, int]) -> moderngl.Framebuffer:
         """The framebuffer to draw the frame into (``size`` pixels, with depth)."""
@@ -34,6 +35,7 @@ class Fxaa:
             color.repeat_x = color.repeat_y = False
             depth = self.ctx.depth_renderbuffer(size)
             self.fbo = self.ctx.framebuffer(color_attachments=[color], depth_attachment=depth)
+            self.color_fbo = self.ctx.framebuffer(color_attachments=[color])
         return self.fbo
 
     def resolve(self, into: moderngl.Framebuffer, size: tuple[int, int],
@@ -41,8 +43,9 @@ class Fxaa:
         """The frame drawn into :meth:`target` onto ``into``: copied, and smoothed within ``rect`` (x, y
         from the bottom, width, height; None: all of it)."""
         ctx = self.ctx
-        if rect is not None:
-            ctx.copy_framebuffer(into, self.fbo)
+        if rect is not None:  # a window's own framebuffer takes no depth from ours (GL_INVALID_OPERATION: the
+            # whole copy would fail and the screen keep old pixels outside ``rect``): colour alone there
+            ctx.copy_framebuffer(into, self.fbo if into.depth_attachment is not None else self.color_fbo)
         into.use()  # (what is drawn next goes over the frame: the HUD)
         if rect is not None and (rect[2] <= 0 or rect[3] <= 0):
             return
@@ -72,4 +75,5 @@ class Fxaa:
             for attachment in (*self.fbo.color_attachments, self.fbo.depth_attachment):
                 attachment.release()
             self.fbo.release()
-            self.fbo = None
+            self.color_fbo.release()
+            self.fbo = self.color_fbo = None
