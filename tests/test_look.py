@@ -294,3 +294,20 @@ def test_a_software_gl_keeps_its_grass_in_the_ground_picture(scene):
     renderer.grass.draw = blades
     renderer.grass.version += 1
     assert (np.abs(grassy - bare).sum(axis=2) > 30).sum() > 200  # blades drawn on the ground
+
+
+def test_a_camera_close_over_a_seedling_sees_no_black_gap_past_the_ground(gl_ctx, tmp_path):
+    from arbor.game.screens.game import Game, GameConfig
+
+    size, t = (1280, 720), [0.0]
+    game = Game(gl_ctx, size, GameConfig(saves=tmp_path, seed=5, resume=False, title=False, sprout=True),
+                clock=lambda: t[0])
+    fbo = gl_ctx.framebuffer(color_attachments=[gl_ctx.renderbuffer(size)],
+                             depth_attachment=gl_ctx.depth_renderbuffer(size))
+    for _ in range(3):
+        t[0] += 0.1
+        game.update(0.1)
+        game.draw(fbo)
+    pixels = np.frombuffer(fbo.read(components=3), np.uint8).reshape(size[1], size[0], 3)[::-1].astype(int)
+    beside_hud = pixels[250:520, 800:]  # sky, the far edge of the ground, the ground (no HUD text here)
+    assert (beside_hud.sum(axis=2) < 40).sum() < 20  # no band of the cleared framebuffer where the disc ends

@@ -113,8 +113,10 @@ def cloud_rgba(size: int = 128, seed: int = 17) -> np.ndarray:
 
 
 def _dome(rings: int = 14, sectors: int = 48) -> tuple[np.ndarray, np.ndarray]:
-    """Unit directions of a dome from a little below the horizon to the zenith, and its triangles."""
-    elev = np.concatenate([[-0.15], np.linspace(0.0, math.pi / 2, rings)])
+    """Unit directions of a dome from straight down to the zenith, and its triangles: below the horizon it
+    is the horizon's colour, so where the ground disc ends (a camera close over a seedling sees past it)
+    the view fades into the horizon instead of showing the cleared, black framebuffer."""
+    elev = np.concatenate([[-math.pi / 2, -0.6, -0.15], np.linspace(0.0, math.pi / 2, rings)])
     az = np.linspace(0.0, 2 * math.pi, sectors, endpoint=False)
     e, a = np.meshgrid(elev, az, indexing="ij")
     dirs = np.stack([np.cos(e) * np.cos(a), np.sin(e), np.cos(e) * np.sin(a)], axis=-1).reshape(-1, 3)
