@@ -76,7 +76,9 @@ def test_an_imported_tree_is_planted_beside_the_others(card, saved, tmp_path, ca
     other.lineage = dataclasses.replace(other.lineage, id="0123456789abcdef")  # another tree already there
     home.mkdir()
     write_garden(SavedGarden([other]), home / "autosave.arbor")
+    was = (home / "autosave.arbor").read_bytes()
     assert main(["--saves", str(home), "import", str(card)]) == 0
+    assert (home / "autosave.1.arbor").read_bytes() == was  # the garden before the import can be restored
     garden = read_garden(home / "autosave.arbor")
     assert len(garden.worlds) == 2 and garden.current == 1  # the newcomer is the one cared for
     gap = np.hypot(*np.subtract(garden.worlds[0].position, garden.worlds[1].position))

@@ -8,6 +8,7 @@ from pathlib import Path
 
 from arbor.engine.base.files import atomic_write
 from arbor.engine.life.keep.card import plant_card, read_card
+from arbor.engine.life.keep.generations import rotate
 from arbor.engine.life.keep.save import SavedGarden, read_garden, write_garden
 from arbor.engine.life.world.garden import Garden
 from arbor.engine.life.world.world import World
@@ -42,5 +43,6 @@ def import_card(card: Path, saves: Path) -> tuple[World, int]:
         except ValueError as why:
             raise UserError(f"{card}: {why}") from None
     saves.mkdir(parents=True, exist_ok=True)
+    rotate(path)  # the garden as it was stays as autosave.1.arbor (Settings -> Restore), as the game keeps it
     write_garden(SavedGarden.of(garden, name), path)
     return shared.world, len(garden.worlds)

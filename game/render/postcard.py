@@ -3,8 +3,6 @@ its name, age and height; the save it carries is added by engine/life/keep/card.
 
 from __future__ import annotations
 
-import io
-
 import numpy as np
 
 from arbor.engine.base.units import METRE
@@ -20,7 +18,7 @@ STRIP = 120  # pixels of the caption strip
 
 def card_picture(world: World, size: tuple[int, int] = CARD_SIZE, ctx=None) -> np.ndarray:
     """The postcard's picture, (H, W, 3) uint8 (``ctx``: the game's GL context, else a headless one)."""
-    from arbor.game.render.renderer import render_image
+    from arbor.game.render.renderer import render_image  # (numba and the GL renderer: loaded when a card is made)
 
     w, h = size
     geometry = world.tree.geometry(world.clocks(), 0)
@@ -31,8 +29,10 @@ def card_picture(world: World, size: tuple[int, int] = CARD_SIZE, ctx=None) -> n
 def card_file(world: World, family: Family, lsystem_name: str, ctx=None) -> bytes:
     """The bytes of a postcard PNG of ``world`` carrying a save of that tree alone, with its family (so its
     ancestry travels with it)."""
+    from arbor.game.render.renderer import png_bytes
+
     carried = SavedGarden([world], 0, None, family=family, lsystem_name=lsystem_name)
-    return card_bytes(_png(card_picture(world, ctx=ctx)), carried)
+    return card_bytes(png_bytes(card_picture(world, ctx=ctx)), carried)
 
 
 def _strip(world: World, width: int) -> np.ndarray:
@@ -55,13 +55,3 @@ def _strip(world: World, width: int) -> np.ndarray:
     surf.blit(small.render(facts, True, (90, 82, 64)), (26, 72))
     surf.blit(small.render("Arbor", True, (150, 130, 100)), (width - 100, 72))
     return np.asarray(pygame.surfarray.array3d(surf)).transpose(1, 0, 2).copy()
-
-
-def _png(pixels: np.ndarray) -> bytes:
-    """A picture as PNG bytes (pygame's writer)."""
-    import pygame
-
-    surf = pygame.image.frombuffer(np.ascontiguousarray(pixels).tobytes(), (pixels.shape[1], pixels.shape[0]), "RGB")
-    out = io.BytesIO()
-    pygame.image.save(surf, out, "card.png")
-    return out.getvalue()

@@ -376,13 +376,29 @@ def render_image(tree: TreeMesh, size: tuple[int, int] = (1280, 720), yaw: float
             ctx.release()
 
 
+def _surface(pixels: np.ndarray):
+    """An (H, W, 3) uint8 picture as a pygame Surface."""
+    import pygame
+
+    return pygame.image.frombuffer(np.ascontiguousarray(pixels).tobytes(), (pixels.shape[1], pixels.shape[0]), "RGB")
+
+
 def save_png(pixels: np.ndarray, path: str | Path) -> None:
     """Write an (H, W, 3) uint8 picture as PNG."""
     import pygame
 
-    surf = pygame.image.frombuffer(np.ascontiguousarray(pixels).tobytes(), (pixels.shape[1], pixels.shape[0]),
-                                   "RGB")
     try:
-        pygame.image.save(surf, str(path))
+        pygame.image.save(_surface(pixels), str(path))
     except pygame.error as exc:  # e.g. a folder that does not exist: report it like any file error
         raise OSError(0, str(exc), str(path)) from None
+
+
+def png_bytes(pixels: np.ndarray) -> bytes:
+    """An (H, W, 3) uint8 picture as the bytes of a PNG file (for writers that add to it: postcards)."""
+    import io
+
+    import pygame
+
+    out = io.BytesIO()
+    pygame.image.save(_surface(pixels), out, "picture.png")
+    return out.getvalue()
