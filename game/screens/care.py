@@ -19,7 +19,7 @@ from arbor.engine.lsystem.lsys import LSystem
 from arbor.game.loop import SPEEDS
 from arbor.game.render.ui import Menu, range_to_slider, slider_to_range
 from arbor.game.screens.coach import Coach
-from arbor.game.screens.config import SoundSettings
+from arbor.game.screens.config import PlayerSettings
 from arbor.game.screens.family import FamilyScreen
 from arbor.game.screens.modeler import ModelingMode
 from arbor.game.screens.saves import SaveKeeper
@@ -41,7 +41,7 @@ class CareActions:
 
     def __init__(self, state: GameState, menu: Menu, modeling: ModelingMode, keeper: SaveKeeper,
                  family: FamilyScreen, coach: Coach, rules: Rules, system: LSystem,
-                 wall_clock: Callable[[], float], sound: SoundSettings | None = None) -> None:
+                 wall_clock: Callable[[], float], sound: PlayerSettings | None = None) -> None:
         self.state, self.menu, self.modeling, self.keeper, self.sound = state, menu, modeling, keeper, sound
         self.family, self.coach, self.rules, self.system, self.wall_clock = family, coach, rules, system, wall_clock
         self.crossing = None  # the mother of a cross, while the player picks the father
@@ -66,7 +66,7 @@ class CareActions:
             Action.DEVICES: pressed(self._devices),
             Action.AWAY: pressed(self._away),
         }
-        if sound is not None:  # Settings -> Volume and Mute (see config.SoundSettings)
+        if sound is not None:  # Settings -> Volume and Mute (see config.PlayerSettings)
             self.handlers.update(sound.handlers(self.sync_sliders))
 
     def act(self, action: Action, value: float = 0.0) -> None:

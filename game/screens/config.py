@@ -1,6 +1,6 @@
 """Where a game finds its data and keeps its saves (read by the game and its save keeper), and the
 player's own settings kept beside the saves (:class:`Preferences`, ``settings.toml``: the sound's volume
-and mute, set on the Settings page through :class:`SoundSettings`)."""
+and mute and the Away setting, set on the Settings page through :class:`PlayerSettings`)."""
 
 from __future__ import annotations
 
@@ -83,8 +83,8 @@ def write_preferences(prefs: Preferences, path: Path) -> None:
     atomic_write(path, text.encode("utf-8"))
 
 
-class SoundSettings:
-    """The Settings page's volume slider and mute button (and its Away button, kept in the same file):
+class PlayerSettings:
+    """The Settings page's volume slider, mute button and Away button (the player's own settings):
     they set the game's :class:`Audio <arbor.game.audio.sounds.Audio>` at once and are written to
     settings.toml SAVE_AFTER seconds after the last change (a dragged slider writes the file once), and
     on :meth:`flush`."""

@@ -34,7 +34,7 @@ from arbor.game.render.renderer import Overlay
 from arbor.game.render.ui import HudInfo, Menu
 from arbor.game.screens.care import CareActions
 from arbor.game.screens.coach import Coach
-from arbor.game.screens.config import GameConfig, SoundSettings
+from arbor.game.screens.config import GameConfig, PlayerSettings
 from arbor.game.screens.family import FamilyScreen
 from arbor.game.screens.game_hud import GameHud
 from arbor.game.screens.game_input import GameInput
@@ -65,7 +65,7 @@ class Game:
         self.menu = Menu(size)
         self.renderer = GardenRenderer(ctx)
         self.audio = Audio()
-        self.sound = SoundSettings(self.audio, self.config.saves, clock)  # (the player's volume and mute)
+        self.sound = PlayerSettings(self.audio, self.config.saves, clock)  # (volume, mute and Away)
         self.overlay = Overlay(ctx, size)
         pygame.font.init()
         self.font = pygame.font.Font(None, 32)

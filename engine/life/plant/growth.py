@@ -153,9 +153,8 @@ class GrowingTree:
         While a region confines growth (``confine``, for ``confine_left`` more rewrites) only modules
         inside it change."""
         extern = {"T": length_time, "G": girth_time, "DT": length_time - self.last_rewrite_T, "R": resources,
-                  "B": self.budget_used, "WL": leaf_vigour, "SF": 1.0, "AF": 0.0, "SP": 0.0, "SL": 0.0,
-                  "C": vigour,
-                  **(season or {})}
+                  "B": self.budget_used, "WL": leaf_vigour, "C": vigour,
+                  "SF": 1.0, "AF": 0.0, "SP": 0.0, "SL": 0.0, **(season or {})}  # (no season given: an endless summer)
         only = None
         if self.confine is not None and self.confine_left > 0:
             view = render_view(self.lstring, Clocks(length_time, girth_time, 0.0), self.geometry_constants)
