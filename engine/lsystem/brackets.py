@@ -67,17 +67,19 @@ def match(sym: np.ndarray, d: np.ndarray | None = None) -> np.ndarray:
     return out
 
 
-def branch_ends(sym: np.ndarray, idx: np.ndarray, d: np.ndarray | None = None) -> np.ndarray:
+def branch_ends(sym: np.ndarray, idx: np.ndarray, d: np.ndarray | None = None,
+                depth: np.ndarray | None = None) -> np.ndarray:
     """For the modules ``idx``, the index of the ']' that closes the branch each lies in (``len(sym)``
     on the main axis): the module and everything after it up to there grows from it.
 
-    A bracket itself counts as lying in the branch it opens/closes.
+    A bracket itself counts as lying in the branch it opens/closes. ``depth`` (one per module of
+    ``idx``) asks instead for the end of the enclosing branch at that depth (0: the main axis).
     """
     n = len(sym)
     d = depths(sym) if d is None else d
     closes = _by_depth(np.flatnonzero(sym == CLOSE), d)
     key = d[closes].astype(np.int64) * (n + 1) + closes
-    depth = d[idx].astype(np.int64)
+    depth = (d[idx] if depth is None else depth).astype(np.int64)
     pos = np.searchsorted(key, depth * (n + 1) + idx)
     found = np.minimum(pos, len(closes) - 1) if len(closes) else pos
     end = closes[found] if len(closes) else np.full(len(idx), n)

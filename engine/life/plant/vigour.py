@@ -21,7 +21,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from arbor.engine.lsystem.brackets import CLOSE, OPEN, _by_depth, depths, match
+from arbor.engine.lsystem.brackets import OPEN, branch_ends, depths, match
 
 TINY = 1e-30  # a share of nothing: its logarithm stays finite
 
@@ -41,7 +41,7 @@ def borchert_honda(sym: np.ndarray, apex: np.ndarray, light: np.ndarray, lam: fl
         return light.copy()
     d = depths(sym)
     close = match(sym, d)[opens]
-    end = _parent_ends(sym, d, opens, close)
+    end = branch_ends(sym, close, d, depth=d[opens] - 1)  # where the axis holding each lateral ends
     lateral = total[close] - total[opens]
     main = total[end] - total[close + 1]
     weigh_l, weigh_m = (1.0 - lam) * lateral, lam * main
@@ -56,15 +56,3 @@ def borchert_honda(sym: np.ndarray, apex: np.ndarray, light: np.ndarray, lam: fl
     np.add.at(delta, end, -log_m)  # beyond that axis: neither
     path = np.cumsum(delta)[np.asarray(apex)]
     return total[-1] * np.exp(path)
-
-
-def _parent_ends(sym: np.ndarray, d: np.ndarray, opens: np.ndarray, close: np.ndarray) -> np.ndarray:
-    """For each bracketed group (its '[' at ``opens``, ']' at ``close``), the position of the ']' that
-    ends the axis holding it (``len(sym)`` for the main axis)."""
-    n = len(sym)
-    closes = _by_depth(np.flatnonzero(sym == CLOSE), d)
-    key = d[closes].astype(np.int64) * (n + 1) + closes
-    outer = d[opens].astype(np.int64) - 1
-    at = np.searchsorted(key, outer * (n + 1) + close)
-    found = closes[np.minimum(at, len(closes) - 1)]
-    return np.where(outer > 0, found, n)
