@@ -7,9 +7,10 @@ import trimesh
 
 from arbor.engine.geometry.turtle import TurtleConfig, interpret
 from arbor.engine.lsystem.lstring import parse_lstring
-from arbor.engine.modeling.crown import Skeleton, grow_crown, grow_into_lobes, skeleton_text
+from arbor.engine.modeling.crown import grow_crown, grow_into_lobes
 from arbor.engine.modeling.lobes import lobe_from_loops, lobe_from_outline
 from arbor.engine.modeling.modeler import Modeler
+from arbor.engine.modeling.skeleton import Skeleton, skeleton_text
 from arbor.engine.modeling.strokes import Stroke
 
 

@@ -31,12 +31,12 @@ def test_one_percent_jitter_gives_a_smooth_path_of_the_clean_length():
 
 
 def test_crowns_fill_every_lobe_within_the_game_budget_and_keep_the_drawn_trunk():
-    cases = game_cases()
+    cases = game_cases(repeat=1)
     for name, (fill, width, ms) in cases.items():
         print(f"{name}: fill {[round(f, 3) for f in fill]}, drawn trunk width x{width:.3f}, {ms:.0f} ms")
     assert min(cases["a moved lobe"][0]) >= 0.9
     assert min(cases["a lobe above a bare trunk"][0]) >= 0.8
     assert min(cases["2 lobes over no tree"][0]) >= 0.8  # the lobe the trunk does not go into fills too
-    assert min(cases["3 lobes over 3 drawn branches"][0]) >= 0.75  # (the issue asks 0.9: not reached yet)
+    assert min(cases["3 lobes over 3 drawn branches"][0]) >= 0.9
     for name in ("3 lobes over 3 drawn branches", "a moved lobe", "a lobe above a bare trunk"):
         assert abs(cases[name][1] - 1.0) <= 0.1, name

@@ -4,15 +4,15 @@ All vectorised, no loop over nodes: every attractor joins its nearest active nod
 is split into ceil(theta_h/t) x ceil(theta_v/t) pieces by the azimuth/elevation span of its
 attractors' directions; each piece grows one branch along
     V_A = V_cluster + alpha V_default + beta V_gravity      (alpha 0.8, beta -0.3)
-with V_cluster the distance-weighted mean direction, as long as half the node's distance to the lobe
-surface; nodes inside a lobe closer to its surface than ``stop`` stop, their attractors retire, and
-attractors a new node reaches are used up. A branch that would leave the lobes once inside is not
-grown.
+with V_cluster the distance-weighted mean direction, as long as three quarters of the node's distance
+to the lobe surface (the paper: proportional to it; half filled flat lobes with pieces too short for a
+game's module budget); nodes inside a lobe closer to its surface than ``stop`` stop, their attractors
+retire, attractors a new node reaches are used up, and so are those no growth has come closer to for
+a few steps (branches circling them). A branch that would leave the lobes once inside is not grown.
+The grown skeleton is written as modules by engine/modeling/skeleton.py.
 """
 
 from __future__ import annotations
-
-from dataclasses import dataclass
 
 import numpy as np
 from scipy.spatial import cKDTree
@@ -20,38 +20,21 @@ from scipy.spatial import cKDTree
 from arbor.engine.geometry.turtle import INITIAL_FRAME, unit
 from arbor.engine.lsystem import brackets
 from arbor.engine.lsystem.lstring import concat, parse_lstring
-from arbor.engine.lsystem.text import format_number
 from arbor.engine.modeling.lobes import Crossings, Lobe
 from arbor.engine.modeling.modeler import Modeler
+from arbor.engine.modeling.skeleton import Skeleton, skeleton_lstrings
 
 ALPHA, BETA = 0.8, -0.3
 GRAVITY = np.array([0.0, -1.0, 0.0])
-
-
-@dataclass
-class Skeleton:
-    """Branch nodes: position, parent (-1 for the root), heading of the branch into the node."""
-
-    position: np.ndarray
-    parent: np.ndarray
-    heading: np.ndarray
-    active: np.ndarray
-
-    @classmethod
-    def from_trunk(cls, points: np.ndarray) -> Skeleton:
-        """A chain of nodes (a drawn trunk); only its tip grows."""
-        points = np.asarray(points, float)
-        heading = np.vstack([[0.0, 1.0, 0.0], unit(np.diff(points, axis=0))])
-        active = np.zeros(len(points), bool)
-        active[-1] = True
-        return cls(points, np.arange(len(points)) - 1, heading, active)
+STALL = 3  # growth steps without coming closer after which an attractor retires
+SURFACE_SHARE = 0.75  # a piece grows this share of its node's distance to the lobe surface (at most a step)
 
 
 def _nearest(points: np.ndarray, targets: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Index of and distance to the nearest target for every point (a k-d tree: O(n log m), not n x m)."""
     if len(targets) == 0 or len(points) == 0:
         return np.zeros(len(points), np.int64), np.full(len(points), np.inf)
-    dist, idx = cKDTree(targets).query(points)
+    dist, idx = cKDTree(targets, balanced_tree=False, compact_nodes=False).query(points)
     return idx.astype(np.int64), dist
 
 
@@ -74,6 +57,7 @@ def grow_into_lobes(skeleton: Skeleton, lobes: list[Lobe], attractors: np.ndarra
     deep = np.zeros(len(skeleton.parent), bool)  # the branch has been well inside a lobe
     t = np.radians(t_deg)
     owner_local = None
+    best, stale = np.full(len(remaining), np.inf), np.zeros(len(remaining), np.int64)
     for iteration in range(iterations):
         active = np.flatnonzero(skeleton.active)
         if len(remaining) == 0 or len(active) == 0 or len(skeleton.parent) >= max_nodes:
@@ -87,6 +71,7 @@ def grow_into_lobes(skeleton: Skeleton, lobes: list[Lobe], attractors: np.ndarra
         growing = (to_surface > stop) | ~inside[active] | ~deep[active] | (iteration == 0)
         keep = growing[owner_local]  # attractors of stopped nodes retire
         remaining, owner_local, labels = remaining[keep], owner_local[keep], labels[keep]
+        best, stale = best[keep], stale[keep]
         skeleton.active[active] = False
         if len(remaining) == 0:
             break
@@ -108,8 +93,13 @@ def grow_into_lobes(skeleton: Skeleton, lobes: list[Lobe], attractors: np.ndarra
         skeleton.heading = np.concatenate([skeleton.heading, directions])
         skeleton.active = np.concatenate([skeleton.active, np.ones(len(nodes), bool)])
         owner_local, reach = _nearest(remaining, new_pos)  # the new nodes are the next active set
-        far = reach > kill
+        # an attractor the growth has not come closer to for STALL steps is one the branches circle
+        # around without reaching (pieces overshoot the kill distance): it retires
+        stale = np.where(reach < best - 1e-9, 0, stale + 1)
+        best = np.minimum(best, reach)
+        far = (reach > kill) & (stale < STALL)
         remaining, owner_local, labels = remaining[far], owner_local[far], labels[far]
+        best, stale = best[far], stale[far]
     return skeleton
 
 
@@ -179,103 +169,10 @@ def _grow_pieces(skeleton: Skeleton, points, active, owner_local, to_surface, t,
     nodes = active[node_local]
     v_cluster = weighted / np.maximum(total, 1e-12)[:, None]
     directions = unit(v_cluster + ALPHA * skeleton.heading[nodes] + BETA * GRAVITY)
-    lengths = np.minimum(step, 0.5 * to_surface[node_local] + 0.02)
+    lengths = np.minimum(step, SURFACE_SHARE * to_surface[node_local] + 0.02)
     votes = np.zeros((len(keys), int(labels.max()) + 1))
     np.add.at(votes, (group, labels), 1.0)
     return nodes, directions, lengths, np.argmax(votes, axis=1)
-
-
-def skeleton_text(skeleton: Skeleton, root: int = 0, frame: np.ndarray = INITIAL_FRAME,
-                  diameters: np.ndarray | None = None, tip: str = "") -> str:
-    """The skeleton from node ``root`` on, for a turtle standing there with ``frame``, as ordinary
-    L-string text: drawn F pieces (as the modeler writes them) with turns, side branches in brackets;
-    each piece gets its diameter from ``diameters`` (per node; written only where it changes, as the
-    turtle carries it on), or none (then the pipe model sets the radii); ``tip`` ends every branch (e.g.
-    a leaf). Frames are solved level by level in numpy; the text is assembled with an explicit stack
-    (no recursion, any depth)."""
-    pieces = _piece_texts(skeleton, root, np.array(frame, float), diameters)
-    order = np.argsort(skeleton.parent, kind="stable")
-    starts = np.searchsorted(skeleton.parent[order], np.arange(len(skeleton.parent) + 1))
-    out: list[str] = []
-    stack: list = [root]
-    while stack:
-        item = stack.pop()
-        if isinstance(item, str):
-            out.append(item)
-            continue
-        kids = order[starts[item] : starts[item + 1]].tolist()
-        if not kids:
-            out.append(tip)
-            continue
-        first, *sides = kids
-        tokens: list = []
-        for side in sides:
-            tokens += ["[", pieces[side], side, "]"]
-        tokens += [pieces[first], first]
-        stack.extend(reversed(tokens))
-    return "".join(out)
-
-
-def _piece_texts(skeleton: Skeleton, root: int, frame: np.ndarray, diameters: np.ndarray | None) -> list[str]:
-    """Text of the piece into every node below ``root``: the turn and pitch that aim the turtle (whose
-    frame is the end frame of the piece into the parent) at the node, then F(length, start, heading,
-    up, variation) as path_modules writes it."""
-    parent, pos = skeleton.parent, skeleton.position
-    n = len(parent)
-    depth = np.full(n, -1)
-    depth[root] = 0
-    for _ in range(n):  # parents come before children: levels settle in (tree depth) passes
-        below = (depth < 0) & (parent >= 0)
-        below &= depth[np.maximum(parent, 0)] >= 0
-        if not below.any():
-            break
-        depth[below] = depth[parent[below]] + 1
-    ends = np.zeros((n, 3, 3))
-    ends[root] = frame
-    texts = [""] * n
-    for level in range(1, int(depth.max()) + 1):
-        nodes = np.flatnonzero(depth == level)
-        start = ends[parent[nodes]]
-        vec = pos[nodes] - pos[parent[nodes]]
-        length = np.linalg.norm(vec, axis=1)
-        d = vec / np.maximum(length, 1e-300)[:, None]
-        turn = np.degrees(np.arctan2(_dot(d, start[:, :, 1]), _dot(d, start[:, :, 0])))
-        turned = np.einsum("kij,kjl->kil", start, _rotations(turn, 2))
-        pitch = np.degrees(np.arctan2(-_dot(d, turned[:, :, 2]), _dot(d, turned[:, :, 0])))
-        end = np.einsum("kij,kjl->kil", turned, _rotations(pitch, 1))
-        up = unit(end[:, :, 2] - _dot(end[:, :, 2], d)[:, None] * d)
-        end = np.stack([d, np.cross(up, d), up], axis=2)
-        variation = np.degrees(np.arccos(np.clip(_dot(start[:, :, 0], d), -1.0, 1.0)))
-        moving = length > 1e-12  # a zero-length piece draws nothing and keeps the frame
-        ends[nodes] = np.where(moving[:, None, None], end, start)
-        for k, node in enumerate(nodes.tolist()):
-            if moving[k]:
-                texts[node] = _piece(turn[k], pitch[k], length[k], pos[parent[node]], d[k], up[k], variation[k],
-                                     None if diameters is None or (parent[node] != root and diameters[node]
-                                                                    == diameters[parent[node]]) else diameters[node])
-    return texts
-
-
-def _dot(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    return np.einsum("ki,ki->k", a, b)
-
-
-def _rotations(deg: np.ndarray, axis: int) -> np.ndarray:
-    """Rotation matrices about the turtle's U (axis 2, turns) or L (axis 1, pitches), one per angle."""
-    a = np.radians(deg)
-    c, s = np.cos(a), np.sin(a)
-    r = np.zeros((len(a), 3, 3))
-    i, j = (0, 1) if axis == 2 else (2, 0)
-    r[:, axis, axis] = 1.0
-    r[:, i, i], r[:, j, j], r[:, i, j], r[:, j, i] = c, c, -s, s
-    return r
-
-
-def _piece(turn, pitch, length, start, d, up, variation, diameter) -> str:
-    out = f"+({format_number(float(turn))})" if abs(turn) > 1e-9 else ""
-    out += f"&({format_number(float(pitch))})" if abs(pitch) > 1e-9 else ""
-    out += f"!({format_number(float(diameter))})" if diameter is not None else ""
-    return out + "F(" + ",".join(format_number(float(v)) for v in (length, *start, *d, *up, variation)) + ")"
 
 
 def grow_crown(modeler: Modeler, lobes: list[Lobe], rng: np.random.Generator, per_lobe: int = 1500,
@@ -305,9 +202,9 @@ def grow_crown(modeler: Modeler, lobes: list[Lobe], rng: np.random.Generator, pe
         pieces = max(1, int(np.ceil(np.linalg.norm(entry) / step)))
         start = _bridged(Skeleton.from_trunk(np.linspace(np.zeros(3), entry, pieces + 1)), lobes, step)
         grown = grow_into_lobes(start, lobes, attractors, max_nodes=max(max_nodes, len(start.parent)), **sizes)
-        text = skeleton_text(grown, tip=tip)
+        crown = skeleton_lstrings(grown, np.array([0]), INITIAL_FRAME[None], tip=_tip(tip))[0]
         kept = modeler.lstring  # modules that draw nothing yet (a new sapling's apex) stay
-        modeler.commit(concat(parse_lstring(f"[{text}]"), kept) if len(kept) else parse_lstring(text))
+        modeler.commit(concat(_OPEN, crown, _CLOSE, kept) if len(kept) else crown)
         return len(grown.parent) - 1
     m = len(segs)
     start = _bridged(Skeleton(segs.end.copy(), segs.parent.copy(), segs.frame[:, :, 0].copy(), np.ones(m, bool)),
@@ -340,6 +237,14 @@ def _bridged(skeleton: Skeleton, lobes: list[Lobe], step: float) -> Skeleton:
         skeleton = Skeleton(np.concatenate([pos, chain]), parent, np.concatenate([skeleton.heading, heading]),
                             np.concatenate([skeleton.active, np.arange(pieces) == pieces - 1]))
     return skeleton
+
+
+_OPEN, _CLOSE = parse_lstring("["), parse_lstring("]")
+
+
+def _tip(tip: str):
+    """The tip's modules (None for no tip)."""
+    return parse_lstring(tip) if tip else None
 
 
 TWIG = 0.03  # diameter of a crown branch's last piece (the pipe model widens it toward the tree)
@@ -375,19 +280,19 @@ def _graft(ls, segs, grown: Skeleton, tip: str):
     ends = brackets.branch_ends(ls.sym, at)
     parts, last = [], 0
     index = np.arange(len(ls))
+    crowns = skeleton_lstrings(detached, sources, segs.frame[sources], diameters, _tip(tip))
     for k in np.argsort(at, kind="stable"):
         pos = int(at[k]) + 1
-        text = skeleton_text(detached, root=int(sources[k]), frame=segs.frame[sources[k]], diameters=diameters,
-                             tip=tip)
+        crown = crowns[k]
         parts.append(ls.select((index >= last) & (index < pos)))
         if is_tip[k]:  # the crown continues a tip's axis (one smooth joint); what followed the tip on
             rest = ls.select((index >= pos) & (index < ends[k]))  # its branch (buds, leaves, an apex)
             if len(rest):  # stays at the tip in a bracket of its own
-                parts += [parse_lstring("["), rest, parse_lstring("]")]
-            parts.append(parse_lstring(text))
+                parts += [_OPEN, rest, _CLOSE]
+            parts.append(crown)
             last = int(ends[k])
         else:
-            parts.append(parse_lstring("[" + text + "]"))
+            parts += [_OPEN, crown, _CLOSE]
             last = pos
     parts.append(ls.select(index >= last))
     return concat(*parts)
