@@ -3,8 +3,10 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from arbor.engine.base.assets import assets_dir
 from arbor.engine.geometry.turtle import TurtleConfig, interpret
 from arbor.engine.lsystem.lstring import parse_lstring
+from arbor.engine.lsystem.lsys import load_lsystem
 from arbor.engine.modeling.modeler import Modeler, ModelerSettings, nearest_on_segments
 from arbor.engine.modeling.strokes import ArcLengthSpline, Stroke, adaptive_sample, curvature, sample_steps
 
@@ -84,15 +86,54 @@ def test_width_is_inversely_proportional_to_speed():
 
 
 def test_growth_points_follow_the_density_and_carry_attributes():
-    m = Modeler(settings=ModelerSettings(density=2.0, bare_fraction=0.3))
+    m = Modeler(settings=ModelerSettings(density=(0.0, 0.0, 2.0, 2.0, 2.0)))
     result = m.add_stroke(line([0, 0, 0], [0, 10, 0], n=400, seconds=5.0))
     points = [m.lstring.module(i) for i in range(len(m.lstring)) if m.lstring.module(i)[0] == "A"]
     assert len(points) == result.growth_points
-    assert 2.0 * 7 * 0.8 < len(points) < 2.0 * 7 * 1.2 + 1  # density x the 70 % of the axis above the bare part
+    assert 12.5 * 0.7 < len(points) < 12.5 * 1.3 + 1  # the integral of lambda(s): 10 x (0.25 x 1 + 0.5 x 2)
     heights = [p[1][2] for p in points]
-    assert min(heights) > 2.9 and all(len(p[1]) == 5 for p in points)  # A(l, x, y, z, d)
+    assert min(heights) > 2.4 and all(len(p[1]) == 5 for p in points)  # A(l, x, y, z, d)
     gaps = np.diff(sorted(heights))
     assert gaps.std() > 0.1 * gaps.mean()  # at random places (Wakabayashi & Durikovic algorithm 2), not a regular comb
+
+
+def _growth_heights(settings: ModelerSettings, strokes: int = 40) -> np.ndarray:
+    heights = []
+    for seed in range(strokes):
+        m = Modeler(settings=ModelerSettings(density=settings.density, seed=seed))
+        m.add_stroke(line([0, 0, 0], [0, 10, 0], n=400, seconds=5.0))
+        heights += [m.lstring.module(i)[1][2] for i in range(len(m.lstring)) if m.lstring.module(i)[0] == "A"]
+    return np.array(heights)
+
+
+def test_growth_point_density_is_a_curve_each_species_shapes():
+    """lambda(s) from the species' LAM0..LAM4: the poplar's side shoots start low on a drawn trunk and
+    are many, the broadleaf keeps a clear bole; along the axis the counts follow the curve."""
+    curves = {}
+    for name in ("game_tree", "game_poplar"):
+        system = load_lsystem(assets_dir() / "lsystems" / f"{name}.lsys")
+        curves[name] = ModelerSettings.for_species(system.constants)
+    broad, poplar = (_growth_heights(curves[k]) for k in ("game_tree", "game_poplar"))
+    print(f"growth points on 40 axes 10 units long: broadleaf {len(broad)} (lowest quarter {np.mean(broad < 2.5):.0%}),"
+          f" poplar {len(poplar)} (lowest quarter {np.mean(poplar < 2.5):.0%})")
+    assert curves["game_tree"].density != curves["game_poplar"].density
+    assert len(poplar) > 1.2 * len(broad)
+    assert np.mean(broad < 2.5) < 0.02 < 0.06 < np.mean(poplar < 2.5)  # a clear bole against shoots low down
+    for species, heights in ((curves["game_tree"], broad), (curves["game_poplar"], poplar)):
+        s = np.linspace(0, 1, 401)
+        lam = species.density_at(s)
+        for a, b in ((0.0, 0.5), (0.5, 1.0)):  # each half of the axis gets its share of the integral
+            inside = (s >= a) & (s <= b)
+            expected = 40 * 10 * np.trapezoid(lam[inside], s[inside])
+            got = np.sum((heights >= 10 * a) & (heights < 10 * b))
+            assert abs(got - expected) < 0.15 * expected + 5, (a, got, expected)
+
+
+def test_a_density_out_of_range_is_one_clear_error():
+    with pytest.raises(ValueError, match="growth-point density"):
+        ModelerSettings(density=(0.0, -1.0))
+    with pytest.raises(ValueError, match="growth-point density"):
+        ModelerSettings(density=(0.0, float("nan")))
 
 
 def test_branch_snaps_to_the_nearest_point_and_is_bracketed():
@@ -153,8 +194,6 @@ def test_bypass_goes_to_the_emptier_side_when_axes_meet():
 
 
 def test_undo_history_is_bounded():
-    from arbor.engine.lsystem.lstring import parse_lstring
-
     modeler = Modeler(lstring=parse_lstring("F"))
     for i in range(modeler.UNDO_LIMIT + 30):
         modeler.commit(parse_lstring(f"F({i})"))

@@ -20,7 +20,7 @@ towards the side of the tree with fewer polygons.
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -50,13 +50,33 @@ class ModelerSettings:
     min_width: float = 0.03
     max_width: float = 0.5
     tip_taper: float = 0.6  # the end of a stroke is this much thinner than its start
-    density: float = 1.2  # growth points per unit length on the upper part of an axis
-    bare_fraction: float = 0.3  # no growth points on the lowest part of each axis
+    # lambda(s): growth points per scene unit of axis length at 0, 1/4, 1/2, 3/4 and all of the axis'
+    # length (linear between; a species sets its own with LAM0..LAM4, see for_species)
+    density: tuple[float, ...] = (0.0, 0.0, 1.2, 1.2, 1.2)
     branch_angle: float = 55.0
     snap_distance: float = 0.35  # strokes starting this close to an axis join it
     bypass_margin: float = 0.05
     near_axes: float = 0.1  # axes closer than this: bypass towards the side with fewer polygons
     seed: int = 0
+
+    def __post_init__(self) -> None:
+        density = np.atleast_1d(np.asarray(self.density, float))
+        if density.ndim != 1 or not (np.isfinite(density).all() and (density >= 0).all() and density.max() <= 50):
+            raise ValueError(f"growth-point density must be 0..50 per unit length at each point, got {self.density}")
+        self.density = tuple(float(v) for v in density)
+
+    @classmethod
+    def for_species(cls, constants: Mapping[str, float], **changes) -> ModelerSettings:
+        """The settings with the species' lambda(s) (its LAM0..LAM4 defines, where it has them)."""
+        curve = tuple(float(constants[k]) for k in DENSITY_KEYS if k in constants)
+        return cls(**({"density": curve} if len(curve) == len(DENSITY_KEYS) else {}), **changes)
+
+    def density_at(self, s: np.ndarray) -> np.ndarray:
+        """lambda at fractions ``s`` (0 = the axis' base, 1 = its end) of an axis' length."""
+        return np.interp(s, np.linspace(0.0, 1.0, len(self.density)), self.density)
+
+
+DENSITY_KEYS = ("LAM0", "LAM1", "LAM2", "LAM3", "LAM4")  # a species' lambda(s), in its .lsys defines
 
 
 @dataclass
@@ -181,15 +201,15 @@ def growth_points(s: np.ndarray, settings: ModelerSettings, rng: np.random.Gener
     piece gets a growth point when a' >= r (and a' drops by one): lambda(s) points per unit length on
     average, at random places, never two where the density allows one.
 
-    lambda(s) is 0 on the lowest ``bare_fraction`` of the axis and ``density`` above it. Each point
-    is rolled by the golden angle from the previous one.
+    lambda(s) is the settings' density curve over the axis' length (a species shapes it: bare low down,
+    densest where its crown is). Each point is rolled by the golden angle from the previous one.
     """
     total = s[-1] if len(s) else 0.0
     out, acc, roll = [], 0.0, float(rng.random() * 360.0)
     draws = rng.random(max(len(s) - 1, 0))
+    added = np.diff(s) * settings.density_at(0.5 * (s[1:] + s[:-1]) / max(total, 1e-12))
     for i in range(len(s) - 1):
-        mid = 0.5 * (s[i] + s[i + 1]) / max(total, 1e-12)
-        acc += (s[i + 1] - s[i]) * (settings.density if mid > settings.bare_fraction else 0.0)
+        acc += float(added[i])
         if acc >= draws[i]:
             acc -= 1.0
             roll = (roll + 137.5) % 360.0

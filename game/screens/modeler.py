@@ -17,7 +17,7 @@ import pygame
 from arbor.engine.life.form.interpret import grow_geometry
 from arbor.engine.lsystem.lstring import LString
 from arbor.engine.modeling.edits import EDIT_SETS, load_edit_sets
-from arbor.engine.modeling.modeler import Modeler
+from arbor.engine.modeling.modeler import Modeler, ModelerSettings
 from arbor.engine.modeling.regions import prune
 from arbor.engine.modeling.strokes import Stroke
 from arbor.game.paths import ASSETS
@@ -87,7 +87,9 @@ class ModelingMode:
         self.bounds = (np.array([center[0] - half[0], 0.0, center[2] - half[2]]), center + half)
         self.resume_speed = self.state.loop.speed or 1.0
         self.state.loop.speed = 0.0
-        self.modeler = Modeler(lstring=self.state.world.tree.lstring, segments_of=self.segments)
+        tree = self.state.world.tree  # drawn axes get the species' density of side shoots, lambda(s)
+        self.modeler = Modeler(lstring=tree.lstring, settings=ModelerSettings.for_species(tree.geometry_constants),
+                               segments_of=self.segments)
         self.crown_tool.clear()  # a new editing session: earlier crown steps cannot be undone into
         self.state.say(text("messages.modeler_on"))
 

@@ -32,6 +32,9 @@ CONSTANT_DEFAULTS = {
     "SHED": 14.0, "SHQ": 0.25, "PHOTO": 7.0, "PHOTOB": 12.0, "UPW": 1.2, "UPB": 0.15, "RING": 0.012,
     "STRAIGHT": 1.0, "SUNW": 0.35, "LIGHTW": 1.2, "RIPEN": 12.0,
     "BHL": 0.5,  # apical control of the Borchert-Honda vigour sharing (engine/life/plant/vigour.py)
+    # the modeler's lambda(s): growth points per scene unit at 0, 1/4, 1/2, 3/4, 1 of a drawn axis
+    # (Wakabayashi & Durikovic; engine/modeling/modeler.py ModelerSettings.for_species)
+    "LAM0": 0.0, "LAM1": 0.0, "LAM2": 1.2, "LAM3": 1.2, "LAM4": 1.2,
 }
 DROOP = 0.6  # branch and leaf angles grow by this fraction at full wilt
 LEAF_ASPECT = 0.5  # leaf quads are half as wide as long (engine/geometry/mesh.py)
