@@ -1,12 +1,14 @@
 """Lobe benchmark: three drawn lobes -> attractors -> Zhang et al. growth -> L-string, and the modeler's
 crown cases with the game's module budget (issue 31).
 
-Run: python -m benchmarks.lobes
+Run: python -m benchmarks.lobes [--game [PNG]]
 Prints the median of 20 runs for: stitching the lobes from 5 closed strokes each, growing a crown
 from a drawn trunk into ~5,000 attractors, and writing the skeleton as L-string text; then, for hand-
 drawn (1 % jitter) trees and lobes grown as the game grows them (12,000 modules, a leaf per tip, the
 game's radii): each lobe's fill (share of its volume within a tenth of its size from the wood), the
-drawn trunk's width after the crown over its drawn width, and the time.
+drawn trunk's width after the crown over its drawn width, and the time. With --game: three lobes
+drawn by a shaky hand (1.5 px) in the real game, headless (EGL), each crown's time as the game reports
+it, the lobes' fill, and a screenshot (PNG, default /tmp/three_lobes_game.png).
 """
 
 from __future__ import annotations
@@ -102,8 +104,59 @@ def game_cases(grow=None, repeat: int = 3) -> dict[str, tuple[list[float], float
     return out
 
 
+def in_game(png: str) -> None:
+    """Three outlines drawn with the crown tool in the real game (touch events, 1.5 px jitter)."""
+    import os
+    from pathlib import Path
+    from tempfile import TemporaryDirectory
+
+    os.environ.setdefault("SDL_AUDIODRIVER", "dummy")
+    import pygame
+
+    from arbor.game.input.events import DOWN, MOVE, UP, InputEvent
+    from arbor.game.render.renderer import headless_context, save_png
+    from arbor.game.screens.game import Game, GameConfig
+
+    pygame.init()
+    pygame.display.set_mode((64, 64))
+    ctx, size = headless_context(), (1280, 720)
+    fbo = ctx.framebuffer(color_attachments=[ctx.renderbuffer(size)], depth_attachment=ctx.depth_renderbuffer(size))
+    with TemporaryDirectory() as tmp:
+        clock = [0.0]
+        game = Game(ctx, size, GameConfig(saves=Path(tmp), seed=3, resume=False), clock=lambda: clock[0])
+        game.draw(fbo)
+
+        def touch(kind, x, y, finger=0):
+            game.handle_input(InputEvent(kind, clock[0], "touch:1", finger, x, y))
+
+        game.modeling.tool("crown")
+        x0, y0 = game.hud.project(game.camera(), (0.0, 0.5, 0.0))
+        rng = np.random.default_rng(1)
+        for dx, dy in ((-150, -300), (150, -300), (0, -430)):
+            a = np.linspace(0, 2 * np.pi, 60)
+            points = np.stack([x0 + dx + 110 * np.cos(a), y0 + dy + 90 * np.sin(a)], 1) + rng.normal(0, 1.5, (60, 2))
+            touch(DOWN, *points[0])
+            for p in points[1:]:
+                clock[0] += 0.02
+                touch(MOVE, *p)
+            touch(UP, *points[-1])
+            print(f"in the game: {game.hud_info().message} ({len(game.world.tree.lstring)} modules)")
+        fill = lobe_fill(game.modeling.crown_tool.state().lobes, game.modeling.segments(game.world.tree.lstring))
+        print(f"in the game: fill {' '.join(f'{f:.0%}' for f in fill)}")
+        game.draw(fbo)
+        pixels = np.frombuffer(fbo.read(components=3), np.uint8).reshape(size[1], size[0], 3)
+        save_png(pixels[::-1], png)
+        print(f"screenshot: {png}")
+
+
 def main() -> None:
     """Print timings and sizes."""
+    import sys
+
+    if "--game" in sys.argv:
+        rest = sys.argv[sys.argv.index("--game") + 1:]
+        in_game(rest[0] if rest else "/tmp/three_lobes_game.png")
+        return
     ms, lobes = median_ms(_lobes)
     print(f"stitch 3 lobes from 15 strokes: {ms:.1f} ms")
     rng = np.random.default_rng(0)
