@@ -90,3 +90,55 @@ def test_regions_move_and_resize():
     crown = Supertoroid(a_x=2.0, a_y=1.0, a_z=2.0, alpha_y=4.0)
     bigger = scaled_region(moved_region(crown, (0.0, 1.0, 0.0)), 1.5)
     assert bigger.center == (0.0, 5.0, 0.0) and bigger.a_x == 3.0 and bigger.contains(np.array([[2.8, 5.0, 0.0]]))[0]
+
+
+def hand_outline(rng, across, side, spacing, height=3.0, base=1.0, points=40, jitter=0.015):
+    """A messy mouse outline on the vertical plane through the axis facing a camera whose right is
+    ``across``: a slightly leaning, wavering line ``spacing`` / 2 to the ``side`` (-1 left, +1 right),
+    with hand jitter of ``jitter`` of the outline's height (a wobble plus per-point noise)."""
+    s = np.sort(rng.uniform(0.0, 1.0, points))
+    wobble = np.convolve(rng.normal(0, 1, points + 8), np.ones(9) / 3, "valid")  # slow hand drift
+    t = side * spacing / 2 + 0.1 * (s - 0.5) + jitter * height * (0.6 * wobble + 0.6 * rng.normal(0, 1, points))
+    y = base + height * s + jitter * height * rng.normal(0, 1, points)
+    return t[:, None] * np.asarray(across) + y[:, None] * np.array([0.0, 1.0, 0.0])
+
+
+def right_of(yaw):
+    """An OrbitCamera's right for ``yaw`` degrees (game/render/camera.py: eye at (sin, ., cos) * distance)."""
+    t = np.radians(yaw)
+    return np.array([np.cos(t), 0.0, -np.sin(t)])
+
+
+@pytest.mark.parametrize("yaw", [255.0, 30.0, 140.0])  # the game's default view and two others
+def test_outlines_drawn_in_a_view_give_a_region_as_wide_as_their_spacing(yaw):
+    rng = np.random.default_rng(int(yaw))
+    across, spacing = right_of(yaw), 2.6
+    left, right = hand_outline(rng, across, -1, spacing), hand_outline(rng, across, 1, spacing)
+    region = fit_supertoroid(left, right, across=across)
+    width = 2 * region.a_x
+    print(f"yaw {yaw:.0f}: outlines {spacing} apart -> region {width:.2f} wide ({width / spacing - 1:+.1%})")
+    assert width == pytest.approx(spacing, rel=0.15)
+    t, y = np.meshgrid(np.linspace(-0.4, 0.4, 9) * spacing, np.linspace(1.5, 3.5, 9))
+    between = t.reshape(-1, 1) * across + y.reshape(-1, 1) * [0.0, 1.0, 0.0]
+    assert region.contains(between).mean() > 0.95  # what was drawn between the outlines is inside
+    beside = np.array([k * 0.75 * spacing * across + [0.0, 2.5, 0.0] for k in (-1, 1)])
+    assert not region.contains(beside).any()  # and what is clearly beside them is not
+    deep = np.array([0.5 * region.a_z * np.cross(across, [0.0, 1.0, 0.0]) + [0.0, 2.5, 0.0]])
+    assert region.a_z == pytest.approx(region.a_x) and region.contains(deep)[0]  # round: as deep as wide
+
+
+def test_a_turned_supertoroid_moves_and_scales_like_the_view_it_was_drawn_in():
+    from arbor.engine.modeling.regions import moved_region, scaled_region
+
+    plain = Supertoroid(a_x=2.0, a_y=1.5, a_z=0.8, alpha_y=4.0, n=0.7, b_x=0.5, slope_x=0.3)
+    turned = Supertoroid(a_x=2.0, a_y=1.5, a_z=0.8, alpha_y=4.0, n=0.7, b_x=0.5, slope_x=0.3, yaw=90.0)
+    u, v = np.meshgrid(np.linspace(-1.4, 1.4, 20), np.linspace(-np.pi, np.pi, 20))
+    turn = np.array([[0.0, 0.0, 1.0], [0.0, 1.0, 0.0], [-1.0, 0.0, 0.0]])  # x -> -z, z -> x: 90 deg about y
+    centre = np.array([0.5, 0.0, 0.0])
+    expect = (plain.surface(u, v) - centre) @ turn.T + centre
+    np.testing.assert_allclose(turned.surface(u, v), expect, atol=1e-9)
+    pts = np.random.default_rng(4).uniform([-3, 2, -3], [4, 6, 3], (3000, 3))
+    assert (turned.contains(pts) == plain.contains((pts - centre) @ turn + centre)).all()
+    assert turned.contains(np.array([[0.5, 4.0, -1.9]]))[0] and not turned.contains(np.array([[2.4, 4.0, 0.0]]))[0]
+    moved = scaled_region(moved_region(turned, (1.0, 0.5, 0.0)), 1.5)
+    assert moved.yaw == 90.0 and moved.center == (1.5, 4.5, 0.0) and moved.contains(np.array([[1.5, 4.5, -2.8]]))[0]

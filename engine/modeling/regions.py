@@ -7,6 +7,11 @@ Eq. 3 (supertoroid, with the slopes b_x, b_z of its axis):
     z(u, v) = a_z (alpha_z + cos^n u) sin^e v + b_z,   -pi <= u <= pi, -pi/2 <= v <= pi/2
 with signed powers (c^n = sign(c) |c|^n). Here b_x and b_z grow linearly with height (b = b0 + slope
 (y - alpha_y)), so the region can lean like the outline that was drawn.
+
+x and z are the region's own axes: ``yaw`` turns them about the vertical like an OrbitCamera's yaw, so a
+region fitted to outlines drawn in a view has its width a_x across that view (x = the view's right,
+(cos yaw, 0, -sin yaw)) and its depth a_z along the line of sight (z = (sin yaw, 0, cos yaw), toward the
+camera). The centre (b_x, alpha_y, b_z) is in world coordinates; the slopes lean along the region's axes.
 """
 
 from __future__ import annotations
@@ -18,6 +23,8 @@ import numpy as np
 from arbor.engine.geometry.turtle import INITIAL_FRAME
 from arbor.engine.lsystem import brackets
 from arbor.engine.lsystem.lstring import LString, concat, parse_lstring
+
+FLAT_DEPTH = 1.0  # outlines drawn on a plane carry no depth: the region is this deep for its width (round)
 
 
 @dataclass(frozen=True)
@@ -32,9 +39,23 @@ class Sphere:
         return np.linalg.norm(np.asarray(points, float) - np.asarray(self.center), axis=-1) <= self.radius
 
 
+def _axes(yaw: float) -> tuple[np.ndarray, np.ndarray]:
+    """The world directions of a region's x (width) and z (depth) axes for a yaw in degrees: those of an
+    OrbitCamera's right and of the way back toward it."""
+    t = np.radians(yaw)
+    return np.array([np.cos(t), 0.0, -np.sin(t)]), np.array([np.sin(t), 0.0, np.cos(t)])
+
+
+def view_yaw(across) -> float:
+    """The yaw (degrees) whose x axis is the horizontal direction ``across`` (a view's right)."""
+    across = np.asarray(across, float)
+    return float(np.degrees(np.arctan2(-across[2], across[0])) % 360.0)
+
+
 @dataclass(frozen=True)
 class Supertoroid:
-    """Eq. 3's supertoroid; alpha_x = alpha_z = 0 gives a (leaning) superellipsoid crown."""
+    """Eq. 3's supertoroid; alpha_x = alpha_z = 0 gives a (leaning) superellipsoid crown. ``yaw`` (degrees)
+    turns its x and z axes about the vertical (0: world x and z; see the module docstring)."""
 
     a_x: float
     a_y: float
@@ -48,17 +69,21 @@ class Supertoroid:
     b_z: float = 0.0
     slope_x: float = 0.0
     slope_z: float = 0.0
+    yaw: float = 0.0
 
     def surface(self, u: np.ndarray, v: np.ndarray) -> np.ndarray:
-        """Points of the surface at parameters (u, v) (for drawing and tests)."""
+        """Points of the surface at parameters (u, v) (for drawing and tests); v = 0 is the region's +x
+        side (the right outline of the view it was drawn in), v = pi its -x side."""
         def spow(c, p):
             return np.sign(c) * np.abs(c) ** p
 
         y = self.a_y * spow(np.sin(u), self.n) + self.alpha_y
         ring = spow(np.cos(u), self.n)
-        x = self.a_x * (self.alpha_x + ring) * spow(np.cos(v), self.e) + self.b_x + self.slope_x * (y - self.alpha_y)
-        z = self.a_z * (self.alpha_z + ring) * spow(np.sin(v), self.e) + self.b_z + self.slope_z * (y - self.alpha_y)
-        return np.stack([x, y, z], axis=-1)
+        x = self.a_x * (self.alpha_x + ring) * spow(np.cos(v), self.e) + self.slope_x * (y - self.alpha_y)
+        z = self.a_z * (self.alpha_z + ring) * spow(np.sin(v), self.e) + self.slope_z * (y - self.alpha_y)
+        ex, ez = _axes(self.yaw)
+        return (np.array([self.b_x, 0.0, self.b_z]) + x[..., None] * ex + z[..., None] * ez
+                + y[..., None] * np.array([0.0, 1.0, 0.0]))
 
     @property
     def center(self) -> tuple[float, float, float]:
@@ -71,8 +96,10 @@ class Supertoroid:
         s = (p[:, 1] - self.alpha_y) / self.a_y
         within = np.abs(s) <= 1.0
         c = np.clip(1.0 - np.abs(s) ** (2.0 / self.n), 0.0, 1.0) ** (self.n / 2.0)
-        dx = p[:, 0] - self.b_x - self.slope_x * (p[:, 1] - self.alpha_y)
-        dz = p[:, 2] - self.b_z - self.slope_z * (p[:, 1] - self.alpha_y)
+        ex, ez = _axes(self.yaw)
+        off = p - np.array([self.b_x, 0.0, self.b_z])
+        dx = off @ ex - self.slope_x * (p[:, 1] - self.alpha_y)
+        dz = off @ ez - self.slope_z * (p[:, 1] - self.alpha_y)
 
         def inside_ellipse(rx, rz):
             rx, rz = np.maximum(rx, 1e-12), np.maximum(rz, 1e-12)
@@ -84,15 +111,23 @@ class Supertoroid:
         return within & outer & ~hole
 
 
-def fit_supertoroid(left: np.ndarray, right: np.ndarray) -> Supertoroid:
+def fit_supertoroid(left: np.ndarray, right: np.ndarray, across=(1.0, 0.0, 0.0)) -> Supertoroid:
     """Fit eq. 3 to two contour strokes drawn as the left and right outline of a crown.
 
-    The axis runs through the midpoints of the two outlines at each height (a straight line: b and
-    slope), the half-widths give a_x, the outlines' height range gives a_y and alpha_y, n is the exponent
-    whose profile (1 - |s|^(2/n))^(n/2) fits the half-widths best, and outlines drawn in 3D also give
-    the depth a_z and the cross-section's exponent e (see _with_depth).
+    ``across`` is the horizontal direction the outlines' widths are measured along: the right of the
+    view they were drawn in (a mouse or finger draws on a vertical plane facing the camera, so the
+    width lies across the view; world x, the default, suits a 3D tracker). The region's x axis is
+    turned to it (its yaw). The axis runs through the midpoints of the two outlines at each height (a
+    straight line: b and slope), the outlines' height range gives a_y and alpha_y, and n is the
+    exponent whose profile a_x (1 - |s|^(2/n))^(n/2) fits the half-widths best (a_x by least squares
+    for each n, so hand jitter averages out). Outlines drawn in 3D also give the depth a_z and the
+    cross-section's exponent e (see _with_depth); outlines drawn on a plane carry no depth, and then
+    a_z = FLAT_DEPTH * a_x (a round crown).
     """
-    left, right = np.asarray(left, float), np.asarray(right, float)
+    yaw = view_yaw(across)
+    ex, ez = _axes(yaw)
+    to_local = np.stack([ex, np.array([0.0, 1.0, 0.0]), ez], axis=1)  # world point @ it: (x, y, z) local
+    left, right = np.asarray(left, float) @ to_local, np.asarray(right, float) @ to_local
     lo = max(left[:, 1].min(), right[:, 1].min())
     hi = min(left[:, 1].max(), right[:, 1].max())
     if hi <= lo:
@@ -107,17 +142,25 @@ def fit_supertoroid(left: np.ndarray, right: np.ndarray) -> Supertoroid:
     mid_x, mid_z, half = (xl + xr) / 2, (zl + zr) / 2, np.abs(xr - xl) / 2
     slope_x, b_x = np.polyfit(ys - alpha_y, mid_x, 1)
     slope_z, b_z = np.polyfit(ys - alpha_y, mid_z, 1)
-    a_x = float(half.max())
-    s = (ys - alpha_y) / a_y
-    best, best_err = 1.0, np.inf
+    a_x, n = _profile_fit((ys - alpha_y) / a_y, half)
+    region = Supertoroid(a_x=a_x, a_y=a_y, a_z=FLAT_DEPTH * a_x, alpha_y=alpha_y, n=n, b_x=float(b_x),
+                         b_z=float(b_z), slope_x=float(slope_x), slope_z=float(slope_z))
+    region = _with_depth(region, np.concatenate([left, right]))
+    centre = region.b_x * ex + region.b_z * ez
+    return replace(region, b_x=float(centre[0]), b_z=float(centre[2]), yaw=yaw)
+
+
+def _profile_fit(s: np.ndarray, half: np.ndarray) -> tuple[float, float]:
+    """The scale a_x and exponent n whose profile a_x (1 - |s|^(2/n))^(n/2) is nearest the half-widths
+    ``half`` at heights ``s`` (-1..1) in the least-squares sense."""
+    best = (np.inf, float(half.max()), 1.0)
     for n in np.linspace(0.2, 3.0, 57):
-        profile = a_x * np.clip(1.0 - np.abs(s) ** (2.0 / n), 0.0, 1.0) ** (n / 2.0)
-        err = float(np.sum((profile - half) ** 2))
-        if err < best_err:
-            best, best_err = float(n), err
-    region = Supertoroid(a_x=a_x, a_y=a_y, a_z=a_x, alpha_y=alpha_y, n=best, b_x=float(b_x), b_z=float(b_z),
-                         slope_x=float(slope_x), slope_z=float(slope_z))
-    return _with_depth(region, np.concatenate([left, right]))
+        profile = np.clip(1.0 - np.abs(s) ** (2.0 / n), 0.0, 1.0) ** (n / 2.0)
+        a_x = float(profile @ half) / max(float(profile @ profile), 1e-12)
+        err = float(np.sum((a_x * profile - half) ** 2))
+        if err < best[0]:
+            best = (err, a_x, float(n))
+    return best[1], best[2]
 
 
 def _with_depth(region: Supertoroid, points: np.ndarray) -> Supertoroid:
@@ -128,13 +171,14 @@ def _with_depth(region: Supertoroid, points: np.ndarray) -> Supertoroid:
     (x / a_x)^(2/e) + (z / a_z)^(2/e) = c^(2/e), with c = (1 - |s|^(2/n))^(n/2) the profile at its
     height. For fixed e and n that is linear in a_x^(-2/e) and a_z^(-2/e): a 2 x 2 least-squares
     solve for every (e, n) on a grid, and the pair whose surface passes closest to the points wins.
-    Outlines drawn on a plane carry no depth: then a round crown (a_z = a_x, e = 1) as drawn.
+    Outlines drawn on a plane carry no depth: then a_z = FLAT_DEPTH * a_x and e = 1. The region and the
+    points are in the region's own axes (x across the view it was drawn in).
     """
     y = points[:, 1] - region.alpha_y
     dx = np.abs(points[:, 0] - region.b_x - region.slope_x * y)
     dz = np.abs(points[:, 2] - region.b_z - region.slope_z * y)
     if dz.max(initial=0.0) < 0.1 * region.a_x:
-        return replace(region, a_z=region.a_x, e=1.0)
+        return replace(region, a_z=FLAT_DEPTH * region.a_x, e=1.0)
     s = np.abs(np.clip(y / region.a_y, -1.0, 1.0))
     ns = np.linspace(0.2, 3.0, 57)[:, None]
     profiles = np.clip(1.0 - s[None] ** (2.0 / ns), 0.0, 1.0) ** (ns / 2.0)  # (n, points)

@@ -3,14 +3,17 @@ L-string symbols inside it, and region-limited edits.
 
 A short drag places a sphere that follows the pointer. A tall drag is a contour: the left and right
 outlines of a crown region, and two of them are fitted with eq. 3's supertoroid (leaning with the
-outlines). A tap inside the region applies the edit chosen with the menu's option button, to the
-modules inside only (one undoable step).
+outlines), its width across the view they were drawn in. A drag that starts on the region's centre
+handle or well inside it (within MOVE_INSIDE of the way to its rim, as seen) moves it; one that starts
+on its rim resizes it; anywhere else a drag starts a new region. A tap inside the region applies the edit
+chosen with the menu's option button, to the modules inside only (one undoable step).
 """
 
 from __future__ import annotations
 
 import numpy as np
 import pygame
+from scipy.spatial import ConvexHull, QhullError
 
 from arbor.engine.geometry.turtle import TurtleConfig, module_positions
 from arbor.engine.life.form.interpret import render_view
@@ -27,6 +30,9 @@ from arbor.game.tools.symbols import draw_symbols
 CONTOUR_PIXELS = 80.0  # a drag at least this tall, and twice as tall as wide, is a contour
 GROUPS = {"grow": "grown", "prune": "pruned_region"}  # edits with their own message
 GROW_STEPS = 20  # growth steps a Grow region keeps all growth inside it
+HANDLE_PIXELS = 12.0  # radius of the region's centre handle (a touch-sized disc): a drag from it moves the region
+MOVE_INSIDE = 0.6  # a drag starting within this share of the way from the centre to the rim moves the region
+RIM_PIXELS = 16.0  # a drag starting up to this far outside the rim (as seen) still resizes the region
 
 
 class RegionTool:
@@ -74,17 +80,45 @@ class RegionTool:
             self.region = Sphere(tuple(point), self._radius())
 
     def _grab(self, pixel: tuple[float, float], point: np.ndarray) -> tuple | None:
-        """What a drag starting at ``pixel`` holds: ("move" | "size", the region then, the start point)."""
+        """What a drag starting at ``pixel`` holds: ("move" | "size", the region then, the start point);
+        None (a new region) unless it starts on the centre handle, inside the region or on its rim."""
         if self.region is None:
             return None
-        camera = self.mode.camera()
-        centre = project_points(camera, self.mode.size, np.asarray(self.region.center, float)[None])[0]
-        rim = float(np.nanmax(np.hypot(*(project_points(camera, self.mode.size, self._outline().reshape(-1, 3))
-                                          - centre).T)))
-        away = float(np.hypot(pixel[0] - centre[0], pixel[1] - centre[1]))
-        if not np.isfinite(rim) or away > rim * 1.15:
+        away, rim = self._reach(pixel, self.mode.camera())
+        if not np.isfinite(away) or away > rim + RIM_PIXELS:
             return None
-        return ("size" if away > 0.7 * rim else "move", self.region, np.asarray(point, float))
+        move = away <= max(HANDLE_PIXELS, MOVE_INSIDE * rim)
+        return ("move" if move else "size", self.region, np.asarray(point, float))
+
+    def _reach(self, pixel: tuple[float, float], camera: OrbitCamera) -> tuple[float, float]:
+        """How far ``pixel`` is from the region's projected centre, and how far the region's rim is
+        from the centre in that direction (pixels; the rim of its projected outline's convex hull)."""
+        size = self.mode.size
+        if isinstance(self.region, Sphere):
+            centre, radius = project_ball(camera, size, self.region.center, self.region.radius)
+            return float(np.hypot(pixel[0] - centre[0], pixel[1] - centre[1])), radius
+        centre = project_points(camera, size, np.asarray(self.region.center, float)[None])[0]
+        offset = np.subtract(pixel, centre)
+        away = float(np.hypot(*offset))
+        hull = self._hull(camera)
+        if hull is None or not np.isfinite(away):
+            return float("nan"), 0.0
+        direction = offset / away if away > 1e-9 else np.array([1.0, 0.0])
+        normals, offsets = hull[:, :2], hull[:, 2]
+        facing = normals @ direction
+        gaps = -(offsets + normals @ centre)  # each edge's distance from the centre
+        rim = np.min(np.where(facing > 1e-9, gaps / np.maximum(facing, 1e-9), np.inf))
+        return away, float(max(rim, 0.0))
+
+    def _hull(self, camera: OrbitCamera) -> np.ndarray | None:
+        """The supertoroid's outline as seen: its convex hull's edges (normal x, normal y, offset; a
+        pixel p is inside when normal . p + offset <= 0), None when it is out of view."""
+        pixels = project_points(camera, self.mode.size, self._outline().reshape(-1, 3))
+        pixels = pixels[np.isfinite(pixels).all(axis=1)]
+        try:
+            return ConvexHull(pixels).equations if len(pixels) >= 3 else None
+        except QhullError:
+            return None
 
     def _grabbed(self, point: np.ndarray) -> Sphere | Supertoroid:
         """The held region moved by (or resized toward) the pointer."""
@@ -121,11 +155,11 @@ class RegionTool:
         if len(self.contours) < 2:
             self.mode.state.say(text("messages.contour_one"))
             return
-        side = camera.view()[0, :3]  # the screen's right, in the world
+        side = camera.view()[0, :3]  # the screen's right, in the world (horizontal)
         left, right = sorted(self.contours[-2:], key=lambda c: float(c.mean(axis=0) @ side))
         self.contours = []
         try:
-            self.region = fit_supertoroid(left, right)
+            self.region = fit_supertoroid(left, right, across=side)  # width across the view drawn in
         except ValueError:
             self.mode.state.say(text("messages.contour_apart"))
             return
@@ -143,17 +177,16 @@ class RegionTool:
         return self.region.surface(u + 0 * v, v + 0 * u)
 
     def hit(self, x: float, y: float, camera: OrbitCamera) -> bool:
-        """Whether pixel (x, y) lies on the region as seen (its projected outline's box; a circle
-        for a sphere)."""
+        """Whether pixel (x, y) lies on the region as seen (inside its projected outline: a circle for
+        a sphere, the convex hull of a supertoroid's)."""
         if self.region is None:
             return False
         size = self.mode.size
         if isinstance(self.region, Sphere):
             c, radius = project_ball(camera, size, self.region.center, self.region.radius)
             return bool(np.hypot(x - c[0], y - c[1]) <= radius)
-        pixels = project_points(camera, size, self._outline().reshape(-1, 3))
-        lo, hi = np.nanmin(pixels, axis=0), np.nanmax(pixels, axis=0)
-        return bool(lo[0] <= x <= hi[0] and lo[1] <= y <= hi[1])
+        hull = self._hull(camera)
+        return hull is not None and bool(np.all(hull[:, :2] @ [x, y] + hull[:, 2] <= 1e-9))
 
     def edit_at(self, x: float, y: float, camera: OrbitCamera, edit: str, system) -> bool:
         """A tap: inside the region, apply ``edit`` (production set ``system``) to the modules inside it
@@ -188,8 +221,8 @@ class RegionTool:
 
     def draw(self, surface: pygame.Surface, camera: OrbitCamera, font: pygame.font.Font, project,
              points: list[np.ndarray]) -> None:
-        """The region's outline, its modules' symbols (see game/tools/symbols.py), pending contours and
-        the contour being drawn."""
+        """The region's outline and centre handle, its modules' symbols (see game/tools/symbols.py),
+        pending contours and the contour being drawn."""
         self.labels = []
         for contour in [*self.contours, *([np.array(points)] if self._is_contour() else [])]:
             draw_polyline(surface, project, contour, (255, 255, 255, 200), False, 3)
@@ -200,6 +233,10 @@ class RegionTool:
                 draw_polyline(surface, project, ring, (255, 255, 255, 170), True, 2)
         ls = self.mode.state.world.tree.lstring
         self.labels = draw_symbols(surface, font, camera, self.mode.size, ls, self.positions(ls), self.region)
+        centre = project_points(camera, self.mode.size, np.asarray(self.region.center, float)[None])[0]
+        if np.isfinite(centre).all():  # the handle a drag moves the region by
+            pygame.draw.circle(surface, (255, 255, 255, 200), centre, HANDLE_PIXELS)
+            pygame.draw.circle(surface, (40, 60, 40, 220), centre, HANDLE_PIXELS, 2)
 
     def positions(self, ls: LString) -> np.ndarray:
         """Turtle positions of every module of the tree as drawn now (cached per L-string)."""
