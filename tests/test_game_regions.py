@@ -142,3 +142,17 @@ def test_the_centre_handle_moves_a_region_too_thin_to_grab_inside(game):
     assert isinstance(first, Supertoroid) and 0.6 * across < 0.8 * HANDLE_PIXELS < across
     drag(game, [(cx + 0.8 * HANDLE_PIXELS, cy), (cx + 30, cy - 10), (cx + 60, cy - 20)])  # on the handle: moves
     assert tool.region.a_x == first.a_x and tool.region.center != first.center
+
+
+def test_no_sphere_follows_an_outline_being_drawn(game):
+    symbols_tool(game)
+    camera = game.camera()
+    world, _ = hand_outline(np.random.default_rng(3), camera.view()[0, :3], -1, 2.0, 2.4)
+    pixels = project_points(camera, SIZE, world)
+    mouse(game, DOWN, *pixels[0])
+    for p in pixels[1:]:
+        game.clock_box[0] += 0.02
+        mouse(game, MOVE, *p)
+    assert game.modeling.region_tool.region is None  # the outline shows, not a sphere left at its start
+    mouse(game, UP, *pixels[-1])
+    assert game.modeling.region_tool.region is None and "outline" in game.hud_info().message

@@ -78,6 +78,8 @@ class RegionTool:
             self.region = self._grabbed(point)
         elif moved and not self._is_contour():
             self.region = Sphere(tuple(point), self._radius())
+        elif self.grab is None and self._is_contour():
+            self.region = self.kept  # an outline, not a sphere drag: no sphere follows it
 
     def _grab(self, pixel: tuple[float, float], point: np.ndarray) -> tuple | None:
         """What a drag starting at ``pixel`` holds: ("move" | "size", the region then, the start point);
@@ -113,10 +115,15 @@ class RegionTool:
     def _hull(self, camera: OrbitCamera) -> np.ndarray | None:
         """The supertoroid's outline as seen: its convex hull's edges (normal x, normal y, offset; a
         pixel p is inside when normal . p + offset <= 0), None when it is out of view."""
+        seen = self._seen(camera)
+        return None if seen is None else seen.equations
+
+    def _seen(self, camera: OrbitCamera) -> ConvexHull | None:
+        """The convex hull of the supertoroid's projected surface points (window pixels)."""
         pixels = project_points(camera, self.mode.size, self._outline().reshape(-1, 3))
         pixels = pixels[np.isfinite(pixels).all(axis=1)]
         try:
-            return ConvexHull(pixels).equations if len(pixels) >= 3 else None
+            return ConvexHull(pixels) if len(pixels) >= 3 else None
         except QhullError:
             return None
 
@@ -166,13 +173,15 @@ class RegionTool:
         self.mode.state.say(text("messages.contour_region"))
 
     def _outline(self) -> np.ndarray:
-        """Points on the region's surface, (rings, points, 3): for drawing and for tap tests."""
+        """Points on the region's surface, (rings, points, 3): for drawing and for tap tests. A
+        supertoroid's rings are at evenly spaced heights, and near its top and bottom, whatever n."""
         if isinstance(self.region, Sphere):
             u = np.linspace(-np.pi / 2, np.pi / 2, 9)[1:-1, None]
             v = np.linspace(0, 2 * np.pi, 33)[None, :]
             unit = np.stack([np.cos(u) * np.cos(v), np.sin(u) + 0 * v, np.cos(u) * np.sin(v)], axis=-1)
             return np.asarray(self.region.center) + self.region.radius * unit
-        u = np.linspace(-np.pi / 2, np.pi / 2, 9)[1:-1, None]
+        height = np.r_[-0.99, np.linspace(-0.8, 0.8, 5), 0.99]  # of a_y, from the centre
+        u = np.arcsin(np.sign(height) * np.abs(height) ** (1.0 / self.region.n))[:, None]
         v = np.linspace(-np.pi, np.pi, 33)[None, :]
         return self.region.surface(u + 0 * v, v + 0 * u)
 
@@ -230,7 +239,10 @@ class RegionTool:
             return
         if isinstance(self.region, Supertoroid):
             for ring in self._outline():
-                draw_polyline(surface, project, ring, (255, 255, 255, 170), True, 2)
+                draw_polyline(surface, project, ring, (255, 255, 255, 110), True, 1)
+            seen = self._seen(camera)
+            if seen is not None:  # the region's outline as seen now
+                pygame.draw.lines(surface, (255, 255, 255, 210), True, seen.points[seen.vertices], 3)
         ls = self.mode.state.world.tree.lstring
         self.labels = draw_symbols(surface, font, camera, self.mode.size, ls, self.positions(ls), self.region)
         centre = project_points(camera, self.mode.size, np.asarray(self.region.center, float)[None])[0]
