@@ -87,7 +87,7 @@ class RegionTool:
         if self.region is None:
             return None
         away, rim = self._reach(pixel, self.mode.camera())
-        if not np.isfinite(away) or away > rim + RIM_PIXELS:
+        if not (np.isfinite(away) and np.isfinite(rim)) or away > rim + RIM_PIXELS:
             return None
         move = away <= max(HANDLE_PIXELS, MOVE_INSIDE * rim)
         return ("move" if move else "size", self.region, np.asarray(point, float))
