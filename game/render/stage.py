@@ -27,6 +27,8 @@ class Stage:
         self._msaa: tuple | None = None
         self._backdrop_picture: moderngl.Framebuffer | None = None
         self._backdrop_key: tuple | None = None
+        self._shaded_picture: moderngl.Framebuffer | None = None  # the backdrop with the trees' shadows
+        self._shaded_key: tuple | None = None
         self._scene: moderngl.Framebuffer | None = None  # backdrop and trees' picture (layered frames)
         self._scene_key: tuple | None = None
         self.cover = None  # () -> draws what covers the ground into the backdrop's picture (software GL: grass)
@@ -58,14 +60,41 @@ class Stage:
         test (only the trees need depth), then a depth-only clear. On a software GL the depth test and
         write of a full-screen background cost as much as shading it."""
         ctx = self.ctx
+        if self.samples <= 1:  # the picture with the shadows on it, redrawn only when they or it changed
+            self._shade(size, vp, camera, sun, light, boxes, radius)
+            ctx.copy_framebuffer(target, self._shaded_picture)
+            _clear_depth(target)
+            return
         target.use()
         ctx.viewport = (0, 0, *size)
         ctx.disable(moderngl.DEPTH_TEST | moderngl.CULL_FACE)
-        self._background(target, size, vp, camera, sun, radius)
+        self._draw_backdrop(target, size, vp, camera, sun, radius)
         _clear_depth(target)
+        self._draw_shadows(target, size, vp, sun, light, boxes)
+
+    def _draw_shadows(self, into: moderngl.Framebuffer, size: tuple[int, int], vp: np.ndarray, sun: np.ndarray,
+                      light: np.ndarray, boxes: list) -> None:
+        """The trees' shadows darkening the ground already in ``into``."""
+        into.use()
+        self.ctx.viewport = (0, 0, *size)
+        self.ctx.disable(moderngl.DEPTH_TEST | moderngl.CULL_FACE)
         self.shadows.texture.use(location=1)
         pad = np.array([1.5, 0.0, 1.5])  # leaves reach past the points the bounds were taken from
         self.backdrop.draw_shadows(_gl(vp), _gl(light), sun, [(lo - pad, hi + pad) for lo, hi in boxes])
+
+    def _shade(self, size: tuple[int, int], vp: np.ndarray, camera: OrbitCamera, sun: np.ndarray,
+               light: np.ndarray, boxes: list, radius: float) -> None:
+        """Keep the backdrop's picture with the trees' shadows on it (software GL: the shadow test over
+        the ground is a third of a sapling's frame). The shadows change only with the shadow map (a new
+        version when the sun turned or a tree changed) and with the backdrop: the boxes bound where the
+        test runs, not what it shows, so they are not part of the key."""
+        self.refresh(size, vp, camera, sun, radius)
+        key = (self._backdrop_key, self.shadows.version, self.backdrop.soft, len(boxes))
+        self._shaded_picture = self._picture(self._shaded_picture, size)
+        if key != self._shaded_key:
+            self._shaded_key = key
+            self.ctx.copy_framebuffer(self._shaded_picture, self._backdrop_picture)
+            self._draw_shadows(self._shaded_picture, size, vp, sun, light, boxes)
 
     def layered(self, target: moderngl.Framebuffer, size: tuple[int, int], vp: np.ndarray, camera: OrbitCamera,
                 sun: np.ndarray, light: np.ndarray, boxes: list, radius: float, pictures: Pictures) -> None:
@@ -105,17 +134,6 @@ class Stage:
         if picture is not None:
             picture.release()
         return self.ctx.framebuffer(color_attachments=[self.ctx.renderbuffer(size)])
-
-    def _background(self, target: moderngl.Framebuffer, size: tuple[int, int], vp: np.ndarray,
-                    camera: OrbitCamera, sun: np.ndarray, radius: float) -> None:
-        """Sky, sun disc and ground into ``target``. Without multisampling (a software GL, where they
-        cost more than half a sapling's frame) they are drawn into a picture of their own and copied
-        from it while the camera, the sun (to SUN_STEP) and the ground's size stay the same."""
-        if self.samples <= 1:
-            self.refresh(size, vp, camera, sun, radius)
-            self.ctx.copy_framebuffer(target, self._backdrop_picture)
-        else:
-            self._draw_backdrop(target, size, vp, camera, sun, radius)
 
     def _draw_backdrop(self, into: moderngl.Framebuffer, size: tuple[int, int], vp: np.ndarray,
                        camera: OrbitCamera, sun: np.ndarray, radius: float) -> None:
