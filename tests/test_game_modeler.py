@@ -183,8 +183,8 @@ def test_prune_tool_cuts_the_tapped_branch_and_undo_restores_it(game):
     touch(game, UP, 0, x0 + 6 * 30, y0 - 8 * 30)
     assert not game.menu.visible and "Cut" in game.hud_info().message
     assert 0 < full - pieces() < full - 2  # only that branch's end went, the trunk stayed
-    touch(game, DOWN, 0, 1200, 80)  # a tap on the sky still opens the menu
-    touch(game, UP, 0, 1200, 80)
+    touch(game, DOWN, 0, 1000, 80)  # a tap on the sky still opens the menu
+    touch(game, UP, 0, 1000, 80)
     assert game.menu.visible
     game.tap(1200, 700)
     press_menu(game, "undo")

@@ -23,6 +23,7 @@ WATER_BLUE = (60, 140, 240)
 PANEL = (20, 30, 24, 200)
 TEXT = (245, 245, 240)
 ACCENT = (120, 190, 90)
+LIT, LIT_TEXT = (250, 204, 40), (30, 35, 20)  # the active tool's button: yellow, dark label
 ROW_H = 64  # touch targets: >= 48 px
 JOURNAL_LINE = 26
 MENU_W = 420
@@ -90,6 +91,7 @@ class Menu:
             Widget("edit", text("menu.edit", name=text("edits.add_leaves")), "button", "tools"),
         ]
         self.active: Widget | None = None
+        self.lit: set[str] = set()  # buttons drawn lit: the modeler's tool in use
         self.rect = pygame.Rect(0, 0, MENU_W, 0)
         self._at = (0.0, 0.0)
 
@@ -192,20 +194,113 @@ class Menu:
         for w in self.shown():
             if w.kind == "slider":
                 _draw_slider(surface, font, w)
-                continue
-            color = (70, 110, 60) if w.pressed else (45, 70, 42)
-            pygame.draw.rect(surface, color, w.rect, border_radius=10)
-            pygame.draw.rect(surface, ACCENT, w.rect, width=2, border_radius=10)
-            room = w.rect.inflate(-8, -8)
-            if w.icon:
-                box = pygame.Rect(room.left, room.top, room.height, room.height)
-                draw_icon(surface, w.icon, box)
-                room.width -= room.height
-                room.left = box.right
-            label = font.render(w.label, True, TEXT)
-            if label.get_width() > room.width:  # shrink long labels to fit their button
-                label = pygame.transform.smoothscale_by(label, room.width / label.get_width())
-            surface.blit(label, label.get_rect(center=room.center))
+            else:
+                draw_button(surface, font, w, lit=w.name in self.lit)
+
+
+def draw_button(surface: pygame.Surface, font: pygame.font.Font, w: Widget, lit: bool = False) -> None:
+    """A menu or tool bar button: its icon and label (shrunk to fit); ``lit`` (the tool in use) fills it
+    yellow with a white rim, so the active tool stands out at a glance."""
+    color = LIT if lit else (70, 110, 60) if w.pressed else (45, 70, 42)
+    pygame.draw.rect(surface, color, w.rect, border_radius=10)
+    pygame.draw.rect(surface, TEXT if lit else ACCENT, w.rect, width=4 if lit else 2, border_radius=10)
+    room = w.rect.inflate(-8, -8)
+    if w.icon:
+        box = pygame.Rect(room.left, room.top, room.height, room.height)
+        draw_icon(surface, w.icon, box)
+        room.width -= room.height
+        room.left = box.right
+    label = font.render(w.label, True, LIT_TEXT if lit else TEXT)
+    if label.get_width() > room.width:  # shrink long labels to fit their button
+        label = pygame.transform.smoothscale_by(label, room.width / label.get_width())
+    surface.blit(label, label.get_rect(center=room.center))
+
+
+BAR_W, BAR_H, BAR_GAP = 160, 56, 6  # the modeler's tool bar: touch targets >= 48 px
+BAR_TOOLS = ("draw", "crown", "shape", "prune", "symbols")
+
+
+class ToolBar:
+    """The modeler's tool bar down the right edge of the screen: one touch-sized button per tool (the one
+    in use lit), under them the option of that tool (the lobe operation of Shape, the region edit of
+    Symbols; none for the others), then Undo, Redo and Done. Like the menu it acts when a button is pressed;
+    every button is an :class:`Action` for the one dispatcher (game/screens/care.py)."""
+
+    def __init__(self, screen: tuple[int, int]) -> None:
+        self.screen = screen
+        self.visible = False  # (in the modeler only)
+        self.tool = "draw"  # the tool in use: one of BAR_TOOLS
+        self.option = ""  # the option button's label ('' when the tool has none)
+        names = (*BAR_TOOLS, "edit", "undo", "redo", "modeler")
+        self.widgets = {name: Widget(name, text(f"menu.{name}"), "button", "bar") for name in names}
+        self.widgets["modeler"].label = text("menu.modeler_done")
+        self.active: Widget | None = None
+        self.layout()
+
+    def show(self, visible: bool, tool: str, option: str = "") -> None:
+        """Show the bar (or not) with ``tool`` lit and ``option`` as its option button ('' hides it)."""
+        self.visible, self.tool, self.option = visible, tool, option
+        self.widgets["edit"].label = option
+        self.layout()
+
+    def shown(self) -> list[Widget]:
+        """The buttons on the bar now, top to bottom."""
+        names = [*BAR_TOOLS, *(["edit"] if self.option else []), "undo", "redo", "modeler"]
+        return [self.widgets[name] for name in names]
+
+    def layout(self) -> None:
+        """Place the buttons in a column at the right edge: the tools, a gap, the option, a gap, Undo
+        and Redo, a gap, Done."""
+        x, y = self.screen[0] - BAR_W - PAD, PAD + 6
+        for w in self.widgets.values():
+            w.rect = pygame.Rect(0, 0, 0, 0)
+        for w in self.shown():
+            if w.name in ("edit", "undo", "modeler"):
+                y += 2 * BAR_GAP  # (groups: tools, their option, history, leaving)
+            w.rect = pygame.Rect(x, y, BAR_W, BAR_H)
+            y += BAR_H + BAR_GAP
+
+    @property
+    def rect(self) -> pygame.Rect:
+        """The bar's panel: round all its buttons."""
+        rects = [w.rect for w in self.shown()]
+        return rects[0].unionall(rects[1:]).inflate(PAD, PAD)
+
+    def over(self, x: float, y: float) -> bool:
+        """Whether (x, y) is on the bar's panel while it is shown (a press there never draws a stroke)."""
+        return self.visible and self.rect.collidepoint(x, y)
+
+    def hit(self, x: float, y: float) -> Widget | None:
+        """The button under (x, y) while the bar is shown."""
+        if not self.over(x, y):
+            return None
+        return next((w for w in self.shown() if w.rect.collidepoint(x, y)), None)
+
+    def press(self, x: float, y: float) -> list[tuple[Action, float]]:
+        """Pointer down at (x, y): the action of the button there (value 1), if any."""
+        self.active = w = self.hit(x, y)
+        if w is None:
+            return []
+        w.pressed = True
+        return [(w.action, 1.0)]
+
+    def release(self) -> None:
+        """Pointer up: the pressed button is let go (bar buttons act on the press)."""
+        if self.active is not None:
+            self.active.pressed = False
+        self.active = None
+
+    def key(self) -> tuple:
+        """What the bar shows (the HUD repaints when it changes)."""
+        return self.visible, self.tool, self.option, self.active.name if self.active else ""
+
+    def draw(self, surface: pygame.Surface, font: pygame.font.Font) -> None:
+        """The panel and its buttons, the tool in use lit."""
+        if not self.visible:
+            return
+        _shade(surface, self.rect, 150, (20, 30, 24))
+        for w in self.shown():
+            draw_button(surface, font, w, lit=w.name == self.tool)
 
 
 def _draw_slider(surface: pygame.Surface, font: pygame.font.Font, w: Widget) -> None:
@@ -255,7 +350,8 @@ def draw_hud(surface: pygame.Surface, font: pygame.font.Font, info: HudInfo) -> 
     if info.season:
         season = info.season + (" - " + text("hud.raining") if info.raining else "")
         y = _text_lines(surface, font, season, (x, y + 4), width)
-    y = _text_lines(surface, font, info.status, (x, y + 4), width)
+    if info.status:
+        y = _text_lines(surface, font, info.status, (x, y + 4), width)
     minutes = info.age_seconds / 60
     age = (text("hud.minutes", minutes=minutes) if minutes < 120 else text("hud.hours", hours=minutes / 60)
            if minutes < 2880 else text("hud.days", days=minutes / 1440))

@@ -59,7 +59,8 @@ class CareActions:
             Action.SOW: pressed(self.sow), Action.CROSS: pressed(self.start_cross),
             Action.FAMILY: pressed(family.open), Action.ROCK: pressed(self.place_rock),
             Action.ROOTS: pressed(self._roots), Action.NEXT: pressed(self._next_tree),
-            Action.MODELER: tool(modeling.toggle), Action.CROWN: tool(lambda: modeling.tool("crown")),
+            Action.MODELER: tool(modeling.toggle), Action.DRAW: tool(lambda: modeling.tool("draw")),
+            Action.CROWN: tool(lambda: modeling.tool("crown")),
             Action.SHAPE: tool(lambda: modeling.tool("shaping")), Action.PRUNE: tool(lambda: modeling.tool("pruning")),
             Action.SYMBOLS: tool(lambda: modeling.tool("symbols")), Action.EDIT: pressed(self._next_edit),
             Action.UNDO: pressed(modeling.undo), Action.REDO: pressed(modeling.redo),
@@ -100,6 +101,8 @@ class CareActions:
         state.garden.family.add(world.lineage)
         state.remember()
         state.sow()  # (the new sapling is seen rising from its seed)
+        self.modeling.replanted()  # (in the modeler: drawing starts anew on the sapling, no old overlay left)
+        self.sync_sliders()
         state.say(text("messages.planted"))
 
     def go_on(self) -> None:
@@ -267,6 +270,7 @@ class CareActions:
         menu.widget("sow").label = text("menu.sow", count=len(state.garden.seeds))
         menu.widget("roots").label = text("menu.roots_hide" if state.cutaway else "menu.roots")
         menu.widget("modeler").label = text("menu.modeler_done" if self.modeling.active else "menu.modeler")
+        menu.lit = {self.modeling.current_tool} if self.modeling.active else set()  # (the tools page lights it too)
         if self.sound is not None:
             self.sound.show(menu)
             menu.widget("away").label = text("menu.away_on" if self.sound.prefs.away else "menu.away_off")

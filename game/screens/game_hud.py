@@ -1,5 +1,7 @@
 """The game's 2D layer over the scene: meters, status, season, hints, reminders, garden markers, rain,
-menu, cursor and tool outlines. It is repainted (and uploaded) only when what it shows changes."""
+menu, cursor, tool outlines and (in the modeler) its tool bar. It is repainted (and uploaded) only when
+what it shows changes. In the modeler the hint line says what a drag does with the tool in use, in place
+of the garden's hints and reminders (there a drag draws and a tap opens the tools)."""
 
 from __future__ import annotations
 
@@ -48,6 +50,7 @@ class GameHud:
     def draw(self, camera: OrbitCamera) -> None:
         """Repaint the overlay if anything on it changed, and composite it over the frame."""
         self.coach.watch()
+        self.modeling.follow()  # (a tree changed outside the modeler shows none of the old tree's overlays)
         key = self._overlay_key(camera)
         changed = key != self._key
         if changed:
@@ -71,7 +74,7 @@ class GameHud:
                 menu.visible, menu.page, widgets, view, state.cursor3d, len(self.hooks),
                 tuple(w.status() for w in state.garden.worlds), state.garden.current, self.family.visible,
                 int(state.clock() * 4) if info.raining or info.watering else 0,  # (rain and cloud animate)
-                self.title is not None and self.title.shown)
+                self.title is not None and self.title.shown, modeling.bar.key())
 
     def hud_info(self) -> HudInfo:
         """What the HUD shows now."""
@@ -86,8 +89,12 @@ class GameHud:
         if rules.seasons.enabled:
             day = int(s.sun_turns) + 1
             season = text("hud.season", season=text(f"seasons.{world.sim.season().name}"), day=day)
+        modeling = self.modeling.active
+        hint = self.modeling.hint() if modeling else self.coach.hint()
+        if modeling:  # (the garden is paused: its status lines would only lie across the tree being drawn)
+            status = season = ""
         return HudInfo(s.sun_meter, s.water_meter, status, s.time, state.loop.speed, message, s.watering, season,
-                       world.sim.raining(), self.coach.hint(), self.coach.reminder())
+                       world.sim.raining(), hint, "" if modeling else self.coach.reminder())
 
     def dark_sky(self) -> bool:
         """True when the sky drawn now is a night's (at fast speeds the scene leans toward noon, so a
@@ -117,6 +124,7 @@ class GameHud:
         project = lambda points: self.project_many(camera, points)  # noqa: E731
         self.modeling.draw_outline(self.surface, project)
         self.modeling.draw_symbols(self.surface, camera, self.small_font, project)
+        self.modeling.bar.draw(self.surface, self.font)
         self.menu.draw(self.surface, self.font)
         self.family.draw(self.surface, self.font, self.small_font)
         for hook in self.hooks:

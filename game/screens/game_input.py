@@ -46,6 +46,7 @@ class GameInput:
         self.menu, self.gestures, self.modeling, self.care = menu, gestures, modeling, care
         self.picker, self.family, self.coach = picker, family, coach
         self.menu_pointers: set[int] = set()
+        self.bar_pointers: set[int] = set()  # pointers pressing the modeler's tool bar
         self.right_y: float | None = None
         self.stroke_pointer: int | None = None
         self.stroke_start: tuple[float, float, float] = (0.0, 0.0, 0.0)
@@ -110,7 +111,7 @@ class GameInput:
         if not self.modeling.active or self.menu.visible:
             return False
         if kind == DOWN and self.stroke_pointer is None and not self.gestures.pointers:
-            if self.menu.hit(x, y):
+            if self.menu.hit(x, y) or self.modeling.bar.over(x, y):
                 return False
             self.stroke_pointer, self.stroke_start = pid, (x, y, now)
             self.modeling.begin2d(x, y, now, self.camera())
@@ -148,9 +149,18 @@ class GameInput:
                 self.menu_pointers.add(pid)
                 for action in self.menu.press(x, y):
                     self.care.act(*action)
+            elif self.modeling.bar.over(x, y):  # the modeler's tool bar (a press there closes the menu)
+                self.bar_pointers.add(pid)
+                for action in [*self.menu.hide(), *self.modeling.bar.press(x, y)]:
+                    self.care.act(*action)
+                self.gestures.menu_open = False
             else:
                 self.gestures.menu_open = self.menu.visible
                 self.gestures.down(pid, x, y, now)
+        elif pid in self.bar_pointers:
+            if kind == UP:
+                self.bar_pointers.discard(pid)
+                self.modeling.bar.release()
         elif kind == MOVE:
             if pid in self.menu_pointers:
                 for action in self.menu.drag(x, y):

@@ -5,6 +5,12 @@ a 3D tracker; the drawing becomes L-string modules of the living tree.
 strokes to draw in depth); 3D trackers draw where they are. The tree appears as the stroke is drawn (a live preview
 of the converted stroke); undo/redo take strokes back and forth. The simulation pauses while
 modeling and resumes, growing branches from the drawn growth points, when the mode is left.
+
+One tool is in use at a time (Draw, Crown, Shape, Prune, Symbols), shown lit on the modeler's tool bar
+(game/render/ui.py ToolBar) and told by the hint line (what a drag does with it). Entering the modeler
+starts with Draw; leaving it (Done) or a new sapling clears every overlay the tools drew (lobe rings,
+regions, the joint marker). The view frames the tree and the crown's lobes, and grows to hold them when
+a change reaches past it (a crown, a stroke drawn with a tracker).
 """
 
 from __future__ import annotations
@@ -18,25 +24,49 @@ from arbor.engine.life.form.interpret import grow_geometry
 from arbor.engine.lsystem.lstring import LString
 from arbor.engine.modeling.edits import EDIT_SETS, load_edit_sets
 from arbor.engine.modeling.modeler import Modeler, ModelerSettings
-from arbor.engine.modeling.regions import prune
 from arbor.engine.modeling.strokes import Stroke
 from arbor.game.paths import ASSETS
-from arbor.game.render.camera import OrbitCamera, project_points, unproject_to_plane
+from arbor.game.render.camera import OrbitCamera, unproject_to_plane
 from arbor.game.render.garden import GardenRenderer
-from arbor.game.render.ui import draw_joint
+from arbor.game.render.ui import ToolBar, draw_joint
 from arbor.game.screens.state import GameState
 from arbor.game.strings import text
+from arbor.game.tools.choice import ToolChoice
 from arbor.game.tools.crown import CrownTool
+from arbor.game.tools.prune import PruneTool
 from arbor.game.tools.region import RegionTool
 
-PICK_PIXELS = 18.0  # how close a tap must be to a branch to cut it
 WORK_SIZE = 150.0  # scene units: strokes and the modeler's view stay inside +-this (a runaway view cannot grow)
 MAX_STROKE_POINTS = 5000  # points of one stroke
 PREVIEW_SECONDS = 0.05  # live preview at most 20 times per second of drawing
+FRAME_MARGIN = 1.15  # the view's box round the tree and its lobes, this much bigger
 
 
-class ModelingMode:
-    """Stroke capture, conversion and undo/redo for one game."""
+def entry_box(ends: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The view's box on entering the modeler, round the tree's segment ends: half as big again on every
+    side, at least 1.6 units each way (room to draw), never past the work volume."""
+    ends = ends[np.isfinite(ends).all(axis=1)] if len(ends) else ends
+    lo, hi = (ends.min(axis=0), ends.max(axis=0)) if len(ends) else (np.zeros(3), np.zeros(3))
+    center = np.clip((lo + hi) / 2, -WORK_SIZE, WORK_SIZE)
+    half = np.clip((hi - lo) / 2 * 1.6, 1.6, WORK_SIZE)
+    return np.array([center[0] - half[0], 0.0, center[2] - half[2]]), center + half
+
+
+def holding(bounds: tuple[np.ndarray, np.ndarray], points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The view's box grown to hold ``points`` (with FRAME_MARGIN to spare), never shrunk. The camera
+    orbits the tree's axis, so the box is square round that axis: what is off to one side stays in view
+    from every side."""
+    lo, hi = bounds
+    points = points[np.isfinite(points).all(axis=1)]
+    reach = max(float(np.max(np.abs(np.r_[lo[[0, 2]], hi[[0, 2]]]))),
+                float(np.max(np.abs(points[:, [0, 2]]), initial=0.0)) * FRAME_MARGIN)
+    top = max(float(hi[1]), float(np.max(points[:, 1], initial=0.0)) * FRAME_MARGIN)
+    reach, top = min(reach, WORK_SIZE), min(top, 2 * WORK_SIZE)
+    return np.array([-reach, 0.0, -reach]), np.array([reach, top, reach])
+
+
+class ModelingMode(ToolChoice):
+    """Stroke capture, conversion and undo/redo for one game (the choice of tool: game/tools/choice.py)."""
 
     def __init__(self, state: GameState, renderer: GardenRenderer, size: tuple[int, int],
                  camera: Callable[[], OrbitCamera]) -> None:
@@ -54,12 +84,15 @@ class ModelingMode:
         self.resume_speed = 1.0
         self.crown = False  # strokes are crown outlines, not branches
         self.pruning = False  # taps on branches cut them
+        self.prune_tool = PruneTool(self)
         self.symbols = False  # drags move the region whose L-string symbols are shown
         self.region_tool = RegionTool(self)
         self.shaping = False  # drags reshape the crown's lobes
         self.crown_tool = CrownTool(self)
         self.edit = EDIT_SETS[0]
         self.edit_sets = load_edit_sets(ASSETS / "edits")
+        self.bar = ToolBar(size)
+        self.garden_zoom = 1.0  # the camera's zoom before the modeler (given back when it is left)
         self._segments: tuple | None = None
         self._preview_at = float("-inf")  # stroke time of the last live preview
 
@@ -73,65 +106,66 @@ class ModelingMode:
         return self._segments[1]
 
     def toggle(self) -> None:
-        """Enter or leave the modeler (pausing the simulation while in it)."""
+        """Enter the modeler with the draw tool (pausing the simulation) or leave it, clearing what the
+        tools drew."""
         if self.active:
             self.active = False
-            self.cancel()
+            self.reset_tools()
             self.state.loop.speed = self.resume_speed
+            self.state.control.distance = self.garden_zoom
             self.state.say(text("messages.modeler_off"))
             return
         self.active = True
-        r = self.renderer
-        center = np.clip((r.lo + r.hi) / 2, -WORK_SIZE, WORK_SIZE)
-        half = np.clip((r.hi - r.lo) / 2 * 1.6, 1.6, WORK_SIZE)  # the view never grows past the work volume
-        self.bounds = (np.array([center[0] - half[0], 0.0, center[2] - half[2]]), center + half)
         self.resume_speed = self.state.loop.speed or 1.0
         self.state.loop.speed = 0.0
+        self.garden_zoom = self.state.control.distance
+        self._start()
+        self.state.say(text("messages.modeler_on"))
+
+    def _start(self) -> None:
+        """A new editing session on the cared-for tree: the draw tool, no overlays, earlier steps (and
+        crown steps) out of undo's reach, the view framing the tree as it is drawn now."""
         tree = self.state.world.tree  # drawn axes get the species' density of side shoots, lambda(s)
         self.modeler = Modeler(lstring=tree.lstring, settings=ModelerSettings.for_species(tree.geometry_constants),
                                segments_of=self.segments)
-        self.crown_tool.clear()  # a new editing session: earlier crown steps cannot be undone into
-        self.state.say(text("messages.modeler_on"))
+        segs = self.segments(tree.lstring)  # (the tree itself: the renderer may still hold the one it replaced)
+        self.bounds = entry_box(np.r_[segs.start, segs.end])
+        self.state.control.distance = 1.0  # (a garden zoomed out or in would show the tree too small or cut)
+        self.reset_tools()
+        self.reframe()
 
-    def tool(self, name: str) -> None:
-        """Switch to tool ``name`` (crown, shaping, pruning, symbols) or back to branches if it is on
-        (entering the modeler if needed)."""
-        if not self.active:
-            self.toggle()
-        on = not getattr(self, name)
-        self.crown = self.shaping = self.pruning = self.symbols = False
-        setattr(self, name, on)
-        self.region_tool.clear()
-        self.cancel()
-        if name == "shaping" and on:
-            self.state.say(text("messages.shaping_on", op=text(f"shapes.{self.crown_tool.op}")))
-        else:
-            self.state.say(text(f"messages.{name}_on" if on else "messages.crown_off"))
+    def replanted(self) -> None:
+        """A new sapling took the cared-for tree's place: in the modeler, a new session on it (the old
+        tree's lobes, regions and undo steps are gone with it)."""
+        if self.active:
+            self._start()
+
+    def follow(self) -> None:
+        """If the cared-for tree changed outside the modeler while it is open (another tree cared for, a
+        garden loaded, time run on), edit that tree from now on: a new session, keeping the tool."""
+        if self.active and self.modeler is not None and self.modeler.lstring is not self.state.world.tree.lstring:
+            tool = self.current_tool
+            self._start()
+            self.tool(tool, quiet=True)
+
+    def reframe(self, zoom: bool = False) -> None:
+        """Grow the view's box to hold the tree and the crown's lobes (it never shrinks while modeling, so
+        the view does not jump back and forth); ``zoom``: also undo a zoom-in that would cut them off."""
+        if self.modeler is None or self.bounds is None:
+            return
+        parts = [lobe.vertices for lobe in self.crown_tool.state().lobes]
+        segs = self.segments(self.modeler.lstring)
+        self.bounds = holding(self.bounds, np.concatenate([*parts, segs.start, segs.end]))
+        if zoom:
+            self.state.control.distance = max(self.state.control.distance, 1.0)
 
     def prune_at(self, x: float, y: float, camera: OrbitCamera) -> bool:
-        """With the prune tool, cut the branch under pixel (x, y) and what grows from it (undoable).
-        False when no branch is there (the tap then opens the menu as usual)."""
+        """With the prune tool, cut the branch under pixel (x, y) (see game/tools/prune.py); False when
+        no branch is there (the tap then opens the menu as usual)."""
         if not (self.pruning and self.modeler is not None):
             return False
-        segs = self.segments(self.modeler.lstring)
-        if len(segs) == 0:
-            return False
-        a = project_points(camera, self.size, segs.start)
-        b = project_points(camera, self.size, segs.end)
-        ab = b - a
-        t = np.clip(np.einsum("ij,ij->i", [x, y] - a, ab) / np.maximum(np.einsum("ij,ij->i", ab, ab), 1e-9), 0, 1)
-        dist = np.linalg.norm(a + t[:, None] * ab - [x, y], axis=1)
-        k = int(np.nanargmin(np.where(np.isnan(dist), np.inf, dist)))
-        if not dist[k] <= PICK_PIXELS:
-            return False
-        if segs.parent[k] < 0:
-            self.state.say(text("messages.prune_base"))
-            return True
-        before = self.modeler.lstring
-        self.modeler.commit(prune(before, int(segs.module[k])))
-        self.state.world.tree.lstring = self.modeler.lstring
-        self.state.say(text("messages.pruned", count=len(segs) - len(self.segments(self.modeler.lstring))))
-        return True
+        self.follow()
+        return self.prune_tool.cut_at(x, y, camera)
 
     def cancel(self) -> None:
         """Drop the stroke being drawn."""
@@ -139,6 +173,7 @@ class ModelingMode:
 
     def begin2d(self, x: float, y: float, t: float, camera: OrbitCamera) -> None:
         """A finger or the mouse went down: start a stroke on the camera-facing plane."""
+        self.follow()
         normal = camera.target - camera.eye
         normal[1] = 0.0  # a vertical plane: it contains the tree's axis and faces the camera
         normal /= max(np.linalg.norm(normal), 1e-12)
@@ -181,6 +216,8 @@ class ModelingMode:
         time, so no pointer move costs more than one bounded conversion."""
         if len(self.points) >= MAX_STROKE_POINTS:
             return
+        if not self.points:
+            self.follow()  # (a tracker's stroke starts here)
         point = np.clip(np.asarray(point, dtype=np.float64), [-WORK_SIZE, 0.0, -WORK_SIZE],
                         [WORK_SIZE, 2 * WORK_SIZE, WORK_SIZE])
         if not np.all(np.isfinite(point)):
@@ -219,6 +256,7 @@ class ModelingMode:
             if result.pieces:
                 self.modeler.commit(new)
             self.state.world.tree.lstring = self.modeler.lstring
+            self.reframe()  # (a tracker can draw past the view)
             how = text("messages.stroke_merged" if result.merged else "messages.stroke_joined"
                        if result.snapped_to is not None else "messages.stroke_new")
             if result.bypassed:
@@ -228,7 +266,9 @@ class ModelingMode:
 
     def draw_outline(self, surface: pygame.Surface, project) -> None:
         """The crown's lobes and the crown stroke being drawn, over the scene (crown and shape tools),
-        and the joint point where a branch stroke being drawn will join the tree."""
+        and the joint point where a branch stroke being drawn will join the tree; nothing outside the modeler."""
+        if not self.active:
+            return
         if (self.crown or self.shaping) and self.modeler is not None:
             self.crown_tool.draw(surface, project, self.points if self.crown else [], self.shaping)
         elif self.points and self.joint is not None:
@@ -239,40 +279,30 @@ class ModelingMode:
         constant ago, so they show at once (63 % grown) and finish growing when time runs again."""
         return self.state.world.clocks().length_time - self.state.world.tree.geometry_constants["TAU"]
 
-    def option_label(self) -> str:
-        """The menu option button's label: the lobe operation with the shape tool, else the region edit."""
-        if self.shaping:
-            return text("menu.shape_op", op=text(f"shapes.{self.crown_tool.op}"))
-        return text("menu.edit", name=text(f"edits.{self.edit}"))
-
-    def next_option(self) -> str:
-        """The menu's option button: the next lobe operation with the shape tool, else the next region
-        edit. Returns the button's new label."""
-        if self.shaping:
-            self.crown_tool.next_op()
-        else:
-            self.edit = EDIT_SETS[(EDIT_SETS.index(self.edit) + 1) % len(EDIT_SETS)]
-        return self.option_label()
-
     def edit_at(self, x: float, y: float, camera: OrbitCamera) -> bool:
         """With the symbols tool, a tap inside the region applies the chosen edit there (undoable).
         False when the tap is outside the region (it then opens the menu as usual)."""
-        return self.symbols and self.region_tool.edit_at(x, y, camera, self.edit, self.edit_sets.get(self.edit))
+        if not self.symbols:
+            return False
+        self.follow()
+        return self.region_tool.edit_at(x, y, camera, self.edit, self.edit_sets.get(self.edit))
 
     def draw_symbols(self, surface: pygame.Surface, camera: OrbitCamera, font: pygame.font.Font, project) -> None:
         """The symbols tool's region, contours and L-string overlay (see game/tools/region.py)."""
-        if self.symbols:
+        if self.active and self.symbols:
             self.region_tool.draw(surface, camera, font, project, self.points)
         else:
             self.region_tool.labels = []
 
     def undo(self) -> None:
         """Take back the last stroke."""
+        self.follow()
         if self.modeler is not None and self.modeler.undo():
             self.state.world.tree.lstring = self.modeler.lstring
 
     def redo(self) -> None:
         """Put back the last undone stroke."""
+        self.follow()
         if self.modeler is not None and self.modeler.redo():
             self.state.world.tree.lstring = self.modeler.lstring
 

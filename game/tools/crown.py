@@ -3,7 +3,9 @@ crown regrows into the lobes after every change, as one undoable step.
 
 Crown strokes: a closed outline drawn on the screen becomes a lobe (a silhouette); closed flat rings
 drawn around the crown with a 3D tracker are stitched into a lobe that grows with every ring, and an
-open stroke drawn across that lobe's top or bottom ring closes it with a dome instead of a flat cap.
+open stroke drawn across that lobe's top or bottom ring closes it with a dome instead of a flat cap. A
+ring drawn away from that lobe (its centre outside the lobe's nearest ring, seen from above) starts a
+new lobe instead of being stitched to the first.
 Shape tool: a drag moves, scales, turns or squeezes the lobe under the pointer, or pulls one stroke
 point (the operation is chosen with the menu's option button). Which lobes a tree's crown grew into
 is kept with its L-string, so undo and redo bring the lobes back too.
@@ -52,6 +54,18 @@ class _Drag:
     edited: Lobe | None = None
 
 
+def continues(rings: list[np.ndarray], ring: np.ndarray) -> bool:
+    """Whether a tracker ring goes on with the lobe that ``rings`` are making: seen from above, its centre
+    lies within the group's ring nearest to it in height, or the group's nearest ring's centre within it."""
+    def plan(loop: np.ndarray) -> tuple[np.ndarray, float, float]:
+        centre = loop.mean(axis=0)
+        return centre[[0, 2]], float(np.linalg.norm(loop[:, [0, 2]] - centre[[0, 2]], axis=1).mean()), centre[1]
+
+    at, radius, height = plan(ring)
+    near = min((plan(loop) for loop in rings), key=lambda p: abs(p[2] - height))
+    return float(np.linalg.norm(at - near[0])) <= max(radius, near[1])
+
+
 class CrownTool:
     """Crown strokes and lobe shaping for one modeling mode (see module docstring)."""
 
@@ -90,10 +104,13 @@ class CrownTool:
             state = replace(state, arches=[*state.arches, points])
             state.lobes = [*state.lobes[:-1], lobe_from_loops(state.rings, open_strokes=state.arches)]
         elif span[1] < 0.25 * max(span[0], span[2]):  # a ring around the crown (3D trackers)
+            away = bool(state.rings) and not continues(state.rings, points)
+            if away:  # a new group of rings: the lobe of the last group stays as it is
+                state = replace(state, rings=[], arches=[])
             rings = [*state.rings, points]
             if len(rings) < 2:
                 self._remember(self.mode.modeler.lstring, replace(state, rings=rings))
-                self.mode.state.say(text("messages.crown_ring"))
+                self.mode.state.say(text("messages.crown_ring_new" if away else "messages.crown_ring"))
                 return
             lobe = lobe_from_loops(rings, open_strokes=state.arches)
             lobes = [*state.lobes[:-1], lobe] if len(rings) > 2 else [*state.lobes, lobe]
@@ -110,6 +127,7 @@ class CrownTool:
         self.mode.modeler.commit(grown)
         self._remember(grown, state)
         self.mode.state.world.tree.lstring = self.mode.modeler.lstring
+        self.mode.reframe(zoom=True)  # the view holds the grown crown and every lobe
         if added == 0:
             key = "messages.crown_none"
         elif limited:

@@ -31,7 +31,8 @@ class Action(Enum):
     ROCK = "rock"
     ROOTS = "roots"
     NEXT = "next"
-    MODELER = "modeler"
+    MODELER = "modeler"  # the menu's Draw / Done: into the modeler (with the draw tool) and out of it
+    DRAW = "draw"  # the modeler's draw tool: strokes draw branches (entering the modeler if needed)
     CROWN = "crown"
     SHAPE = "shape"
     PRUNE = "prune"
