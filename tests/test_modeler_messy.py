@@ -40,3 +40,31 @@ def test_crowns_fill_every_lobe_within_the_game_budget_and_keep_the_drawn_trunk(
     assert min(cases["3 lobes over 3 drawn branches"][0]) >= 0.9
     for name in ("3 lobes over 3 drawn branches", "a moved lobe", "a lobe above a bare trunk"):
         assert abs(cases[name][1] - 1.0) <= 0.1, name
+
+
+def test_wood_grown_on_a_thin_drawn_trunk_is_no_wider_than_it():
+    """A sapling growing on from the top of a trunk drawn fast (thin), carrying a big crown's pipes: its
+    grown wood starts no wider than the drawn trunk's top and tapers from there (the pipe law kept)."""
+    from arbor.engine.life.form.interpret import CONSTANT_DEFAULTS, Clocks, grow_geometry
+    from arbor.engine.lsystem.lstring import concat, parse_lstring
+    from arbor.engine.modeling.modeler import Modeler
+
+    u = np.linspace(0, 1, 60)
+    modeler = Modeler()
+    modeler.add_stroke(Stroke(np.stack([0 * u, 3.0 * u, 0 * u], 1), 0.2 * u))  # fast: thin
+    crown = "I(0,0,0,0,0)" * 3 + "[&(50)I(0,0,1,0,0)L(0,1,0)]/(137)" * 120 + "I(0,0,0,0,0)"
+    ls = concat(modeler.lstring, parse_lstring(crown))
+    segs = grow_geometry(ls, Clocks(1e6, 1e6), CONSTANT_DEFAULTS).turtle.segments
+    drawn = (ls.sym[segs.module] == ord("F")) & (ls.nparams[segs.module] == 11)
+    grown = ls.sym[segs.module] == ord("I")
+    first = np.flatnonzero(grown)[0]
+    top = np.flatnonzero(drawn)[-1]
+    print(f"drawn top radius {segs.radius[top]:.4f}, grown stem above it {segs.radius[first]:.4f}")
+    assert segs.parent[first] == top and segs.radius[first] <= segs.radius[top] * 1.0001
+    stem = [first]
+    while True:  # the grown axis tapers upward (never wider than the piece below it)
+        nxt = np.flatnonzero((segs.parent == stem[-1]) & segs.continues)
+        if not len(nxt):
+            break
+        stem.append(int(nxt[0]))
+    assert len(stem) >= 4 and np.all(np.diff(segs.radius[stem]) <= 1e-12)

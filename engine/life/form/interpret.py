@@ -23,6 +23,7 @@ from arbor.engine.geometry.turtle import (
     set_radii,
     subtree_sums,
 )
+from arbor.engine.lsystem import brackets
 from arbor.engine.lsystem.lstring import LString, params_where, replace_modules
 
 INTERNODE, LEAF, BLOSSOM, PITCH, APEX, BUD, FRUIT, LEAF_BUD = (ord(c) for c in "ILK&ADOV")
@@ -169,7 +170,28 @@ def radii(ls: LString, segs: Segments, clocks: Clocks, const: dict[str, float]) 
     rings = np.where(legacy, const["GMAX"] * saturate(clocks.girth_time - girth_birth, const["GT"]), 0.0)
     radius = np.sqrt(np.maximum(pipes * (1.0 + rings), wood))
     drawn = (ls.sym[module] == ord("F")) & (count == 11)  # modeler pieces: the width the user drew (or the
-    return np.where(grown, radius, np.where(drawn, segs.radius, np.maximum(radius, segs.radius)))  # crown's)
+    out = np.where(grown, radius, np.where(drawn, segs.radius, np.maximum(radius, segs.radius)))  # crown's)
+    return _capped_by_drawn(ls, segs, out, grown, drawn)
+
+
+def _capped_by_drawn(ls: LString, segs: Segments, radius: np.ndarray, grown: np.ndarray,
+                     drawn: np.ndarray) -> np.ndarray:
+    """Wood grown on a drawn piece (the sapling above a trunk drawn from its foot, branches from a
+    stroke's growth points) no wider than the piece where it starts: each such grown sub-tree is scaled
+    as a whole (the pipe law holds within it), so a crown's pipes never make the wood above a thin
+    drawn trunk swell past it. The innermost grown sub-tree's own scale wins."""
+    parent = segs.parent
+    roots = np.flatnonzero(grown & (parent >= 0) & drawn[np.maximum(parent, 0)])
+    if len(roots) == 0:
+        return radius
+    below = parent[roots]
+    cap = np.minimum(segs.radius[below], segs.radius_end[below])
+    scale = np.minimum(1.0, cap / np.maximum(radius[roots], 1e-12))
+    stops = np.searchsorted(segs.module, brackets.branch_ends(ls.sym, segs.module[roots]))
+    factor = np.ones(len(radius))
+    for root, stop, k in zip(roots.tolist(), stops.tolist(), scale.tolist(), strict=True):  # outer first
+        factor[root:stop] = k
+    return np.where(grown, radius * factor, radius)
 
 
 def droop_angles(ls: LString) -> np.ndarray:
