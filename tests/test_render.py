@@ -129,9 +129,9 @@ from arbor.game.render.fxaa import Fxaa
 ctx = open_window((320, 200), "fxaa")
 fxaa = Fxaa(ctx)
 for colour in ((0.0, 0.0, 1.0), (1.0, 0.0, 0.0)):  # an old frame, then the new one
-    fxaa.target((320, 200)).use()
+    ctx.screen.use()
     ctx.clear(*colour, 1.0)
-    fxaa.resolve(ctx.screen, (320, 200), (140, 90, 40, 20))  # the trees only in the middle
+    fxaa.smooth(ctx.screen, (320, 200), (140, 90, 40, 20))  # the trees only in the middle
 px = np.frombuffer(ctx.screen.read(components=3), np.uint8).reshape(200, 320, 3)
 print(px[10, 10].tolist(), px[100, 160].tolist())
 """

@@ -181,7 +181,7 @@ class GardenRenderer:
         self.backdrop.soft = (self.soft_shadows, 1.0 / SHADOW_SIZE)
         self.shadows.age += 1
         smooth = self.fxaa and self.samples <= 1 and scale >= 1.0  # (a layer's picture is soft already)
-        target = self.post.target(size) if smooth else self.stage.target(fbo, size)
+        target = self.stage.target(fbo, size)
         pixel = 2.0 * math.tan(math.radians(camera.fov_y) / 2) / size[1]
         uniforms = self._lit_uniforms(_gl(vp), _gl(light), sun, sky_colors(sun)[2])
         uniforms.update(u_eye=tuple(camera.eye), u_pixel=pixel / scale, u_soft=self.soft_shadows)
@@ -200,7 +200,7 @@ class GardenRenderer:
             self._render_layered(target, size, _Scene(camera, vp, sun, light, boxes, self._scene_bounds()[1]),
                                  details, uniforms, scale)
         if smooth:
-            self.post.resolve(fbo, size, screen_rect(camera, size, boxes, margin=0.15))
+            self.post.smooth(fbo, size, screen_rect(camera, size, boxes, margin=0.15))
         elif target is not fbo:
             self.ctx.copy_framebuffer(fbo, target)
 
