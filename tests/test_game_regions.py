@@ -43,7 +43,8 @@ def symbols_tool(game):
     center = game.menu.reveal("symbols").rect.center
     mouse(game, DOWN, *center)
     mouse(game, UP, *center)
-    game.tap(1200, 700)  # close the menu again
+    if game.menu.visible:  # (a tool pressed in the modeler closes it itself)
+        game.tap(1200, 700)
     assert game.modeling.symbols and not game.menu.visible
 
 
