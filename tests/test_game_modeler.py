@@ -243,7 +243,7 @@ def test_crown_regrows_into_every_lobe_and_undo_brings_lobes_back(game):
     a = np.linspace(0, 2 * np.pi, 48)
     draw(game, [(x0 - 90 + 90 * np.cos(t), y0 - 330 + 100 * np.sin(t)) for t in a])
     one = game.world.tree.lstring
-    assert "1 lobes" in game.hud_info().message
+    assert "1 lobe," in game.hud_info().message
     draw(game, [(x0 + 110 + 90 * np.cos(t), y0 - 300 + 80 * np.sin(t)) for t in a])
     two = game.world.tree.lstring
     assert "2 lobes" in game.hud_info().message

@@ -132,7 +132,8 @@ class CrownTool:
             key = "messages.crown_none"
         elif limited:
             key = "messages.crown_full"
-        self.mode.state.say(text(key, count=added, ms=ms, lobes=len(state.lobes), **extra))
+        lobes = f"{len(state.lobes)} lobe{'' if len(state.lobes) == 1 else 's'}"
+        self.mode.state.say(text(key, count=added, ms=ms, lobes=lobes, **extra))
 
     def regrow(self, base: LString, lobes: list[Lobe]) -> tuple[LString, int, bool]:
         """The crown grown from ``base`` into ``lobes`` within the tree's module budget: a try that is
