@@ -166,3 +166,31 @@ def test_a_trunk_drawn_from_the_foot_of_the_sapling_becomes_its_trunk_without_a_
     assert 0.8 < ratio < 1.25  # no step where the drawn trunk meets the sapling's stem
     roots = interpret(modeler.lstring, TurtleConfig(pipe_model=False, leaves_at_tips=0)).segments
     assert (roots.parent < 0).sum() == 1  # one trunk, not a second one beside the first
+
+
+def test_a_flick_at_the_end_of_a_drawn_trunk_does_not_send_the_sapling_down(grown):
+    """A hand's flick down (or sideways) over the last eighth of a trunk drawn from the sapling's foot:
+    the sapling still grows on upward from the top (as the trunk leans as a whole), not along the flick."""
+    from arbor.engine.life.form.interpret import grow_geometry
+    from arbor.engine.modeling.modeler import Modeler
+    from arbor.engine.modeling.strokes import Stroke
+
+    world = World(grown.system, grown.rules, seed=5)
+    const, clocks = world.tree.geometry_constants, world.clocks()
+    for flick in ((0.0, -1.0), (1.0, -0.2)):  # down, sideways
+        modeler = Modeler(lstring=world.tree.lstring,
+                          segments_of=lambda ls: grow_geometry(ls, clocks, const).turtle.segments)
+        u = np.linspace(0, 1, 140)
+        path = np.stack([0.1 * u, 4.0 * u, 0 * u], 1)
+        hook = np.linspace(0, 1, 20)[:, None] * np.array([flick[0], flick[1], 0.0]) * 0.5
+        path = np.concatenate([path, path[-1] + hook[1:]])
+        result = modeler.add_stroke(Stroke(path, np.linspace(0, 1.0, len(path))))
+        assert result.merged
+        segs = grow_geometry(modeler.lstring, clocks, const).turtle.segments
+        drawn = modeler.lstring.sym[segs.module] == ord("F")
+        top = np.flatnonzero(drawn)[-1]
+        above = np.flatnonzero((segs.parent == top) & ~drawn)
+        heading = segs.end[above] - segs.start[above]
+        heading /= np.linalg.norm(heading, axis=1)[:, None]
+        print(f"flick {flick}: the sapling's first piece heads {np.round(heading[0], 2)}")
+        assert heading[0][1] > 0.9  # upward (without the fix: straight down along the flick)

@@ -97,6 +97,22 @@ def _fmt(values) -> str:
     return ",".join(format_number(float(v)) for v in values)
 
 
+def aimed(frame: np.ndarray, d: np.ndarray) -> tuple[str, np.ndarray]:
+    """The turn and pitch (``+`` about U, then ``&`` about L) that aim a turtle with ``frame`` along the
+    unit vector ``d``, as text, and its frame after them (H exactly ``d``)."""
+    h, lft = frame[:, 0], frame[:, 1]
+    turn = np.degrees(np.arctan2(d @ lft, d @ h))
+    frame = frame @ _rot_z(turn)
+    h, up = frame[:, 0], frame[:, 2]
+    pitch = np.degrees(np.arctan2(-(d @ up), d @ h))
+    frame = frame @ _rot_y(pitch)
+    frame[:, 0] = d  # remove rounding drift: H is exactly the piece direction
+    frame[:, 2] = unit(frame[:, 2] - (frame[:, 2] @ d) * d)
+    frame[:, 1] = np.cross(frame[:, 2], d)
+    text = f"+({format_number(float(turn))})" if abs(turn) > 1e-9 else ""
+    return text + (f"&({format_number(float(pitch))})" if abs(pitch) > 1e-9 else ""), frame
+
+
 def path_modules(path: np.ndarray, frame: np.ndarray, widths: np.ndarray, growth: list[tuple[int, float]],
                  settings: ModelerSettings, symbol: str = "F") -> tuple[str, np.ndarray]:
     """L-string text that makes a turtle with frame ``frame`` at ``path[0]`` draw the polyline ``path``.
@@ -114,19 +130,8 @@ def path_modules(path: np.ndarray, frame: np.ndarray, widths: np.ndarray, growth
         if length <= 1e-12:
             continue
         d = d / length
-        h, lft, up = frame[:, 0], frame[:, 1], frame[:, 2]
-        turn = np.degrees(np.arctan2(d @ lft, d @ h))
-        frame = frame @ _rot_z(turn)
-        h, up = frame[:, 0], frame[:, 2]
-        pitch = np.degrees(np.arctan2(-(d @ up), d @ h))
-        frame = frame @ _rot_y(pitch)
-        frame[:, 0] = d  # remove rounding drift: H is exactly the piece direction
-        frame[:, 2] = unit(frame[:, 2] - (frame[:, 2] @ d) * d)
-        frame[:, 1] = np.cross(frame[:, 2], d)
-        if abs(turn) > 1e-9:
-            out.append(f"+({format_number(float(turn))})")
-        if abs(pitch) > 1e-9:
-            out.append(f"&({format_number(float(pitch))})")
+        aim, frame = aimed(frame, d)
+        out.append(aim)
         variation = float(np.degrees(np.arccos(np.clip(prev_dir @ d, -1.0, 1.0))))
         prev_dir = d
         w = float(widths[min(i, len(widths) - 1)])
@@ -437,7 +442,11 @@ class Modeler(Undoable):
         path = path - path[0]
         ease = np.linspace(0.0, 1.0, len(widths)) ** 2
         widths = np.maximum(widths * (1 - ease) + top * ease, top)
-        body, _ = path_modules(path, INITIAL_FRAME, widths, growth, self.settings)
+        body, frame = path_modules(path, INITIAL_FRAME, widths, growth, self.settings)
+        # the sapling grows on upward, leaning as the drawn trunk leans as a whole: a flick of the hand at
+        # the stroke's end must not send it sideways or down
+        on, _ = aimed(frame, unit(unit(path[-1] - path[0]) + np.array([0.0, 1.0, 0.0])))
+        body += on
         result.text, result.snap_point, result.merged = body, np.zeros(3), True
         return concat(parse_lstring(body), self.lstring), result
 
