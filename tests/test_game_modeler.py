@@ -99,9 +99,13 @@ def test_tap_opens_the_menu_in_the_modeler_and_undo_redo(game):
     drawn = game.world.tree.lstring.to_text()
     assert drawn != empty
     press_menu(game, "undo")
-    assert game.world.tree.lstring.to_text() == empty
+    assert game.world.tree.lstring.to_text() == empty and game.hud_info().message == "Undone."
+    press_menu(game, "undo")
+    assert game.hud_info().message == "Nothing to undo."  # (not the undone stroke's old toast)
     press_menu(game, "redo")
-    assert game.world.tree.lstring.to_text() == drawn
+    assert game.world.tree.lstring.to_text() == drawn and game.hud_info().message == "Redone."
+    press_menu(game, "redo")
+    assert game.hud_info().message == "Nothing to redo."
 
 
 def test_tracker_draws_in_3d(game):

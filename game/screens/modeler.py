@@ -295,16 +295,20 @@ class ModelingMode(ToolChoice):
             self.region_tool.labels = []
 
     def undo(self) -> None:
-        """Take back the last stroke."""
-        self.follow()
-        if self.modeler is not None and self.modeler.undo():
-            self.state.world.tree.lstring = self.modeler.lstring
+        """Take back the last stroke (and say so, or that there is nothing to take back)."""
+        self._step_history(lambda modeler: modeler.undo(), "undone", "undo_none")
 
     def redo(self) -> None:
-        """Put back the last undone stroke."""
+        """Put back the last undone stroke (and say so, or that there is nothing to put back)."""
+        self._step_history(lambda modeler: modeler.redo(), "redone", "redo_none")
+
+    def _step_history(self, step, done: str, none: str) -> None:
         self.follow()
-        if self.modeler is not None and self.modeler.redo():
+        if self.modeler is not None and step(self.modeler):
             self.state.world.tree.lstring = self.modeler.lstring
+            self.state.say(text(f"messages.{done}"))
+        else:
+            self.state.say(text(f"messages.{none}"))
 
     def lstring(self) -> LString:
         """What to draw now: the live preview while a stroke is being drawn, else the tree."""
