@@ -457,3 +457,15 @@ def test_a_tool_pressed_in_the_menu_closes_it_so_the_first_drag_draws(game):
     a = np.linspace(0, 2 * np.pi, 48)
     draw(game, [(x0 + 150 * np.cos(t), y0 - 320 + 110 * np.sin(t)) for t in a])
     assert len(game.world.tree.lstring) > len(before) + 200  # the first outline grew a crown
+
+
+def test_crown_refuses_an_open_line_and_an_outline_smaller_than_a_leaf(game):
+    press_menu(game, "crown")
+    before = game.world.tree.lstring
+    x0, y0 = base_pixel(game)
+    draw(game, [(x0 - 150 + 10 * i, y0 - 300 - 3 * i) for i in range(30)])  # an open line across the crown
+    assert game.world.tree.lstring is before and not game.modeling.crown_tool.state().lobes
+    assert game.hud_info().message.startswith("Close the outline")
+    a = np.linspace(0, 2 * np.pi, 24)
+    draw(game, [(x0 + 8 * np.cos(t), y0 - 300 + 6 * np.sin(t)) for t in a])  # 16 x 12 px: a tenth of a leaf
+    assert game.world.tree.lstring is before and "smaller than a leaf" in game.hud_info().message

@@ -54,6 +54,9 @@ class _Drag:
     edited: Lobe | None = None
 
 
+SMALLEST = 1.0  # leaf lengths: a smaller outline could not hold one of the crown's leaves
+
+
 def continues(rings: list[np.ndarray], ring: np.ndarray) -> bool:
     """Whether a tracker ring goes on with the lobe that ``rings`` are making: seen from above, its centre
     lies within the group's ring nearest to it in height, or the group's nearest ring's centre within it."""
@@ -115,6 +118,12 @@ class CrownTool:
             lobe = lobe_from_loops(rings, open_strokes=state.arches)
             lobes = [*state.lobes[:-1], lobe] if len(rings) > 2 else [*state.lobes, lobe]
             state = replace(state, lobes=lobes, rings=rings)
+        elif not closed:  # (an open line is no silhouette: it would make a lobe of the wrong shape)
+            self.mode.state.say(text("messages.crown_open"))
+            return
+        elif span.max() < SMALLEST * self.mode.state.world.tree.geometry_constants["LS"]:
+            self.mode.state.say(text("messages.crown_small"))
+            return
         else:
             state = CrownState(state.base, [*state.lobes, lobe_from_outline(points)])
         self._regrow_into(state, "messages.crown")
