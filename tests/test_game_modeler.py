@@ -469,3 +469,18 @@ def test_crown_refuses_an_open_line_and_an_outline_smaller_than_a_leaf(game):
     a = np.linspace(0, 2 * np.pi, 24)
     draw(game, [(x0 + 8 * np.cos(t), y0 - 300 + 6 * np.sin(t)) for t in a])  # 16 x 12 px: a tenth of a leaf
     assert game.world.tree.lstring is before and "smaller than a leaf" in game.hud_info().message
+
+
+def test_a_stroke_under_way_that_a_second_finger_turns_into_a_gesture_is_said_to_be_let_go(game):
+    press_menu(game, "modeler")
+    before = game.world.tree.lstring.to_text()
+    x0, y0 = base_pixel(game)
+    touch(game, DOWN, 0, x0, y0)
+    for i in range(1, 16):
+        game.clock_box[0] += 0.02
+        touch(game, MOVE, 0, x0 + 4 * i, y0 - 9 * i)
+    touch(game, DOWN, 1, 900, 400)  # a second finger: the view moves, the stroke is dropped
+    touch(game, UP, 1, 900, 400)
+    touch(game, UP, 0, x0 + 60, y0 - 135)
+    assert game.world.tree.lstring.to_text() == before
+    assert "that stroke was let go" in game.hud_info().message

@@ -31,9 +31,11 @@ from arbor.game.screens.family import FamilyScreen
 from arbor.game.screens.modeler import ModelingMode
 from arbor.game.screens.picking import Picker
 from arbor.game.screens.state import GameState
+from arbor.game.strings import text
 
 KEY_YAW, KEY_TILT = 4.0, 3.0  # degrees per key press
 TAP_SECONDS, TAP_PIXELS = 0.3, 12
+DRAWN_POINTS = 10  # pointer moves after which a stroke a second finger turns into a gesture is said to be let go
 
 
 class GameInput:
@@ -118,6 +120,8 @@ class GameInput:
             return True
         if kind == DOWN and self.stroke_pointer is not None:  # second finger: it was a camera gesture
             sx, sy, st = self.stroke_start
+            if len(self.modeling.points) >= DRAWN_POINTS:  # a stroke well under way is not lost in silence
+                self.state.say(text("messages.stroke_dropped"))
             self.modeling.cancel_points()
             self.gestures.down(self.stroke_pointer, sx, sy, st)
             self.stroke_pointer = None
