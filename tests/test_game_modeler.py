@@ -484,3 +484,24 @@ def test_a_stroke_under_way_that_a_second_finger_turns_into_a_gesture_is_said_to
     touch(game, UP, 0, x0 + 60, y0 - 135)
     assert game.world.tree.lstring.to_text() == before
     assert "that stroke was let go" in game.hud_info().message
+
+
+def test_a_drawn_branch_running_past_the_crown_sprouts_no_comb_of_twigs_toward_it(game):
+    """A long branch drawn out to the side under a crown outline: the crown grows from the wood near
+    its lobe, not from the far part of that branch (each of its nodes grew a bare twig toward the lobe)."""
+    press_menu(game, "modeler")
+    x0, y0 = base_pixel(game)
+    draw(game, [(x0 + 25 * i, y0 - 20 - 8 * i) for i in range(25)])
+    drawn = game.world.tree.lstring
+    press_menu(game, "crown")
+    a = np.linspace(0, 2 * np.pi * 1.05, 60)
+    draw(game, [(x0 + 150 * np.cos(t), y0 - 330 + 110 * np.sin(t)) for t in a])
+    before = game.modeling.segments(drawn)
+    segs = game.modeling.segments(game.world.tree.lstring)
+    lobe = game.modeling.crown_tool.state().lobes[0]
+    new = np.arange(len(before), len(segs))
+    roots = new[segs.parent[new] < len(before)]  # where the crown's branches leave the tree
+    far = np.linalg.norm(segs.start[roots][:, None] - lobe.vertices[None], axis=2).min(axis=1)
+    size = float(np.ptp(lobe.vertices, axis=0).max())
+    print(f"{len(roots)} crown branches leave the tree, the farthest {far.max():.2f} from the lobe (size {size:.2f})")
+    assert len(roots) and far.max() <= 0.35 * size

@@ -27,6 +27,7 @@ from arbor.engine.modeling.skeleton import Skeleton, skeleton_lstrings
 ALPHA, BETA = 0.8, -0.3
 GRAVITY = np.array([0.0, -1.0, 0.0])
 STALL = 3  # growth steps without coming closer after which an attractor retires
+OUT_REACH = 1.5  # steps: wood outside the lobes farther than this from them does not sprout
 SURFACE_SHARE = 0.75  # a piece grows this share of its node's distance to the lobe surface (at most a step)
 
 
@@ -54,6 +55,11 @@ def grow_into_lobes(skeleton: Skeleton, lobes: list[Lobe], attractors: np.ndarra
     surface = cKDTree(np.concatenate([lobe.vertices for lobe in lobes]))
     crossings = Crossings(lobes)
     inside = crossings.inside(skeleton.position) >= 0
+    # wood far outside every lobe does not sprout (a drawn branch running past a crown grew a comb of
+    # bare twigs toward it); a lobe no wood is near is reached by the axis grown to it (see _bridged)
+    near = inside | (surface.query(skeleton.position)[0] <= OUT_REACH * step)
+    if (skeleton.active & near).any():
+        skeleton.active = skeleton.active & near
     deep = np.zeros(len(skeleton.parent), bool)  # the branch has been well inside a lobe
     t = np.radians(t_deg)
     owner_local = None
