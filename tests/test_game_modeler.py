@@ -505,3 +505,22 @@ def test_a_drawn_branch_running_past_the_crown_sprouts_no_comb_of_twigs_toward_i
     size = float(np.ptp(lobe.vertices, axis=0).max())
     print(f"{len(roots)} crown branches leave the tree, the farthest {far.max():.2f} from the lobe (size {size:.2f})")
     assert len(roots) and far.max() <= 0.35 * size
+
+
+def test_a_crown_grown_on_a_young_sapling_has_branches_as_thick_as_the_pipes_they_carry(game):
+    """The sapling's thin stem does not cap the crown's branches (they were invisible twigs under
+    floating leaves): a branch leaving the grown stem is as thick as the pipe model makes its load, and
+    the stem thickens to carry them."""
+    press_menu(game, "crown")
+    before = game.modeling.segments(game.world.tree.lstring)
+    stem = float(before.radius.max())
+    x0, y0 = base_pixel(game)
+    a = np.linspace(0, 2 * np.pi * 1.05, 60)
+    draw(game, [(x0 + 180 * np.cos(t), y0 - 300 + 130 * np.sin(t)) for t in a])
+    ls = game.world.tree.lstring
+    segs = game.modeling.segments(ls)
+    crown = (ls.sym[segs.module] == ord("F")) & (ls.nparams[segs.module] == 11)
+    roots = np.flatnonzero(crown & (segs.parent >= 0) & ~crown[np.maximum(segs.parent, 0)])  # leaving the stem
+    widest = float(segs.radius[roots].max())
+    print(f"sapling stem radius {stem:.4f}; widest crown branch {widest:.4f}; trunk now {segs.radius[0]:.4f}")
+    assert widest > 2 * stem and segs.radius[0] >= 0.9 * widest

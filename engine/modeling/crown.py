@@ -21,7 +21,7 @@ from arbor.engine.geometry.turtle import INITIAL_FRAME, unit
 from arbor.engine.lsystem import brackets
 from arbor.engine.lsystem.lstring import concat, parse_lstring
 from arbor.engine.modeling.lobes import Crossings, Lobe
-from arbor.engine.modeling.modeler import Modeler
+from arbor.engine.modeling.modeler import DRAWN, F_PARAMS, Modeler
 from arbor.engine.modeling.skeleton import Skeleton, skeleton_lstrings
 
 ALPHA, BETA = 0.8, -0.3
@@ -254,7 +254,8 @@ def _tip(tip: str):
     return parse_lstring(tip) if tip else None
 
 
-TWIG = 0.03  # diameter of a crown branch's last piece (the pipe model widens it toward the tree)
+TWIG = 0.024  # diameter of a crown branch's last piece: twice the species' pipe radius per leaf (TIP
+# 0.012 in both), widening toward the tree by the pipe law as the tree's own wood does
 
 
 def _graft(ls, segs, grown: Skeleton, tip: str):
@@ -274,12 +275,17 @@ def _graft(ls, segs, grown: Skeleton, tip: str):
         if parent[node] >= m:
             first[node] = first[parent[node]]
     # the pipe law below a drawn node: the branches leaving it together are no wider than it (their
-    # cross-sections sum to at most its own), so the crown never swells or outgrows the drawn wood
+    # cross-sections sum to at most its own), so the crown never swells or outgrows the drawn wood;
+    # grown wood thickens with what it carries (the pipe model counts the crown's tips), so branches
+    # leaving it keep their own widths (capped by a young sapling's stem, a crown was invisible twigs)
     roots = m + np.flatnonzero(parent[m:] < m)
-    area = np.bincount(grown.parent[roots], weights=raw[roots] ** 2, minlength=m)
+    source = grown.parent[roots]
+    area = np.bincount(source, weights=raw[roots] ** 2, minlength=m)
     scale = np.ones(len(parent))
-    source_d = 2.0 * segs.radius_end[grown.parent[roots]]
-    scale[roots] = np.minimum(1.0, source_d / np.sqrt(np.maximum(area[grown.parent[roots]], 1e-300)))
+    drawn = (ls.sym[segs.module[source]] == DRAWN) & (ls.nparams[segs.module[source]] == F_PARAMS)
+    source_d = 2.0 * segs.radius_end[source]
+    cap = np.minimum(1.0, source_d / np.sqrt(np.maximum(area[source], 1e-300)))
+    scale[roots] = np.where(drawn, cap, 1.0)
     diameters = raw * scale[first]
     sources = np.unique(parent[m:][parent[m:] < m])
     is_tip = np.bincount(segs.parent[segs.parent >= 0], minlength=m)[sources] == 0
