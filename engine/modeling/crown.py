@@ -152,10 +152,12 @@ def _grow_pieces(skeleton: Skeleton, points, active, owner_local, to_surface, t,
     toward = vec / np.maximum(d, 1e-12)[:, None]
     m = len(active)
     mean = np.stack([np.bincount(owner_local, weights=toward[:, c], minlength=m) for c in range(3)], axis=1)
-    level = np.hypot(mean[:, 0], mean[:, 2]) < 1e-12  # a cluster all round its node: absolute azimuths
-    mx, mz = np.where(level, 1.0, mean[:, 0])[owner_local], np.where(level, 0.0, mean[:, 2])[owner_local]  # so a
-    az = np.arctan2(toward[:, 2] * mx - toward[:, 0] * mz, toward[:, 0] * mx + toward[:, 2] * mz)  # cluster that
-    el = np.arcsin(np.clip(toward[:, 1], -1.0, 1.0))  # straddles +-180 deg is not split in two (relative to the mean)
+    # azimuths relative to the cluster's own mean, so a cluster that straddles +-180 deg is not split in
+    # two (a cluster all round its node, with no mean direction, keeps absolute azimuths)
+    level = np.hypot(mean[:, 0], mean[:, 2]) < 1e-12
+    mx, mz = np.where(level, 1.0, mean[:, 0])[owner_local], np.where(level, 0.0, mean[:, 2])[owner_local]
+    az = np.arctan2(toward[:, 2] * mx - toward[:, 0] * mz, toward[:, 0] * mx + toward[:, 2] * mz)
+    el = np.arcsin(np.clip(toward[:, 1], -1.0, 1.0))
     lo_az, hi_az = np.full(m, np.inf), np.full(m, -np.inf)
     lo_el, hi_el = np.full(m, np.inf), np.full(m, -np.inf)
     np.minimum.at(lo_az, owner_local, az)
