@@ -40,3 +40,23 @@ class FakeClock:
 
     def __call__(self) -> float:
         return self.t
+
+
+MODELER_SIZE = (1280, 720)
+
+
+@pytest.fixture
+def modeler_game(gl_ctx, tmp_path):
+    """Make the real Game, headless at 1280x720, for driving the modeler through its input path: a
+    settable clock (``game.clock_box[0]``, seconds) and an off-screen frame (``game.fbo``), drawn once."""
+    from arbor.game.screens.game import Game, GameConfig
+
+    def make(seed: int):
+        clock = [0.0]
+        game = Game(gl_ctx, MODELER_SIZE, GameConfig(saves=tmp_path, seed=seed, resume=False), clock=lambda: clock[0])
+        game.clock_box = clock
+        game.fbo = gl_ctx.framebuffer(color_attachments=[gl_ctx.renderbuffer(MODELER_SIZE)],
+                                      depth_attachment=gl_ctx.depth_renderbuffer(MODELER_SIZE))
+        game.draw(game.fbo)
+        return game
+    return make

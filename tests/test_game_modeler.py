@@ -6,19 +6,13 @@ import pytest
 from arbor.engine.life.keep.save import SavedGarden, read_garden, write_garden
 from arbor.engine.life.world.actions import Action
 from arbor.game.input.events import DOWN, MOVE, UP, InputEvent
-from arbor.game.screens.game import Game, GameConfig
 
 SIZE = (1280, 720)
 
 
 @pytest.fixture
-def game(gl_ctx, tmp_path):
-    clock = [0.0]
-    g = Game(gl_ctx, SIZE, GameConfig(saves=tmp_path, seed=3, resume=False), clock=lambda: clock[0])
-    g.clock_box = clock
-    g.draw(gl_ctx.framebuffer(color_attachments=[gl_ctx.renderbuffer(SIZE)],
-                              depth_attachment=gl_ctx.depth_renderbuffer(SIZE)))
-    return g
+def game(modeler_game):
+    return modeler_game(seed=3)
 
 
 def touch(game, kind, fid, x, y):

@@ -8,20 +8,14 @@ import pytest
 from arbor.engine.modeling.regions import Sphere, Supertoroid
 from arbor.game.input.events import DOWN, MOUSE_ID, MOVE, UP, InputEvent
 from arbor.game.render.camera import project_points
-from arbor.game.screens.game import Game, GameConfig
 from arbor.game.tools.region import HANDLE_PIXELS
 
 SIZE = (1280, 720)
 
 
 @pytest.fixture
-def game(gl_ctx, tmp_path):
-    clock = [0.0]
-    g = Game(gl_ctx, SIZE, GameConfig(saves=tmp_path, seed=5, resume=False), clock=lambda: clock[0])
-    g.clock_box = clock
-    g.draw(gl_ctx.framebuffer(color_attachments=[gl_ctx.renderbuffer(SIZE)],
-                              depth_attachment=gl_ctx.depth_renderbuffer(SIZE)))
-    return g
+def game(modeler_game):
+    return modeler_game(seed=5)
 
 
 def mouse(game, kind, x, y):

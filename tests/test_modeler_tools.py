@@ -10,7 +10,6 @@ import pytest
 from arbor.engine.life.world.actions import Action
 from arbor.game.input.events import DOWN, MOVE, UP, InputEvent
 from arbor.game.render.ui import BAR_TOOLS, LIT
-from arbor.game.screens.game import Game, GameConfig
 from arbor.game.strings import text
 
 SIZE = (1280, 720)
@@ -18,14 +17,8 @@ SCENE = (slice(215, 630), slice(0, 1090))  # rows, columns of the overlay where 
 
 
 @pytest.fixture
-def game(gl_ctx, tmp_path):
-    clock = [0.0]
-    g = Game(gl_ctx, SIZE, GameConfig(saves=tmp_path, seed=3, resume=False), clock=lambda: clock[0])
-    g.clock_box = clock
-    g.fbo = gl_ctx.framebuffer(color_attachments=[gl_ctx.renderbuffer(SIZE)],
-                               depth_attachment=gl_ctx.depth_renderbuffer(SIZE))
-    g.draw(g.fbo)
-    return g
+def game(modeler_game):
+    return modeler_game(seed=3)
 
 
 def touch(game, kind, fid, x, y):
