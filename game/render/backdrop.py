@@ -8,6 +8,7 @@ the moon) is a small additive square, the stars a few hundred points; the ground
 from __future__ import annotations
 
 import math
+import re
 
 import moderngl
 import numpy as np
@@ -31,8 +32,14 @@ SOIL = (0.36, 0.26, 0.17)  # the cut-away view: the ground as soil
 GROUND_SECTORS, GROUND_RINGS = 24, 10
 
 
-def program(ctx: moderngl.Context, vertex: str, fragment: str, include: tuple[str, ...] = ()) -> moderngl.Program:
-    """A shader program from assets/shaders, with shared snippets (e.g. wind.glsl) after #version."""
+def program(ctx: moderngl.Context, vertex: str, fragment: str, include: tuple[str, ...] = (),
+            constants: dict[str, int | float] | None = None) -> moderngl.Program:
+    """A shader program from assets/shaders, with shared snippets (e.g. wind.glsl) after #version.
+
+    ``constants`` fixes uniforms for this program: each one's declaration (``uniform int u_kind;``) in
+    either shader becomes a constant of that value, so the compiler drops the paths it rules out (on a
+    software GL a fragment shader that may ``discard`` is shaded before its depth test: a wood-only
+    program without the leaves' alpha test is drawn with an early depth test, half the cost)."""
     shaders = ASSETS / "shaders"
 
     def source(name: str) -> str:
@@ -42,7 +49,22 @@ def program(ctx: moderngl.Context, vertex: str, fragment: str, include: tuple[st
         head, _, rest = text.partition("\n")
         return "\n".join([head, *((shaders / inc).read_text() for inc in include), rest])
 
-    return ctx.program(vertex_shader=source(vertex), fragment_shader=source(fragment))
+    sources = [source(vertex), source(fragment)]
+    for name, value in (constants or {}).items():
+        found = False
+        for k, text in enumerate(sources):
+            sources[k], n = re.subn(rf"\buniform\s+(int|float)\s+{name}\s*(=[^;]*)?;",
+                                    lambda m, n=name, v=value: f"const {m.group(1)} {n} = {_literal(m.group(1), v)};",
+                                    text)
+            found = found or n > 0
+        if not found:
+            raise ValueError(f"no uniform {name} in {vertex} or {fragment} to make a constant")
+    return ctx.program(vertex_shader=sources[0], fragment_shader=sources[1])
+
+
+def _literal(kind: str, value: float) -> str:
+    """``value`` written as a GLSL literal of ``kind`` ('int' or 'float')."""
+    return str(int(value)) if kind == "int" else repr(float(value))
 
 
 def set_uniforms(prog: moderngl.Program, values: dict) -> None:

@@ -196,11 +196,13 @@ class InstancedTrees:
         self.ctx = ctx
         wind = ("wind.glsl",)
         self.programs = {
-            ("tube", "lit"): program(ctx, "tube.vert", "tree.frag", wind),
-            ("tube", "shadow"): program(ctx, "tube.vert", "shadow.frag", wind),
+            # wood only: no alpha test, so a software GL tests depth before shading (see program)
+            ("tube", "lit"): program(ctx, "tube.vert", "tree.frag", wind, {"u_kind": 0}),
+            ("tube", "shadow"): program(ctx, "tube.vert", "shadow.frag", wind, {"u_alpha_test": 0}),
             ("leaf", "lit"): program(ctx, "leaf.vert", "tree.frag", wind),
             ("leaf", "shadow"): program(ctx, "leaf.vert", "shadow.frag", wind),
         }
+        self.cull_wood = True  # the lit wood without its inner sides (closed tubes, wound outward)
         self.templates = []
         for sides in SIDES:
             verts, cap, tris = tube_template(sides)
@@ -288,6 +290,9 @@ class InstancedTrees:
             part.upload(count)
             vao = self._vao(part, "tube" if kind == 0 else "leaf", pass_, lod)
             if kind == 0:
+                if pass_ == "lit" and self.cull_wood:
+                    self.ctx.enable(moderngl.CULL_FACE)
                 vao.render(instances=count)
+                self.ctx.disable(moderngl.CULL_FACE)
             else:
                 vao.render(vertices=6 * (count - first), first=6 * first)
