@@ -5,7 +5,7 @@ A scripted careful player keeps the water meter between 0.55 and 0.75 under the 
 table has one row per simulated day (126 s at the demo pace): height, trunk girth, modules, leaf
 clusters and branches shed that day. It checks that modules never pass the budget and that no day
 passes without growth. Then it times one light reading (turtle + light grid + writing the string)
-on the grown tree, median of 20.
+on the grown tree, median of 20, and the light grid's compiled pass against its numpy peer (benchmarks/numpy_light.py).
 """
 
 from __future__ import annotations
@@ -18,12 +18,12 @@ from pathlib import Path
 import numpy as np
 
 from arbor.engine.life.experiment.lab import measure
-from arbor.engine.life.plant.light import exposure
+from arbor.engine.life.plant.light import exposure, optical_depth
 from arbor.engine.life.rules.rules import load_rules
 from arbor.engine.life.world.actions import Action
 from arbor.engine.life.world.world import World, sense_light
 from arbor.engine.lsystem.lsys import load_lsystem
-from benchmarks import median_ms
+from benchmarks import median_ms, numpy_light
 
 ASSETS = Path(__file__).resolve().parent.parent / "assets"
 
@@ -71,6 +71,12 @@ def light_cost(world: World) -> None:
     print(f"light reading on {len(world.tree.lstring):,} modules ({len(scene.leaf_idx):,} leaf clusters, "
           f"{len(queries):,} receivers): turtle {ms_scene:.1f} ms + light grid {ms_light:.1f} ms; "
           f"whole reading (incl. writing the string) {ms_all:.1f} ms")
+    sun, cell = world.sim.sun_direction(), world.rules.light.cell
+    args = (scene.leaf_center, scene.leaf_area, queries, sun, cell, self_index)
+    ms_kernel, ours = median_ms(lambda: optical_depth(*args), 50)
+    ms_numpy, theirs = median_ms(lambda: numpy_light.optical_depth(*args), 50)
+    print(f"  optical depth, one direction: compiled pass {ms_kernel:.2f} ms, the numpy peer {ms_numpy:.2f} ms "
+          f"({ms_numpy / ms_kernel:.1f}x; largest difference {np.abs(ours - theirs).max():.1e} leaf areas per cell)")
 
 
 def step_cost(world: World, runs: int = 10) -> None:
@@ -93,11 +99,12 @@ def step_cost(world: World, runs: int = 10) -> None:
 
 def main() -> None:
     """Run the 30-day table and the light timing; with a save (e.g. `python -m benchmarks.years 3 DIR`'s
-    DIR/spring_3.arbor, a tree near the budget), time a growth step on its tree instead."""
+    DIR/spring_3.arbor, a tree near the budget), time a light reading and a growth step on its tree instead."""
     if len(sys.argv) > 2:
         from arbor.engine.life.keep.save import read_garden
 
         world = read_garden(sys.argv[2]).world
+        light_cost(world)
         step_cost(world)
         return
     days = float(sys.argv[1]) if len(sys.argv) > 1 else 30.0

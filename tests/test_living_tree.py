@@ -75,6 +75,44 @@ def test_light_is_attenuated_by_the_leaves_in_front_of_it():
     assert own[top] < 0.2 < own.max()  # leaves of the top layer are barely shaded, lower ones are
 
 
+def _depth_by_hand(occ, area, queries, direction, cell, self_index):
+    """The optical depth by its definition, point by point: the splats of every leaf nearer the light
+    than the query (at a tie, the leaf is in front; a query's own leaf is behind it) in the query's cell."""
+    from arbor.engine.life.plant.light import _basis
+
+    d, u, v = _basis(direction)
+    out = np.zeros(len(queries))
+    for j, p in enumerate(queries):
+        cx, cy, depth = np.floor(p @ u / cell), np.floor(p @ v / cell), p @ d
+        for i, o in enumerate(occ):
+            if i == self_index[j] or o @ d < depth:
+                continue
+            ox, oy = o @ u / cell - 0.5, o @ v / cell - 0.5
+            ix, iy = np.floor(ox), np.floor(oy)
+            fx, fy = ox - ix, oy - iy
+            for dx, dy, w in ((0, 0, (1 - fx) * (1 - fy)), (1, 0, fx * (1 - fy)), (0, 1, (1 - fx) * fy),
+                              (1, 1, fx * fy)):
+                out[j] += w * area[i] if (ix + dx, iy + dy) == (cx, cy) else 0.0
+    return out / cell**2
+
+
+@pytest.mark.parametrize("case", ["crown", "far apart", "one column"])
+def test_the_light_grid_sums_what_lies_in_front_by_its_definition(case):
+    rng = np.random.default_rng(11)
+    occ = rng.normal(size=(70, 3)) * 2.0
+    if case == "far apart":  # trees 10,000 units apart: the grid is sparse, cells numbered as used
+        occ += rng.choice([0.0, 1e4], size=(70, 1))
+    if case == "one column":  # every point in one cell: a cell with many entries
+        occ = np.c_[np.full(70, 0.2), rng.uniform(0, 30, 70), np.full(70, 0.3)]
+    area = rng.uniform(0.1, 2.0, 70)
+    queries = np.concatenate([occ[:30], occ[30:60] + rng.normal(size=(30, 3)) * 0.5])
+    self_index = np.concatenate([np.arange(30), np.full(30, -1)])
+    direction = np.array([0.0, 1.0, 0.0]) if case == "one column" else np.array([0.3, 1.0, 0.2])
+    ours = optical_depth(occ, area, queries, direction, 0.9, self_index)
+    assert ours == pytest.approx(_depth_by_hand(occ, area, queries, direction, 0.9, self_index), abs=1e-9)
+    assert ours.max() > 0.5  # something is in front of somebody
+
+
 def test_a_grown_crown_shades_its_own_lower_leaves(system):
     world = cared_for(system, 10)
     scene = world.tree.light_scene(world.clocks())
