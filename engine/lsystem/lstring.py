@@ -129,8 +129,9 @@ def ragged_arange(starts: np.ndarray, counts: np.ndarray) -> np.ndarray:
     return shift + np.arange(total, dtype=np.int64)
 
 
-def replace_modules(ls: LString, idx: np.ndarray, symbol: int, values: np.ndarray) -> LString:
-    """A copy of ``ls`` where modules ``idx`` become ``symbol`` with parameters ``values`` (k, m).
+def replace_modules(ls: LString, idx: np.ndarray, symbol: int | np.ndarray, values: np.ndarray) -> LString:
+    """A copy of ``ls`` where modules ``idx`` become ``symbol`` (one, or one each) with parameters
+    ``values`` (k, m).
 
     Other modules keep their symbols and parameters. Vectorised; used to build render views.
     """

@@ -123,10 +123,10 @@ def render_view(ls: LString, clocks: Clocks, const: dict[str, float]) -> LString
     birth, order = ls.params[ls.offsets[idx]], ls.params[ls.offsets[idx] + 2]
     pieces = params_where(ls.params, ls.nparams[idx] >= 6, ls.offsets[idx] + 5, 1.0)  # consolidated runs
     length = const["IL"] * const["IO"] ** order * saturate(now - birth, const["TAU"]) * pieces
-    view = replace_modules(ls, idx, ord("F"), length[:, None])
     leaves = np.flatnonzero((ls.sym == LEAF) & (ls.nparams >= 1))
     size = leaf_sizes(ls, leaves, now, const) * leaf_keep(ls.params[ls.offsets[leaves]], clocks.wilt)
-    view = replace_modules(view, leaves, LEAF, size[:, None])
+    symbols = np.concatenate([np.full(len(idx), ord("F"), ls.sym.dtype), np.full(len(leaves), LEAF, ls.sym.dtype)])
+    view = replace_modules(ls, np.concatenate([idx, leaves]), symbols, np.concatenate([length, size])[:, None])
     blossoms = np.flatnonzero((view.sym == BLOSSOM) & (view.nparams == 1))  # K(birth) from region edits
     kb = view.params[view.offsets[blossoms]]
     opened = saturate(now - kb, const["TAU"]) * leaf_keep(kb, clocks.wilt)
