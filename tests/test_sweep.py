@@ -118,6 +118,15 @@ def _like_a_terminal() -> None:
     signal.signal(signal.SIGINT, signal.SIG_DFL)
 
 
+@pytest.mark.skipif(sys.platform != "linux", reason="workers are forked on Linux only")
+def test_workers_are_forked_from_a_quiet_process_and_spawned_beside_threads():
+    script = ("import threading, time; from arbor.game.commands.sweep_runs import progress_bar, start_method; "
+              "bar = progress_bar(3, 0, 'x', shown=False); print(start_method()); "
+              "threading.Thread(target=time.sleep, args=(1,)).start(); print(start_method())")
+    out = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, check=True).stdout
+    assert out.split() == ["fork", "spawn"]  # the progress bar starts no thread; another thread forbids a fork
+
+
 def test_ctrl_c_keeps_finished_runs_and_the_rerun_finishes(tmp_path):
     slow = tmp_path / "slow.toml"  # six runs of a few seconds each: Ctrl-C lands while most are to do
     text = SWEEP.replace("duration = 150", "duration = 1200").replace("sample_every = 50", "sample_every = 300")

@@ -10,6 +10,8 @@ import csv
 import io
 import multiprocessing
 import signal
+import sys
+import threading
 import traceback
 from collections.abc import Iterable, Iterator
 from pathlib import Path
@@ -92,12 +94,20 @@ def outcomes(tasks: list[Task], workers: int, scheduler: str | None) -> Iterator
     elif workers == 1:
         yield from map(run_safely, tasks)
     else:
-        pool = multiprocessing.get_context("spawn").Pool(min(workers, len(tasks)), initializer=_quiet_interrupts)
+        pool = multiprocessing.get_context(start_method()).Pool(min(workers, len(tasks)), initializer=_quiet_interrupts)
         try:
             yield from pool.imap_unordered(run_safely, tasks)
         finally:
             pool.terminate()
             pool.join()
+
+
+def start_method() -> str:
+    """How the pool's workers start: forked on Linux while no other thread runs (each worker is then a copy
+    of this process, every module already imported: a second instead of a fresh interpreter's start-up
+    and imports), else spawned (a fork of a process with threads may deadlock; macOS's frameworks forbid it)."""
+    forkable = sys.platform == "linux" and "fork" in multiprocessing.get_all_start_methods()
+    return "fork" if forkable and threading.active_count() == 1 else "spawn"
 
 
 def _dask(tasks: list[Task], scheduler: str) -> Iterable[Outcome | tuple[Run, str]]:
@@ -123,5 +133,6 @@ def progress_bar(total: int, done: int, title: str, shown: bool = True):
     not drawn unless ``shown`` (--quiet, or --verbose's line per run)."""
     from tqdm import tqdm
 
+    tqdm.monitor_interval = 0  # no monitor thread: the pool's workers may then be forked (see start_method)
     return tqdm(total=total, initial=done, unit="run", desc=title[:40], mininterval=0.5, dynamic_ncols=True,
                 disable=not shown)
