@@ -105,6 +105,13 @@ def sky_colors(sun: np.ndarray) -> tuple[tuple, tuple, float]:
     return zenith, horizon, day
 
 
+def ground_color(sun: np.ndarray, ground: tuple[float, float, float]) -> tuple[float, float, float]:
+    """The colour of the sunlit ground (``ground``: grass or soil) under ``sun``, moonlit at night."""
+    _, _, day = sky_colors(sun)
+    light = (0.45 + 0.55 * max(float(sun[1]), 0.0)) * (0.7 + 0.3 * day)
+    return tuple(c * light + m * (1.0 - day) for c, m in zip(ground, MOONLIT, strict=True))
+
+
 def _stars(count: int = STARS, seed: int = 29) -> np.ndarray:
     """``count`` stars: unit directions spread evenly over the upper sky and a brightness (most faint)."""
     rng = np.random.default_rng(seed)
@@ -169,6 +176,8 @@ class Backdrop:
         self.shade_buffer = ctx.buffer(reserve=64 * 12)
         self.shade = ctx.vertex_array(self.shade_prog, [(self.shade_buffer, "3f", "in_pos")])
         dirs, idx = _dome()
+        self.dome_dirs = dirs.astype(float)  # (the sky's colours are computed at these, see sky_look.py)
+        self.dome_sectors = 48  # (_dome's default: rings of this many vertices)
         self.dome = ctx.vertex_array(self.dome_prog, [(ctx.buffer(dirs.tobytes()), "3f", "in_dir")],
                                      ctx.buffer(idx.tobytes()))
         corners = np.array([[-1, -1], [1, -1], [1, 1], [-1, 1]], "f4")
@@ -189,6 +198,11 @@ class Backdrop:
         self.drift = 0  # clouds' drift in CLOUD_STEPs (set by the renderer from its clock)
         self.ground = None
         self.ground_radius = 0.0
+
+    @property
+    def ground_kind(self) -> tuple[float, float, float]:
+        """The ground's own colour: grass, or soil in the cut-away view (and the roots in it)."""
+        return SOIL if self.cutaway else GRASS
 
     def set_ground(self, radius: float) -> None:
         """A ground disc of ``radius`` around the origin, in rings (rebuilt only when it must grow or
@@ -211,11 +225,9 @@ class Backdrop:
     def draw_ground(self, mvp: bytes, sun: np.ndarray, fade: tuple[float, float]) -> None:
         """The ground, lit by the sun, fading into the horizon from ``fade[0]`` to ``fade[1]`` (the
         trees' shadows go on it with :meth:`draw_shadows`)."""
-        _, horizon, day = sky_colors(sun)
-        light_level = (0.45 + 0.55 * max(float(sun[1]), 0.0)) * (0.7 + 0.3 * day)
+        _, horizon, _ = sky_colors(sun)
         self.noise.use(location=2)
-        ground = SOIL if self.cutaway else GRASS  # the cut-away view shows the soil (and the roots in it)
-        grass = tuple(c * light_level + m * (1.0 - day) for c, m in zip(ground, MOONLIT, strict=True))
+        grass = ground_color(sun, self.ground_kind)
         set_uniforms(self.ground_prog, {
             "u_mvp": mvp, "u_noise": 2, "u_grass": grass, "u_horizon": horizon,
             "u_fade_start": fade[0], "u_fade_end": fade[1]})

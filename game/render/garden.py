@@ -48,6 +48,7 @@ WOOD = Piece(frozenset({"tube", "tube_young", "stone"}))
 FIRST_LEAVES = Piece(frozenset({"leaf"}), 0.0, LEAF_SPLIT)
 BARK = (1.4, 1.36, 1.3)  # (near grey: the sun's warm light does the rest)
 BLOSSOM = (1.2, 0.9, 1.0)
+SHADOW_WAIT = 4  # frames a due shadow map waits at most for a frame the backdrop is not being drawn in
 
 
 def software_gl(ctx: moderngl.Context) -> bool:
@@ -106,6 +107,7 @@ class GardenRenderer:
         self.last_details: list[Detail] = []
         self.pictures = Pictures(ctx)
         self.last_scale = 1.0
+        self.shadow_waited = 0  # frames a due shadow map has waited (see SHADOW_WAIT)
 
     def place(self, placed: list[Placed], lo: np.ndarray, hi: np.ndarray) -> None:
         """The trees to draw this frame and the bounds of the one in the middle (for framing)."""
@@ -167,8 +169,10 @@ class GardenRenderer:
         return Detail(lod, tubes, leaves, share, cover_grow(share), max(thinnest, detail.thinnest))
 
     def render(self, fbo: moderngl.Framebuffer, camera: OrbitCamera, sun_dir: np.ndarray,
-               size: tuple[int, int]) -> None:
-        """Draw the scene into ``fbo`` (``size`` pixels)."""
+               size: tuple[int, int], stream: bool = False) -> None:
+        """Draw the scene into ``fbo`` (``size`` pixels). ``stream``: one of a stream of frames (the
+        game's), which on a software GL may show a change of the backdrop the camera did not make a few
+        frames late, drawn a part a frame (kept.py); else (a picture alone) everything is drawn as it is."""
         sun = np.asarray(sun_dir, float) / np.linalg.norm(sun_dir)
         light = self.light_matrix(sun)
         vp = camera.projection(size[0] / size[1]) @ camera.view()
@@ -186,14 +190,24 @@ class GardenRenderer:
         uniforms = self._lit_uniforms(_gl(vp), _gl(light), sun, sky_colors(sun)[2])
         uniforms.update(u_eye=tuple(camera.eye), u_pixel=pixel / scale, u_soft=self.soft_shadows)
         if self.samples <= 1:  # a software GL: the grass stands still in the backdrop's picture (see grass.py)
-            self.stage.cover = lambda: self.grass.draw(uniforms, shadowed=False)
+            still = {**uniforms, "u_wind": (0.0, 0.0, 0.0, 0.0)}  # (the same blades at every redraw: no jumps)
+            self.stage.cover = lambda: self.grass.draw(still, shadowed=False)
             self.stage.cover_version = self.grass.version
+            self.stage.cover_look = self.grass.look(uniforms)
         boxes = [(np.asarray(p.buffers.view.lo) + p.offset, np.asarray(p.buffers.view.hi) + p.offset)
                  for p in self.placed if p.buffers.view is not None]
         if scale >= 1.0:
-            for step in self._shadow_steps(light, sun, details, [WHOLE]):
+            # a software GL draws a changed backdrop a part a frame (kept.py): the shadow map waits
+            # for a frame without one (a few frames at most), so that no frame pays for both
+            steps = self._shadow_steps(light, sun, details, [WHOLE])
+            if steps and stream and self.stage.busy and self.shadow_waited < SHADOW_WAIT:
+                self.shadow_waited, steps = self.shadow_waited + 1, []
+            else:
+                self.shadow_waited = 0
+            for step in steps:
                 step()
-            self.stage.draw(target, size, vp, camera, sun, light, boxes, self._scene_bounds()[1])
+            self.stage.draw(target, size, vp, camera, sun, light, boxes, self._scene_bounds()[1], spread=stream,
+                            wait=bool(steps))
             self.ctx.enable(moderngl.DEPTH_TEST)
             self._trees_step(details, uniforms, WHOLE)[0]()
         else:
@@ -224,7 +238,7 @@ class GardenRenderer:
         and the shadow map when they are due, then shares of the leaves, then the rest and the wood, and
         a frame for showing it."""
         backdrop = []
-        if self.stage.stale(size, scene.vp, scene.sun, scene.radius):
+        if self.stage.stale(size, scene.vp, scene.camera, scene.sun, scene.radius):
             backdrop.append((lambda: self.stage.refresh(size, scene.vp, scene.camera, scene.sun, scene.radius), False))
         shadows = self._shadow_steps(scene.light, scene.sun, details, [WHOLE] if whole else [LEAVES, WOOD])
         pieces = [WHOLE] if whole else [FIRST_LEAVES, Piece(LEAVES.names, LEAF_SPLIT), WOOD]

@@ -79,6 +79,16 @@ class Grass:
                                          skip_errors=True)
         self.sway = 1.6 * height / max(tree_height, 1.0)
 
+    @staticmethod
+    def look(uniforms: dict) -> np.ndarray:
+        """How the blades are lit by ``uniforms`` (the trees' lit uniforms), in 8-bit levels of the
+        brightest blade's colour at its tip and at its foot (as grass.vert lights them, unshadowed)."""
+        sky, sun = np.asarray(uniforms["u_sky_color"]), np.asarray(uniforms["u_sun_color"])
+        ambient = 0.55 * 0.6 + sky * 1.2 * 0.4
+        light = sun * max(float(uniforms["u_sun_dir"][1]), 0.0) * 0.75
+        brightest = float(GREENS.max()) * 1.15 * 1.3  # (and the tone curve's steepest)
+        return np.concatenate([ambient + light, ambient * 0.45 + light]) * brightest * 255.0
+
     def draw(self, uniforms: dict, shadowed: bool = True) -> None:
         """Draw the blades (with ``shadowed``, the shadow map bound at unit 1)."""
         if self.vao is None:

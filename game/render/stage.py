@@ -6,17 +6,18 @@ are shown as a layer's picture (game/render/layer.py)."""
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 
 import moderngl
 import numpy as np
 
 from arbor.game.render.backdrop import Backdrop
 from arbor.game.render.camera import OrbitCamera
+from arbor.game.render.kept import KeptBackdrop, Looks, Parts
 from arbor.game.render.layer import Pictures, screen_rect
 from arbor.game.render.renderer import _gl
 from arbor.game.render.shadows import ShadowMaps
-
-SUN_STEP = 0.003  # the sky picture is redrawn when the sun moved this far (the disc moves ~3 px at 720 px)
+from arbor.game.render.sky_look import LookKey, sky_look
 
 
 class Stage:
@@ -25,20 +26,31 @@ class Stage:
     def __init__(self, ctx: moderngl.Context, backdrop: Backdrop, shadows: ShadowMaps, samples: int) -> None:
         self.ctx, self.backdrop, self.shadows, self.samples = ctx, backdrop, shadows, samples
         self._msaa: tuple | None = None
-        self._backdrop_picture: moderngl.Framebuffer | None = None
-        self._backdrop_key: tuple | None = None
-        self._shaded_picture: moderngl.Framebuffer | None = None  # the backdrop with the trees' shadows
-        self._shaded_key: tuple | None = None
+        self.kept = KeptBackdrop(ctx)  # (software GL) the backdrop's pictures, see kept.py
         self._scene: moderngl.Framebuffer | None = None  # backdrop and trees' picture (layered frames)
         self._scene_key: tuple | None = None
         self.cover = None  # () -> draws what covers the ground into the backdrop's picture (software GL: grass)
         self.cover_version = 0  # changes when what it draws changed
+        self.cover_look = np.zeros(0)  # how what covers the ground is lit, in 8-bit levels (see sky_look.py)
+        self.looks = {part: LookKey() for part in ("sky", "ground", "cover", "shade")}
+        self._now: dict[str, np.ndarray] = {}  # the looks of the last state asked for (and the sky's pixels)
+        self._rects = np.zeros((0, 4))
 
-    def _state(self, size: tuple[int, int], vp: np.ndarray, sun: np.ndarray, radius: float) -> tuple:
-        """What the sky and ground picture shows: frame, camera, the sun (to SUN_STEP), the cutaway, the
-        clouds' drift, what covers the ground and the ground's size (in 2 % steps)."""
-        return (size, _gl(vp), tuple(np.round(sun / SUN_STEP)), self.backdrop.cutaway, self.backdrop.drift,
-                self.cover_version, round(math.log(max(radius, 1e-3)) / 0.02))
+    def _state(self, size: tuple[int, int], vp: np.ndarray, camera: OrbitCamera, sun: np.ndarray,
+               radius: float) -> Looks:
+        """What the sky and ground pictures show, part by part: frame, camera, cutaway, the ground's size
+        (in 2 % steps) and what covers it; how the sun lights the sky (and the clouds' drift), the ground,
+        the grass and the shadows, each a new version once a colour changed by a level (sky_look.py)."""
+        backdrop = self.backdrop
+        sky, rects, ground = sky_look(backdrop.dome_dirs, backdrop.dome_sectors, vp, camera.eye, sun, size,
+                                      backdrop.ground_kind, camera.fov_y, backdrop.drift)
+        shade = np.array([0.45 / (0.45 + 0.55 * max(float(sun[1]), 0.0)) * 255.0 * 0.5])  # (shade.frag, ~0.5)
+        self._now = {"sky": sky, "ground": ground, "cover": self.cover_look, "shade": shade}
+        self._rects = rects
+        view = (size, _gl(vp), backdrop.cutaway, round(math.log(max(radius, 1e-3)) / 0.02), self.cover_version)
+        looks = self.looks
+        return Looks(view, (looks["sky"].of(sky),), looks["ground"].of(ground), looks["cover"].of(self.cover_look),
+                     looks["shade"].of(shade))
 
     def target(self, fbo: moderngl.Framebuffer, size: tuple[int, int]) -> moderngl.Framebuffer:
         """The multisampled framebuffer the scene is drawn into (resolved into ``fbo``)."""
@@ -53,48 +65,90 @@ class Stage:
         return self._msaa[1]
 
     def draw(self, target: moderngl.Framebuffer, size: tuple[int, int], vp: np.ndarray, camera: OrbitCamera,
-             sun: np.ndarray, light: np.ndarray, boxes: list, radius: float) -> None:
+             sun: np.ndarray, light: np.ndarray, boxes: list, radius: float, spread: bool = False,
+             wait: bool = False) -> None:
         """Sky, ground and the trees' shadows on it into ``target``, its depth cleared for the trees.
 
-        The sky dome and the ground cover every pixel, behind everything: drawn first without any depth
-        test (only the trees need depth), then a depth-only clear. On a software GL the depth test and
-        write of a full-screen background cost as much as shading it."""
+        On a software GL they are kept as pictures (see kept.py): with ``spread``, what changed while the
+        camera held still is brought up to date a part a frame (none in a frame that ``wait``s: it had
+        work enough), else all of it now. With multisampling the sky dome and the ground cover every
+        pixel, behind everything: drawn first without any depth test (only the trees need depth), then a
+        depth-only clear."""
         ctx = self.ctx
-        if self.samples <= 1:  # the picture with the shadows on it, redrawn only when they or it changed
-            self._shade(size, vp, camera, sun, light, boxes, radius)
-            ctx.copy_framebuffer(target, self._shaded_picture)
+        if self.samples <= 1:
+            looks = self._state(size, vp, camera, sun, radius)
+            shadows = (self.shadows.version, self.backdrop.soft, len(boxes))
+            kept = self.kept
+            if not kept.current(looks, shadows):
+                parts = self._parts(size, vp, camera, sun, light, boxes, radius)
+                if spread and kept.shown is not None and kept.shown.view == looks.view and kept.ground is not None:
+                    if not wait:
+                        kept.step(looks, shadows, parts)
+                else:
+                    kept.full(size, looks, shadows, parts)
+            ctx.copy_framebuffer(target, kept.frame)
             _clear_depth(target)
             return
         target.use()
         ctx.viewport = (0, 0, *size)
         ctx.disable(moderngl.DEPTH_TEST | moderngl.CULL_FACE)
-        self._draw_backdrop(target, size, vp, camera, sun, radius)
+        parts = self._parts(size, vp, camera, sun, light, boxes, radius)
+        parts.sky(None)
+        parts.ground(None)
         _clear_depth(target)
-        self._draw_shadows(target, size, vp, sun, light, boxes)
+        parts.shadows(target)
 
-    def _draw_shadows(self, into: moderngl.Framebuffer, size: tuple[int, int], vp: np.ndarray, sun: np.ndarray,
-                      light: np.ndarray, boxes: list) -> None:
-        """The trees' shadows darkening the ground already in ``into``."""
-        into.use()
-        self.ctx.viewport = (0, 0, *size)
-        self.ctx.disable(moderngl.DEPTH_TEST | moderngl.CULL_FACE)
-        self.shadows.texture.use(location=1)
-        pad = np.array([1.5, 0.0, 1.5])  # leaves reach past the points the bounds were taken from
-        self.backdrop.draw_shadows(_gl(vp), _gl(light), sun, [(lo - pad, hi + pad) for lo, hi in boxes])
+    @property
+    def busy(self) -> bool:
+        """Whether the kept backdrop has a part to draw in the next frame the camera holds still."""
+        return self.kept.busy
 
-    def _shade(self, size: tuple[int, int], vp: np.ndarray, camera: OrbitCamera, sun: np.ndarray,
-               light: np.ndarray, boxes: list, radius: float) -> None:
-        """Keep the backdrop's picture with the trees' shadows on it (software GL: the shadow test over
-        the ground is a third of a sapling's frame). The shadows change only with the shadow map (a new
-        version when the sun turned or a tree changed) and with the backdrop: the boxes bound where the
-        test runs, not what it shows, so they are not part of the key."""
-        self.refresh(size, vp, camera, sun, radius)
-        key = (self._backdrop_key, self.shadows.version, self.backdrop.soft, len(boxes))
-        self._shaded_picture = self._picture(self._shaded_picture, size)
-        if key != self._shaded_key:
-            self._shaded_key = key
-            self.ctx.copy_framebuffer(self._shaded_picture, self._backdrop_picture)
-            self._draw_shadows(self._shaded_picture, size, vp, sun, light, boxes)
+    def forget(self) -> None:
+        """Draw the backdrop in full next time (as a fresh game would)."""
+        self.kept.ground = self.kept.shown = None
+
+    def _parts(self, size: tuple[int, int], vp: np.ndarray, camera: OrbitCamera, sun: np.ndarray,
+               light: np.ndarray, boxes: list, radius: float) -> Parts:
+        """Drawing the backdrop's parts for this camera and sun (see kept.Parts); each tells the look it
+        drew (sky_look.LookKey), the sky again only where it changed when drawn over the ground."""
+        ctx, backdrop, looks, now, rects = self.ctx, self.backdrop, self.looks, dict(self._now), self._rects
+
+        def part(name: str, draw: Callable[[], None]) -> Callable[[str | None], None]:
+            def run(depth: str | None) -> None:
+                ctx.disable(moderngl.CULL_FACE)
+                if depth is None:
+                    ctx.disable(moderngl.DEPTH_TEST)
+                else:
+                    ctx.enable(moderngl.DEPTH_TEST)
+                    ctx.depth_func = depth
+                look = now.get(name)  # (None: not kept, multisampled)
+                rect = looks[name].dirty(look, rects, size) if name == "sky" and depth and look is not None else None
+                ctx.scissor = rect
+                draw()
+                ctx.scissor = None
+                ctx.depth_func = "<"
+                ctx.disable(moderngl.DEPTH_TEST)
+                if look is not None:
+                    looks[name].draw(look, rects if name == "sky" else None, rect, size)
+            return run
+
+        def ground() -> None:
+            backdrop.set_ground(max(radius, 1.0) * 12)
+            backdrop.draw_ground(_gl(vp), sun, (radius * 3, radius * 11))
+
+        def shadows(into: moderngl.Framebuffer) -> None:
+            into.use()
+            ctx.viewport = (0, 0, *size)
+            ctx.disable(moderngl.DEPTH_TEST | moderngl.CULL_FACE)
+            self.shadows.texture.use(location=1)
+            pad = np.array([1.5, 0.0, 1.5])  # leaves reach past the points the bounds were taken from
+            backdrop.draw_shadows(_gl(vp), _gl(light), sun, [(lo - pad, hi + pad) for lo, hi in boxes])
+            if "shade" in now:
+                looks["shade"].draw(now["shade"])
+
+        cover = self.cover if self.cover is not None and not backdrop.cutaway else None
+        sky = part("sky", lambda: backdrop.draw_sky(vp, camera.eye, camera.distance * 20.0, sun))
+        return Parts(sky, part("ground", ground), part("cover", cover) if cover is not None else None, shadows)
 
     def layered(self, target: moderngl.Framebuffer, size: tuple[int, int], vp: np.ndarray, camera: OrbitCamera,
                 sun: np.ndarray, light: np.ndarray, boxes: list, radius: float, pictures: Pictures) -> None:
@@ -102,7 +156,7 @@ class Stage:
         that picture was begun (camera, sun, shadows): kept as a picture of its own and copied until the
         next picture is shown (the layer's composite is a full-screen pass)."""
         rect = screen_rect(camera, size, boxes, margin=0.15)
-        key = (self._state(size, vp, sun, radius), pictures.version, rect)
+        key = (self._state(size, vp, camera, sun, radius), pictures.version, rect)
         self._scene = self._picture(self._scene, size)
         if key != self._scene_key:  # (keys hold the size: a new picture never matches an old key)
             self.draw(target, size, vp, camera, sun, light, boxes, radius)
@@ -114,18 +168,18 @@ class Stage:
             _clear_depth(target)  # (as a frame drawn in full leaves it, for what is drawn over it)
         self.ctx.enable(moderngl.DEPTH_TEST)
 
-    def stale(self, size: tuple[int, int], vp: np.ndarray, sun: np.ndarray, radius: float) -> bool:
+    def stale(self, size: tuple[int, int], vp: np.ndarray, camera: OrbitCamera, sun: np.ndarray,
+              radius: float) -> bool:
         """Whether the backdrop's picture does not show this camera, sun and ground."""
-        return self._state(size, vp, sun, radius) != self._backdrop_key
+        return self._state(size, vp, camera, sun, radius) != self.kept.ground
 
     def refresh(self, size: tuple[int, int], vp: np.ndarray, camera: OrbitCamera, sun: np.ndarray,
                 radius: float) -> None:
-        """Redraw the backdrop's picture (software GL) if it does not show this camera, sun and ground."""
-        key = self._state(size, vp, sun, radius)
-        self._backdrop_picture = self._picture(self._backdrop_picture, size)
-        if key != self._backdrop_key:
-            self._backdrop_key = key
-            self._draw_backdrop(self._backdrop_picture, size, vp, camera, sun, radius)
+        """Redraw the backdrop's picture (software GL) if it does not show this camera, sun and ground
+        (the trees' shadows go on it with the frame that shows it)."""
+        looks = self._state(size, vp, camera, sun, radius)
+        if looks != self.kept.ground:
+            self.kept.full(size, looks, None, self._parts(size, vp, camera, sun, np.eye(4), [], radius))
 
     def _picture(self, picture: moderngl.Framebuffer | None, size: tuple[int, int]) -> moderngl.Framebuffer:
         """``picture``, or a new colour framebuffer when there is none of ``size``."""
@@ -134,17 +188,6 @@ class Stage:
         if picture is not None:
             picture.release()
         return self.ctx.framebuffer(color_attachments=[self.ctx.renderbuffer(size)])
-
-    def _draw_backdrop(self, into: moderngl.Framebuffer, size: tuple[int, int], vp: np.ndarray,
-                       camera: OrbitCamera, sun: np.ndarray, radius: float) -> None:
-        into.use()
-        self.ctx.viewport = (0, 0, *size)
-        self.ctx.disable(moderngl.DEPTH_TEST | moderngl.CULL_FACE)
-        self.backdrop.draw_sky(vp, camera.eye, camera.distance * 20.0, sun)
-        self.backdrop.set_ground(max(radius, 1.0) * 12)
-        self.backdrop.draw_ground(_gl(vp), sun, (radius * 3, radius * 11))
-        if self.cover is not None and not self.backdrop.cutaway:
-            self.cover()
 
 
 def _clear_depth(target: moderngl.Framebuffer) -> None:

@@ -210,7 +210,7 @@ class GameView:
         renderer.wind = self.wind()
         renderer.backdrop.cutaway = self.state.cutaway
         self._season_look()
-        renderer.render(fbo, camera, self.scene_sun(), self.size)
+        renderer.render(fbo, camera, self.scene_sun(), self.size, stream=True)
         self._count_triangles()  # (again: the levels of detail of this very frame)
         return camera
 
