@@ -35,6 +35,30 @@ def _frame(game) -> np.ndarray:
     return np.frombuffer(game.fbo.read(components=3), np.uint8).reshape(SIZE[1], SIZE[0], 3).astype(int)
 
 
+def test_leaves_are_drawn_by_a_leaves_only_program_and_look_the_same(gl_ctx, tree_game):
+    trees = tree_game.renderer.trees
+    assert "u_kind" not in trees.programs[("card", "lit")]
+    _frame(tree_game)
+    fast = _frame(tree_game)
+    kept = trees.programs[("card", "lit")]
+
+    def forget_vaos():
+        for placed in tree_game.renderer.placed:
+            for part in placed.buffers.parts.values():
+                part.vaos.clear()
+
+    try:
+        trees.programs[("card", "lit")] = trees.programs[("leaf", "lit")]
+        forget_vaos()
+        every = _frame(tree_game)
+    finally:
+        trees.programs[("card", "lit")] = kept
+        forget_vaos()
+    parts = tree_game.renderer.placed[0].buffers.parts
+    assert sum(parts[name].count for name in ("leaf", "leaf_young") if name in parts) > 0  # (leaves on screen)
+    assert (np.abs(fast - every).max(axis=2) > 2).sum() <= 5
+
+
 def test_a_constant_replaces_the_uniform(gl_ctx):
     wood = program(gl_ctx, "tube.vert", "tree.frag", ("wind.glsl",), {"u_kind": 0})
     every = program(gl_ctx, "tube.vert", "tree.frag", ("wind.glsl",))

@@ -200,6 +200,7 @@ class InstancedTrees:
             ("tube", "lit"): program(ctx, "tube.vert", "tree.frag", wind, {"u_kind": 0}),
             ("tube", "shadow"): program(ctx, "tube.vert", "shadow.frag", wind, {"u_alpha_test": 0}),
             ("leaf", "lit"): program(ctx, "leaf.vert", "tree.frag", wind),
+            ("card", "lit"): program(ctx, "leaf.vert", "tree.frag", wind, {"u_kind": 1}),  # leaves only
             ("leaf", "shadow"): program(ctx, "leaf.vert", "shadow.frag", wind),
         }
         self.cull_wood = True  # the lit wood without its inner sides (closed tubes, wound outward)
@@ -245,7 +246,7 @@ class InstancedTrees:
         key = (kind, pass_, lod if kind == "tube" else 0)
         vao = part.vaos.get(key)
         if vao is None:
-            prog = self.programs[(kind if kind == "tube" else "leaf", pass_)]
+            prog = self.programs[(kind if kind in ("tube", "card") else "leaf", pass_)]
             if kind == "tube":
                 verts, cap, tris = self.templates[lod]
                 layout, names = TUBE_LAYOUT
@@ -271,7 +272,8 @@ class InstancedTrees:
             count = round(count * piece.hi) if name == "leaf" else count
             if count <= first:
                 continue
-            prog = self.programs[("tube" if kind == 0 else "leaf", pass_)]
+            shape = "tube" if kind == 0 else "card" if kind == 1 and pass_ == "lit" else "leaf"
+            prog = self.programs[(shape, pass_)]
             set_uniforms(prog, {k: v for k, v in uniforms.items() if k != "tints"})
             textures["bark" if kind in (0, 4) else "leaf_cluster" if kind == 1 else "blossom"].use(location=0)
             per_part = {"u_tex": 0, "u_fraction": share if kind == 1 else 1.0, "u_min_pixels": MIN_PIXELS[kind],
@@ -288,7 +290,7 @@ class InstancedTrees:
                 per_part["u_alpha_test"] = int(kind != 0)
             set_uniforms(prog, per_part)
             part.upload(count)
-            vao = self._vao(part, "tube" if kind == 0 else "leaf", pass_, lod)
+            vao = self._vao(part, shape, pass_, lod)
             if kind == 0:
                 if pass_ == "lit" and self.cull_wood:
                     self.ctx.enable(moderngl.CULL_FACE)
