@@ -36,9 +36,7 @@ def sky_look(dirs: np.ndarray, sectors: int, vp: np.ndarray, eye: np.ndarray, su
     t = np.clip(dirs[:, 1], 0.0, 1.0) ** 0.6
     s = np.maximum(dirs @ sun, 0.0)
     dome = horizon + (zenith - horizon) * t[:, None] + np.outer(s**40 * 0.5 + s**5 * 0.1, np.array(GLOW) * day)
-    clip = np.c_[eye + dirs * 100.0, np.ones(len(dirs))] @ vp.T
-    w = clip[:, 3]
-    seen = (w > 1e-6) & (np.abs(clip[:, 0]) <= 2.0 * w) & (np.abs(clip[:, 1]) <= 2.0 * w)  # (and a margin)
+    seen, cells = _geometry(dirs, sectors, vp, eye, size)
     dome[~seen] = np.nan
     night = 1.0 - day if day < 0.999 else 0.0
     light = horizon * (1.0 - day) + day * np.array((1.0, 0.99, 0.96))
@@ -50,12 +48,27 @@ def sky_look(dirs: np.ndarray, sectors: int, vp: np.ndarray, eye: np.ndarray, su
     everywhere = np.concatenate([light * alpha, shade * alpha, [alpha, night], np.array(MOON) * night]) * 255.0
     sky = np.concatenate([dome.ravel() * 255.0, everywhere, [drift * LEVEL], disc * 255.0,
                           sun_px / DISC_PIXELS * LEVEL, moon_px / DISC_PIXELS * LEVEL])
-    px = np.where(w[:, None] > 1e-6, clip[:, :2] / np.maximum(w, 1e-6)[:, None] * 0.5 + 0.5, np.nan) * np.array(size)
-    cells = _cells(px.reshape(-1, sectors, 2))
     discs = [np.tile(np.r_[at - reach, at + reach], (n, 1)) for at, n in ((sun_px, 5), (moon_px, 2))]
     rects = np.concatenate([np.repeat(cells, 3, axis=0), np.full((len(everywhere) + 1, 4), np.nan), discs[0][:3],
                             discs[0][3:], discs[1]])
     return sky, rects, np.concatenate([ground_color(sun, ground), horizon]) * 255.0
+
+
+_GEOMETRY: list = [None, None]  # (the camera it was worked out for, and what: the sky's pixels move with it)
+
+
+def _geometry(dirs: np.ndarray, sectors: int, vp: np.ndarray, eye: np.ndarray,
+              size: tuple[int, int]) -> tuple[np.ndarray, np.ndarray]:
+    """Which of the dome's vertices are in view (with a margin), and the pixels each one's triangles
+    colour (see :func:`_cells`), for the camera ``vp`` at ``eye``."""
+    key = (vp.tobytes(), tuple(eye), size, len(dirs), sectors)
+    if _GEOMETRY[0] != key:
+        clip = np.c_[eye + dirs * 100.0, np.ones(len(dirs))] @ vp.T
+        w = clip[:, 3]
+        seen = (w > 1e-6) & (np.abs(clip[:, 0]) <= 2.0 * w) & (np.abs(clip[:, 1]) <= 2.0 * w)
+        px = np.where(w[:, None] > 1e-6, clip[:, :2] / np.maximum(w, 1e-6)[:, None] * 0.5 + 0.5, np.nan)
+        _GEOMETRY[:] = [key, (seen, _cells((px * np.array(size)).reshape(-1, sectors, 2)))]
+    return _GEOMETRY[1]
 
 
 def _cells(px: np.ndarray) -> np.ndarray:

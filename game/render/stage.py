@@ -35,6 +35,8 @@ class Stage:
         self.looks = {part: LookKey() for part in ("sky", "ground", "cover", "shade")}
         self._now: dict[str, np.ndarray] = {}  # the looks of the last state asked for (and the sky's pixels)
         self._rects = np.zeros((0, 4))
+        self._inputs: tuple | None = None  # what the sky's look was last worked out for, and that look
+        self._sky: tuple = ()
 
     def _state(self, size: tuple[int, int], vp: np.ndarray, camera: OrbitCamera, sun: np.ndarray,
                radius: float) -> Looks:
@@ -42,8 +44,11 @@ class Stage:
         (in 2 % steps) and what covers it; how the sun lights the sky (and the clouds' drift), the ground,
         the grass and the shadows, each a new version once a colour changed by a level (sky_look.py)."""
         backdrop = self.backdrop
-        sky, rects, ground = sky_look(backdrop.dome_dirs, backdrop.dome_sectors, vp, camera.eye, sun, size,
-                                      backdrop.ground_kind, camera.fov_y, backdrop.drift)
+        inputs = (_gl(vp), tuple(camera.eye), tuple(sun), size, backdrop.ground_kind, camera.fov_y, backdrop.drift)
+        if inputs != self._inputs:  # (1-2 ms of numpy: the sun moves at a fixed step, a frame in six at 1x)
+            self._inputs, self._sky = inputs, sky_look(backdrop.dome_dirs, backdrop.dome_sectors, vp, camera.eye,
+                                                        sun, size, *inputs[4:])
+        sky, rects, ground = self._sky
         shade = np.array([0.45 / (0.45 + 0.55 * max(float(sun[1]), 0.0)) * 255.0 * 0.5])  # (shade.frag, ~0.5)
         self._now = {"sky": sky, "ground": ground, "cover": self.cover_look, "shade": shade}
         self._rects = rects
