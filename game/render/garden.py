@@ -234,17 +234,14 @@ class GardenRenderer:
 
     def _picture_steps(self, scene: _Scene, details: list[Detail], uniforms: dict, size: tuple[int, int],
                        whole: bool) -> list[Step]:
-        """What a picture of the trees takes, frame by frame (see layer.Pictures): the backdrop's picture
-        and the shadow map when they are due, then shares of the leaves, then the rest and the wood, and
-        a frame for showing it."""
-        backdrop = []
-        if self.stage.stale(size, scene.vp, scene.camera, scene.sun, scene.radius):
-            backdrop.append((lambda: self.stage.refresh(size, scene.vp, scene.camera, scene.sun, scene.radius), False))
+        """What a picture of the trees takes, frame by frame (see layer.Pictures): the shadow map when it
+        is due, then shares of the leaves, then the rest and the wood, and a frame for showing it (the
+        backdrop keeps itself up to date, a part a frame: stage.Stage.layered)."""
         shadows = self._shadow_steps(scene.light, scene.sun, details, [WHOLE] if whole else [LEAVES, WOOD])
         pieces = [WHOLE] if whole else [FIRST_LEAVES, Piece(LEAVES.names, LEAF_SPLIT), WOOD]
         trees = [self._trees_step(details, dict(uniforms), p) for p in pieces]
         show = [] if whole else [(lambda: None, False)]  # the new picture is shown in a frame of its own
-        return backdrop + [(step, False) for step in shadows] + trees + show
+        return [(step, False) for step in shadows] + trees + show
 
     def _trees_step(self, details: list[Detail], uniforms: dict, piece: Piece) -> Step:
         """Drawing ``piece`` of every tree, lit, into whatever framebuffer is bound."""

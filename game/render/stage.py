@@ -81,17 +81,8 @@ class Stage:
         depth-only clear."""
         ctx = self.ctx
         if self.samples <= 1:
-            looks = self._state(size, vp, camera, sun, radius)
-            shadows = (self.shadows.version, self.backdrop.soft, len(boxes))
-            kept = self.kept
-            if not kept.current(looks, shadows):
-                parts = self._parts(size, vp, camera, sun, light, boxes, radius)
-                if spread and kept.shown is not None and kept.shown.view == looks.view and kept.ground is not None:
-                    if not wait:
-                        kept.step(looks, shadows, parts)
-                else:
-                    kept.full(size, looks, shadows, parts)
-            ctx.copy_framebuffer(target, kept.frame)
+            self._keep(size, vp, camera, sun, light, boxes, radius, spread, wait)
+            ctx.copy_framebuffer(target, self.kept.frame)
             _clear_depth(target)
             return
         target.use()
@@ -102,6 +93,22 @@ class Stage:
         parts.ground(None)
         _clear_depth(target)
         parts.shadows(target)
+
+    def _keep(self, size: tuple[int, int], vp: np.ndarray, camera: OrbitCamera, sun: np.ndarray,
+              light: np.ndarray, boxes: list, radius: float, spread: bool, wait: bool) -> None:
+        """Bring the kept backdrop (software GL) up to date: a part of it (``spread``, the camera holding
+        still; none when the frame must ``wait``), else all of it."""
+        looks = self._state(size, vp, camera, sun, radius)
+        shadows = (self.shadows.version, self.backdrop.soft, len(boxes))
+        kept = self.kept
+        if kept.current(looks, shadows):
+            return
+        parts = self._parts(size, vp, camera, sun, light, boxes, radius)
+        if spread and kept.shown is not None and kept.shown.view == looks.view and kept.ground is not None:
+            if not wait:
+                kept.step(looks, shadows, parts)
+        else:
+            kept.full(size, looks, shadows, parts)
 
     @property
     def busy(self) -> bool:
@@ -159,12 +166,15 @@ class Stage:
                 sun: np.ndarray, light: np.ndarray, boxes: list, radius: float, pictures: Pictures) -> None:
         """Backdrop and the front picture of the trees laid over it, into ``target``, as they were when
         that picture was begun (camera, sun, shadows): kept as a picture of its own and copied until the
-        next picture is shown (the layer's composite is a full-screen pass)."""
+        next picture is shown or the backdrop changed (the layer's composite is a full-screen pass). The
+        backdrop follows a part a frame what the camera did not change (see :meth:`draw`)."""
         rect = screen_rect(camera, size, boxes, margin=0.15)
-        key = (self._state(size, vp, camera, sun, radius), pictures.version, rect)
+        self._keep(size, vp, camera, sun, light, boxes, radius, spread=True, wait=False)
+        key = (self.kept.shown, self.kept.shadows, pictures.version, rect)
         self._scene = self._picture(self._scene, size)
         if key != self._scene_key:  # (keys hold the size: a new picture never matches an old key)
-            self.draw(target, size, vp, camera, sun, light, boxes, radius)
+            self.ctx.copy_framebuffer(target, self.kept.frame)
+            _clear_depth(target)
             pictures.composite(target, size, rect)
             self.ctx.copy_framebuffer(self._scene, target)
             self._scene_key = key
@@ -172,19 +182,6 @@ class Stage:
             self.ctx.copy_framebuffer(target, self._scene)
             _clear_depth(target)  # (as a frame drawn in full leaves it, for what is drawn over it)
         self.ctx.enable(moderngl.DEPTH_TEST)
-
-    def stale(self, size: tuple[int, int], vp: np.ndarray, camera: OrbitCamera, sun: np.ndarray,
-              radius: float) -> bool:
-        """Whether the backdrop's picture does not show this camera, sun and ground."""
-        return self._state(size, vp, camera, sun, radius) != self.kept.ground
-
-    def refresh(self, size: tuple[int, int], vp: np.ndarray, camera: OrbitCamera, sun: np.ndarray,
-                radius: float) -> None:
-        """Redraw the backdrop's picture (software GL) if it does not show this camera, sun and ground
-        (the trees' shadows go on it with the frame that shows it)."""
-        looks = self._state(size, vp, camera, sun, radius)
-        if looks != self.kept.ground:
-            self.kept.full(size, looks, None, self._parts(size, vp, camera, sun, np.eye(4), [], radius))
 
     def _picture(self, picture: moderngl.Framebuffer | None, size: tuple[int, int]) -> moderngl.Framebuffer:
         """``picture``, or a new colour framebuffer when there is none of ``size``."""
