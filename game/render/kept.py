@@ -55,6 +55,7 @@ class KeptBackdrop:
         self.shown: Looks | None = None  # ... and the shown picture
         self.shadows: tuple | None = None  # the shadow map's version (and filter, trees) the shown one has
         self.pending: list[Callable[[str | None], None]] = []  # the ground picture's parts still to draw
+        self.after_sky = False  # (the last part drawn was the sky: the next one is another when one is due)
         self._fbos: tuple = ()
 
     @property
@@ -96,12 +97,13 @@ class KeptBackdrop:
     def step(self, looks: Looks, shadows: tuple, parts: Parts) -> None:
         """Bring the pictures a part closer to ``looks`` and ``shadows`` (the camera holds still): a part
         of the ground picture (the sky first), else the shown picture from it."""
-        ground = self.ground
-        if not self.pending and looks.sky != ground.sky:  # (nearer things keep their pixels)
+        ground, after_sky, self.after_sky = self.ground, self.after_sky, False
+        shading = self.shown != ground._replace(shade=looks.shade) or shadows != self.shadows
+        if not self.pending and looks.sky != ground.sky and not (after_sky and shading):  # (never starving the rest)
             self._bind(self._fbos[0], depth_mask=False)
-            parts.sky("<=")
+            parts.sky("<=")  # (nearer things keep their pixels)
             self._fbos[0].depth_mask = True
-            self.ground = ground._replace(sky=looks.sky)
+            self.ground, self.after_sky = ground._replace(sky=looks.sky), True
             return
         if not self.pending and (looks.ground != ground.ground or looks.cover != ground.cover):
             redraw = [parts.ground] if looks.ground != ground.ground else []
