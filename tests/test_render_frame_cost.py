@@ -133,3 +133,18 @@ def test_a_look_changes_its_version_only_by_a_level_and_a_part_drawn_again_keeps
     key.draw(moved, rects, (48, 48, 14, 14), (100, 100))
     assert not key.differs(moved)
     assert key.drawn[0] == 10.0  # (outside the part drawn again: as it was drawn)
+
+
+def test_a_sky_changing_every_frame_keeps_neither_the_ground_nor_the_shadows_from_being_drawn(gl_ctx):
+    from arbor.game.render.kept import KeptBackdrop, Looks, Parts
+
+    kept, drawn = KeptBackdrop(gl_ctx), []
+    parts = Parts(*(lambda depth, name=name: drawn.append(name) for name in ("sky", "ground", "cover")),
+                  lambda into: drawn.append("shadows"))
+    looks = Looks(("a view",), (0,), 0, 0, 0)
+    kept.full((16, 16), looks, (0,), parts)
+    drawn.clear()
+    for frame in range(1, 9):  # (the sky new every frame, the ground's light changed once)
+        kept.step(looks._replace(sky=(frame,), ground=1), (0,), parts)
+    assert len(drawn) == 8 and {"sky", "ground", "cover", "shadows"} <= set(drawn), drawn
+    kept.release()
