@@ -52,6 +52,7 @@ def main() -> None:
         renderer = game.renderer
 
         def shot() -> Image.Image:
+            renderer.stage.forget()  # (drawn whole: the game's frames may bring a changed sky in over a few)
             game.draw(fbo)
             pixels = np.frombuffer(fbo.read(components=3), np.uint8).reshape(PANEL[1], PANEL[0], 3)[::-1]
             return Image.fromarray(pixels.copy())
