@@ -27,7 +27,7 @@ def main() -> None:
     from PIL import Image, ImageDraw
 
     from arbor.game.render.camera import OrbitCamera
-    from arbor.game.render.garden import TWIG_PIXELS
+    from arbor.game.render.garden import TWIG_PIXELS, pixel_size
     from arbor.game.render.instanced import LEAF_KEPT, Detail
     from arbor.game.render.renderer import headless_context
     from arbor.game.screens.game import Game, GameConfig
@@ -62,7 +62,7 @@ def main() -> None:
         shot()
         for lod in range(4):
             placed = renderer.placed[0]
-            per_pixel = renderer._per_pixel(placed.buffers, placed.offset, game.camera(), PANEL[1])
+            per_pixel = pixel_size(placed.buffers, placed.offset, game.camera(), PANEL[1])
             renderer._detail = (lambda buffers, *a, lod=lod, px=per_pixel:
                                 Detail.of(buffers, lod, TWIG_PIXELS[lod] * px, LEAF_KEPT[lod]))
             panels.append((shot(), f"level {lod}"))

@@ -142,31 +142,19 @@ class GardenRenderer:
         at the coarsest level the thinnest segments and a share of the leaves go until it fits."""
         view = buffers.view
         size = float(np.linalg.norm(np.asarray(view.hi) - np.asarray(view.lo)))
-        per_pixel = self._per_pixel(buffers, offset, camera, height_px)
+        per_pixel = pixel_size(buffers, offset, camera, height_px)
         lod = next((k for k, limit in enumerate(LOD_PIXELS) if size / per_pixel >= limit), len(SIDES) - 1)
         detail = Detail.of(buffers, lod, TWIG_PIXELS[lod] * per_pixel, LEAF_KEPT[lod])
         while detail.vertices(buffers) > self.vertex_budget and detail.lod < len(SIDES) - 1:
             lod = detail.lod + 1
             detail = Detail.of(buffers, lod, TWIG_PIXELS[lod] * per_pixel, LEAF_KEPT[lod])
         if detail.vertices(buffers) > self.vertex_budget:
-            detail = self._squeezed(buffers, detail)
+            detail = squeezed(buffers, detail, self.vertex_budget)
         if self.samples > 1:
             return detail
         natural = buffers.leaf_area * detail.leaf_share / per_pixel**2  # pixels of the drawn leaves, life size
         cap = math.sqrt(LEAF_PIXELS / MIN_SCALE**2 / max(natural, 1.0))  # (all their layers together)
         return replace(detail, leaf_grow=min(detail.leaf_grow, max(cap, 1.0)))
-
-    def _squeezed(self, buffers: TreeBuffers, detail: Detail) -> Detail:
-        """``detail`` at the coarsest level and still over the budget: the thinnest grown segments and
-        a share of the grown leaves left out until it fits."""
-        lod = detail.lod
-        fixed = Detail(lod).vertices(buffers)  # young parts, blossoms, fruit: always drawn
-        leaves = min(detail.leaves, max(self.vertex_budget - fixed, 0) // 8)  # half the rest for leaves
-        share = float(buffers.hashes[leaves]) if leaves < len(buffers.hashes) else detail.leaf_share
-        room = (self.vertex_budget - fixed - 4 * leaves) // TEMPLATE_VERTICES[lod]  # the rest for wood
-        share, tubes = min(share, detail.leaf_share), min(detail.tubes, max(room, 0))
-        thinnest = float(buffers.radii[tubes - 1]) if 0 < tubes < len(buffers.radii) else detail.thinnest
-        return Detail(lod, tubes, leaves, share, cover_grow(share), max(thinnest, detail.thinnest))
 
     def render(self, fbo: moderngl.Framebuffer, camera: OrbitCamera, sun_dir: np.ndarray,
                size: tuple[int, int], stream: bool = False) -> None:
@@ -180,7 +168,7 @@ class GardenRenderer:
                    for p in self.placed]
         self.last_details = details
         self.last_scale = scale = self._scale(details, camera, size[1])
-        self._grow_grass()
+        grow_grass(self.grass, self.placed)
         self.backdrop.drift = int(self.time * CLOUD_DRIFT / CLOUD_STEP)
         self.backdrop.soft = (self.soft_shadows, 1.0 / SHADOW_SIZE)
         self.shadows.age += 1
@@ -265,33 +253,15 @@ class GardenRenderer:
             return self.textures
         return {**self.textures, "leaf_cluster": self.textures[look.cluster]}
 
-    def _grow_grass(self) -> None:
-        """The grass around the grown trees (not the falling branches), as big as the trees are."""
-        standing = [p for p in self.placed if p.version >= 0 and p.buffers.view is not None]
-        if not standing:
-            return
-        heights = [float(np.asarray(p.buffers.view.hi)[1]) for p in standing]
-        radius = max(float(np.linalg.norm(np.asarray(p.buffers.view.hi) - np.asarray(p.buffers.view.lo))) / 2
-                     for p in standing)
-        self.grass.update([p.offset for p in standing], radius, max(max(heights), 4.0))
-
     def _scale(self, details: list[Detail], camera: OrbitCamera, height_px: int) -> float:
         """The resolution the trees are drawn at: the whole frame's, or on a software GL less when
         their leaves would cover the screen many times over (their pixels are the frame's cost)."""
         if self.samples > 1:
             return 1.0
         pixels = sum(p.buffers.leaf_area * d.leaf_share * d.leaf_grow**2
-                     / self._per_pixel(p.buffers, p.offset, camera, height_px) ** 2
+                     / pixel_size(p.buffers, p.offset, camera, height_px) ** 2
                      for p, d in zip(self.placed, details, strict=True) if p.buffers.view is not None)
         return min(max(math.sqrt(LEAF_PIXELS / max(pixels, 1.0)), MIN_SCALE), 1.0)
-
-    @staticmethod
-    def _per_pixel(buffers: TreeBuffers, offset: np.ndarray, camera: OrbitCamera, height_px: int) -> float:
-        """The size of a pixel (scene units) at the distance of the tree standing at ``offset``."""
-        view = buffers.view
-        centre = (np.asarray(view.lo) + np.asarray(view.hi)) / 2 + offset
-        distance = max(float(np.linalg.norm(centre - camera.eye)), 1e-3)
-        return 2 * distance * math.tan(math.radians(camera.fov_y) / 2) / height_px
 
     def _lit_uniforms(self, mvp: bytes, light: bytes, sun: np.ndarray, day: float) -> dict:
         zenith, _, _ = sky_colors(sun)
@@ -329,3 +299,35 @@ class GardenRenderer:
         for placed in self.placed:
             placed.buffers.release()
         self.placed = []
+
+
+def squeezed(buffers: TreeBuffers, detail: Detail, budget: int) -> Detail:
+    """``detail`` at the coarsest level and still over the vertex ``budget``: the thinnest grown segments and
+    a share of the grown leaves left out until it fits."""
+    lod = detail.lod
+    fixed = Detail(lod).vertices(buffers)  # young parts, blossoms, fruit: always drawn
+    leaves = min(detail.leaves, max(budget - fixed, 0) // 8)  # half the rest for leaves
+    share = float(buffers.hashes[leaves]) if leaves < len(buffers.hashes) else detail.leaf_share
+    room = (budget - fixed - 4 * leaves) // TEMPLATE_VERTICES[lod]  # the rest for wood
+    share, tubes = min(share, detail.leaf_share), min(detail.tubes, max(room, 0))
+    thinnest = float(buffers.radii[tubes - 1]) if 0 < tubes < len(buffers.radii) else detail.thinnest
+    return Detail(lod, tubes, leaves, share, cover_grow(share), max(thinnest, detail.thinnest))
+
+
+def pixel_size(buffers: TreeBuffers, offset: np.ndarray, camera: OrbitCamera, height_px: int) -> float:
+    """The size of a pixel (scene units) at the distance of the tree standing at ``offset``."""
+    view = buffers.view
+    centre = (np.asarray(view.lo) + np.asarray(view.hi)) / 2 + offset
+    distance = max(float(np.linalg.norm(centre - camera.eye)), 1e-3)
+    return 2 * distance * math.tan(math.radians(camera.fov_y) / 2) / height_px
+
+
+def grow_grass(grass: Grass, placed: list[Placed]) -> None:
+    """The grass around the grown trees (not the falling branches), as big as the trees are."""
+    standing = [p for p in placed if p.version >= 0 and p.buffers.view is not None]
+    if not standing:
+        return
+    heights = [float(np.asarray(p.buffers.view.hi)[1]) for p in standing]
+    radius = max(float(np.linalg.norm(np.asarray(p.buffers.view.hi) - np.asarray(p.buffers.view.lo))) / 2
+                 for p in standing)
+    grass.update([p.offset for p in standing], radius, max(max(heights), 4.0))
