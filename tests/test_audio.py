@@ -4,6 +4,7 @@ pygame's mixer on SDL's dummy driver (silent, but channels really play and stop)
 import os
 import time
 
+import numpy as np
 import pytest
 
 os.environ.setdefault("SDL_AUDIODRIVER", "dummy")
@@ -100,3 +101,37 @@ def test_a_pressed_menu_button_clicks(gl_ctx, tmp_path):
     game.menu.press(*widget.rect.center)  # (what the input layer does with a pointer down on it)
     game.update(1 / 60)
     assert game.audio.heard.count("click") == 1
+
+
+def test_the_wind_heard_is_the_wind_the_trees_sway_in_and_a_shower_blows_it_harder(gl_ctx, tmp_path):
+    from arbor.game.screens.game import Game, GameConfig
+
+    game = Game(gl_ctx, (640, 360), GameConfig(saves=tmp_path, seed=5, resume=False), clock=lambda: 100.0)
+    game.update(1 / 60)
+    dry = game.audio.levels["wind"]
+    strength = game.view.wind_strength()
+    height = max(float(game.renderer.hi[1]), 1.0)
+    assert np.linalg.norm(game.view.wind()) == pytest.approx(strength * 0.1 * height)  # (one number for both)
+    game.world.sim.raining = lambda: True
+    game.update(1 / 60)
+    assert game.view.wind_strength() == pytest.approx(strength * game.rules.weather.rain_wind)
+    assert game.audio.levels["wind"] > dry > 0.0 and game.audio.playing("rain")
+
+
+def test_crickets_sing_at_night_but_not_under_the_noon_light_shown_when_days_fly_by(gl_ctx, tmp_path):
+    from arbor.game.screens.game import Game, GameConfig
+
+    game = Game(gl_ctx, (640, 360), GameConfig(saves=tmp_path, seed=5, resume=False), clock=lambda: 100.0)
+    sim = game.world.sim
+    sim.state.sun_angle = next(a for a in np.linspace(0.0, 2 * np.pi, 64) if _sun_height(sim, a) < -0.4)
+    game.update(1 / 60)
+    assert game.audio.levels["night"] > 0.2  # a night at 1x: dark on the screen, crickets
+    game.set_speed(100.0)
+    game.update(1 / 60)
+    assert game.view.scene_sun()[1] > 0.3 and sim.sun_direction()[1] < 0.0  # the screen shows day light
+    assert game.audio.levels["night"] == 0.0  # so no crickets
+
+
+def _sun_height(sim, angle: float) -> float:
+    sim.state.sun_angle = angle
+    return float(sim.sun_direction()[1])

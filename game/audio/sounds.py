@@ -41,11 +41,12 @@ class Soundscape:
     clicks: int = 0
 
 
-def soundscape(world, wind_strength: float, clicks: int = 0) -> Soundscape:
+def soundscape(world, wind_strength: float, clicks: int = 0, sun: np.ndarray | None = None) -> Soundscape:
     """The soundscape of ``world`` (an engine World) in a wind of ``wind_strength``, ``clicks`` buttons
-    pressed so far."""
+    pressed so far, by day or night as ``sun`` shows it (the scene's sun, which at high game speeds
+    stays near noon: no crickets under a bright sky; by default the world's own sun)."""
     sim = world.sim
-    sun_height = float(sim.sun_direction()[1])
+    sun_height = float((sim.sun_direction() if sun is None else sun)[1])
     day = float(np.clip((sun_height + 0.15) / 0.35, 0.0, 1.0))  # (as the sky brightens: see render.backdrop)
     return Soundscape(float(wind_strength), bool(sim.raining()), bool(sim.state.watering), day,
                       len(world.journal.entries), int(clicks))

@@ -166,7 +166,8 @@ class Game:
     def update(self, real_seconds: float) -> None:
         """Advance the simulation by one frame's worth of fixed steps; autosave when due."""
         self.state.advance(real_seconds)
-        self.audio.hear(soundscape(self.world, self.rules.wind.strength, self.menu.presses), real_seconds)
+        self.audio.hear(soundscape(self.world, self.view.wind_strength(), self.menu.presses, self.view.scene_sun()),
+                        real_seconds)
         problem = self.sound.save_if_due()
         if problem:
             self.say(problem, 8)

@@ -236,12 +236,18 @@ class GameView:
         self.renderer.leaf_keep = seasons.leaf_keep(turns, self.rules)
 
     def wind(self) -> np.ndarray:
-        """The wind vector for the shaders: the rules' direction x strength, scaled to the tree's size,
-        with slow gusts (in real time: the air moves the same at every game speed)."""
-        rules = self.rules.wind
+        """The wind vector for the shaders: the rules' direction x :meth:`wind_strength`, scaled to the
+        tree's size."""
         height = max(float(self.renderer.hi[1]), 1.0)
+        a = math.radians(self.rules.wind.direction)
+        return np.array([math.cos(a), 0.0, math.sin(a)]) * self.wind_strength() * 0.1 * height
+
+    def wind_strength(self) -> float:
+        """How hard the wind blows now (the rule's unit): its strength with slow gusts (in real time: the
+        air moves the same at every game speed), harder in a shower. The trees sway and the wind is heard
+        (game/audio) by this one number."""
+        rules = self.rules.wind
         t = self.state.clock()
         gust = 1.0 + rules.gusts * (0.6 * math.sin(t * 0.23) + 0.4 * math.sin(t * 0.61 + 1.3))
-        a = math.radians(rules.direction)
         shower = self.rules.weather.rain_wind if self.state.world.sim.raining() else 1.0
-        return np.array([math.cos(a), 0.0, math.sin(a)]) * rules.strength * shower * 0.1 * height * max(gust, 0.0)
+        return rules.strength * shower * max(gust, 0.0)
