@@ -95,7 +95,21 @@ def main() -> None:
 
 
 LOOK = (1280, 720)
-SUMMER, AUTUMN, SPRING = 13.0, 18.0, 28.5  # days of the game's tree's first year: full crown, turning, in blossom
+AUTUMN, SPRING = 18.0, 28.5  # days of the game's tree's first year: turning, in blossom
+
+
+def summer_day() -> float:
+    """The last half day of the first year before the leaves begin to turn (the fullest green crown), by
+    the demo pace's seasons."""
+    from arbor.engine.life.plant import seasons
+    from arbor.engine.life.rules.rules import load_rules
+    from arbor.game.paths import ASSETS
+
+    rules = load_rules(ASSETS / "rules.toml", pace="demo")
+    day = 0.5
+    while seasons.autumn_colour(day + 0.5, rules) == 0.0 and day < AUTUMN:
+        day += 0.5
+    return day
 
 
 def _grow(days: float, seed: int, world=None, species: str = "game_tree"):
@@ -181,16 +195,17 @@ def look(folder: Path) -> list[Path]:
     pygame.init()
     folder.mkdir(parents=True, exist_ok=True)
     looks = _Looks(folder)
-    world = _grow(SUMMER, 3)
-    others = [_grow(SUMMER, 8, species="game_poplar"), _grow(SUMMER * 0.7, 12)]  # (a poplar: its own look)
+    summer = summer_day()
+    world = _grow(summer, 3)
+    others = [_grow(summer, 8, species="game_poplar"), _grow(summer * 0.7, 12)]  # (a poplar: its own look)
     tree = looks.placed(world)
     one = [tree]
     view = tree.buffers.view
-    print(f"tree after {SUMMER:g} days: {len(view.tubes):,} segments, {len(view.leaves):,} leaf cards")
+    print(f"tree after {summer:g} days: {len(view.tubes):,} segments, {len(view.leaves):,} leaf cards")
     looks.shot("day", looks.camera(one, 30.0), sun_direction(85.0, 40.0), one, world)
     looks.paths.append(edges_shot(looks, one, world))
     looks.shot("backlit", looks.camera(one, 30.0, 4.0), sun_direction(210.0, 14.0), one, world)
-    looks.shot("night", looks.camera(one, 30.0), sun_direction(30.0, -22.0), one, world)  # (the moon: opposite)
+    looks.shot("night", looks.camera(one, 30.0, 2.0), sun_direction(40.0, -10.0), one, world)  # (the moon: opposite)
     tubes = view.tubes.data
     foot = tubes[np.argmin(tubes[:, 1])]
     reach = float(foot[18]) * 9.0
@@ -205,7 +220,7 @@ def look(folder: Path) -> list[Path]:
         v = seen[0].buffers.view
         print(f"day {day:g}: {len(v.leaves):,} leaf cards, {len(v.blossoms):,} blossoms, {len(v.fruits):,} fruit")
         looks.shot(name, looks.camera(seen, 30.0), sun_direction(85.0, 35.0), seen, world)
-    looks.paths.append(title_shot(looks.ctx, folder, _grow(SUMMER, 3)))
+    looks.paths.append(title_shot(looks.ctx, folder, _grow(summer, 3)))
     looks.renderer.release()
     looks.ctx.release()
     return looks.paths

@@ -9,7 +9,7 @@ in vec3 in_dir;
 in float in_bright;
 out float v_bright;
 void main() {
-    v_bright = in_bright * u_night * smoothstep(0.02, 0.3, in_dir.y);
+    v_bright = in_bright * u_night * smoothstep(0.0, 0.15, in_dir.y);
     gl_PointSize = 1.5 + 2.0 * in_bright;
     vec4 p = u_vp * vec4(u_eye + in_dir * u_radius, 1.0);
     gl_Position = p.xyww;

@@ -2,7 +2,7 @@
 
 Cheap on purpose (a software GL like llvmpipe shades every pixel on the CPU): the sky gradient is per
 vertex of a dome on the far plane, so it only fills pixels nothing else covers; the sun (and at night
-the moon) is a small additive square, the stars a few hundred points; the ground shadow uses four filtered taps.
+the moon) is a small additive square, the stars some fifteen hundred points; the ground shadow uses four filtered taps.
 """
 
 from __future__ import annotations
@@ -21,7 +21,7 @@ NIGHT_ZENITH = (0.05, 0.08, 0.22)  # nights are dark blue, never black, lighter 
 NIGHT_HORIZON = (0.27, 0.31, 0.50)
 MOON = (0.80, 0.84, 0.92)
 MOONLIT = (0.03, 0.05, 0.09)  # what the moon adds to the ground at night
-STARS = 500  # points over the sky (a few hundred vertices: nothing for any GL)
+STARS = 1500  # points over the sky (a few thousand vertices: nothing for any GL)
 CLOUDS = 11  # cards in the sky, drifting with the wind
 CLOUD_DRIFT = 0.002  # radians of azimuth a second
 CLOUD_STEP = 0.004  # drift between redraws of the sky's picture on a software GL (about 3 px at 720 px)
