@@ -59,6 +59,14 @@ SWEEP_CASES = [  # (what is replaced, by what, line, column, words of the messag
      "'levels' must be from 0 to 1 share (0..1) (it is 2)"),
     ("watering = { below = 0.5, until = 0.7 }", "prune = { every_days = 7, keep_hight = 2 }", 7, 27,
      "unknown key 'keep_hight' in 'prune' (did you mean 'keep_height'?)"),
+    ('key = "orbit_height"', 'key = "orbit_hieght"', 11, 1,
+     "unknown factor key 'orbit_hieght' (did you mean 'orbit_height'?)"),
+    ('key = "orbit_height"\nlevels = [0.0, 1.0]', 'key = "water.drain_rat"\nlevels = [0.004, 0.01]', 11, 1,
+     "unknown factor key 'water.drain_rat' (did you mean 'water.drain_rate'?)"),
+    ("watering = { below = 0.5, until = 0.7 }", 'rules = { "watr.drain_rate" = 0.01 }', 7, 11,
+     "unknown rule 'watr.drain_rate' (did you mean 'water.drain_rate'?)"),
+    ('title = "Sun"', 'title = "Sun"\nresponses = ["hieght"]', 2, 1,
+     "unknown response 'hieght' (did you mean 'height'?)"),
 ]
 
 
@@ -82,6 +90,8 @@ LAB_CASES = [
     ("watering = { below = 0.55, until = 0.75 }", "watering = { every = -30 }", 9, 14, "'every' must be above 0"),
     ("watering = { below = 0.55, until = 0.75 }", 'rules = { "water.drain_rate" = -0.004 }', 9, 11,
      "'drain_rate' in [water] must be from 0"),
+    ("watering = { below = 0.55, until = 0.75 }", 'rules = { "water.drain_rat" = 0.01 }', 9, 11,
+     "unknown rule 'water.drain_rat' (did you mean 'water.drain_rate'?)"),
     ("watering = { below = 0.55, until = 0.75 }", "watering = { below = 0.8, until = 0.2 }", 9, 14,
      "'below' (0.8) must be under 'until' (0.2)"),
     ("seed = 5", "seed = -3", 2, 1, "'seed' must be from 0 to 4294967295 (it is -3)"),

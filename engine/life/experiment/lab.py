@@ -204,6 +204,7 @@ def parse_regime(reader: Reader, t, path: tuple, keys: dict) -> Regime:
     rules = reader.value(t, "rules", schema.TREE["rules"], path, {})
     probe = Rules()
     for key, value in rules.items():  # a known rule, within its range
+        reader.rule(key, (*path, "rules", key))
         set_rule(probe, key, value, reader.file, reader.error, at=reader.locator.find((*path, "rules", key)))
     sun = {key: reader.value(t, key, schema.SUN[key], path, 0.0) if key in t else None for key in schema.SUN}
     if sun["orbit_height"] is not None and sun["day_length"] is not None:

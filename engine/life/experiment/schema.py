@@ -18,6 +18,7 @@ import re
 from dataclasses import dataclass
 
 from arbor.engine.base.errors import LSysError
+from arbor.engine.life.rules.schema import SCHEMA as RULE_SCHEMA
 
 _HEADER = re.compile(r"\s*(\[\[?)\s*([^\]]*?)\s*\]\]?\s*(#.*)?$")
 
@@ -201,6 +202,20 @@ class Reader:
                 fix = f"did you mean {close[0]!r}?" if close else f"known keys: {', '.join(keys)}"
                 raise self.fail(f"unknown key {key!r} in {what} ({fix})", (*path, key))
         return data
+
+    def known(self, name: str, known: list[str], what: str, path: tuple, otherwise: str) -> None:
+        """``name`` is one of ``known``; else an error at ``path`` with the nearest one as the fix
+        (``otherwise`` when none is near)."""
+        if name in known:
+            return
+        close = difflib.get_close_matches(name, known, n=1, cutoff=0.6)
+        raise self.fail(f"unknown {what} {name!r} ({f'did you mean {close[0]!r}?' if close else otherwise})", path)
+
+    def rule(self, key: str, path: tuple, also: tuple[str, ...] = (), what: str = "rule") -> None:
+        """``key`` is a rule of rules.toml ("section.name") or one of ``also``; else an error at ``path``
+        with the nearest known key as the fix."""
+        otherwise = f"use {', '.join(also)} or a rule of docs/rules.md" if also else "docs/rules.md lists every rule"
+        self.known(key, [*also, *(r.key for r in RULE_SCHEMA)], what, path, otherwise)
 
     def value(self, data: dict, key: str, spec: Key, path: tuple, default=None):
         """``data[key]`` checked against ``spec`` (``default`` when missing; missing and no default: an error)."""

@@ -98,6 +98,7 @@ def _factor(reader: Reader, t, path: tuple, lsystem_dir: Path) -> Factor:
     elif key in REGIME_KEYS:
         levels = [reader.check(v, "levels", schema.FACTOR_KEYS[key], where) for v in levels]
     else:
+        reader.rule(key, (*path, "key"), also=(*REGIME_KEYS, "species"), what="factor key")
         levels = [reader.check(v, "levels", schema.Key("number", "a level"), where) for v in levels]
         probe = Rules()
         for level in levels:  # a known rule, every level in its range
@@ -132,9 +133,8 @@ def _seeds(reader: Reader, value) -> list[int]:
 
 def _responses(reader: Reader, value: list) -> tuple[str, ...]:
     for v in value:
-        if v not in RESPONSES:
-            raise reader.fail(f"unknown response {v!r}; choose from {', '.join(RESPONSES)} (docs/columns.md)",
-                              ("responses",))
+        reader.known(v, list(RESPONSES), "response", ("responses",),
+                     f"choose from {', '.join(RESPONSES)}; docs/columns.md")
     if not value:
         raise reader.fail("'responses' must name at least one response", ("responses",))
     return tuple(dict.fromkeys(value))
