@@ -97,6 +97,8 @@ LAB_CASES = [
     ("seed = 5", "seed = -3", 2, 1, "'seed' must be from 0 to 4294967295 (it is -3)"),
     ("seed = 5", "seed = 2.7", 2, 1, "'seed' must be a whole number, not 2.7"),
     ('name = "Dry"', 'name = "Watered"', 12, 1, "two trees are named 'Watered'"),
+    ('name = "Dry"', 'name = "watered!"', 12, 1,
+     "trees 'Watered' and 'watered!' would both be saved as watered.arbor: give each tree a name of its own"),
     ("sample_every = 30", "sample_evry = 30", 4, 1, "did you mean 'sample_every'?"),
     ('title = "Two trees"', 'title = "Two trees"\nspecies = "../x.lsys"', 2, 1, "'species' must be a file name"),
     ("watering = { below = 0.55, until = 0.75 }", "prune = { every_dayz = 7, keep_height = 2 }", 9, 11,

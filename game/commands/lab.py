@@ -8,7 +8,7 @@ from pathlib import Path
 import numpy as np
 
 from arbor.engine.base.units import METRE
-from arbor.engine.life.experiment.lab import Lab, load_experiment
+from arbor.engine.life.experiment.lab import Lab, load_experiment, save_stem
 from arbor.engine.life.keep.save import SavedGarden, write_garden
 from arbor.engine.life.rules.rules import load_rules
 from arbor.game.paths import ASSETS
@@ -58,8 +58,7 @@ def run_headless(experiment_path: Path, out: Path) -> list[Path]:
     finally:
         ctx.release()
     for world, regime in zip(lab.worlds, lab.experiment.regimes, strict=True):
-        name = "".join(c if c.isalnum() else "_" for c in regime.name).strip("_").lower() or "tree"
-        path = out / f"{name}.arbor"
+        path = out / f"{save_stem(regime.name)}.arbor"
         write_garden(SavedGarden([world], lsystem_name=lab.experiment.lsystem.name), path)
         files.append(path)
     return files

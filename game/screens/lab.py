@@ -14,7 +14,7 @@ import numpy as np
 import pygame
 
 from arbor.engine.base.units import METRE
-from arbor.engine.life.experiment.lab import Lab
+from arbor.engine.life.experiment.lab import Lab, save_stem
 from arbor.engine.life.keep.save import SavedGarden, write_garden
 from arbor.game.input.events import DOWN, KEY_DOWN, QUIT, InputEvent
 from arbor.game.loop import SPEEDS, FixedStepLoop
@@ -159,7 +159,6 @@ class LabScreen:
         save_png(pixels, folder / "screen.png")
         fbo.release()
         for world, regime in zip(self.lab.worlds, self.lab.experiment.regimes, strict=True):
-            tree = "".join(c if c.isalnum() else "_" for c in regime.name).strip("_").lower() or "tree"
             write_garden(SavedGarden([world], lsystem_name=self.lab.experiment.lsystem.name),
-                         folder / f"{tree}.arbor")
+                         folder / f"{save_stem(regime.name)}.arbor")
         return folder

@@ -33,7 +33,8 @@ from arbor.engine.life.world.world import World, sense_light
 from arbor.engine.lsystem.lsys import LSystem, load_lsystem
 
 MAX_TREES = 6
-__all__ = ["METRICS", "Experiment", "Lab", "Pruning", "Regime", "Watering", "crown_shape", "load_experiment", "measure"]
+__all__ = ["METRICS", "Experiment", "Lab", "Pruning", "Regime", "Watering", "crown_shape", "load_experiment", "measure",
+           "save_stem"]
 
 
 @dataclass
@@ -115,6 +116,11 @@ def load_experiment(path: str | Path, lsystem_dir: Path) -> Experiment:
     for i, name in enumerate(names):
         if name in names[:i]:
             raise reader.fail(f"two trees are named {name!r}: give each tree its own name", ("tree", i, "name"))
+    stems = [save_stem(name) for name in names]
+    for i, stem in enumerate(stems):
+        if stem in stems[:i]:
+            raise reader.fail(f"trees {names[stems.index(stem)]!r} and {names[i]!r} would both be saved as "
+                              f"{stem}.arbor: give each tree a name of its own", ("tree", i, "name"))
     spacing = reader.value(data, "spacing", schema.EXPERIMENT["spacing"], (), 0.0) or None
     if spacing is not None:
         check_shared_sun(reader, regimes, trees)
@@ -124,6 +130,12 @@ def load_experiment(path: str | Path, lsystem_dir: Path) -> Experiment:
             data, "duration", schema.EXPERIMENT["duration"], ()), sample_every=get("sample_every", 30.0),
         regimes=regimes, lsystem=lsystem_dir / species_name(reader, data, "lab"), file=file,
         pace=pace_value(reader, data), seasons=get("seasons", True), spacing=spacing, notes=reader.notes)
+
+
+def save_stem(name: str) -> str:
+    """The file name (without .arbor) a lab tree is saved under: its name's letters and digits in lower case,
+    anything else an underscore ('Full sun' -> full_sun)."""
+    return "".join(c if c.isalnum() else "_" for c in name).strip("_").lower() or "tree"
 
 
 def species_name(reader: Reader, data: dict, kind: str) -> str:
