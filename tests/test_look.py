@@ -226,6 +226,21 @@ def test_fruit_is_drawn_at_least_six_pixels_across_however_small(scene):
     assert cols.max() - cols.min() + 1 >= 6 and rows.max() - rows.min() + 1 >= 6  # (a 1 mm speck 60 units away)
 
 
+def test_a_blossom_is_a_flower_turned_to_the_eye_and_big_enough_to_see_even_when_its_card_is_edge_on(scene):
+    _, draw = scene
+    blossom = np.zeros((1, LEAF_FLOATS), np.float32)
+    blossom[0, 0:3], blossom[0, 3:6], blossom[0, 6:9] = (0.0, 3.0, 0.0), (0.0, 1.0, 0.0), (1.0, 0.0, 0.0)
+    blossom[0, 9], blossom[0, 10], blossom[0, 12] = 0.05, 0.05, 0.5  # a small flower on a card seen edge-on
+    view = StaticView(TubeInstances.empty(), LeafInstances.empty(), LeafInstances(blossom),
+                      np.array([-2.0, 0.0, -2.0]), np.array([2.0, 6.0, 2.0]))
+    camera = OrbitCamera(yaw=0.0, pitch=0.0, distance=60.0, target=np.array([0.0, 3.0, 0.0]))
+    image = draw(view, camera, np.array([0.3, 0.8, 0.5]))
+    pink = (image[..., 0] > image[..., 1] + 25) & (image[..., 2] > image[..., 1])
+    rows, cols = np.nonzero(pink)
+    assert len(rows) >= 20  # (petals, not a line: the card edge-on showed none)
+    assert cols.max() - cols.min() + 1 >= 6 and rows.max() - rows.min() + 1 >= 6  # (a flower in a 9-px card)
+
+
 def test_the_night_sky_has_stars_and_a_moon_and_the_day_sky_has_neither(scene):
     renderer, draw = scene
     camera = OrbitCamera(yaw=0.0, pitch=0.0, distance=9.0, target=np.array([0.0, 3.0, 0.0]))

@@ -2,9 +2,9 @@
 // Instanced leaves, blossoms and fruit: one quad per record (base, axis, normal, length, width, flex,
 // hash). Each leaf card (a spray of leaves in one texture) gets its own size and tilt by its hash. Leaves flutter in the wind on top of their twig's sway; at coarse levels of detail a share of
 // them (by hash) is dropped and the rest grow by u_grow to cover for them; in autumn a share (by another
-// hash) has fallen (u_keep). Fruit (u_ball = 1) is a ball: a quad turned to the eye, its width slot
-// holding its ripeness. Blossoms and fruit are never drawn smaller than u_min_pixels across (the size of
-// a pixel at unit distance is u_pixel; 0 in the shadow pass).
+// hash) has fallen (u_keep). Fruit and lit blossoms (u_ball = 1) are a quad turned to the eye round the
+// record's base (a fruit's width slot holds its ripeness). Blossoms and fruit are never drawn smaller than
+// u_min_pixels across (the size of a pixel at unit distance is u_pixel; 0 in the shadow pass).
 uniform mat4 u_mvp;
 uniform mat4 u_light_mvp;
 uniform vec3 u_offset;

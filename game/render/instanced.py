@@ -39,7 +39,7 @@ LENGTH = 9  # column of a leaf record's length (its width next)
 LEAF_LAYOUT = ("2f 3f 3f 3f 3f 1f", ("i_base", "i_axis", "i_normal", "i_size", "i_hash"))  # a corner, then the record
 CORNERS = np.array([[0, 0], [1, 0], [1, 1], [0, 1]], "f4")  # of a leaf's quad (four vertices per leaf: a
 QUAD = np.array([0, 1, 2, 0, 2, 3], "u4")  # software GL draws them faster than one instance per leaf)
-MIN_PIXELS = (0.0, 0.0, 7.0, 6.5, 0.0)  # per kind: blossoms and fruit are drawn at least this many pixels across
+MIN_PIXELS = (0.0, 0.0, 9.0, 6.5, 0.0)  # per kind: blossoms and fruit are drawn at least this many pixels across
 BARK_UV = (2.0, 1.0)  # the bark texture twice around a branch (u), once per growth step along it (v)
 
 
@@ -279,7 +279,10 @@ class InstancedTrees:
             per_part = {"u_tex": 0, "u_fraction": share if kind == 1 else 1.0, "u_min_pixels": MIN_PIXELS[kind],
                         "u_grow": detail.leaf_grow if kind == 1 else 1.0, "u_thinnest": detail.thinnest,
                         "u_min_radius": TWIG_RADIUS[lod],
-                        "u_keep": uniforms.get("u_keep", 1.0) if kind == 1 else 1.0, "u_ball": int(kind >= 3),
+                        "u_keep": uniforms.get("u_keep", 1.0) if kind == 1 else 1.0,
+                        # fruit is a ball and a lit blossom a flower, both turned to the eye (a small flower
+                        # on a card seen edge-on, or tilted, was a pink speck of a pixel or two)
+                        "u_ball": int(kind >= 3 or (kind == 2 and pass_ == "lit")),
                         # far away, leaves skip the shadow lookup (their shade is the AO)
                         "u_shadowed": float(pass_ != "lit" or kind == 0 or lod < 2)}
             if pass_ == "lit":
