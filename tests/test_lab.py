@@ -179,3 +179,50 @@ def test_the_competition_figure_draws_the_plot_against_the_tree_alone(tmp_path):
     assert "Middle: -10.0 % on average" in text and "time (game days)" in text  # the legend's mean, an axis unit
     image = mpimg.imread(png)[..., :3]
     assert image.shape[1] > 1000 and image.std() > 0.05
+
+
+def test_every_lab_tree_has_a_lineage_of_its_own_and_two_of_them_breed_a_child_of_two_parents(tmp_path):
+    from arbor.engine.life.keep.save import SavedGarden, write_garden
+    from arbor.game.commands.family import breed_saves
+
+    lab = Lab(load_experiment(EXPERIMENTS / "lesson_competition.toml", LSYS),
+              load_rules(ROOT / "assets" / "rules.toml", pace="demo"))
+    ids = [w.lineage.id for w in lab.worlds]
+    assert len(set(ids)) == 3 and all(len(i) == 16 for i in ids)  # (one seed gave all three one id)
+    again = Lab(load_experiment(EXPERIMENTS / "lesson_competition.toml", LSYS),
+                load_rules(ROOT / "assets" / "rules.toml", pace="demo"))
+    assert [w.lineage.id for w in again.worlds] == ids  # the same file, the same ids
+    saves = []
+    for world, regime in zip(lab.worlds[:2], lab.experiment.regimes, strict=False):
+        saves.append(tmp_path / f"{regime.name}.arbor")
+        write_garden(SavedGarden([world], lsystem_name=lab.experiment.lsystem.name), saves[-1])
+    garden = breed_saves(saves[0], saves[1], seed=3, out=tmp_path / "child.arbor", now=0.0)
+    assert sorted(garden.worlds[-1].lineage.parents) == sorted(ids[:2])  # a cross of two, not a self-cross
+
+
+def test_meters_and_wilt_are_sampled_as_mean_min_and_max_since_the_last_sample(tmp_path):
+    """A 240 s watering timetable swings the water meter within a day: a sample once a day gives the
+    mean, lowest and highest of every step since the sample before it, not one instant of the swing."""
+    path = tmp_path / "swing.toml"
+    path.write_text('title = "Swing"\nseed = 2\nduration = 760\nsample_every = 125.66667\nseasons = false\n\n'
+                    '[[tree]]\nname = "Timetable"\nwatering = { every = 240, seconds = 5 }\n', encoding="utf-8")
+    lab = Lab(load_experiment(path, LSYS), load_rules(ROOT / "assets" / "rules.toml", pace="demo"))
+    steps: list = []  # each step's meters after it, with None where a sample was taken (before the step)
+    while lab.time < lab.experiment.duration - 1e-9:
+        samples = len(lab.series[0].time)
+        lab.step()
+        if len(lab.series[0].time) > samples:
+            steps.append(None)
+        s = lab.worlds[0].sim.state
+        steps.append({"sun": s.sun_meter, "water": s.water_meter, "wilt": s.wilt})
+    marks = [i for i, v in enumerate(steps) if v is None]
+    values = lab.series[0].values
+    swings = 0
+    for k in range(1, len(marks)):
+        between = steps[marks[k - 1] + 1:marks[k]]
+        for meter in ("sun", "water", "wilt"):
+            trace = np.array([v[meter] for v in between])
+            assert values[meter][k] == pytest.approx(trace.mean(), abs=1e-9)
+            assert values[f"{meter}_min"][k] == trace.min() and values[f"{meter}_max"][k] == trace.max()
+        swings += values["water_max"][k] - values["water_min"][k] > 0.3
+    assert len(marks) >= 5 and swings >= 3  # the meter swung within most days, and the samples show it
