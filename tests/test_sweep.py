@@ -203,3 +203,20 @@ def test_a_quiet_sweep_says_nothing_and_a_verbose_one_a_line_per_run(sweep_file,
     assert len(runs) == want and (out == "" if flag == "--quiet" else "arbor sweep:" in out)
     assert "%|" not in err  # no progress bar either way (tqdm draws on stderr)
     assert (tmp_path / "out" / "tidy.csv").exists()
+
+
+@pytest.mark.parametrize("keep, seeds", [("all", ("03", "07")), ("first", ("03",)), ("none", ())])
+def test_kept_trees_are_named_by_level_and_seed(tmp_path, keep, seeds):
+    from arbor.game.cli import main
+    from arbor.game.report import set_level
+
+    path = tmp_path / "keep.toml"  # 2 levels x 2 seeds, 50 game seconds each
+    text = SWEEP.replace("seeds = 3", "seeds = [3, 7]").replace("duration = 150", "duration = 50")
+    path.write_text(text.split("[[factor]]\nname = \"Drain\"")[0], encoding="utf-8")
+    try:
+        args = ["-q", "sweep", str(path), "--out", str(tmp_path / "out"), "--workers", "1", "--no-plots"]
+        assert main([*args, "--keep", keep]) == 0
+    finally:
+        set_level()
+    kept = sorted(p.name for p in (tmp_path / "out" / "trees").iterdir())
+    assert kept == sorted(f"orbit_height={h}_seed{s}.arbor" for h in ("-0.6", "1") for s in seeds)
