@@ -1,6 +1,6 @@
-"""The teacher's guide's three lessons (docs/teaching.md) run as written, at reduced size: the files
-the guide names, shortened (fewer days and seeds), through the same commands, and what the guide says
-to expect shows in the numbers."""
+"""The teacher's guide's lessons (docs/teaching.md) run as written, at reduced size: the files the guide
+names, shortened (fewer days and seeds), through the very command the guide gives (read from it), and
+what the guide says to expect shows in the numbers."""
 
 from __future__ import annotations
 
@@ -11,7 +11,6 @@ from pathlib import Path
 
 from arbor.engine.life.experiment.lab import Lab, load_experiment
 from arbor.engine.life.rules.rules import load_rules
-from arbor.game.commands.sweep import run_sweep
 from arbor.game.paths import ASSETS
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -27,6 +26,20 @@ def shortened(name: str, tmp_path: Path, duration: float, seeds: int | None = No
     path = tmp_path / name
     path.write_text(text, encoding="utf-8")
     return path
+
+
+def as_written(name: str, path: Path, out: Path, *extra: str) -> None:
+    """Run the guide's own command for the lesson file ``name`` (``arbor sweep|lab assets/experiments/NAME
+    --out results/...``), on the shortened file ``path`` and into ``out``."""
+    from arbor.game.cli import main
+    from arbor.game.report import set_level
+
+    command = re.search(rf"`arbor (sweep|lab) assets/experiments/{re.escape(name)} --out results/\w+`", GUIDE)
+    assert command, f"docs/teaching.md gives no command for {name}"
+    try:
+        assert main(["-q", command.group(1), str(path), "--out", str(out), *extra]) == 0
+    finally:
+        set_level()
 
 
 def finals(out: Path, factor: str, response: str) -> dict[str, float]:
@@ -45,16 +58,17 @@ def test_the_guide_names_its_three_lesson_files_and_commands():
 def test_lesson_light_longer_days_catch_more_light(tmp_path):
     path = shortened("lesson_light.toml", tmp_path, 4 * 125.66667, seeds=2)
     out = tmp_path / "light"
-    assert run_sweep(path, out, workers=1, plots=False, echo=lambda _: None, keep="none") == 0
+    as_written("lesson_light.toml", path, out, "--workers", "1")  # with the figures the guide says to open
     light = finals(out, "Day length", "light_day")
     assert light["6"] < light["10"] < light["14"] < light["18"]  # the guide: light caught rises with day length
-    assert not list((out / "trees").iterdir())  # --keep none
+    for figure in ("dose_response.png", "time_series.png", "thumbnails.png"):
+        assert (out / figure).stat().st_size > 10_000, figure
 
 
 def test_lesson_water_rare_drinks_leave_the_meter_low(tmp_path):
     path = shortened("lesson_water.toml", tmp_path, 5 * 125.66667, seeds=2)
     out = tmp_path / "water"
-    assert run_sweep(path, out, workers=1, plots=False, echo=lambda _: None) == 0
+    as_written("lesson_water.toml", path, out, "--workers", "1", "--no-plots")
     low = finals(out, "Time between drinks", "water_min")
     assert low["30"] > low["240"]  # the guide: the longer the wait, the lower the meter falls between drinks
     biomass = finals(out, "Time between drinks", "biomass")
@@ -63,18 +77,23 @@ def test_lesson_water_rare_drinks_leave_the_meter_low(tmp_path):
 
 def test_lesson_competition_the_middle_tree_is_shaded(tmp_path):
     path = shortened("lesson_competition.toml", tmp_path, 10 * 125.66667)
-    lab = Lab(load_experiment(path, ASSETS / "lsystems"), load_rules(ASSETS / "rules.toml", "demo"))
-    lab.run()
-    share = {s.name: sum(s.values["light_share"][3:]) / len(s.values["light_share"][3:]) for s in lab.series}
+    out = tmp_path / "competition"
+    as_written("lesson_competition.toml", path, out)
+    rows = list(csv.DictReader(io.StringIO((out / "results.csv").read_text(encoding="utf-8"))))
+    share = {}
+    for tree in ("West", "Middle", "East"):
+        light = [float(r["light_share"]) for r in rows if r["tree"] == tree][3:]
+        share[tree] = sum(light) / len(light)
     assert share["Middle"] < min(share["West"], share["East"])  # shaded from both sides
+    assert all((out / name).is_file() for name in ("charts.png", "scene.png", "middle.arbor"))
+    lab = Lab(load_experiment(path, ASSETS / "lsystems"), load_rules(ASSETS / "rules.toml", "demo"))
     assert [w.position[0] for w in lab.worlds] == [-20.0, 0.0, 20.0]  # 2 m apart (10 scene units a metre)
 
 
 def test_lesson_pruning_a_raised_crown_builds_less_and_roots_take_a_larger_share(tmp_path):
-    assert "arbor sweep assets/experiments/lesson_pruning.toml" in GUIDE
     path = shortened("lesson_pruning.toml", tmp_path, 9 * 125.66667, seeds=1)
     out = tmp_path / "pruning"
-    assert run_sweep(path, out, workers=1, plots=False, echo=lambda _: None, keep="none") == 0
+    as_written("lesson_pruning.toml", path, out, "--workers", "1", "--no-plots", "--keep", "none")
     biomass = finals(out, "Lowest branches cut", "biomass")
     assert biomass["0"] > biomass["0.2"] > biomass["0.6"]  # the guide: the more cut, the less the tree builds
     assert finals(out, "Lowest branches cut", "pruned")["0"] == 0  # the control is never cut
