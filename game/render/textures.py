@@ -60,13 +60,29 @@ def periodic_noise(size: int, cycles: tuple[float, float], seed: int) -> np.ndar
     return field / max(float(np.abs(field).max()), 1e-9)
 
 
+def _smoothstep(lo: float, hi: float, x: np.ndarray) -> np.ndarray:
+    t = np.clip((x - lo) / (hi - lo), 0.0, 1.0)
+    return t * t * (3.0 - 2.0 * t)
+
+
 def bark_height(size: int = 256, seed: int = 3) -> np.ndarray:
-    """Bark relief (0 deep in a furrow .. 1 on a ridge), tileable: ridged noise stretched along the
-    branch (furrows run along v), broken into plates, with a fine grain on top."""
-    ridges = np.abs(periodic_noise(size, (6.0, 1.4), seed)) ** 0.45  # narrow furrows where the noise crosses 0
-    cracks = np.abs(periodic_noise(size, (3.0, 6.0), seed + 1)) ** 0.3  # plates broken across the branch
-    grain = periodic_noise(size, (40.0, 24.0), seed + 2)
-    height = ridges * (0.55 + 0.45 * cracks) + 0.05 * grain
+    """Bark relief (0 deep in a furrow .. 1 on a ridge), tileable: long ridges that part and meet again
+    (furrowed bark, as of an ash or an oak), the furrows the borders of cells five times longer along
+    the branch (v) than across it (u), wavering; on the ridges a rough surface and a fine grain."""
+    rng = np.random.default_rng(seed)
+    u, v = _grid(size)
+    u = u + 0.05 * periodic_noise(size, (3.0, 2.0), seed + 4)  # (the furrows waver)
+    nearest = np.full((size, size), 9.0)
+    second = np.full((size, size), 9.0)
+    for pu, pv in rng.random((70, 2)):  # cells' centres; distances wrap round the tile: no seams
+        d = np.hypot((u - pu + 0.5) % 1.0 - 0.5, ((v - pv + 0.5) % 1.0 - 0.5) / 5.0)
+        second = np.where(d < nearest, nearest, np.minimum(second, d))
+        nearest = np.minimum(nearest, d)
+    edge = second - nearest  # 0 on a border between two cells
+    ridges = _smoothstep(0.002, 0.018, edge) * (0.7 + 0.3 * _smoothstep(0.0, 0.07, edge))
+    rough = periodic_noise(size, (8.0, 5.0), seed + 6)
+    grain = periodic_noise(size, (48.0, 10.0), seed + 2)
+    height = ridges * (0.85 + 0.15 * rough) + 0.07 * grain
     return (height - height.min()) / max(float(np.ptp(height)), 1e-9)
 
 
