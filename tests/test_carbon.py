@@ -156,7 +156,7 @@ def test_blossoms_and_fruit_are_paid_for_and_set_only_as_far_as_the_pool_pays(sy
     assert flowering - plain == pytest.approx(2 * rules.carbon.blossom_cost + rules.carbon.fruit_cost)
     blossoms = parse_lstring("".join(f"[K({t})]" for t in range(200)))
     externs = {"T": 400.0, "G": 0.0, "DT": 1.0, "R": 1.0, "B": 0.0, "WL": 1.0, "SF": 1.0, "AF": 0.0, "SP": 1.0,
-               "SL": 0.0}
+               "SL": 0.0, "LG": 1.0}
     fruit = []
     for pays in (1.0, 0.0):  # what the pool pays for: everything, nothing
         ls, _ = Deriver(system, seed=1).step(blossoms, {**externs, "C": pays})

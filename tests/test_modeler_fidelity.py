@@ -129,7 +129,7 @@ def test_growth_points_wake_keeping_the_length_they_were_drawn_with(grown):
     for length in (1.0, 0.75, 0.5625, 0.3):
         ls = parse_lstring(f"I(0,0,0,0,0)[A({length},0,1,0,0.05)]A(0,0,0,1,0,0)")
         extern = {"T": 10.0, "G": 1.0, "DT": 50.0, "R": 1.0, "B": 0.0, "WL": 1.0, "SF": 1.0, "AF": 0.0, "SP": 0.0,
-                  "SL": 0.0, "C": 1.0}
+                  "SL": 0.0, "C": 1.0, "LG": 1.0}
         woken = Deriver(grown.tree.system, seed=1).step(ls, extern)[0]  # (the tree's own genome)
         apex = woken.module(int(np.flatnonzero(woken.sym == ord("A"))[0]))[1]
         order = apex[1]

@@ -76,7 +76,8 @@ def test_the_schema_is_what_the_rules_and_paces_use():
     assert Rules().sun.speed == 0.05 and Rules().seasons.enabled is True
     assert {r.key for r in SCHEMA} == {f"{s}.{k}" for s, section in vars(Rules()).items()
                                        if not isinstance(section, str | float) for k in vars(section)}
-    assert TIMES == ("growth.hold_time", "growth.deadline", "growth.penalty_time", "water.drown_time",
+    assert TIMES == ("growth.hold_time", "growth.deadline", "growth.penalty_time", "growth.daylight_memory",
+                     "water.drown_time",
                      "health.death_time", "light.interval", "carbon.reserve_time", "carbon.keep_time",
                      "carbon.starve_time")
     assert "water.fill_rate" not in RATES and len(RATES) == 17  # the watering can is held for seconds at any pace

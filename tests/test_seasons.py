@@ -190,7 +190,7 @@ def test_with_seasons_a_leaf_lives_out_its_season_and_in_an_endless_summer_it_ag
               "C": 1.0}
     falling = []
     for seasons_run in (1.0, 0.0):
-        ls, _ = Deriver(system, seed=2).step(old, {**summer, "SL": seasons_run})
+        ls, _ = Deriver(system, seed=2).step(old, {**summer, "SL": seasons_run, "LG": 1.0})
         leaf = np.flatnonzero(ls.sym == ord("L"))
         falling.append(int(np.count_nonzero(ls.params[ls.offsets[leaf] + 2] > 0)))
     assert falling == [0, 50]  # a summer leaf stays till autumn; without seasons every old leaf falls

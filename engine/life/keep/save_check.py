@@ -19,6 +19,7 @@ import numpy as np
 from arbor.engine.base.errors import LSysError
 from arbor.engine.life.plant.carbon import CarbonBudget
 from arbor.engine.life.plant.sim import GrowthCycle, SimState
+from arbor.engine.life.rules.schema import find_rule
 
 BIG = 1e12  # largest magnitude of any saved number (game time 30,000 years; coordinates far off-screen)
 
@@ -35,9 +36,11 @@ SIM_FIELDS = {
     "watering": ("bool", 0, 1), "length_time": ("float", 0.0, BIG), "girth_time": ("float", 0.0, BIG),
     "wilt": ("float", 0.0, 1.0), "drowning": ("float", 0.0, BIG), "dead_for": ("float", 0.0, BIG),
     "alive": ("bool", 0, 1), "sun_turns": ("float", 0.0, BIG), "weather_seed": ("int", 0, 2**63 - 1),
-    "root_time": ("float", 0.0, BIG),
+    "root_time": ("float", 0.0, BIG), "daylight": ("float", 0.0, 1.0),
 }
-OPTIONAL_SIM = {"sun_turns": 0.0, "weather_seed": 0, "root_time": 0.0}  # older saves have none
+# older saves have none (a tree from before the remembered daylight starts at the light that grows it at length_rate)
+OPTIONAL_SIM = {"sun_turns": 0.0, "weather_seed": 0, "root_time": 0.0,
+                "daylight": find_rule("growth.daylight_full").default}
 CYCLE_FIELDS = {"cycle": ("float", 0.0, BIG), "above": ("float", 0.0, BIG), "rate": ("float", 0.0, 1.0),
                 "earned": ("int", 0, 2**53)}
 CARBON_FIELDS = {  # [trees.carbon] (engine/life/plant/carbon.py); g, s, g per s, m², m³

@@ -148,13 +148,15 @@ class GrowingTree:
     def rewrite(self, length_time: float, girth_time: float, resources: float, leaf_vigour: float = 1.0,
                 season: dict[str, float] | None = None, vigour: float = 1.0) -> StepReport:
         """One derivation step at the given clocks (new modules are born now), then empty brackets go.
-        ``season``: the season's externs (SF, AF, SP, SL; see Simulation.season_externs); ``vigour`` (0..1,
+        ``season``: the season's externs (SF, AF, SP, SL; see Simulation.season_externs) and LG (how fast
+        T runs for the light caught: Simulation.light_growth); ``vigour`` (0..1,
         extern C): the share of its shoots' growth the carbon pool pays for (engine/life/plant/carbon.py).
         While a region confines growth (``confine``, for ``confine_left`` more rewrites) only modules
         inside it change."""
         extern = {"T": length_time, "G": girth_time, "DT": length_time - self.last_rewrite_T, "R": resources,
                   "B": self.budget_used, "WL": leaf_vigour, "C": vigour,
-                  "SF": 1.0, "AF": 0.0, "SP": 0.0, "SL": 0.0, **(season or {})}  # (no season given: an endless summer)
+                  "SF": 1.0, "AF": 0.0, "SP": 0.0, "SL": 0.0, "LG": 1.0,  # (none given: an endless summer)
+                  **(season or {})}
         only = None
         if self.confine is not None and self.confine_left > 0:
             view = render_view(self.lstring, Clocks(length_time, girth_time, 0.0), self.geometry_constants)
@@ -323,7 +325,9 @@ class GrowingTree:
             # it carries. A long branch with a few lit leaves at its tip starves like a shaded one.
             need = np.where(grown, CLUSTER_AREA * LEAF_ASPECT * const["LS"] ** 2, 0.0)
             need_above = subtree_sums(ls, segs, need, ends)
-            ratio = (got_above / np.maximum(need_above, 1e-12))[grown]
+            # In sugar, not in shares of the sky: the same share of a weak day's light earns less.
+            earns = economy.daylight ** 0.5 if economy is not None else 1.0
+            ratio = (earns * got_above / np.maximum(need_above, 1e-12))[grown]
             shade = params[off + 3]
             deep = ratio < const["SHQ"]
             params[off + 3] = np.where(deep, shade + dt * (1.0 + 2.0 * drought), np.maximum(shade - dt, 0.0))

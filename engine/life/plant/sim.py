@@ -66,6 +66,7 @@ class SimState:
     sun_turns: float = 0.0  # days of the sun so far (turns of its orbit): the calendar of the seasons
     weather_seed: int = 0  # which days it rains (see engine/life/seasons.py)
     root_time: float = 0.0  # the roots' clock: runs on water (engine/life/roots.py)
+    daylight: float = 0.2  # the light the leaves fixed sugar with, remembered (0..1 of fully lit, open leaves)
     sun_cycle: GrowthCycle = field(default_factory=GrowthCycle)
     water_cycle: GrowthCycle = field(default_factory=GrowthCycle)
 
@@ -86,7 +87,8 @@ class Simulation:
     def __init__(self, rules: Rules | None = None, state: SimState | None = None) -> None:
         self.rules = rules or Rules()
         if state is None:
-            state = SimState(orbit_height=self.rules.sun.orbit_height, sun_speed=self.rules.sun.speed)
+            state = SimState(orbit_height=self.rules.sun.orbit_height, sun_speed=self.rules.sun.speed,
+                             daylight=self.rules.growth.daylight_full)
         self.state = state
         self.root_share = 0.0  # how much of a full root system the tree has (set by its World)
         self.root_vigour = 1.0  # how fast the carbon pool lets the roots grow (set by its World; 0 .. 3)
@@ -145,15 +147,32 @@ class Simulation:
             sun_meter=float(rng.uniform(r.meter_min, r.meter_max)),
             water_meter=float(rng.uniform(r.meter_min, r.meter_max)),
             sun_turns=old.sun_turns, weather_seed=old.weather_seed,  # the calendar and weather go on
+            daylight=self.rules.growth.daylight_full,
         )
+
+    def remember_light(self, caught: float, seconds: float) -> None:
+        """Fold ``seconds`` of the light the leaves caught (0..1: sugar fixed per m² of leaf against a fully
+        lit, open leaf's; 0 at night) into the tree's remembered daylight (over ``daylight_memory``)."""
+        if seconds > 0:
+            weight = 1.0 - math.exp(-seconds / self.rules.growth.daylight_memory)
+            s = self.state
+            s.daylight = min(max(s.daylight + (caught - s.daylight) * weight, 0.0), 1.0)
+
+    def light_growth(self) -> float:
+        """How fast the light the leaves caught lets the shoots grow, x length_rate: in proportion to the
+        remembered daylight (``daylight_full`` gives 1), at most ``daylight_most``."""
+        g = self.rules.growth
+        return min(self.state.daylight / g.daylight_full, g.daylight_most)
 
     def growth_speeds(self) -> tuple[float, float]:
         """(length clock, girth clock) speeds right now.
 
-        Seed 003: the tree can grow only when BOTH meters have been above half for 20 s; a cycle that
-        takes longer than 40 s earns less. So both clocks run at the rules' rate x what each meter earned
-        (0 before its first 20 s above half, less after late cycles) x health (1 - wilt), and sun sets
-        the length-growth rate (x the sun meter's level), water the girth-growth rate (x its level).
+        The tamagotchi thesis: the tree can grow only when BOTH meters have been above half for 20 s; a
+        cycle that takes longer than 40 s earns less. So both clocks run at the rules' rate x what each
+        meter earned (0 before its first 20 s above half, less after late cycles) x health (1 - wilt).
+        The shoots grow as fast as the light their leaves caught lets them (:meth:`light_growth`: sugar
+        earns the new internodes; the thesis had the sun meter's level there), the girth as water lets it
+        (x the water meter's level).
         """
         s, g = self.state, self.rules.growth
         if not s.alive:
@@ -161,7 +180,7 @@ class Simulation:
         if s.drowning > self.rules.water.drown_time:  # drowned roots take up nothing: no growth
             return 0.0, 0.0
         gate = s.sun_cycle.rate * s.water_cycle.rate * (1.0 - s.wilt) * seasons.growth_factor(s.sun_turns, self.rules)
-        return g.length_rate * s.sun_meter * gate, g.girth_rate * s.water_meter * gate
+        return g.length_rate * self.light_growth() * gate, g.girth_rate * s.water_meter * gate
 
     def leaf_vigour(self) -> float:
         """How big new leaves grow and how well they stay (rules' leaf_min with no water, 1 when the

@@ -119,7 +119,7 @@ class World:
         vigour = self.carbon.share(rules, demand)
         self.carbon.vigour = vigour
         tree.rewrite(s.length_time, s.girth_time, self.sim.resources(), self.sim.leaf_vigour(),
-                     self.sim.season_externs(s.length_time), vigour)
+                     {**self.sim.season_externs(s.length_time), "LG": self.sim.light_growth()}, vigour)
         self.carbon.spend(carbon.built_cost(tree.lstring, s.length_time, const, rules, density))
 
     def economy(self, seconds: float, shine: float) -> Economy:
@@ -128,7 +128,8 @@ class World:
         drowned = s.drowning > rules.water.drown_time
         activity = min(max(seasons.growth_factor(s.sun_turns, rules), rules.carbon.dormant), 1.0)
         return Economy(self.carbon, rules, seconds, shine, carbon.stomata(self.sim.drought(), drowned), activity,
-                       carbon.wood_density(self.tree.system.constants, rules), seasons.leafy(s.sun_turns, rules))
+                       carbon.wood_density(self.tree.system.constants, rules), seasons.leafy(s.sun_turns, rules),
+                       self.sim.light_growth())
 
     def settle(self, seconds: float) -> None:
         """After a reading: the roots get their share of the pool (more in drought: a functional balance)
@@ -140,6 +141,16 @@ class World:
         self.carbon.roots_built += paid * demand
         self.sim.root_vigour = paid * boost
         self.sim.starving = self.carbon.starving
+        self.sim.remember_light(self.light_caught(), seconds)
+
+    def light_caught(self) -> float:
+        """The light the leaves fixed sugar with at the last reading, 0..1 of what fully lit, open leaves of
+        the same area would fix (0 at night); a bare tree counts the light its leaves last had."""
+        area, rules = self.carbon.leaf_area, self.rules
+        if area > 0:
+            return min(self.carbon.last_fixed_rate / (rules.carbon.assimilation * area), 1.0)
+        drowned = self.sim.state.drowning > rules.water.drown_time
+        return self.sim.sunshine() * carbon.stomata(self.sim.drought(), drowned) * self.tree.mean_light
 
     def prune(self, keep_height: float | None = None, lowest: float = 0.0) -> int:
         """Cut the tree back to ``keep_height`` metres and/or cut the ``lowest`` share of its trunk's

@@ -1,0 +1,177 @@
+"""Dose and response: how the plant model answers the sun and the can (issue figures of the plant model).
+
+Run: python -m benchmarks.dose [--seeds 6] [--days 30] [--workers 2] [--only sun|water]
+
+1. The sun-height example sweep (assets/experiments/sweep_sun_height.toml: orbit height -0.3 .. 1, kept
+   watered, an endless summer) with SEEDS seeds for DAYS game days: per level the mean height, leaf area,
+   leaf clusters and width; then, for height and leaf area, the largest step between neighbouring levels
+   against the mean step (goal: at most 2x) and whether the response rises with light at every step.
+2. The watering example sweep (sweep_watering.toml: a can of 5 s every 30 .. 240 s): per level the mean
+   height, leaf area, leaf clusters and share of trees alive, and which level is best (goal: an optimum
+   with drought and drowning both worse).
+3. The lab regimes, one seed each: a sun at orbit height 0.9 against -0.3 for 30 game days (height /
+   width ratios: goal a difference of at least 20 %), and the examples light_and_water.toml (a low sun on
+   one side: crown offset toward it at least 10 % of the height), sun_vs_shade.toml (the shaded tree:
+   at most 70 % of the leaf area, a thinner trunk) and drought_vs_watered.toml (smaller, fewer leaves).
+Every figure is read from the runs' last samples, as the sweep's summary.csv or the lab's CSV would give it.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import tempfile
+import time
+from concurrent.futures import ProcessPoolExecutor
+from pathlib import Path
+
+import numpy as np
+
+from arbor.engine.life.experiment.lab import Lab, load_experiment
+from arbor.engine.life.experiment.sweep import Sweep, execute, runs
+from arbor.engine.life.experiment.sweep_file import load_sweep
+from arbor.engine.life.rules.rules import load_rules
+from arbor.game.commands.sweep import _tasks
+from arbor.game.paths import ASSETS
+
+DAY = 125.66667  # game seconds per day of the sun at the demo pace
+SHOWN = ("height", "leaf_area", "leaves", "width", "modules", "shed")
+
+
+def shortened(name: str, days: float, seeds: int) -> Sweep:
+    """The example sweep ``name`` with ``days`` game days and ``seeds`` seeds (all responses recorded)."""
+    sweep = load_sweep(ASSETS / "experiments" / name, ASSETS / "lsystems")
+    sweep.duration = days * DAY
+    sweep.seeds = list(range(1, seeds + 1))
+    sweep.responses = tuple(dict.fromkeys((*sweep.responses, *SHOWN, "alive")))
+    return sweep
+
+
+def finals(sweep: Sweep, workers: int) -> dict[tuple, dict[str, np.ndarray]]:
+    """Every run's last sample, grouped by level: {levels: {response: values over the seeds}}."""
+    tasks = _tasks(sweep, runs(sweep), "none")
+    with ProcessPoolExecutor(workers) as pool:
+        outcomes = list(pool.map(execute, tasks, chunksize=1))
+    grouped: dict[tuple, dict[str, list[float]]] = {}
+    for outcome in outcomes:
+        group = grouped.setdefault(outcome.run.levels, {r: [] for r in sweep.responses})
+        for r in sweep.responses:
+            group[r].append(outcome.rows[-1][r])
+    return {k: {r: np.array(v) for r, v in g.items()} for k, g in grouped.items()}
+
+
+def steps(means: list[float]) -> tuple[float, bool]:
+    """(largest step / mean step, every step up) of a response over increasing levels."""
+    d = np.diff(np.asarray(means))
+    return float(np.abs(d).max() / max(abs(d.mean()), 1e-12)), bool((d > 0).all())
+
+
+def table(sweep: Sweep, got: dict, columns: tuple[str, ...]) -> dict[str, list[float]]:
+    """Print one row per level (means over seeds) and return the columns' means in level order."""
+    unit = {"height": "m", "leaf_area": "m²", "leaves": "", "width": "m", "alive": "share", "modules": "", "shed": ""}
+    print(f"{sweep.factors[0].name:>40} " + " ".join(f"{c + (' ' + unit[c] if unit[c] else ''):>13}"
+                                                   for c in columns))
+    means: dict[str, list[float]] = {c: [] for c in columns}
+    for level in sweep.factors[0].levels:
+        row = got[(level,)]
+        for c in columns:
+            means[c].append(float(row[c].mean()))
+        print(f"{level:>40} " + " ".join(f"{means[c][-1]:13.3f}" for c in columns))
+    return means
+
+
+def sun(days: float, seeds: int, workers: int) -> None:
+    """Part 1: the sun-height sweep and its steps."""
+    sweep = shortened("sweep_sun_height.toml", days, seeds)
+    start = time.perf_counter()
+    got = finals(sweep, workers)
+    print(f"sun height: {len(runs(sweep))} runs of {days:g} days, {time.perf_counter() - start:.1f} s")
+    means = table(sweep, got, (*SHOWN, "alive"))
+    hw = [h / max(w, 1e-9) for h, w in zip(means["height"], means["width"], strict=True)]
+    print("height / width by level: " + ", ".join(f"{r:.2f}" for r in hw))
+    for name in ("height", "leaf_area"):
+        ratio, rising = steps(means[name])
+        print(f"{name}: largest step / mean step {ratio:.2f} (goal <= 2), rises at every level: {rising}")
+
+
+def water(days: float, seeds: int, workers: int) -> None:
+    """Part 2: the watering sweep and its best level."""
+    sweep = shortened("sweep_watering.toml", days, seeds)
+    start = time.perf_counter()
+    got = finals(sweep, workers)
+    print(f"watering: {len(runs(sweep))} runs of {days:g} days, {time.perf_counter() - start:.1f} s")
+    means = table(sweep, got, (*SHOWN, "alive"))
+    best = int(np.argmax(means["leaf_area"]))
+    levels = sweep.factors[0].levels
+    inner = 0 < best < len(levels) - 1
+    print(f"most leaf area at every {levels[best]} s; an optimum inside the range (drowning and drought both "
+          f"worse): {inner}")
+
+
+HIGH_LOW = """title = "High and low sun"
+seasons = false
+seed = 5
+duration = 3770
+sample_every = 125.66667
+[[tree]]
+name = "Orbit height 0.9"
+orbit_height = 0.9
+watering = { below = 0.55, until = 0.75 }
+[[tree]]
+name = "Orbit height -0.3"
+orbit_height = -0.3
+watering = { below = 0.55, until = 0.75 }
+"""
+
+
+def lab_finals(path) -> list[tuple[str, dict[str, float]]]:
+    """Run one lab experiment file; each tree's name and last sample."""
+    experiment = load_experiment(path, ASSETS / "lsystems")
+    lab = Lab(experiment, load_rules(ASSETS / "rules.toml", experiment.pace))
+    lab.run()
+    return [(s.name, {m: v[-1] for m, v in s.values.items() if v}) for s in lab.series]
+
+
+def lab(_days: float, _seeds: int, workers: int) -> None:
+    """Part 3: the lab regimes (one process each, ``workers`` at a time)."""
+    with tempfile.TemporaryDirectory() as tmp:
+        high_low = Path(tmp) / "high_low.toml"
+        with open(high_low, "w", encoding="utf-8") as f:
+            f.write(HIGH_LOW)
+        files = [high_low, *(ASSETS / "experiments" / n for n in
+                             ("light_and_water.toml", "sun_vs_shade.toml", "drought_vs_watered.toml"))]
+        with ProcessPoolExecutor(workers) as pool:
+            results = list(pool.map(lab_finals, files))
+    print(f"{'lab tree':>24} {'height m':>9} {'width m':>8} {'h/w':>6} {'offset/h':>8} {'leaf m²':>8} "
+          f"{'leaves':>7} {'girth cm':>8}")
+    for found in results:
+        for name, v in found:
+            print(f"{name:>24} {v['height']:9.2f} {v['width']:8.2f} {v['height'] / max(v['width'], 1e-9):6.2f} "
+                  f"{v['offset'] / max(v['height'], 1e-9):8.2f} {v['leaf_area']:8.2f} {v['leaves']:7.0f} "
+                  f"{v['girth']:8.2f}")
+    (_, hi), (_, lo) = results[0]
+    a, b = hi["height"] / hi["width"], lo["height"] / lo["width"]
+    print(f"orbit 0.9 vs -0.3 after 30 days: h/w {a:.2f} vs {b:.2f}, differ by {abs(a - b) / min(a, b):.0%} "
+          f"(goal >= 20 %)")
+
+
+def main() -> None:
+    """Parse the options and run the parts."""
+    parser = argparse.ArgumentParser(prog="python -m benchmarks.dose", description=__doc__.split("\n")[0])
+    parser.add_argument("--seeds", type=int, default=6, help="seeds per level (default 6)")
+    parser.add_argument("--days", type=float, default=30.0, help="game days of each run (default 30)")
+    parser.add_argument("--workers", type=int, default=2, help="worker processes (default 2)")
+    parser.add_argument("--only", choices=("sun", "water", "lab"), help="run one part only")
+    args = parser.parse_args()
+    one, five, _ = os.getloadavg()
+    print(f"load average {one:.1f} {five:.1f} on {os.cpu_count()} cores")
+    if args.only in (None, "sun"):
+        sun(args.days, args.seeds, args.workers)
+    if args.only in (None, "water"):
+        water(args.days, args.seeds, args.workers)
+    if args.only in (None, "lab"):
+        lab(args.days, args.seeds, args.workers)
+
+
+if __name__ == "__main__":
+    main()
