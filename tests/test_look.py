@@ -326,3 +326,15 @@ def test_a_camera_close_over_a_seedling_sees_no_black_gap_past_the_ground(gl_ctx
     pixels = np.frombuffer(fbo.read(components=3), np.uint8).reshape(size[1], size[0], 3)[::-1].astype(int)
     beside_hud = pixels[250:520, 800:]  # sky, the far edge of the ground, the ground (no HUD text here)
     assert (beside_hud.sum(axis=2) < 40).sum() < 20  # no band of the cleared framebuffer where the disc ends
+
+
+def test_the_ground_speckle_is_soft_blotches_that_tile_not_a_grid_of_squares():
+    from arbor.game.render.backdrop import ground_speckle
+
+    speckle = ground_speckle().astype(float)
+    steps = np.abs(np.diff(speckle, axis=1))  # from a texel to the next
+    seam = np.abs(speckle[:, 0] - speckle[:, -1]).mean()  # across the tile's edge
+    assert speckle.std() > 50  # (as strong a speckle as the random cells it is made of)
+    # no jumps between neighbours (cells blown up to squares jump by 140 levels or more at one step in 20)
+    assert np.percentile(steps, 95) < 80 and steps.max() < 130
+    assert seam < 1.2 * steps.mean()  # and no seam where the tile repeats

@@ -1,6 +1,6 @@
 #version 330
 // Ground rings: the fade into the horizon and the sun's light are per vertex, so a pixel only mixes
-// two colours and reads one small noise texel (a software GL shades every pixel on the CPU).
+// two colours and reads one noise texel, the nearest (a software GL shades every pixel on the CPU).
 uniform mat4 u_mvp;
 uniform float u_fade_start;
 uniform float u_fade_end;
