@@ -65,6 +65,13 @@ SWEEP_CASES = [  # (what is replaced, by what, line, column, words of the messag
      "unknown factor key 'water.drain_rat' (did you mean 'water.drain_rate'?)"),
     ("watering = { below = 0.5, until = 0.7 }", 'rules = { "watr.drain_rate" = 0.01 }', 7, 11,
      "unknown rule 'watr.drain_rate' (did you mean 'water.drain_rate'?)"),
+    ('key = "orbit_height"\nlevels = [0.0, 1.0]', 'key = "day_of_year"\nlevels = [172, 355]', 11, 1,
+     "a factor 'day_of_year' needs 'latitude': give it in [base] or vary it too"),
+    ('[base]\nwatering = { below = 0.5, until = 0.7 }\n\n[[factor]]\nname = "Sun orbit height"\n'
+     'key = "orbit_height"\nlevels = [0.0, 1.0]', '[base]\nlatitude = 52\n\n[[factor]]\nname = "Date"\n'
+     'key = "day_of_year"\nlevels = [172, 355]', 12, 1, "at latitude 52 on day 355 the noon sun stands 14.6 degrees"),
+    ('watering = { below', 'latitude = 52\nday_of_year = 172\nwatering = { below', 13, 1,
+     "a factor 'orbit_height' with a place and date (latitude, day_of_year): vary 'latitude' or 'day_of_year'"),
     ('title = "Sun"', 'title = "Sun"\nresponses = ["hieght"]', 2, 1,
      "unknown response 'hieght' (did you mean 'height'?)"),
 ]
@@ -109,6 +116,13 @@ LAB_CASES = [
     ("watering = { below = 0.55, until = 0.75 }", "prune = { lowest = 1.5 }", 9, 11, "'lowest' must be from 0 to 1"),
     ("watering = { below = 0.55, until = 0.75 }", "prune = { every_days = 0, lowest = 0.2 }", 9, 11,
      "'every_days' must be above 0"),
+    ("orbit_height = 0.6\nwatering", "latitude = 52\nwatering", 8, 1, "give 'day_of_year' with 'latitude'"),
+    ("orbit_height = 0.6\nwatering", "latitude = 52\nday_of_year = 172\nday_length = 12\nwatering", 10, 1,
+     "give 'latitude' and 'day_of_year' or 'day_length', not both"),
+    ("orbit_height = 0.6\nwatering", "latitude = 52\nday_of_year = 355\nwatering", 8, 1,
+     "at latitude 52 on day 355 the noon sun stands 14.6 degrees high, below Arbor's lowest (15)"),
+    ("orbit_height = 0.6\nwatering", "latitude = 80\nday_of_year = 172\nwatering", 8, 1,
+     "'latitude' must be from -66 to 66 degrees north (it is 80)"),
 ]
 
 
@@ -158,3 +172,28 @@ def test_day_length_and_sun_elevation_set_the_sun_apart(tmp_path):
     import math
 
     assert abs(math.degrees(math.asin(direction[1])) - 45) < 0.5
+
+
+def test_a_place_and_a_date_set_the_day_length_and_the_noon_sun(tmp_path):
+    import math
+
+    from arbor.engine.life.experiment.lab import Lab
+    from arbor.engine.life.experiment.schema import latitude_sun
+    from arbor.engine.life.rules.rules import load_rules
+
+    hours, noon = latitude_sun(0, 80)  # the equator at the March equinox: 12 h, the sun overhead
+    assert abs(hours - 12) < 0.05 and noon > 89
+    hours, noon = latitude_sun(52, 172)  # 52 deg north at midsummer (Berlin): 16.5 h, 61.4 deg (no refraction)
+    assert abs(hours - 16.5) < 0.05 and abs(noon - 61.4) < 0.1
+    assert latitude_sun(-52, 355) == pytest.approx(latitude_sun(52, 172), abs=0.05)  # the south's midsummer
+    path = tmp_path / "place.toml"
+    text = LAB.replace("orbit_height = 0.6", "latitude = 52\nday_of_year = 172", 1)
+    path.write_text(text.replace("seed = 5", "seed = 5\nseasons = false"), encoding="utf-8")
+    s = Lab(load_experiment(path, LSYS), load_rules(ASSETS / "rules.toml", "demo")).worlds[0].sim
+    lit = 0
+    for _ in range(1000):  # one whole day of the sun, in steps
+        s.state.sun_angle += 2 * math.pi / 1000
+        lit += s.sun_height() > 0
+    assert abs(lit / 1000 * 24 - hours) < 0.1
+    s.state.sun_angle = math.pi / 2  # noon
+    assert abs(math.degrees(math.asin(s.sun_direction()[1])) - noon) < 0.5

@@ -164,7 +164,7 @@ def test_a_folder_of_another_sweep_is_refused(sweep_file, pooled, tmp_path):
 
 
 @pytest.mark.parametrize("change, message", [
-    (("key = \"orbit_height\"", "key = \"water.nonsense\""), "unknown rule 'water.nonsense'"),
+    (("key = \"orbit_height\"", "key = \"water.nonsense\""), "unknown factor key 'water.nonsense' \\(use orbit_height"),
     (("seeds = 3", "seeds = 0"), "'seeds' must be 1 to"),
     (("seeds = 3", "seeds = 501"), "'seeds' must be 1 to 500"),
     (("levels = [-0.6, 1.0]", "levels = [1.0, 1.0]"), "must not repeat"),

@@ -1,7 +1,8 @@
 """The educators' lab: several trees from one seed, each under its own regime, grown in lock-step.
 
 An experiment file (TOML, read strictly by engine/life/experiment/schema.py) names the trees and their
-regimes: the sun (orbit height or day length in hours, noon elevation in degrees, speed), a watering
+regimes: the sun (orbit height or day length in hours, noon elevation in degrees, or a place and date:
+latitude and day of the year; speed), a watering
 schedule (keep the water meter between two levels, water on a timetable, or never), a pruning
 schedule (every so many game days: back to a height in metres, and/or the lowest share of the
 branches cut) and rule overrides
@@ -78,6 +79,8 @@ class Regime:
     sun_speed: float | None = None  # rad per s
     day_length: float | None = None  # hours of daylight (sets the orbit height)
     sun_elevation: float | None = None  # degrees at noon (sets the rule sun.side)
+    latitude: float | None = None  # degrees north: with day_of_year, sets the day length and the noon elevation
+    day_of_year: int | None = None
     watering: Watering = field(default_factory=Watering)
     rules: dict[str, float | bool] = field(default_factory=dict)
     prune: Pruning | None = None  # (None: never pruned)
@@ -163,7 +166,7 @@ def pace_value(reader: Reader, data: dict) -> str:
 
 def check_shared_sun(reader: Reader, regimes: list[Regime], tables: list[dict]) -> None:
     """Trees on one plot share one sun: their sun keys must agree."""
-    keys = ("orbit_height", "sun_speed", "day_length", "sun_elevation")
+    keys = ("orbit_height", "sun_speed", "day_length", "sun_elevation", "latitude", "day_of_year")
     first = [getattr(regimes[0], k) for k in keys]
     for i, regime in enumerate(regimes[1:], 1):
         for key, want in zip(keys, first, strict=True):
@@ -206,8 +209,9 @@ def parse_pruning(reader: Reader, prune, path: tuple) -> Pruning | None:
     return pruning
 
 
-def parse_regime(reader: Reader, t, path: tuple, keys: dict) -> Regime:
-    """One tree's regime from its table (sun, watering, rule overrides), checked against ``keys``."""
+def parse_regime(reader: Reader, t, path: tuple, keys: dict, factors: tuple[str, ...] = ()) -> Regime:
+    """One tree's regime from its table (sun, watering, rule overrides), checked against ``keys``; a sweep's
+    base gives its ``factors`` (their keys), which may complete a place and date."""
     reader.table(t, keys, path, f"[[{path[0]}]] #{path[1] + 1}" if len(path) > 1 else f"[{path[0]}]")
     name = reader.value(t, "name", schema.TREE["name"], path) if "name" in keys else "base"
     if not name.strip():
@@ -224,9 +228,46 @@ def parse_regime(reader: Reader, t, path: tuple, keys: dict) -> Regime:
                           (*path, "day_length"))
     if sun["sun_elevation"] is not None and "sun.side" in rules:
         raise reader.fail("give 'sun_elevation' or the rule \"sun.side\", not both", (*path, "sun_elevation"))
+    place = [key for key in ("latitude", "day_of_year") if sun[key] is not None]
+    if place or {"latitude", "day_of_year"} & set(factors):
+        check_place(reader, sun, path, place, rules, factors)
     prune = parse_pruning(reader, reader.value(t, "prune", schema.TREE["prune"], path) if "prune" in t else None,
                           (*path, "prune"))
     return Regime(name=name, watering=watering, rules=dict(rules), prune=prune, **sun)
+
+
+def check_place(reader: Reader, sun: dict, path: tuple, given: list[str], rules: dict,
+                factors: tuple[str, ...] = ()) -> None:
+    """A place and date (latitude, day_of_year) come together (one of them may be a sweep's factor), set the
+    sun alone, and give a noon sun no lower than Arbor's lowest."""
+    if len(given) == 1 and ("day_of_year" if given[0] == "latitude" else "latitude") not in factors:
+        other = "day_of_year" if given[0] == "latitude" else "latitude"
+        raise reader.fail(f"give '{other}' with '{given[0]}' (a place and a date set the sun together)",
+                          (*path, given[0]))
+    for key in ("orbit_height", "day_length", "sun_elevation"):
+        if sun[key] is not None:
+            raise reader.fail(f"give 'latitude' and 'day_of_year' or {key!r}, not both (the place and date set "
+                              "the day length and the noon sun)", (*path, key))
+    if "sun.side" in rules:
+        raise reader.fail("give 'latitude' or the rule \"sun.side\", not both", (*path, "rules", "sun.side"))
+    if sun["latitude"] is not None and sun["day_of_year"] is not None:  # (a sweep checks its levels itself)
+        check_noon(reader, sun["latitude"], sun["day_of_year"], (*path, "latitude"))
+
+
+def check_noon(reader: Reader, latitude: float, day_of_year: float, path: tuple) -> None:
+    """The noon sun at this place and date stands at least schema.LOWEST_SUN degrees high."""
+    _, noon = schema.latitude_sun(latitude, day_of_year)
+    if noon < schema.LOWEST_SUN:
+        raise reader.fail(f"at latitude {latitude:g} on day {day_of_year:g} the noon sun stands {noon:.1f} degrees "
+                          f"high, below Arbor's lowest ({schema.LOWEST_SUN:g}): choose a date nearer midsummer or a "
+                          "latitude nearer the equator", path)
+
+
+def sun_of(regime: Regime) -> tuple[float | None, float | None]:
+    """The regime's (day length in hours, noon elevation in degrees): its own, or its place and date's."""
+    if regime.latitude is not None and regime.day_of_year is not None:
+        return schema.latitude_sun(regime.latitude, regime.day_of_year)
+    return regime.day_length, regime.sun_elevation
 
 
 def regime_rules(base: Rules, regime: Regime, file: str = "<experiment>") -> Rules:
@@ -237,8 +278,9 @@ def regime_rules(base: Rules, regime: Regime, file: str = "<experiment>") -> Rul
     try:
         for key, value in regime.rules.items():
             set_rule(rules, key, value, file, ExperimentError)
-        if regime.sun_elevation is not None:
-            rules.sun.side = schema.elevation_side(regime.sun_elevation, orbit_height(regime, rules))
+        elevation = sun_of(regime)[1]
+        if elevation is not None:
+            rules.sun.side = schema.elevation_side(elevation, orbit_height(regime, rules))
         check_rules(rules, file, ExperimentError)
     except ExperimentError as err:
         raise ExperimentError(f"tree {regime.name!r}: {err.message}", err.file, err.line, err.col) from None
@@ -246,11 +288,13 @@ def regime_rules(base: Rules, regime: Regime, file: str = "<experiment>") -> Rul
 
 
 def orbit_height(regime: Regime, rules: Rules) -> float:
-    """The orbit height a regime asks for: its own, the one its day length gives, or the rules'."""
+    """The orbit height a regime asks for: its own, the one its day length (or place and date) gives, or the
+    rules'."""
     if regime.orbit_height is not None:
         return regime.orbit_height
-    if regime.day_length is not None:
-        return schema.day_length_height(regime.day_length)
+    hours = sun_of(regime)[0]
+    if hours is not None:
+        return schema.day_length_height(hours)
     return rules.sun.orbit_height
 
 
@@ -285,7 +329,7 @@ class Lab:
         world = World(self.system, rules, seed=self.experiment.seed)
         ident = hashlib.sha256(f"{world.lineage.id}|lab|{index}|{regime.name}".encode()).hexdigest()[:16]
         world.lineage = replace(world.lineage, id=ident)  # every tree a line of its own
-        if regime.orbit_height is not None or regime.day_length is not None:
+        if regime.orbit_height is not None or sun_of(regime)[0] is not None:
             world.apply(Action.ORBIT_HEIGHT, orbit_height(regime, rules))
         if regime.sun_speed is not None:
             world.apply(Action.SUN_SPEED, regime.sun_speed)

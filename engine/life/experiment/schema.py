@@ -75,7 +75,12 @@ SUN = {
     "day_length": Key("number", "hours of daylight in a game day of 24 game hours (sets orbit_height)", "h",
                       1.0, 23.0),
     "sun_elevation": Key("number", "the sun's elevation at noon (sets sun.side)", "degrees", 15.0, 90.0),
+    "latitude": Key("number", "or: a place on Earth, with day_of_year (sets day_length and sun_elevation)",
+                    "degrees north", -66.0, 66.0),
+    "day_of_year": Key("whole", "the date at that latitude (1 = 1 January, 172 = midsummer in the north)", "day",
+                       1, 365),
 }
+LOWEST_SUN = SUN["sun_elevation"].low  # degrees: the lowest noon sun a file may ask for
 TREE = {
     "name": Key("text", "the tree's name in charts, tables and save names (unique)"),
     **SUN,
@@ -208,7 +213,7 @@ class Reader:
         (``otherwise`` when none is near)."""
         if name in known:
             return
-        close = difflib.get_close_matches(name, known, n=1, cutoff=0.6)
+        close = difflib.get_close_matches(name, known, n=1, cutoff=0.75)  # (not a near miss: no guess)
         raise self.fail(f"unknown {what} {name!r} ({f'did you mean {close[0]!r}?' if close else otherwise})", path)
 
     def rule(self, key: str, path: tuple, also: tuple[str, ...] = (), what: str = "rule") -> None:
@@ -253,6 +258,17 @@ def day_length_height(hours: float) -> float:
     """The orbit height whose sun is up ``hours`` of a game day's 24 hours (the sun's height on its orbit is
     orbit_height + sin(angle), so it is up a share 1/2 + asin(orbit_height)/pi of the day)."""
     return math.sin(math.pi * (hours / 24.0 - 0.5))
+
+
+def latitude_sun(latitude: float, day_of_year: float) -> tuple[float, float]:
+    """(hours of daylight, noon elevation in degrees) at ``latitude`` (degrees north) on ``day_of_year``:
+    the sun's declination -23.44 deg x cos(2 pi (day + 10) / 365), the noon elevation 90 - |latitude -
+    declination|, the day 2 acos(-tan(latitude) tan(declination)) / 15 deg hours long (Cooper's formula
+    and the sunrise equation, the sun as a point, no refraction)."""
+    declination = -23.44 * math.cos(2 * math.pi * (day_of_year + 10) / 365)
+    lat, dec = math.radians(latitude), math.radians(declination)
+    cos_hour = max(-1.0, min(1.0, -math.tan(lat) * math.tan(dec)))
+    return 2 * math.degrees(math.acos(cos_hour)) / 15.0, 90.0 - abs(latitude - declination)
 
 
 def elevation_side(degrees: float, orbit_height: float) -> float:

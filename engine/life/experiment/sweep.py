@@ -22,7 +22,8 @@ from arbor.engine.life.rules.rules import Rules
 from arbor.engine.lsystem.lsys import parse_lsystem
 
 RESPONSES = tuple(m for m in METRICS if m != "day_of_death")  # (no number for a tree still alive)
-REGIME_KEYS = ("orbit_height", "sun_speed", "day_length", "sun_elevation", "watering.every", "watering.below",
+SUN_KEYS = ("orbit_height", "sun_speed", "day_length", "sun_elevation", "latitude", "day_of_year")
+REGIME_KEYS = (*SUN_KEYS, "watering.every", "watering.below",
                "prune.every_days", "prune.keep_height", "prune.lowest")
 MAX_FACTORS, MAX_LEVELS, MAX_SEEDS, MAX_RUNS = 2, 24, 500, 5000
 
@@ -127,7 +128,7 @@ def execute(task: Task) -> Outcome:
 
 
 def _set_regime(regime: Regime, key: str, value: float) -> None:
-    if key in ("orbit_height", "sun_speed", "day_length", "sun_elevation"):
+    if key in SUN_KEYS:
         setattr(regime, key, value)
         if key == "orbit_height":
             regime.day_length = None

@@ -13,9 +13,10 @@ Example (assets/experiments/sweep_sun_height.toml)::
 
     [[factor]]
     name = "Sun orbit height"
-    key = "orbit_height"       # orbit_height, sun_speed, day_length, sun_elevation, watering.every,
-    levels = [-0.4, 0.0, 0.35, 0.7, 1.0]   # watering.below, prune.every_days, prune.keep_height,
-                                           # prune.lowest, species, or any "section.key" of rules.toml
+    key = "orbit_height"       # orbit_height, sun_speed, day_length, sun_elevation, latitude, day_of_year,
+    levels = [-0.4, 0.0, 0.35, 0.7, 1.0]   # watering.every, watering.below, prune.every_days,
+                                           # prune.keep_height, prune.lowest, species, or any "section.key"
+                                           # of rules.toml
 """
 
 from __future__ import annotations
@@ -26,7 +27,7 @@ from pathlib import Path
 from arbor.engine.base.config import read_toml
 from arbor.engine.base.errors import SweepError
 from arbor.engine.life.experiment import schema
-from arbor.engine.life.experiment.lab import pace_value, parse_regime, species_name
+from arbor.engine.life.experiment.lab import check_noon, pace_value, parse_regime, species_name
 from arbor.engine.life.experiment.schema import Reader
 from arbor.engine.life.experiment.sweep import (
     MAX_FACTORS,
@@ -55,9 +56,11 @@ def load_sweep(path: str | Path, lsystem_dir: Path) -> Sweep:
     if duration / every > MAX_SAMPLES:
         raise reader.fail(f"'sample_every' gives more than {MAX_SAMPLES} samples per run: take a larger one",
                           ("sample_every",))
-    base = parse_regime(reader, get("base", {}), ("base",), schema.BASE)
+    varied = tuple(t.get("key") for t in data.get("factor", []) if isinstance(t, dict))
+    base = parse_regime(reader, get("base", {}), ("base",), schema.BASE, factors=varied)
     species = _species_file(reader, species_name(reader, data, "sweep"), lsystem_dir, ("species",))
     factors = _factors(reader, data, lsystem_dir)
+    _check_place(reader, base, factors)
     for i, factor in enumerate(factors):
         if factor.key == "prune.every_days" and base.prune is None:
             raise reader.fail("a factor 'prune.every_days' needs what to cut: give [base] a prune = { keep_height = "
@@ -106,6 +109,31 @@ def _factor(reader: Reader, t, path: tuple, lsystem_dir: Path) -> Factor:
     if len(set(levels)) != len(levels):
         raise reader.fail("'levels' must not repeat a value", where)
     return Factor(str(t.get("name", key)), key, tuple(levels))
+
+
+def _check_place(reader: Reader, base, factors: list[Factor]) -> None:
+    """A place and date (latitude, day_of_year; each from [base] or a factor) set the sun alone, and every
+    combination of their levels gives a noon sun no lower than Arbor's lowest."""
+    keys = [f.key for f in factors]
+    place = base.latitude is not None or base.day_of_year is not None or {"latitude", "day_of_year"} & set(keys)
+    if not place:
+        return
+    for i, key in enumerate(keys):
+        if key in ("orbit_height", "day_length", "sun_elevation"):
+            raise reader.fail(f"a factor {key!r} with a place and date (latitude, day_of_year): vary 'latitude' "
+                              "or 'day_of_year' instead", ("factor", i, "key"))
+        other = {"latitude": "day_of_year", "day_of_year": "latitude"}.get(key)
+        if other and other not in keys and getattr(base, other) is None:
+            raise reader.fail(f"a factor {key!r} needs {other!r}: give it in [base] or vary it too",
+                              ("factor", i, "key"))
+    levels = {key: [getattr(base, key)] for key in ("latitude", "day_of_year")}
+    where = ("base", "latitude")
+    for i, f in enumerate(factors):
+        if f.key in levels:
+            levels[f.key], where = list(f.levels), ("factor", i, "levels")
+    for latitude in levels["latitude"]:
+        for day in levels["day_of_year"]:
+            check_noon(reader, latitude, day, where)
 
 
 def _species_file(reader: Reader, name, lsystem_dir: Path, path: tuple) -> str:
