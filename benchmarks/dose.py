@@ -146,7 +146,8 @@ def lab(_days: float, _seeds: int, workers: int) -> None:
           f"{'leaves':>7} {'girth cm':>8}")
     for found in results:
         for name, v in found:
-            print(f"{name:>24} {v['height']:9.2f} {v['width']:8.2f} {v['height'] / max(v['width'], 1e-9):6.2f} "
+            hw = f"{v['height'] / v['width']:6.2f}" if v["width"] > 0 else f"{'-':>6}"  # (a dead stick has none)
+            print(f"{name:>24} {v['height']:9.2f} {v['width']:8.2f} {hw} "
                   f"{v['offset'] / max(v['height'], 1e-9):8.2f} {v['leaf_area']:8.2f} {v['leaves']:7.0f} "
                   f"{v['girth']:8.2f}")
     (_, hi), (_, lo) = results[0]
