@@ -113,3 +113,20 @@ def test_the_remembered_daylight_is_saved_and_an_older_save_starts_at_the_norm()
     assert sim_state(state).daylight == 0.37
     del state["daylight"]
     assert sim_state(state).daylight == Rules().growth.daylight_full
+
+
+def test_the_sun_meter_shows_the_light_the_leaves_catch(system):
+    """Under the same sun a crown whose leaves catch a third of it fills its sun meter a third as fast; a
+    world hands its tree's leaf light to the meter at every step."""
+    filled = []
+    for light in (1.0, 1 / 3):
+        sim = Simulation(Rules())
+        sim.state.sun_angle, sim.state.sun_meter = 0.5, 0.1
+        sim.leaf_light = light
+        sim.step(5.0)
+        filled.append(sim.state.sun_meter - 0.1)
+    assert filled[1] == pytest.approx(filled[0] / 3) and filled[0] > 0
+    world = World(system, load_rules("assets/rules.toml", pace="demo"), seed=1)
+    world.tree.mean_light = 0.4
+    world.step(0.5)
+    assert world.sim.leaf_light == 0.4

@@ -1,7 +1,8 @@
 """The sun and water simulation of the tamagotchi game (the tamagotchi thesis, sections 2.3-2.4).
 
 A sun orbits the tree on a vertical circle whose centre height and speed the player sets; the sun
-meter fills while it shines and drains at night. The water meter drains (faster in strong sun) and
+meter fills while it shines on the leaves (as fast as they catch it: a shaded crown fills it more slowly)
+and drains at night. The water meter drains (faster in strong sun) and
 fills while the watering can is held. A meter earns growth only after staying above half for 20 s;
 a cycle that takes longer than 40 s earns less, the longer the less. Sun sets the length-growth rate,
 water the girth-growth rate. Neglect (or drowning) wilts the tree; long full wilt kills it.
@@ -93,6 +94,7 @@ class Simulation:
         self.root_share = 0.0  # how much of a full root system the tree has (set by its World)
         self.root_vigour = 1.0  # how fast the carbon pool lets the roots grow (set by its World; 0 .. 3)
         self.starving = 0.0  # s the tree's carbon pool has been empty with upkeep unpaid (set by its World)
+        self.leaf_light = 1.0  # the share of the sun its leaves catch (0..1, set by its World at each step)
 
     def season(self) -> Season:
         """The season now (spring, summer, autumn, winter)."""
@@ -206,8 +208,8 @@ class Simulation:
         s.sun_angle = (s.sun_angle + s.sun_speed * dt) % (2 * math.pi)
         s.sun_turns += s.sun_speed * dt / (2 * math.pi)
         shine = self.sunshine()
-        if shine > 0:
-            s.sun_meter += rules.sun.fill_rate * shine * dt
+        if shine > 0:  # the meter shows the light the tree catches: a shaded crown fills it more slowly
+            s.sun_meter += rules.sun.fill_rate * shine * self.leaf_light * dt
         else:
             s.sun_meter -= rules.sun.drain_rate * dt
         w = rules.water

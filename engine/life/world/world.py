@@ -89,6 +89,7 @@ class World:
 
     def advance(self, dt: float) -> None:
         """The simulation's part of a step (meters, clocks, health)."""
+        self.sim.leaf_light = self.tree.mean_light  # (the sun meter fills with the light the leaves catch)
         self.sim.step(dt)
         self.steps += 1
 
