@@ -79,7 +79,7 @@ def main() -> None:
         tubes = view.tubes.data
         row = tubes[np.argmax((tubes[:, 25] == 1) * (1.0 / (1.0 + tubes[:, 1])))]  # the lowest first branch
         joint, reach = row[0:3].copy(), max(30.0 * float(row[18]), 0.3)  # (its start; 30 radii away)
-        game.camera = lambda: OrbitCamera(yaw=35.0, pitch=10.0, distance=reach, target=joint)
+        game.view.camera = lambda: OrbitCamera(yaw=35.0, pitch=10.0, distance=reach, target=joint)
         panels.append((shot(), "joint, close"))
     sheet = Image.new("RGB", (PANEL[0] * 4, PANEL[1] * 2))
     for k, (image, label) in enumerate(panels):
@@ -156,6 +156,16 @@ class _Looks:
         self.renderer.trees.sync(buffers, view)
         return Placed(buffers, np.array(offset, float), look=look_of(world.lineage.species))
 
+    def rock(self):
+        """The rock Garden -> Place a rock puts second beside the tree at the origin (game/screens/care.py)."""
+        from arbor.game.render.garden import Placed
+        from arbor.game.render.instanced import TreeBuffers
+        from arbor.game.render.roots import rocks_view
+
+        buffers = TreeBuffers()
+        self.renderer.trees.sync(buffers, rocks_view([(2.6 * np.cos(3.0), 0.5, 2.6 * np.sin(3.0), 1.4)]))
+        return Placed(buffers, np.zeros(3), -3)
+
     def camera(self, trees: list, yaw: float, pitch: float = 8.0, fill: float = 0.8):
         """An orbit camera framing ``trees``."""
         from arbor.game.render.camera import OrbitCamera
@@ -210,7 +220,7 @@ def look(folder: Path) -> list[Path]:
     foot = tubes[np.argmin(tubes[:, 1])]
     reach = float(foot[18]) * 9.0
     close = OrbitCamera(yaw=30.0, pitch=12.0, distance=reach, target=foot[0:3] + np.array([0.0, reach * 0.3, 0.0]))
-    looks.shot("bark", close, sun_direction(75.0, 35.0), one, world)
+    looks.shot("bark", close, sun_direction(75.0, 35.0), [*one, looks.rock()], world)  # (and a rock beside it)
     garden = one + [looks.placed(w, offset) for w, offset in zip(others, ([-15.0, 0.0, 3.0], [18.0, 0.0, -16.0]),
                                                                    strict=True)]
     looks.shot("garden", looks.camera(garden, 20.0, 10.0, 0.9), sun_direction(80.0, 38.0), garden, world)

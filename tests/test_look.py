@@ -338,3 +338,26 @@ def test_the_ground_speckle_is_soft_blotches_that_tile_not_a_grid_of_squares():
     # no jumps between neighbours (cells blown up to squares jump by 140 levels or more at one step in 20)
     assert np.percentile(steps, 95) < 80 and steps.max() < 130
     assert seam < 1.2 * steps.mean()  # and no seam where the tile repeats
+
+
+def test_a_rock_is_lumpy_stone_with_no_grain_like_bark(scene):
+    from arbor.game.render.roots import rocks_view
+
+    _, draw = scene
+    view = rocks_view([(0.0, 3.0, 0.0, 2.5)])
+    camera = OrbitCamera(yaw=0.0, pitch=0.0, distance=9.0, target=np.array([0.0, 3.0, 0.0]))
+    empty = StaticView(TubeInstances.empty(), LeafInstances.empty(), LeafInstances.empty(), view.lo, view.hi)
+    sun = np.array([0.4, 0.8, 0.45])
+    image = draw(view, camera, sun)
+    rock = np.abs(image - draw(empty, camera, sun)).sum(axis=2) > 30
+    rows, cols = np.nonzero(rock)
+    cy, cx = rows.mean(), cols.mean()
+    angle = np.arctan2(rows - cy, cols - cx)
+    reach = [np.hypot(rows - cy, cols - cx)[np.abs(angle - a) < 0.1].max() for a in np.linspace(-3.0, 3.0, 24)]
+    assert max(reach) > 1.08 * min(reach)  # a lumpy outline, not a disc
+    grey = image.sum(axis=2)
+    inside = rock[1:-1, 1:-1] & rock[2:, 1:-1] & rock[1:-1, 2:]
+    across = np.abs(grey[1:-1, 2:] - grey[1:-1, 1:-1])[inside].mean()  # (from a pixel to the next, each way)
+    down = np.abs(grey[2:, 1:-1] - grey[1:-1, 1:-1])[inside].mean()
+    assert across > 2.0 and down > 2.0  # a rough surface
+    assert max(across, down) < 1.5 * min(across, down)  # the same every way (bark's furrows run one way)

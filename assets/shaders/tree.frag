@@ -39,8 +39,9 @@ float sun_visibility() {
     float z = p.z - 0.003;
     // bilinear-filtered comparison taps: one for leaves (cheap on a software GL, where every tap is shaded
     // on the CPU, and the crown's own clutter hides it), four on a rotated grid u_soft texels apart for the
-    // wood (soft shadow edges along the branches; u_soft 0: one tap everywhere)
-    if (u_soft <= 0.0 || u_kind != 0) return texture(u_shadow, vec3(p.xy, z));
+    // wood and rocks (soft shadow edges along the branches, no steps of texels on a rock's round face close
+    // up; u_soft 0: one tap everywhere)
+    if (u_soft <= 0.0 || (u_kind != 0 && u_kind != 4)) return texture(u_shadow, vec3(p.xy, z));
     vec2 d = vec2(u_shadow_texel * u_soft);
     return 0.25 * (texture(u_shadow, vec3(p.xy + d * vec2(-1.5, -0.5), z)) + texture(u_shadow, vec3(p.xy + d * vec2(0.5, -1.5), z))
                    + texture(u_shadow, vec3(p.xy + d * vec2(1.5, 0.5), z)) + texture(u_shadow, vec3(p.xy + d * vec2(-0.5, 1.5), z)));
@@ -70,12 +71,12 @@ void main() {
     if (u_kind >= 3) {  // a ball facing the eye (fruit, rock): its normal from where in the disc the pixel lies
         vec2 d = v_uv * 2.0 - 1.0;
         float rr = dot(d, d);
-        float edge = u_kind == 4 ? 0.78 + 0.22 * texture(u_tex, vec2(atan(d.y, d.x) * 0.159, 0.37)).r : 1.0;
+        float edge = u_kind == 4 ? 0.6 + 0.6 * texture(u_tex, vec2(atan(d.y, d.x) * 0.159, 0.37)).r : 1.0;
         if (rr > edge * edge) discard;
         rr /= edge * edge;
         vec3 right = normalize(cross(vec3(0.0, 1.0, 0.0), n));
         n = normalize(right * d.x + cross(n, right) * d.y + n * sqrt(1.0 - rr));
-        if (u_kind == 4) {  // rock: lumpy, cracked stone
+        if (u_kind == 4) {  // rock: lumpy, cracked stone (its own textures: see textures.rock_height)
             n = normalize(n + 0.6 * (texture(u_normal_map, v_uv * 1.3).xyz * 2.0 - 1.0));
             albedo = vec3(0.55, 0.53, 0.5) * (0.6 + 0.7 * texture(u_tex, v_uv * 1.7).r);
         } else {

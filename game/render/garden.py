@@ -87,8 +87,8 @@ class GardenRenderer:
         self.backdrop = Backdrop(ctx)
         self.trees = InstancedTrees(ctx)
         self.grass = Grass(ctx)
-        self.textures = {name: _load_texture(ctx, name, name.startswith("bark"))
-                         for name in ("bark", "bark_normal", *CLUSTERS, "blossom")}
+        self.textures = {name: _load_texture(ctx, name, name.startswith(("bark", "rock")))
+                         for name in ("bark", "bark_normal", *CLUSTERS, "blossom", "rock", "rock_normal")}
         self.shadows = ShadowMaps(ctx)
         self.samples = samples if samples is not None else (1 if software_gl(ctx) else 4)
         self.vertex_budget = 60_000 if software_gl(ctx) else 10_000_000  # shaded per tree and frame

@@ -275,7 +275,7 @@ class InstancedTrees:
             shape = "tube" if kind == 0 else "card" if kind == 1 and pass_ == "lit" else "leaf"
             prog = self.programs[(shape, pass_)]
             set_uniforms(prog, {k: v for k, v in uniforms.items() if k != "tints"})
-            textures["bark" if kind in (0, 4) else "leaf_cluster" if kind == 1 else "blossom"].use(location=0)
+            textures[("bark", "leaf_cluster", "blossom", "blossom", "rock")[kind]].use(location=0)
             per_part = {"u_tex": 0, "u_fraction": share if kind == 1 else 1.0, "u_min_pixels": MIN_PIXELS[kind],
                         "u_grow": detail.leaf_grow if kind == 1 else 1.0, "u_thinnest": detail.thinnest,
                         "u_min_radius": TWIG_RADIUS[lod],
@@ -286,7 +286,7 @@ class InstancedTrees:
                         # far away, leaves skip the shadow lookup (their shade is the AO)
                         "u_shadowed": float(pass_ != "lit" or kind == 0 or lod < 2)}
             if pass_ == "lit":
-                textures["bark_normal"].use(location=3)
+                textures["rock_normal" if kind == 4 else "bark_normal"].use(location=3)
                 per_part.update(u_kind=kind, u_tint=(*uniforms["tints"], (1.0, 1.0, 1.0), (1.0, 1.0, 1.0))[kind],
                                 u_uv_scale=BARK_UV if kind == 0 else (1.0, 1.0), u_normal_map=3)
             else:
