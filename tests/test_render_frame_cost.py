@@ -103,8 +103,11 @@ def test_a_sun_moving_while_the_camera_holds_still_costs_a_frame_one_part_of_the
                         (renderer.grass, "draw"), (renderer.backdrop, "draw_shadows")):
         kept = getattr(owner, name)
         monkeypatch.setattr(owner, name, lambda *a, kept=kept, name=name, **k: (drawn.append(name), kept(*a, **k))[1])
+    sim = tree_game.world.sim
+    state = sim.state
+    state.sun_angle = _angle_at_height(sim, 0.1)  # a low sun, where 0.05 rad changes the sky's colours (a high
+    tree_game.state.remember()  # one's day light is full and its disc may be out of view: nothing to redraw)
     _frame(tree_game)
-    state = tree_game.world.sim.state
     state.sun_angle += 0.05
     tree_game.state.remember()
     parts = []
@@ -148,3 +151,43 @@ def test_a_sky_changing_every_frame_keeps_neither_the_ground_nor_the_shadows_fro
         kept.step(looks._replace(sky=(frame,), ground=1), (0,), parts)
     assert len(drawn) == 8 and {"sky", "ground", "cover", "shadows"} <= set(drawn), drawn
     kept.release()
+
+
+def _angle_at_height(sim, height: float) -> float:
+    """A sun angle at which ``sim``'s sun stands ``height`` high (the sine of its elevation), rising."""
+    def at(angle: float) -> float:
+        sim.state.sun_angle = angle
+        return float(sim.sun_direction()[1])
+    angles = np.linspace(0.0, 2 * np.pi, 721)
+    return float(min((a for a in angles if at(a + 0.01) > at(a)), key=lambda a: abs(at(a) - height)))
+
+
+def test_a_falling_branch_casts_no_shadow_and_does_not_redraw_the_shadow_map_every_frame(tree_game, monkeypatch):
+    from arbor.engine.geometry.instances import TUBE_FLOATS, LeafInstances, TubeInstances
+    from arbor.game.render.falling import StaticView
+    from arbor.game.render.garden import FALLING, Placed
+    from arbor.game.render.instanced import TreeBuffers
+
+    def piece() -> StaticView:  # new records every frame, as a falling branch has
+        data = np.zeros((1, TUBE_FLOATS), np.float32)
+        data[0, 0:3], data[0, 3:6], data[0, 6:9] = (3.0, 5.0, 0.0), (0.0, 1.0, 0.0), (1.0, 0.0, 0.0)
+        data[0, 9:12], data[0, 12:15], data[0, 15:18] = (3.0, 9.0, 0.0), (0.0, 1.0, 0.0), (1.0, 0.0, 0.0)
+        data[0, 18:20], data[0, 20:22] = (0.3, 0.3), (0.0, 1.0)
+        return StaticView(TubeInstances(data, np.zeros(1, np.int64)), LeafInstances.empty(), LeafInstances.empty(),
+                          np.array([2.7, 5.0, -0.3]), np.array([3.3, 9.0, 0.3]))
+
+    view = tree_game.view
+
+    def falling(here):
+        buffers = TreeBuffers()
+        view.renderer.trees.sync(buffers, piece())
+        view.falls.append(buffers)
+        return [Placed(buffers, np.zeros(3), FALLING)]
+
+    monkeypatch.setattr(view, "_falling", falling)
+    _frame(tree_game)
+    _frame(tree_game)
+    maps = tree_game.renderer.shadows.version
+    for _ in range(5):
+        _frame(tree_game)
+    assert tree_game.renderer.shadows.version == maps  # (it was redrawn at each of them)

@@ -49,6 +49,7 @@ FIRST_LEAVES = Piece(frozenset({"leaf"}), 0.0, LEAF_SPLIT)
 BARK = (1.4, 1.36, 1.3)  # (near grey: the sun's warm light does the rest)
 BLOSSOM = (1.2, 0.9, 1.0)
 SHADOW_WAIT = 4  # frames a due shadow map waits at most for a frame the backdrop is not being drawn in
+FALLING = -1  # Placed.version of a shed branch falling: new records every frame, and no shadow
 
 
 def software_gl(ctx: moderngl.Context) -> bool:
@@ -63,7 +64,7 @@ class Placed:
 
     buffers: TreeBuffers
     offset: np.ndarray
-    version: int = 0  # changes when the tree changed enough to need new shadows
+    version: int = 0  # changes when the tree changed enough to need new shadows (FALLING: casts none)
     look: SpeciesLook = GAME_TREE  # its species' bark tint and leaf cards (game/render/species.py)
 
 
@@ -281,14 +282,19 @@ class GardenRenderer:
 
     def _shadow_steps(self, light: np.ndarray, sun: np.ndarray, details: list[Detail],
                       pieces: list[Piece]) -> list:
-        """The shadow map's redraw as steps (none when it is not due); the trees one level coarser."""
-        versions = (*((id(p.buffers.view), p.version) for p in self.placed), round(self.leaf_keep, 2))
+        """The shadow map's redraw as steps (none when it is not due); the trees one level coarser. A falling
+        branch casts no shadow (its records are new every frame: counted, they made the map due every frame
+        of its fall, which on a software GL also kept the backdrop from following the sun, see stage.py)."""
+        versions = (*((id(p.buffers.view), p.version) for p in self.placed if p.version != FALLING),
+                    round(self.leaf_keep, 2))
         if not self.shadows.due(sun, versions):
             return []
         uniforms = {"u_mvp": _gl(light), "u_light_mvp": _gl(light), "u_wind": (*self.wind, self.time),
                     "u_eye": (0.0, 0.0, 0.0), "u_pixel": 0.0, "u_keep": self.leaf_keep}
         def draw(piece: Piece) -> None:  # (the trees placed when it runs: the same ones, see render)
             for tree, detail in zip(self.placed, details, strict=True):
+                if tree.version == FALLING:
+                    continue
                 uniforms["u_offset"] = tuple(tree.offset)
                 coarser = replace(detail, lod=min(detail.lod + 1, len(SIDES) - 1))
                 self.trees.draw(tree.buffers, "shadow", coarser, uniforms, self._textures(tree.look), piece)

@@ -14,7 +14,7 @@ from arbor.engine.life.plant import seasons
 from arbor.engine.life.rules.rules import Rules
 from arbor.game.render.camera import OrbitCamera, zoom_out
 from arbor.game.render.falling import FALL_SECONDS, falling_view
-from arbor.game.render.garden import BARK, GardenRenderer, Placed
+from arbor.game.render.garden import BARK, FALLING, GardenRenderer, Placed
 from arbor.game.render.instanced import Detail, TreeBuffers, prepare_upload
 from arbor.game.render.roots import rocks_view, roots_view
 from arbor.game.render.species import look_of
@@ -164,7 +164,7 @@ class GameView:
                     buffers = TreeBuffers()
                     self.renderer.trees.sync(buffers, falling_view(fallen, (now - started) / FALL_SECONDS))
                     self.falls.append(buffers)
-                    out.append(Placed(buffers, offset, -1))
+                    out.append(Placed(buffers, offset, FALLING))
         self.fall_started = {k: v for k, v in self.fall_started.items() if k in seen}
         return out
 
