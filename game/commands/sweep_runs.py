@@ -18,7 +18,7 @@ from pathlib import Path
 
 from arbor.engine.base.errors import LSysError
 from arbor.engine.base.files import atomic_write
-from arbor.engine.life.experiment.sweep import Outcome, Run, Sweep, Task, cell, execute
+from arbor.engine.life.experiment.sweep import Outcome, Run, Sweep, Task, cell, execute, warm
 from arbor.game.errors import UserError
 
 
@@ -94,7 +94,10 @@ def outcomes(tasks: list[Task], workers: int, scheduler: str | None) -> Iterator
     elif workers == 1:
         yield from map(run_safely, tasks)
     else:
-        pool = multiprocessing.get_context(start_method()).Pool(min(workers, len(tasks)), initializer=_quiet_interrupts)
+        method = start_method()
+        if method == "fork":
+            warm(tasks)  # loaded once here, the kernels are every forked worker's (not loaded again by each)
+        pool = multiprocessing.get_context(method).Pool(min(workers, len(tasks)), initializer=_quiet_interrupts)
         try:
             yield from pool.imap_unordered(run_safely, tasks)
         finally:
