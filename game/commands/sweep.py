@@ -4,7 +4,7 @@ DIR gets: runs/ (one CSV per finished run, kept across Ctrl-C), trees/ (the fina
 game opens, named by level and seed: ``orbit_height=0.5_seed03.arbor``; ``--keep all|first|none``:
 every seed, each level's first seed (default), none), tidy.csv (one row per run and sample time), summary.csv
 (per level and response at the end: n, mean, sd, 10 %, median, 90 %), and dose_response, time_series
-and thumbnails as PNG and SVG. docs/columns.md (also ``arbor sweep --columns``) documents every column.
+and thumbnails as PNG and SVG. docs/columns.md documents every column (unit and meaning).
 """
 
 from __future__ import annotations

@@ -108,7 +108,7 @@ EXPERIMENT = {
 SWEEP = {
     **COMMON,
     "seeds": Key("any", "how many seeds (1..N) or a list of seeds"),
-    "responses": Key("list", "what to record (arbor sweep --columns lists them)"),
+    "responses": Key("list", "what to record (docs/columns.md lists them)"),
     "base": Key("table", "what every run shares: like a lab [[tree]] without a name"),
     "factor": Key("tables", "one [[factor]] table per factor (1 or 2)"),
 }
