@@ -95,21 +95,32 @@ def main() -> None:
 
 
 LOOK = (1280, 720)
-AUTUMN, SPRING = 18.0, 28.5  # days of the game's tree's first year: turning, in blossom
+SPRING = 28.5  # a day of the game's tree's second spring, in blossom
+
+
+def _seasons():
+    from arbor.engine.life.plant import seasons
+    from arbor.engine.life.rules.rules import load_rules
+    from arbor.game.paths import ASSETS
+
+    return seasons, load_rules(ASSETS / "rules.toml", pace="demo")
 
 
 def summer_day() -> float:
     """The last half day of the first year before the leaves begin to turn (the fullest green crown), by
     the demo pace's seasons."""
-    from arbor.engine.life.plant import seasons
-    from arbor.engine.life.rules.rules import load_rules
-    from arbor.game.paths import ASSETS
-
-    rules = load_rules(ASSETS / "rules.toml", pace="demo")
+    seasons, rules = _seasons()
     day = 0.5
-    while seasons.autumn_colour(day + 0.5, rules) == 0.0 and day < AUTUMN:
+    while seasons.autumn_colour(day + 0.5, rules) == 0.0 and day < SPRING:
         day += 0.5
     return day
+
+
+def autumn_day() -> float:
+    """The half day of the first autumn with the most coloured leaves still on (colour x share kept)."""
+    seasons, rules = _seasons()
+    days = np.arange(summer_day(), SPRING, 0.5)
+    return float(max(days, key=lambda d: seasons.autumn_colour(d, rules) * seasons.leaf_keep(d, rules)))
 
 
 def _grow(days: float, seed: int, world=None, species: str = "game_tree"):
@@ -224,7 +235,7 @@ def look(folder: Path) -> list[Path]:
     garden = one + [looks.placed(w, offset) for w, offset in zip(others, ([-15.0, 0.0, 3.0], [18.0, 0.0, -16.0]),
                                                                    strict=True)]
     looks.shot("garden", looks.camera(garden, 20.0, 10.0, 0.9), sun_direction(80.0, 38.0), garden, world)
-    for day, name in ((AUTUMN, "autumn"), (SPRING, "blossom")):
+    for day, name in ((autumn_day(), "autumn"), (SPRING, "blossom")):
         world = _grow(day, 3, world)
         seen = [looks.placed(world)]
         v = seen[0].buffers.view
