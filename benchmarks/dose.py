@@ -94,6 +94,20 @@ def sun(days: float, seeds: int, workers: int) -> None:
         print(f"{name}: largest step / mean step {ratio:.2f} (goal <= 2), rises at every level: {rising}")
 
 
+def species(days: float, seeds: int, workers: int) -> None:
+    """Part 4: the two species under three suns: height / width and leaf clusters (the shade-tolerant game
+    tree should keep a lower, wider crown in weak light than the intolerant poplar, which stretches up)."""
+    sweep = shortened("sweep_species_sun.toml", days, seeds)
+    got = finals(sweep, workers)
+    print(f"species x sun: {len(runs(sweep))} runs of {days:g} days")
+    print(f"{'species':>18} {'orbit':>6} {'height m':>9} {'width m':>8} {'h/w':>6} {'leaves':>7} {'shed':>6}")
+    for kind in sweep.factors[1].levels:
+        for level in sweep.factors[0].levels:
+            v = {r: float(got[(level, kind)][r].mean()) for r in ("height", "width", "leaves", "shed")}
+            print(f"{kind.removesuffix('.lsys'):>18} {level:6.2f} {v['height']:9.2f} {v['width']:8.2f} "
+                  f"{v['height'] / max(v['width'], 1e-9):6.2f} {v['leaves']:7.0f} {v['shed']:6.0f}")
+
+
 def water(days: float, seeds: int, workers: int) -> None:
     """Part 2: the watering sweep and its best level."""
     sweep = shortened("sweep_watering.toml", days, seeds)
@@ -162,7 +176,7 @@ def main() -> None:
     parser.add_argument("--seeds", type=int, default=6, help="seeds per level (default 6)")
     parser.add_argument("--days", type=float, default=30.0, help="game days of each run (default 30)")
     parser.add_argument("--workers", type=int, default=2, help="worker processes (default 2)")
-    parser.add_argument("--only", choices=("sun", "water", "lab"), help="run one part only")
+    parser.add_argument("--only", choices=("sun", "water", "lab", "species"), help="run one part only")
     args = parser.parse_args()
     one, five, _ = os.getloadavg()
     print(f"load average {one:.1f} {five:.1f} on {os.cpu_count()} cores")
@@ -172,6 +186,8 @@ def main() -> None:
         water(args.days, args.seeds, args.workers)
     if args.only in (None, "lab"):
         lab(args.days, args.seeds, args.workers)
+    if args.only in (None, "species"):
+        species(args.days, args.seeds, args.workers)
 
 
 if __name__ == "__main__":

@@ -69,7 +69,7 @@ SCHEMA: tuple[Rule, ...] = (
          "fixed sugar with: its length clock runs on that memory (so through the night too)", "time"),
     Rule("growth.daylight_full", 0.2, 0.01, 1.0, "share of a fully lit leaf's sugar",
          "remembered light at which the length clock runs at length_rate (it runs in proportion to it) ..."),
-    Rule("growth.daylight_most", 1.5, 1.0, 10.0, "x length_rate", "... up to this much faster in more light"),
+    Rule("growth.daylight_most", 2.0, 1.0, 10.0, "x length_rate", "... up to this much faster in more light"),
     Rule("growth.girth_rate", 0.1, 0.0, 100.0, "girth time per s", "girth clock at full water growth (thickening)",
          "rate"),
     Rule("growth.rewrite_step", 1.0, 0.01, 100.0, PHYS, "time between two L-system rewrites"),
