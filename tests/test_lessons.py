@@ -9,6 +9,8 @@ import io
 import re
 from pathlib import Path
 
+import numpy as np
+
 from arbor.engine.life.experiment.lab import Lab, load_experiment
 from arbor.engine.life.rules.rules import load_rules
 from arbor.game.paths import ASSETS
@@ -76,15 +78,20 @@ def test_lesson_water_rare_drinks_leave_the_meter_low(tmp_path):
 
 
 def test_lesson_competition_the_middle_tree_is_shaded(tmp_path):
-    path = shortened("lesson_competition.toml", tmp_path, 10 * 125.66667)
+    path = shortened("lesson_competition.toml", tmp_path, 16 * 125.66667)  # (crowns meet from about day 11)
     out = tmp_path / "competition"
     as_written("lesson_competition.toml", path, out)
     rows = list(csv.DictReader(io.StringIO((out / "results.csv").read_text(encoding="utf-8"))))
-    share = {}
+    caught = {}
     for tree in ("West", "Middle", "East"):
-        light = [float(r["light_share"]) for r in rows if r["tree"] == tree][3:]
-        share[tree] = sum(light) / len(light)
-    assert share["Middle"] < min(share["West"], share["East"])  # shaded from both sides
+        light = [float(r["light_day"]) for r in rows if r["tree"] == tree][-5:]
+        caught[tree] = sum(light) / len(light)
+    assert caught["Middle"] < min(caught["West"], caught["East"])  # shaded from both sides: it catches least
+    alone = path.with_name("alone.toml")  # the control: the same trees, each on a plot of its own
+    alone.write_text(re.sub(r"(?m)^spacing = .*$", "", path.read_text(encoding="utf-8")), encoding="utf-8")
+    control = Lab(load_experiment(alone, ASSETS / "lsystems"), load_rules(ASSETS / "rules.toml", "demo"))
+    control.run()
+    assert caught["Middle"] < 0.95 * np.mean(control.series[1].values["light_day"][-5:])
     assert all((out / name).is_file() for name in ("charts.png", "scene.png", "middle.arbor"))
     lab = Lab(load_experiment(path, ASSETS / "lsystems"), load_rules(ASSETS / "rules.toml", "demo"))
     assert [w.position[0] for w in lab.worlds] == [-20.0, 0.0, 20.0]  # 2 m apart (10 scene units a metre)
