@@ -70,15 +70,22 @@ void main() {
     vec3 albedo = tex.rgb * u_tint;
     if (u_kind >= 3) {  // a ball facing the eye (fruit, rock): its normal from where in the disc the pixel lies
         vec2 d = v_uv * 2.0 - 1.0;
+        float edge = 1.0;
+        if (u_kind == 4) {  // a boulder: lower than it is wide, its outline bulging in big and small lumps
+            d.y *= 1.35;
+            float a = atan(d.y, d.x) * 0.159;  // (coarse mip levels: smooth lumps, and no jump where a wraps)
+            edge = min(0.84 + 1.6 * (textureLod(u_tex, vec2(a, 0.37), 4.0).r - 0.5)
+                       + 1.0 * (textureLod(u_tex, vec2(2.0 * a + 0.3, 0.71), 3.0).r - 0.5), 1.0);
+        }
         float rr = dot(d, d);
-        float edge = u_kind == 4 ? 0.6 + 0.6 * texture(u_tex, vec2(atan(d.y, d.x) * 0.159, 0.37)).r : 1.0;
         if (rr > edge * edge) discard;
         rr /= edge * edge;
         vec3 right = normalize(cross(vec3(0.0, 1.0, 0.0), n));
         n = normalize(right * d.x + cross(n, right) * d.y + n * sqrt(1.0 - rr));
         if (u_kind == 4) {  // rock: lumpy, cracked stone (its own textures: see textures.rock_height)
-            n = normalize(n + 0.6 * (texture(u_normal_map, v_uv * 1.3).xyz * 2.0 - 1.0));
-            albedo = vec3(0.55, 0.53, 0.5) * (0.6 + 0.7 * texture(u_tex, v_uv * 1.7).r);
+            n = normalize(n + 0.7 * (texture(u_normal_map, v_uv * 0.45).xyz * 2.0 - 1.0)  // (facets and cracks)
+                          + 0.4 * (texture(u_normal_map, v_uv * 1.7).xyz * 2.0 - 1.0));
+            albedo = vec3(0.47, 0.46, 0.44) * (0.55 + 0.8 * texture(u_tex, v_uv * 1.1).r);
         } else {
             albedo = mix(vec3(0.42, 0.62, 0.16), vec3(0.86, 0.12, 0.07), smoothstep(0.6, 1.0, v_extra));
         }
