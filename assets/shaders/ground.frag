@@ -7,6 +7,7 @@ uniform vec3 u_grass;
 uniform vec3 u_horizon;
 uniform float u_fade_start;
 uniform float u_fade_end;
+uniform sampler2D u_noise;  // soft blotches (backdrop.ground_speckle), read nearest
 in vec3 v_pos;
 in vec4 v_light;
 out vec4 f_color;
@@ -19,8 +20,7 @@ float sun_visibility() {
 void main() {
     float light = 0.45 + 0.55 * max(u_sun_dir.y, 0.0) * sun_visibility();
     float r = length(v_pos.xz);
-    vec2 cell = floor(v_pos.xz * (24.0 / u_fade_start));
-    float speckle = fract((cell.x * 0.7548 + cell.y * 0.5698) * 13.1);  // cheap hash: grass patches
+    float speckle = texture(u_noise, v_pos.xz * (24.0 / u_fade_start) / 64.0).r;  // grass patches
     vec3 color = u_grass * light * (0.95 + 0.05 * speckle);
     f_color = vec4(mix(color, u_horizon, smoothstep(u_fade_start, u_fade_end, r)), 1.0);
 }

@@ -15,6 +15,7 @@ import numpy as np
 
 from arbor.engine.geometry.mesh import Mesh, TreeMesh
 from arbor.game.paths import ASSETS
+from arbor.game.render.backdrop import ground_speckle
 from arbor.game.render.camera import OrbitCamera, look_at, orthographic
 
 SHADOW_SIZE = 2048
@@ -83,6 +84,10 @@ class TreeRenderer:
             "leaf": _load_texture(ctx, "leaf", False),
             "blossom": _load_texture(ctx, "blossom", False),
         }
+        speckle = ground_speckle()  # (the game's ground's: soft blotches, not squares of one hash each)
+        self.noise = ctx.texture(speckle.shape[::-1], 1, speckle.tobytes())
+        self.noise.filter = (moderngl.NEAREST, moderngl.NEAREST)
+        self.noise.repeat_x = self.noise.repeat_y = True
         self.shadow_map = ctx.depth_texture((SHADOW_SIZE, SHADOW_SIZE))
         self.shadow_map.compare_func = "<="
         self.shadow_map.filter = (moderngl.LINEAR, moderngl.LINEAR)
@@ -220,6 +225,9 @@ class TreeRenderer:
     def _draw_ground(self, vp: np.ndarray, light: np.ndarray, sun: np.ndarray) -> None:
         prog = self.ground_prog
         self._lit_uniforms(prog, vp, light, sun)
+        self.noise.use(location=2)
+        if "u_noise" in prog:
+            prog["u_noise"].value = 2
         prog["u_grass"].value = _scale(GRASS, daylight(sun))
         prog["u_horizon"].value = _scale(SKY_HORIZON, daylight(sun))
         prog["u_fade_start"].value = self.radius * 3
