@@ -226,3 +226,16 @@ def test_meters_and_wilt_are_sampled_as_mean_min_and_max_since_the_last_sample(t
             assert values[f"{meter}_min"][k] == trace.min() and values[f"{meter}_max"][k] == trace.max()
         swings += values["water_max"][k] - values["water_min"][k] > 0.3
     assert len(marks) >= 5 and swings >= 3  # the meter swung within most days, and the samples show it
+
+
+def test_the_lab_window_says_under_each_tree_whether_it_lives_its_wilt_or_the_day_it_died():
+    from arbor.engine.life.experiment.measure import Meters
+    from arbor.game.screens.lab import tree_state
+
+    lab = Lab(load_experiment(EXPERIMENTS / "drought_vs_watered.toml", LSYS),
+              load_rules(ROOT / "assets" / "rules.toml", pace="demo"))
+    world, meters = lab.worlds[0], Meters()
+    world.sim.state.wilt = 0.25
+    assert tree_state(world, meters).startswith("alive, wilt 0.25, ") and tree_state(world, meters).endswith(" m")
+    world.sim.state.alive, meters.died = False, 12.4
+    assert tree_state(world, meters) == "dead (day 12)"
