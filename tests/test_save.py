@@ -43,7 +43,7 @@ def test_round_trip_is_exact_and_continues_identically(world, tmp_path):
 def test_save_is_readable_text(world):
     text = save_text(world, "game_tree.lsys")
     assert text.startswith("# Arbor save file")
-    assert "\nlstring = '''\nI(0,0,0,0," in text  # a literal block: read without unescaping
+    assert "\nlstring = '''\nI(0,0,0," in text  # a literal block: read without unescaping (the trunk's foot)
     tail = text[text.index("lstring = "):].splitlines()[1:]
     assert max(len(line) for line in tail) <= 100 + 200 and np.median([len(x) for x in tail]) <= 130  # wrapped
     assert all(re.match(r"[!-'*+\--~]", line) for line in tail if line and line != "'''")  # between modules

@@ -214,9 +214,13 @@ def _fitted_sim(world: World) -> dict:
 
 
 def _direction(v) -> np.ndarray:
-    """A unit vector (up when ``v`` is not a usable direction), as the reader keeps it."""
+    """A unit vector (up when ``v`` is not a usable direction), as the reader keeps it: one whose length is 1
+    to within 1e-9 is kept bit for bit (dividing by its norm again would change its last bits, and a loaded
+    tree would then grow apart from the one saved)."""
     v = np.asarray(v, dtype=np.float64)
     norm = float(np.linalg.norm(v)) if np.isfinite(v).all() else 0.0
+    if abs(norm - 1.0) <= 1e-9:
+        return v.copy()
     return v / norm if norm > 1e-9 else np.array([0.0, 1.0, 0.0])
 
 
@@ -465,7 +469,7 @@ def _restore_growth(world: World, growth: dict, where: Where, budget_slack: floa
     direction = np.array(vector(growth, "light_dir", 3, where, [0.0, 1.0, 0.0], limit=10.0))
     if not 0.5 < float(np.linalg.norm(direction)) < 2.0:
         raise where.error("'light_dir' must be a direction (a vector of length 1)", "light_dir")
-    tree.light_dir = direction / np.linalg.norm(direction)
+    tree.light_dir = _direction(direction)
     tree.mean_light = value(growth, "mean_light", *GROWTH_FIELDS["mean_light"], where, default=1.0)
     tree.shed_total = value(growth, "shed_total", *GROWTH_FIELDS["shed_total"], where, default=0)
     world.last_light = value(growth, "last_light", *GROWTH_FIELDS["last_light"], where, default=float("-inf"))
