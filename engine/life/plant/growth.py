@@ -65,6 +65,9 @@ from arbor.engine.lsystem.lsys import LSystem
 
 CONSOLIDATE_AT = 0.5  # share of the module budget in use from which old wood is consolidated
 FALL_KEEP = 40.0  # physiological time a shed branch stays in `fallen` for the game to show its fall
+# A branch's light counts in sugar: x (remembered daylight / the norm) to this power (1: all of the day's
+# strength; 0.5 keeps a weak light's young tree from shedding every branch that is not in the sun)
+SHADE_EARNING = 0.5
 AROUND = np.array([[1.0, 0, 0], [-1, 0, 0], [0, 1, 0], [0, -1, 0], [0, 0, 1], [0, 0, -1]])  # light probes
 GRADIENT_REACH = 1.5  # internode lengths from an apex to its light probes
 AVOID_WEIGHT, AVOID_TURN = 4.0, 35.0  # how hard an obstacle ahead pushes, and the turn it allows (degrees)
@@ -326,7 +329,7 @@ class GrowingTree:
             need = np.where(grown, CLUSTER_AREA * LEAF_ASPECT * const["LS"] ** 2, 0.0)
             need_above = subtree_sums(ls, segs, need, ends)
             # In sugar, not in shares of the sky: the same share of a weak day's light earns less.
-            earns = economy.daylight ** 0.5 if economy is not None else 1.0
+            earns = economy.daylight ** SHADE_EARNING if economy is not None else 1.0
             ratio = (earns * got_above / np.maximum(need_above, 1e-12))[grown]
             shade = params[off + 3]
             deep = ratio < const["SHQ"]

@@ -4,8 +4,9 @@ A sun orbits the tree on a vertical circle whose centre height and speed the pla
 meter fills while it shines on the leaves (as fast as they catch it: a shaded crown fills it more slowly)
 and drains at night. The water meter drains (faster in strong sun) and
 fills while the watering can is held. A meter earns growth only after staying above half for 20 s;
-a cycle that takes longer than 40 s earns less, the longer the less. Sun sets the length-growth rate,
-water the girth-growth rate. Neglect (or drowning) wilts the tree; long full wilt kills it.
+a cycle that takes longer than 40 s earns less, the longer the less. The light the leaves caught over the
+last day sets the length-growth rate (the thesis had the sun meter's level), water the girth-growth rate.
+Neglect (or drowning) wilts the tree; long full wilt kills it.
 All constants come from assets/rules.toml (see :func:`load_rules`).
 """
 
@@ -19,6 +20,7 @@ import numpy as np
 from arbor.engine.life.plant import seasons
 from arbor.engine.life.plant.seasons import Season, raining, season_at
 from arbor.engine.life.rules.rules import GrowthRules, Rules, load_rules
+from arbor.engine.life.rules.schema import find_rule
 
 __all__ = ["GrowthCycle", "Rules", "SimState", "Simulation", "load_rules"]
 
@@ -67,7 +69,8 @@ class SimState:
     sun_turns: float = 0.0  # days of the sun so far (turns of its orbit): the calendar of the seasons
     weather_seed: int = 0  # which days it rains (see engine/life/seasons.py)
     root_time: float = 0.0  # the roots' clock: runs on water (engine/life/roots.py)
-    daylight: float = 0.2  # the light the leaves fixed sugar with, remembered (0..1 of fully lit, open leaves)
+    # the light the leaves fixed sugar with, remembered (0..1 of fully lit, open leaves); a sapling's is the norm
+    daylight: float = find_rule("growth.daylight_full").default
     sun_cycle: GrowthCycle = field(default_factory=GrowthCycle)
     water_cycle: GrowthCycle = field(default_factory=GrowthCycle)
 
