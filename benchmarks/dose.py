@@ -80,13 +80,18 @@ def table(sweep: Sweep, got: dict, columns: tuple[str, ...]) -> dict[str, list[f
     return means
 
 
-def sun(days: float, seeds: int, workers: int) -> None:
-    """Part 1: the sun-height sweep and its steps."""
-    sweep = shortened("sweep_sun_height.toml", days, seeds)
+def swept(name: str, label: str, days: float, seeds: int, workers: int) -> tuple[Sweep, dict[str, list[float]]]:
+    """Run the example sweep ``name`` shortened, print its table under ``label``; the sweep and its means."""
+    sweep = shortened(name, days, seeds)
     start = time.perf_counter()
     got = finals(sweep, workers)
-    print(f"sun height: {len(runs(sweep))} runs of {days:g} days, {time.perf_counter() - start:.1f} s")
-    means = table(sweep, got, (*SHOWN, "alive"))
+    print(f"{label}: {len(runs(sweep))} runs of {days:g} days, {time.perf_counter() - start:.1f} s")
+    return sweep, table(sweep, got, (*SHOWN, "alive"))
+
+
+def sun(days: float, seeds: int, workers: int) -> None:
+    """Part 1: the sun-height sweep and its steps."""
+    _, means = swept("sweep_sun_height.toml", "sun height", days, seeds, workers)
     hw = [h / max(w, 1e-9) for h, w in zip(means["height"], means["width"], strict=True)]
     print("height / width by level: " + ", ".join(f"{r:.2f}" for r in hw))
     for name in ("height", "leaf_area"):
@@ -110,11 +115,7 @@ def species(days: float, seeds: int, workers: int) -> None:
 
 def water(days: float, seeds: int, workers: int) -> None:
     """Part 2: the watering sweep and its best level."""
-    sweep = shortened("sweep_watering.toml", days, seeds)
-    start = time.perf_counter()
-    got = finals(sweep, workers)
-    print(f"watering: {len(runs(sweep))} runs of {days:g} days, {time.perf_counter() - start:.1f} s")
-    means = table(sweep, got, (*SHOWN, "alive"))
+    sweep, means = swept("sweep_watering.toml", "watering", days, seeds, workers)
     best = int(np.argmax(means["leaf_area"]))
     levels = sweep.factors[0].levels
     inner = 0 < best < len(levels) - 1
