@@ -236,3 +236,15 @@ def test_a_forking_pool_loads_the_kernels_once_in_the_parent(sweep_file):
         "done = list(outcomes(_tasks(sweep, runs(sweep)[:2]), 2, None)); print([len(k.overloads) for k in kernels])")
     out = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, check=True).stdout
     assert out.split("\n")[:2] == ["[0, 0]", "[1, 1]"]
+
+
+def test_a_failing_warm_up_does_not_stop_the_sweep(sweep_file, tmp_path, monkeypatch):
+    """The pool's warm-up is only a speed-up: a run failing in it is left to its worker to report by name."""
+    from arbor.game.commands import sweep_runs
+
+    def broken(tasks):
+        raise RuntimeError("a run that fails on its first day")
+
+    monkeypatch.setattr(sweep_runs, "warm", broken)
+    said = []
+    assert run_sweep(sweep_file, tmp_path / "out", workers=2, plots=False, echo=said.append) == 0

@@ -6,6 +6,7 @@ a killed machine loses only the runs in flight; the same command run again skips
 
 from __future__ import annotations
 
+import contextlib
 import csv
 import io
 import multiprocessing
@@ -96,7 +97,10 @@ def outcomes(tasks: list[Task], workers: int, scheduler: str | None) -> Iterator
     else:
         method = start_method()
         if method == "fork":
-            warm(tasks)  # loaded once here, the kernels are every forked worker's (not loaded again by each)
+            # loaded once here, the kernels are every forked worker's (not loaded again by each); only a
+            # speed-up: a run that fails in it is left to its worker, which reports it by name
+            with contextlib.suppress(Exception):
+                warm(tasks)
         pool = multiprocessing.get_context(method).Pool(min(workers, len(tasks)), initializer=_quiet_interrupts)
         try:
             yield from pool.imap_unordered(run_safely, tasks)
