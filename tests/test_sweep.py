@@ -220,31 +220,3 @@ def test_kept_trees_are_named_by_level_and_seed(tmp_path, keep, seeds):
         set_level()
     kept = sorted(p.name for p in (tmp_path / "out" / "trees").iterdir())
     assert kept == sorted(f"orbit_height={h}_seed{s}.arbor" for h in ("-0.6", "1") for s in seeds)
-
-
-def test_a_forking_pool_loads_the_kernels_once_in_the_parent(sweep_file):
-    """Before forking its workers, the pool warms the kernels a run uses (numba's cache, loaded once here)
-    so each worker does not load them again: checked in a fresh process, where nothing loaded them yet."""
-    script = (
-        "from pathlib import Path; from arbor.engine.life.experiment.sweep import runs; "
-        "from arbor.game.commands.sweep_runs import outcomes; "
-        "from arbor.engine.life.experiment.sweep_file import load_sweep; from arbor.game.commands.sweep import _tasks; "
-        "from arbor.game.paths import ASSETS; from arbor.engine.geometry import turtle_kernel; "
-        "from arbor.engine.life.plant import light_kernel; "
-        f"sweep = load_sweep(Path({str(sweep_file)!r}), ASSETS / 'lsystems'); "
-        "kernels = (turtle_kernel.walk, light_kernel.depths); print([len(k.overloads) for k in kernels]); "
-        "done = list(outcomes(_tasks(sweep, runs(sweep)[:2]), 2, None)); print([len(k.overloads) for k in kernels])")
-    out = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, check=True).stdout
-    assert out.split("\n")[:2] == ["[0, 0]", "[1, 1]"]
-
-
-def test_a_failing_warm_up_does_not_stop_the_sweep(sweep_file, tmp_path, monkeypatch):
-    """The pool's warm-up is only a speed-up: a run failing in it is left to its worker to report by name."""
-    from arbor.game.commands import sweep_runs
-
-    def broken(tasks):
-        raise RuntimeError("a run that fails on its first day")
-
-    monkeypatch.setattr(sweep_runs, "warm", broken)
-    said = []
-    assert run_sweep(sweep_file, tmp_path / "out", workers=2, plots=False, echo=said.append) == 0

@@ -6,7 +6,6 @@ a killed machine loses only the runs in flight; the same command run again skips
 
 from __future__ import annotations
 
-import contextlib
 import csv
 import io
 import multiprocessing
@@ -19,7 +18,7 @@ from pathlib import Path
 
 from arbor.engine.base.errors import LSysError
 from arbor.engine.base.files import atomic_write
-from arbor.engine.life.experiment.sweep import Outcome, Run, Sweep, Task, cell, execute, warm
+from arbor.engine.life.experiment.sweep import Outcome, Run, Sweep, Task, cell, execute
 from arbor.game.errors import UserError
 
 
@@ -95,13 +94,7 @@ def outcomes(tasks: list[Task], workers: int, scheduler: str | None) -> Iterator
     elif workers == 1:
         yield from map(run_safely, tasks)
     else:
-        method = start_method()
-        if method == "fork":
-            # loaded once here, the kernels are every forked worker's (not loaded again by each); only a
-            # speed-up: a run that fails in it is left to its worker, which reports it by name
-            with contextlib.suppress(Exception):
-                warm(tasks)
-        pool = multiprocessing.get_context(method).Pool(min(workers, len(tasks)), initializer=_quiet_interrupts)
+        pool = multiprocessing.get_context(start_method()).Pool(min(workers, len(tasks)), initializer=_quiet_interrupts)
         try:
             yield from pool.imap_unordered(run_safely, tasks)
         finally:

@@ -11,7 +11,6 @@ from __future__ import annotations
 
 import copy
 import itertools
-import math
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 
@@ -105,20 +104,16 @@ def runs(sweep: Sweep) -> list[Run]:
             enumerate(itertools.product(list(combos), sweep.seeds))]
 
 
-def species_of(sweep: Sweep, run: Run) -> str:
-    """The species file a run grows (a level of a species factor, else the sweep's)."""
-    return next((level for f, level in zip(sweep.factors, run.levels, strict=True) if f.key == "species"),
-                sweep.species)
-
-
 def execute(task: Task) -> Outcome:
     """Grow one run's tree headless and sample its responses (the worker's function)."""
     sweep, run = task.sweep, task.run
-    regime, species = copy.deepcopy(sweep.base), species_of(sweep, run)  # (the lab copies the rules itself)
+    regime, species = copy.deepcopy(sweep.base), sweep.species  # (the lab copies the rules itself)
     for factor, level in zip(sweep.factors, run.levels, strict=True):
-        if factor.key in REGIME_KEYS:
+        if factor.key == "species":
+            species = level
+        elif factor.key in REGIME_KEYS:
             _set_regime(regime, factor.key, float(level))
-        elif factor.key != "species":
+        else:
             regime.rules[factor.key] = float(level)
     system = parse_lsystem(task.sources[species], species)
     experiment = Experiment(sweep.title, run.seed, sweep.duration, sweep.sample_every, [regime],
@@ -130,20 +125,6 @@ def execute(task: Task) -> Outcome:
     series, world = lab.series[0], lab.worlds[0]
     rows = [{"time_s": t, **{m: series.values[m][i] for m in sweep.responses}} for i, t in enumerate(series.time)]
     return Outcome(run, rows, save_text(world, species) if task.keep_tree else None)
-
-
-def warm(tasks: list[Task]) -> None:
-    """Grow a throw-away copy of the first run of each species for one game day (the light is read only
-    while the sun is up), so this process has loaded the compiled kernels (numba's cache) and every
-    first-use table a run needs: processes forked from it start warm instead of each loading them again.
-    Changes no run's results."""
-    first: dict[str, Task] = {}
-    for task in tasks:
-        first.setdefault(species_of(task.sweep, task.run), task)
-    for task in first.values():
-        day = 2 * math.pi / (task.sweep.base.sun_speed or task.rules.sun.speed)
-        short = replace(task.sweep, duration=min(task.sweep.duration, day))
-        execute(replace(task, sweep=short, keep_tree=False))
 
 
 def _set_regime(regime: Regime, key: str, value: float) -> None:
