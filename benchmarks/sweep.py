@@ -16,7 +16,7 @@ Run: python -m benchmarks.sweep [--days DAYS] [--seeds SEEDS] [--workers N] [--p
    0.2-0.5 s a run) that fixed part is 11 % of one process's time, which alone caps 2 workers at 1.80x
    before any cost of running two processes; in the teacher's sweep it is 0.5 %. 30 days x 4 seeds (20
    runs, 32 s of work) keeps the runs as long as a teacher's and the benchmark near a minute;
-   ``--days 10`` gives the old figure (1.69-1.87x measured at load 0.8-1.0, against 1.83-2.06x here).
+   ``--days 10`` gives the old figure (1.66-1.70x measured at load 0.9-1.3, against 1.84-1.87x here).
 2. One run of that sweep at its full 30 game days (orbit height 0.7, seed 1, kept watered), timed as
    wall and CPU time (goal: at most 3 s); with ``--profile``, cProfile's top functions of that run.
 """
