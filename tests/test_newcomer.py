@@ -6,6 +6,7 @@ from __future__ import annotations
 import os
 import subprocess
 import sys
+from pathlib import Path
 
 import pytest
 
@@ -61,3 +62,14 @@ def test_title_screen_bar_fills_with_the_kernels_progress(progress):
     assert green, "no bar drawn"
     assert abs((max(green) - 200) / 400 - progress) < 0.03  # the bar spans the middle half: x 200..600
     assert surf.get_at((590, row))[1] < 60 if progress < 0.9 else True
+
+
+def test_the_first_start_builds_every_compiled_kernel():
+    """Every engine module with a numba kernel is in the first start's list (a kernel left out compiled
+    silently the first time it ran, after the notice had said the machine was ready)."""
+    from arbor.game.first_start import KERNEL_MODULES
+
+    root = Path(__file__).resolve().parents[1]
+    compiled = {"arbor." + ".".join(path.relative_to(root).with_suffix("").parts)
+                for path in (root / "engine").rglob("*.py") if "numba.njit" in path.read_text(encoding="utf-8")}
+    assert compiled and compiled <= set(KERNEL_MODULES), sorted(compiled - set(KERNEL_MODULES))
