@@ -56,7 +56,7 @@ SWEEP_CASES = [  # (what is replaced, by what, line, column, words of the messag
     ('key = "orbit_height"\nlevels = [0.0, 1.0]', 'key = "prune.every_days"\nlevels = [3, 7]', 11, 1,
      "needs what to cut: give [base] a prune"),
     ('key = "orbit_height"\nlevels = [0.0, 1.0]', 'key = "prune.lowest"\nlevels = [0, 2]', 12, 1,
-     "'levels' must be from 0 to 1 share (0..1) (it is 2)"),
+     "'levels' must be from 0 to 1 share, 0..1 (it is 2)"),
     ("watering = { below = 0.5, until = 0.7 }", "prune = { every_days = 7, keep_hight = 2 }", 7, 27,
      "unknown key 'keep_hight' in 'prune' (did you mean 'keep_height'?)"),
     ('key = "orbit_height"', 'key = "orbit_hieght"', 11, 1,

@@ -24,11 +24,16 @@ TITLES = {"height": "Height", "width": "Crown width", "offset": "Lean toward the
           "leaf_area": "Leaf area", "lai": "Leaf area index", "light_share": "Light reaching the leaves",
           "light_day": "Light intercepted a day", "net_carbon": "Net carbon (fixed - respired)",
           "pool": "Sugar in store", "day_of_death": "Day of death", "root_shoot": "Root:shoot (carbon built)",
-          "pruned": "Branches cut by pruning"}
+          "pruned": "Branches cut by pruning",
+          **{f"{m}_{end}": f"{name} ({word} since the last sample)"
+             for m, name in (("sun", "Sun meter"), ("water", "Water meter"), ("wilt", "Wilt"))
+             for end, word in (("min", "lowest"), ("max", "highest"))}}
 YLABELS = {"alive": "share of seeds alive (0..1)", "modules": "modules (count)", "leaves": "clusters (count)",
            "shed": "branches (count)", "fruit": "fruit (count)", "lai": "m² of leaf per m² of ground",
            "light_share": "share of full sun (0..1)", "light_day": "m² of leaf x hours of full sun",
-           "root_shoot": "g into roots per g into shoots", "pruned": "branches (count)"}
+           "root_shoot": "g into roots per g into shoots", "pruned": "branches (count)",
+           **{f"{m}{end}": "meter, 0 (empty) .. 1 (full)" for m in ("sun", "water") for end in ("", "_min", "_max")},
+           **{f"wilt{end}": "wilt, 0 (none) .. 1 (fully wilted)" for end in ("", "_min", "_max")}}
 plt.rcParams.update({"font.size": 13, "axes.titlesize": 15, "axes.titleweight": "bold", "lines.linewidth": 2.5,
                      "svg.hashsalt": "arbor", "axes.spines.top": False, "axes.spines.right": False})
 

@@ -66,7 +66,7 @@ PRUNE = {
     "keep_height": Key("number", "head the tree back: cut every shoot at the first piece of wood above this", "m",
                        0.0, 50.0, above=True),
     "lowest": Key("number", "raise the crown: cut this share of the trunk's branches, the lowest first",
-                  "share (0..1)", 0.0, 1.0),
+                  "share, 0..1", 0.0, 1.0),
 }
 SUN = {
     "orbit_height": Key("number", "height of the sun's orbit centre (-1 always night, 1 always day)", "orbit radii",
