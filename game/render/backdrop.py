@@ -153,6 +153,16 @@ def ground_speckle(cells: int = 64, texels: int = 256, seed: int = 7) -> np.ndar
     return np.clip(fine * 255.0 + 0.5, 0.0, 255.0).astype("u1")
 
 
+def speckle_texture(ctx: moderngl.Context) -> moderngl.Texture:
+    """The ground's speckle (:func:`ground_speckle`) as a repeating texture read nearest (already smooth:
+    the cheapest lookup on a software GL), for the game's ground and the single-tree pictures' alike."""
+    speckle = ground_speckle()
+    texture = ctx.texture(speckle.shape[::-1], 1, speckle.tobytes())
+    texture.filter = (moderngl.NEAREST, moderngl.NEAREST)
+    texture.repeat_x = texture.repeat_y = True
+    return texture
+
+
 def _dome(rings: int = 14, sectors: int = 48) -> tuple[np.ndarray, np.ndarray]:
     """Unit directions of a dome from straight down to the zenith, and its triangles: below the horizon it
     is the horizon's colour, so where the ground disc ends (a camera close over a seedling sees past it)
@@ -180,10 +190,7 @@ class Backdrop:
         self.dome_prog = program(ctx, "dome.vert", "dome.frag")
         self.sun_prog = program(ctx, "sun.vert", "sun.frag")
         self.ground_prog = program(ctx, "ground_plain.vert", "ground_plain.frag")
-        noise = ground_speckle()
-        self.noise = ctx.texture(noise.shape[::-1], 1, noise.tobytes())
-        self.noise.filter = (moderngl.NEAREST, moderngl.NEAREST)  # (smooth already: see ground_speckle)
-        self.noise.repeat_x = self.noise.repeat_y = True
+        self.noise = speckle_texture(ctx)
         self.shade_prog = program(ctx, "ground.vert", "shade.frag")
         self.shade_buffer = ctx.buffer(reserve=64 * 12)
         self.shade = ctx.vertex_array(self.shade_prog, [(self.shade_buffer, "3f", "in_pos")])

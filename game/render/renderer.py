@@ -15,7 +15,7 @@ import numpy as np
 
 from arbor.engine.geometry.mesh import Mesh, TreeMesh
 from arbor.game.paths import ASSETS
-from arbor.game.render.backdrop import ground_speckle
+from arbor.game.render.backdrop import speckle_texture
 from arbor.game.render.camera import OrbitCamera, look_at, orthographic
 
 SHADOW_SIZE = 2048
@@ -84,10 +84,7 @@ class TreeRenderer:
             "leaf": _load_texture(ctx, "leaf", False),
             "blossom": _load_texture(ctx, "blossom", False),
         }
-        speckle = ground_speckle()  # (the game's ground's: soft blotches, not squares of one hash each)
-        self.noise = ctx.texture(speckle.shape[::-1], 1, speckle.tobytes())
-        self.noise.filter = (moderngl.NEAREST, moderngl.NEAREST)
-        self.noise.repeat_x = self.noise.repeat_y = True
+        self.noise = speckle_texture(ctx)  # (the game's ground's: soft blotches, not squares of one hash each)
         self.shadow_map = ctx.depth_texture((SHADOW_SIZE, SHADOW_SIZE))
         self.shadow_map.compare_func = "<="
         self.shadow_map.filter = (moderngl.LINEAR, moderngl.LINEAR)
