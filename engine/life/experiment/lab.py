@@ -166,7 +166,7 @@ def pace_value(reader: Reader, data: dict) -> str:
 
 def check_shared_sun(reader: Reader, regimes: list[Regime], tables: list[dict]) -> None:
     """Trees on one plot share one sun: their sun keys must agree."""
-    keys = ("orbit_height", "sun_speed", "day_length", "sun_elevation", "latitude", "day_of_year")
+    keys = tuple(schema.SUN)
     first = [getattr(regimes[0], k) for k in keys]
     for i, regime in enumerate(regimes[1:], 1):
         for key, want in zip(keys, first, strict=True):

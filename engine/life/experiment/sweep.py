@@ -16,13 +16,14 @@ from pathlib import Path
 
 import numpy as np
 
+from arbor.engine.life.experiment import schema
 from arbor.engine.life.experiment.lab import METRICS, Experiment, Lab, Pruning, Regime
 from arbor.engine.life.keep.save import save_text
 from arbor.engine.life.rules.rules import Rules
 from arbor.engine.lsystem.lsys import parse_lsystem
 
 RESPONSES = tuple(m for m in METRICS if m != "day_of_death")  # (no number for a tree still alive)
-SUN_KEYS = ("orbit_height", "sun_speed", "day_length", "sun_elevation", "latitude", "day_of_year")
+SUN_KEYS = tuple(schema.SUN)  # the sun's keys of a lab tree, a sweep's [base] and its factors
 REGIME_KEYS = (*SUN_KEYS, "watering.every", "watering.below",
                "prune.every_days", "prune.keep_height", "prune.lowest")
 MAX_FACTORS, MAX_LEVELS, MAX_SEEDS, MAX_RUNS = 2, 24, 500, 5000

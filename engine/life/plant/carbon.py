@@ -148,7 +148,7 @@ class Economy:
     activity: float = 1.0
     wood_density: float = 5e5  # g per m³
     in_leaf: bool = True  # a season in which the tree should have leaves (a bare tree then starves)
-    daylight: float = 1.0  # the remembered daylight against the rules' daylight_full: what a leaf's light earns
+    daylight: float = 1.0  # the remembered daylight against daylight_full (Simulation.light_growth): what light earns
 
     def book(self, measured: Canopy) -> float:
         """Photosynthesis and upkeep since the last reading, for the canopy measured now; the net (g)."""
