@@ -48,16 +48,31 @@ def _ours(name: str) -> str:
     return name.removeprefix("arbor.")
 
 
-def imports_of(path: Path) -> list[tuple[str, int]]:
-    """Every module ``path`` imports, with the line of the import (our own modules without ``arbor.``)."""
+def _absolute(node: ast.ImportFrom, path: Path, root: Path) -> str:
+    """The module a ``from`` import names, a relative one (``from ..x import y``) resolved against ``path``'s
+    package as Python resolves it (our own modules without ``arbor.``)."""
+    if node.level == 0:
+        return _ours(node.module or "")
+    package = _module_name(path, root).split(".")
+    if path.name != "__init__.py":
+        package.pop()  # a module's own package is its folder; a package's __init__ is the package itself
+    base = package[: len(package) - (node.level - 1)] if node.level - 1 <= len(package) else []
+    return ".".join([*base, *([node.module] if node.module else [])])
+
+
+def imports_of(path: Path, root: Path = ROOT) -> list[tuple[str, int]]:
+    """Every module ``path`` imports, with the line of the import (our own modules without ``arbor.``);
+    relative imports are resolved, so ``from ...life import x`` counts as ``engine.life.x``."""
     tree = ast.parse(path.read_text(encoding="utf-8"), str(path))
     found = []
     for node in ast.walk(tree):
         if isinstance(node, ast.Import):
             found += [(_ours(alias.name), node.lineno) for alias in node.names]
-        elif isinstance(node, ast.ImportFrom) and node.module and node.level == 0:
-            found.append((_ours(node.module), node.lineno))
-            found += [(_ours(f"{node.module}.{alias.name}"), node.lineno) for alias in node.names]
+        elif isinstance(node, ast.ImportFrom):
+            module = _absolute(node, path, root)
+            if module:
+                found.append((module, node.lineno))
+            found += [(f"{module}.{alias.name}".lstrip("."), node.lineno) for alias in node.names]
     return found
 
 
@@ -68,7 +83,7 @@ def violations(root: Path, table: dict[str, int], top: str) -> list[str]:
         me = _package(_module_name(path, root), table)
         if me is None:
             continue
-        for name, line in imports_of(path):
+        for name, line in imports_of(path, root):
             if not name.startswith(top + "."):
                 continue
             other = _package(name, table)
@@ -126,6 +141,26 @@ def test_the_rule_bites(tmp_path):
     (tmp_path / "engine" / "life" / "y.py").write_text("from arbor.engine.base import x\n")
     bad = violations(tmp_path, ENGINE, "engine")
     assert len(bad) == 1 and "engine/base/x.py:2" in bad[0]
+
+
+@pytest.mark.parametrize("source, imported", [
+    ("from ..life.plant import sim\n", "engine.life.plant"),
+    ("from ..life.plant.sim import Rules\n", "engine.life.plant.sim"),
+    ("def f():\n    from .. import life\n", "engine.life"),
+])
+def test_an_upward_relative_import_is_caught(tmp_path, source, imported):
+    """A relative import is resolved against its package, so climbing a layer with dots is caught too."""
+    (tmp_path / "engine" / "base").mkdir(parents=True)
+    (tmp_path / "engine" / "base" / "x.py").write_text(source)
+    bad = violations(tmp_path, ENGINE, "engine")
+    assert len(bad) == 1 and "engine/base/x.py" in bad[0] and f"imports {imported} " in bad[0], bad
+
+
+def test_a_relative_import_within_a_layer_is_allowed(tmp_path):
+    (tmp_path / "engine" / "life" / "plant").mkdir(parents=True)
+    (tmp_path / "engine" / "life" / "plant" / "__init__.py").write_text("from . import sim\n")
+    (tmp_path / "engine" / "life" / "plant" / "sim.py").write_text("from .carbon import x\nfrom ..rules import r\n")
+    assert violations(tmp_path, ENGINE, "engine") == []
 
 
 def test_no_class_is_over_250_lines():
