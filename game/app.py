@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 import contextlib
 import os
+import sys
 import time
 from pathlib import Path
 
@@ -58,8 +59,6 @@ def _refuse_invisible_window(driver: str) -> None:
 def _driver_without_display() -> str:
     """"offscreen" when nothing says where a window could go on Linux (no DISPLAY, WAYLAND_DISPLAY or
     SDL_VIDEODRIVER): what SDL would fall back to; otherwise "" (let SDL look)."""
-    import sys
-
     names = ("DISPLAY", "WAYLAND_DISPLAY", "SDL_VIDEODRIVER")
     return "offscreen" if sys.platform.startswith("linux") and not any(os.environ.get(n) for n in names) else ""
 
@@ -175,7 +174,7 @@ def run_kiosk(args: argparse.Namespace) -> int:
 
     from arbor.game.paths import ASSETS
     from arbor.game.screens.game import Game, GameConfig
-    from arbor.game.screens.kiosk import Kiosk, load_kiosk_config
+    from arbor.game.screens.kiosk import Kiosk, kiosk_config_or_defaults
 
     config = GameConfig(sprout=True)  # (each visitor's sapling rises from its seed)
     saves = getattr(args, "saves", None) or os.environ.get("ARBOR_SAVES")
@@ -184,13 +183,17 @@ def run_kiosk(args: argparse.Namespace) -> int:
     config.saves = config.saves / "kiosk"  # the kiosk keeps its own garden: never the home autosave
     lock = lock_saves(config.saves)  # (the watchdog's restart takes over the lock its killed child left)
     _kiosk_log(config.saves / "kiosk.log")
-    settings = load_kiosk_config(ASSETS / "kiosk.toml")
+    settings, problem = kiosk_config_or_defaults(ASSETS / "kiosk.toml")
+    if problem:
+        print(f"arbor: {problem}", file=sys.stderr)
     config.pace = settings.pace
     ctx = open_window(WINDOW, "Arbor", fullscreen=not args.windowed)
     size = pygame.display.get_surface().get_size()
     pygame.mouse.set_visible(False)
     kiosk = Kiosk(lambda: Game(ctx, size, config, clock=time.perf_counter), settings, config.saves,
                   clock=time.perf_counter)
+    if problem:
+        kiosk.game.say(problem, 12)
     hub = make_input_hub(args, size, time.perf_counter())
     _main_loop(ctx, size, kiosk.guarded(hub.poll), lambda events, seconds: kiosk.frame(events, seconds, ctx.screen))
     kiosk.game.quit()
@@ -247,7 +250,6 @@ def _trackers():
     is said in one line (stderr and the log) and its trackers are left out: the mouse, touch and
     SpaceMice still work, so the game and the kiosk still start."""
     import logging
-    import sys
 
     from arbor.game.input.hid import DevicesError, HidManager, load_profiles
     from arbor.game.paths import ASSETS

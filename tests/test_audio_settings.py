@@ -81,7 +81,8 @@ def test_a_broken_settings_file_is_one_line_and_the_defaults(gl_ctx, tmp_path):
     assert game.audio.volume == pytest.approx(0.7) and not game.audio.muted
     (tmp_path / PREFERENCES).write_text("loudness = 0.5\n")
     assert "unknown setting 'loudness'" in new_game(gl_ctx, tmp_path).state.message
-    (tmp_path / PREFERENCES).unlink()
+    assert not (tmp_path / PREFERENCES).exists()  # (set aside: the player's file is kept, not read again)
+    assert (tmp_path / f"{PREFERENCES}.2.broken").read_text() == "loudness = 0.5\n"
     os.mkfifo(tmp_path / PREFERENCES)  # (a FIFO must not block the start)
     assert "not a regular file" in new_game(gl_ctx, tmp_path).state.message
 

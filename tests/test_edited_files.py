@@ -110,7 +110,7 @@ def test_every_bad_replay_line_is_one_line(tmp_path, line, says):
     with pytest.raises(UserError) as info:
         _replay(path)
     message = str(info.value)
-    assert "\n" not in message and message.startswith(f"cannot replay {path}: {path}:3: ") and says in message
+    assert "\n" not in message and message.startswith(f"cannot replay {path}: {path}:3:1: ") and says in message
 
 
 def test_an_unreadable_replay_file_is_one_line_and_a_fifo_does_not_block(tmp_path):

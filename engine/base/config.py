@@ -4,28 +4,20 @@ from __future__ import annotations
 
 import math
 import re
-import tomllib
 from dataclasses import fields
 from pathlib import Path
 
 from arbor.engine.base.errors import LSysError, SettingsError
+from arbor.engine.base.reader import read_user_toml
 
 _HEADER = re.compile(r"\s*\[\[?([^\]]*)\]\]?\s*(#.*)?$")
 
 
 def read_toml(path: str | Path, error: type[LSysError]) -> tuple[str, dict]:
-    """A TOML file a user wrote: its text and its data; unreadable or invalid TOML is ``error`` naming the
-    file (and tomllib's line and column)."""
-    file = str(path)
-    try:
-        text = Path(path).read_text(encoding="utf-8")
-        return text, tomllib.loads(text)
-    except (OSError, UnicodeDecodeError) as exc:
-        raise error(f"cannot read: {exc}", file) from None
-    except tomllib.TOMLDecodeError as exc:
-        match = re.search(r"line (\d+), column (\d+)", str(exc))
-        line, col = (int(match.group(1)), int(match.group(2))) if match else (1, 1)
-        raise error(f"not valid TOML: {exc}", file, line, col) from None
+    """A TOML file a user wrote: its text and its data, read by the one reader for users' files
+    (:func:`arbor.engine.base.reader.read_user_toml`: a regular file, size, nesting and work bounded); any
+    problem is ``error`` naming the file, line and column."""
+    return read_user_toml(path, error)
 
 
 def toml_position(text: str, table: str = "", key: str | None = None) -> tuple[int, int]:

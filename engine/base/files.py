@@ -5,8 +5,11 @@ from __future__ import annotations
 
 import errno
 import os
-import stat
 from pathlib import Path
+
+from arbor.engine.base.reader import read_regular
+
+__all__ = ["FolderBusyError", "FolderLock", "atomic_write", "read_regular", "set_aside"]
 
 
 def atomic_write(path: str | Path, data: bytes) -> None:
@@ -16,6 +19,8 @@ def atomic_write(path: str | Path, data: bytes) -> None:
     """
     path = Path(path)
     tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
+    if not path.parent.is_dir():  # say so by the folder's name, not the temp file's (an error a user reads)
+        raise FileNotFoundError(errno.ENOENT, f"no such folder (to write {path.name} in)", str(path.parent))
     try:
         with open(_new_file(tmp), "wb") as fh:
             fh.write(data)
@@ -45,19 +50,6 @@ def _new_file(tmp: Path) -> int:
     except FileExistsError:
         tmp.unlink()
         return os.open(tmp, flags, 0o644)
-
-
-def read_regular(path: str | Path, limit: int) -> bytes:
-    """At most ``limit + 1`` bytes of ``path`` if it is a regular file itself: a symlink (to a file
-    outside the folder, say), a FIFO (which would block the start) or a device is an OSError, not read."""
-    fd = os.open(path, os.O_RDONLY | getattr(os, "O_NOFOLLOW", 0) | getattr(os, "O_NONBLOCK", 0))
-    try:
-        if not stat.S_ISREG(os.fstat(fd).st_mode):
-            raise OSError(errno.EINVAL, "not a regular file (a save must be a plain file)")
-        with os.fdopen(os.dup(fd), "rb") as fh:  # read(n) allocates n bytes first: ask for no more than the file
-            return fh.read(min(limit, os.fstat(fd).st_size) + 1)
-    finally:
-        os.close(fd)
 
 
 def set_aside(path: str | Path, suffix: str = ".broken") -> Path:

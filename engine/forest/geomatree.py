@@ -8,16 +8,16 @@ different detail.
 
 from __future__ import annotations
 
-import tomllib
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
 from arbor.engine.base.config import fill_dataclass
-from arbor.engine.base.errors import LSysError
+from arbor.engine.base.errors import LSysError, SettingsError
+from arbor.engine.base.reader import read_user_text, read_user_toml
 from arbor.engine.forest.divisors import FUNCTIONS, PropagationRule, children_function, children_table
-from arbor.engine.lsystem.lsys import LSystem, parse_lsystem
+from arbor.engine.lsystem.lsys import MAX_SOURCE_BYTES, LSystem, parse_lsystem
 
 
 @dataclass
@@ -53,7 +53,8 @@ class Species:
 def load_species(path: str | Path) -> Species:
     """A preset file; unknown keys, wrong types or out-of-range values name the file and key."""
     species = Species()
-    fill_dataclass(species, tomllib.loads(Path(path).read_text(encoding="utf-8")), str(path), "species parameter")
+    text, data = read_user_toml(path, SettingsError, 65_536)  # (the one reader for users' files)
+    fill_dataclass(species, data, str(path), "species parameter", SettingsError, text)
     if len(species.v_ext) != 3 or not all(isinstance(v, int | float) and not isinstance(v, bool)
                                           for v in species.v_ext):
         raise LSysError("v_ext must be three numbers [x, y, z]", str(path))
@@ -97,7 +98,7 @@ def growth_system(species: Species, source: Path, seed: int = 0) -> LSystem:
         "PHIK": species.phi_k, "LK": species.l_k, "LEVELS": float(species.levels),
     }
     host = {"children": children_function(table), "seed_dt": lookup(0), "seed_dp": lookup(1)}
-    system = parse_lsystem(source.read_text(encoding="utf-8"), str(source), overrides, host)
+    system = parse_lsystem(read_user_text(source, MAX_SOURCE_BYTES, LSysError), str(source), overrides, host)
     system.iterations = 2 * species.levels
     system.seed = seed
     system.tropism_x, system.tropism_y, system.tropism_z = species.v_ext if any(species.v_ext) else (0.0, 1.0, 0.0)

@@ -29,6 +29,7 @@ from pathlib import Path
 import numpy as np
 
 from arbor.engine.base.errors import LSysError
+from arbor.engine.base.reader import read_user_text
 from arbor.engine.lsystem.cursor import Cursor
 from arbor.engine.lsystem.expr import EvalContext, Expr, HostFunctions, evaluate, parse_expression
 from arbor.engine.lsystem.lstring import MAX_PARAMS, LString, valid_symbol
@@ -142,23 +143,10 @@ MAX_SOURCE_BYTES = 1024 * 1024  # an .lsys source is text a person writes: a meg
 
 
 def load_lsystem(path: str | Path) -> LSystem:
-    """Read and parse an .lsys file (a regular file of at most a megabyte of UTF-8 text, a BOM allowed);
-    errors name the file, line and column."""
-    path = Path(path)
-    try:
-        if not path.is_file():
-            raise LSysError("cannot read: not a plain file (an .lsys source is a text file)" if path.exists()
-                            else "cannot read: no such file", str(path), 1, 1)
-        with open(path, "rb") as fh:
-            raw = fh.read(MAX_SOURCE_BYTES + 1)
-    except OSError as exc:
-        raise LSysError(f"cannot read: {exc.strerror}", str(path), 1, 1) from None
-    if len(raw) > MAX_SOURCE_BYTES:
-        raise LSysError(f"too large (more than {MAX_SOURCE_BYTES:,} bytes)", str(path), 1, 1)
-    try:
-        text = raw.decode("utf-8-sig")
-    except UnicodeDecodeError as exc:
-        raise LSysError(f"not UTF-8 text ({exc.reason} at byte {exc.start})", str(path), 1, 1) from None
+    """Read and parse an .lsys file (through the one reader for users' files: a regular file itself, not a
+    link, FIFO or device, of at most a megabyte of UTF-8 text, a BOM allowed); errors name the file, line
+    and column."""
+    text = read_user_text(path, MAX_SOURCE_BYTES, LSysError)
     return parse_lsystem(text, str(path))
 
 

@@ -9,13 +9,14 @@ from __future__ import annotations
 
 import json
 import math
-import os
-import stat
 from collections.abc import Iterable
 from dataclasses import asdict, dataclass, fields
 from pathlib import Path
 
 import pygame
+
+from arbor.engine.base.errors import LSysError
+from arbor.engine.base.reader import read_user_text
 
 DOWN, MOVE, UP = "down", "move", "up"
 KEY_DOWN, KEY_UP, WHEEL, ROTATE, QUIT, FOCUS_LOST, DEVICE = (
@@ -146,27 +147,28 @@ class Recorder:
         self.file.close()
 
 
+class RecordingError(LSysError, ValueError):
+    """A recording that cannot be replayed: ``file:line:column: why`` (a ValueError too, as callers expect)."""
+
+
+MAX_LINE_NESTING = 8  # arrays or objects nested in one event's JSON (an event nests 2)
+
+
 def load_recording(path: str | Path) -> list[InputEvent]:
-    """Read a recording; a bad line raises ValueError naming the file and line, in one line (so does a
-    file that is not UTF-8 text, not a regular file or larger than MAX_RECORDING)."""
-    with open(os.open(path, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0)), "rb") as fh:  # a FIFO: no wait
-        if not stat.S_ISREG(os.fstat(fh.fileno()).st_mode):
-            raise ValueError(f"{path}: not a regular file")
-        raw = fh.read(MAX_RECORDING + 1)
-    if len(raw) > MAX_RECORDING:
-        raise ValueError(f"{path}: too large (more than {MAX_RECORDING:,} bytes)")
-    try:
-        content = raw.decode("utf-8")
-    except UnicodeDecodeError as exc:
-        raise ValueError(f"{path}: not UTF-8 text (byte {exc.start})") from None
+    """Read a recording through the one reader for users' files (a regular file itself, at most
+    MAX_RECORDING bytes of UTF-8); a bad line is a :class:`RecordingError` naming the file and line, in
+    one line (JSON nested deeper than an event is refused before it is parsed)."""
+    content = read_user_text(path, MAX_RECORDING, RecordingError)
     events = []
     for number, line in enumerate(content.splitlines(), start=1):
         if (number == 1 and "arbor_input_recording" in line) or not line.strip():
             continue
+        if line.count("[") + line.count("{") > MAX_LINE_NESTING:
+            raise RecordingError(f"not an input event: more than {MAX_LINE_NESTING} brackets", str(path), number)
         try:
             events.append(InputEvent.from_json(line))
-        except (ValueError, TypeError) as exc:
-            raise ValueError(f"{path}:{number}: {exc}") from None
+        except (ValueError, TypeError, RecursionError) as exc:
+            raise RecordingError(str(exc), str(path), number) from None
     return events
 
 

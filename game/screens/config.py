@@ -4,14 +4,15 @@ and mute and the Away setting, set on the Settings page through :class:`PlayerSe
 
 from __future__ import annotations
 
+import logging
 import os
-import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
 
 from arbor.engine.base.config import fill_dataclass, toml_position
 from arbor.engine.base.errors import SettingsError
-from arbor.engine.base.files import atomic_write, read_regular
+from arbor.engine.base.files import atomic_write, set_aside
+from arbor.engine.base.reader import read_user_toml
 from arbor.engine.life.world.actions import Action
 from arbor.game.paths import ASSETS, default_saves
 from arbor.game.strings import text
@@ -19,6 +20,8 @@ from arbor.game.strings import text
 PREFERENCES = "settings.toml"  # in the saves folder
 PREFERENCES_LIMIT = 16_384  # bytes: a longer file is not ours
 SAVE_AFTER = 0.5  # seconds a changed setting waits before it is written (a dragged slider writes once)
+
+log = logging.getLogger("arbor.settings")
 
 
 @dataclass
@@ -60,19 +63,20 @@ def read_preferences(path: Path) -> Preferences:
     prefs = Preferences()
     if not path.exists() and not path.is_symlink():
         return prefs
-    try:
-        data = read_regular(path, PREFERENCES_LIMIT)
-        if len(data) > PREFERENCES_LIMIT:
-            raise SettingsError(f"longer than {PREFERENCES_LIMIT} bytes: not a settings file", str(path))
-        text = data.decode("utf-8")
-        values = tomllib.loads(text)
-    except OSError as exc:
-        raise SettingsError(f"cannot read: {exc.strerror or exc}", str(path)) from None
-    except (UnicodeDecodeError, tomllib.TOMLDecodeError) as exc:
-        raise SettingsError(f"not valid TOML: {exc}", str(path)) from None
+    text, values = read_user_toml(path, SettingsError, PREFERENCES_LIMIT)
     fill_dataclass(prefs, values, str(path), "setting", SettingsError, text)
     check_volume(prefs.volume, str(path), text)
     return prefs
+
+
+def bad_settings_line(err: SettingsError, path: Path) -> str:
+    """One line for a settings file that could not be read: it is set aside (``settings.toml.broken``,
+    so the player's file is kept and not read again at the next start) and the defaults are used."""
+    try:
+        kept = f"set aside as {set_aside(path).name}"
+    except OSError as exc:
+        kept = f"left where it is ({exc.strerror or exc})"
+    return f"{err} ({kept}; sound settings back to their defaults)"
 
 
 def write_preferences(prefs: Preferences, path: Path) -> None:
@@ -95,7 +99,8 @@ class PlayerSettings:
         try:
             self.prefs = read_preferences(self.path)
         except SettingsError as err:
-            self.prefs, self.problem = Preferences(), f"{err} (sound settings back to their defaults)"
+            self.prefs, self.problem = Preferences(), bad_settings_line(err, self.path)
+            log.error("%s", self.problem)
         self.changed_at: float | None = None  # when a change not yet written was made
         audio.set_volume(self.prefs.volume, self.prefs.muted)
 

@@ -16,7 +16,6 @@ from __future__ import annotations
 
 import logging
 import time
-import tomllib
 import traceback
 from dataclasses import dataclass
 from pathlib import Path
@@ -25,6 +24,7 @@ import pygame
 
 from arbor.engine.base.config import fill_dataclass, toml_position
 from arbor.engine.base.errors import SettingsError
+from arbor.engine.base.reader import read_user_toml
 from arbor.engine.life.keep.save import SavedGarden
 from arbor.game.input.events import DOWN, KEY_DOWN, KEY_UP, MOVE, QUIT, UP, InputEvent, load_recording
 from arbor.game.paths import ASSETS
@@ -56,14 +56,31 @@ class KioskConfig:
     volume: float = 0.5  # the sound's volume 0..1 (0: silent), set again for every visitor
 
 
+KIOSK_LIMIT = 65_536  # bytes: a kiosk.toml is a dozen lines
+
+
 def load_kiosk_config(path: str | Path) -> KioskConfig:
-    """Read kiosk settings; unknown keys or wrong types are SettingsErrors naming the file, key, line and column."""
-    config, text = KioskConfig(), Path(path).read_text(encoding="utf-8")
-    fill_dataclass(config, tomllib.loads(text), str(path), "kiosk setting", SettingsError, text)
+    """Read kiosk settings (through the one reader for users' files); a file that is not a small plain
+    TOML file, unknown keys or wrong types are SettingsErrors naming the file, key, line and column."""
+    config = KioskConfig()
+    text, data = read_user_toml(path, SettingsError, KIOSK_LIMIT)
+    fill_dataclass(config, data, str(path), "kiosk setting", SettingsError, text)
     if not config.pin.isdigit() or not 4 <= len(config.pin) <= 8:
         raise SettingsError("the kiosk PIN must be 4 to 8 digits", str(path), *toml_position(text, "", "pin"))
     check_volume(config.volume, str(path), text)
     return config
+
+
+def kiosk_config_or_defaults(path: str | Path) -> tuple[KioskConfig, str]:
+    """The kiosk's settings from ``path``, or the defaults and one line saying why (logged, and said on
+    stderr) when the file cannot be used: a bad kiosk.toml must not stop the kiosk, nor make a watchdog
+    count crashes and set the visitors' garden aside."""
+    try:
+        return load_kiosk_config(path), ""
+    except SettingsError as err:
+        line = f"{err} (the kiosk runs on its default settings: fix the file and restart)"
+        log.error("%s", line)
+        return KioskConfig(), line
 
 
 class PinLock:

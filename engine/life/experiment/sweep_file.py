@@ -56,7 +56,8 @@ def load_sweep(path: str | Path, lsystem_dir: Path) -> Sweep:
     if duration / every > MAX_SAMPLES:
         raise reader.fail(f"'sample_every' gives more than {MAX_SAMPLES} samples per run: take a larger one",
                           ("sample_every",))
-    varied = tuple(t.get("key") for t in data.get("factor", []) if isinstance(t, dict))
+    varied = tuple(t["key"] for t in data.get("factor", []) if isinstance(t, dict) and isinstance(t.get("key"), str))
+    # (only names: a table or list given as a key is reported by _factors at its line, not a TypeError here)
     base = parse_regime(reader, get("base", {}), ("base",), schema.BASE, factors=varied)
     species = _species_file(reader, species_name(reader, data, "sweep"), lsystem_dir, ("species",))
     factors = _factors(reader, data, lsystem_dir)

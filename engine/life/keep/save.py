@@ -54,9 +54,10 @@ from arbor.engine.life.lineage.lineage import Family, Lineage, lineage_from_row,
 from arbor.engine.life.plant import genome
 from arbor.engine.life.plant.growth import GrowingTree
 from arbor.engine.life.plant.journal import Journal
+from arbor.engine.life.plant.roots import Roots
 from arbor.engine.life.plant.sim import Rules, Simulation
 from arbor.engine.life.world.garden import MAX_ROCKS, MAX_SEEDS, Garden, Seed
-from arbor.engine.life.world.world import World
+from arbor.engine.life.world.world import Parts, World
 from arbor.engine.lsystem.lstring import LString, parse_lstring
 from arbor.engine.lsystem.lsys import parse_lsystem
 from arbor.engine.lsystem.text import format_number
@@ -335,6 +336,8 @@ def _decode(raw: bytes, path: Path) -> tuple[dict, str]:
         raise SaveError("not a valid save: nested too deeply", str(path)) from None
     except save_blocks.TooMuchWorkError as exc:
         raise SaveError(str(exc), str(path)) from None
+    except save_blocks.TooDeepError as exc:
+        raise SaveError(f"not a valid save: {exc}", str(path), exc.line, exc.col) from None
 
 
 def _table_lines(text: str, header: str) -> list[int]:
@@ -419,85 +422,88 @@ def _system(data: dict, where: Where):
 
 
 def _load_tree(data: dict, where: Where, rules: Rules, budget_slack: float) -> World:
-    """One checked tree (see save_check for the checks)."""
+    """One checked tree (see save_check for the checks), its World built once from its parts."""
     system = _system(data, where)
-    world = World(system, rules, seed=value(data, "seed", *TREE_FIELDS["seed"], where), plant=False)
-    world.steps = value(data, "steps", *TREE_FIELDS["steps"], where)
-    world.position = tuple(vector(data, "position", 2, where, [0.0, 0.0], limit=POSITION_LIMIT))
+    seed = value(data, "seed", *TREE_FIELDS["seed"], where)
     state = sim_state(table(data, "sim", where), where)
     state.sun_angle %= 2 * math.pi
     state.orbit_height = min(max(state.orbit_height, rules.sun.orbit_height_min), rules.sun.orbit_height_max)
     state.sun_speed = min(max(state.sun_speed, rules.sun.speed_min), rules.sun.speed_max)
-    world.sim = Simulation(rules, state)
     saved_genome = {k: v for k, v in table(data, "genome", where, required=False).items()  # (older saves: none)
                     if isinstance(v, int | float) and not isinstance(v, bool) and abs(v) <= BIG}  # (10**25: no float)
-    world.genome = genome.checked(system, saved_genome) if "genome" in data else {}
-    world.tree = GrowingTree(world.expressed(), seed=world.seed)
+    traits = genome.checked(system, saved_genome) if "genome" in data else {}
     growth = table(data, "growth", where)
-    _restore_growth(world, growth, where, budget_slack)
-    world.journal, _ = Journal.from_rows(table(data, "journal", where, required=False).get("entries", []))
-    world.carbon = carbon_budget(data.get("carbon") if "carbon" in data else None, where)
+    tree = _restore_growth(GrowingTree(genome.expressed(system, traits), seed=seed), system, growth, where,
+                           budget_slack)
+    rng = np.random.Generator(np.random.PCG64(seed))
+    restore_rng(rng, text_value(growth, "rng_world", where, 4096), "rng_world", where)
     saved = data.get("lineage")
     lineage = lineage_from_row(saved) if saved is not None else None
-    world.dropped_lineage = int(saved is not None and lineage is None)
+    dropped = int(saved is not None and lineage is None)
     if lineage is None:  # an older save, or a lineage that cannot be trusted: the tree starts a line
         name = data.get("lsystem") if isinstance(data.get("lsystem"), str) else "tree"
-        lineage = new_lineage(world.seed, 0.0, species_of(name))
-    world.lineage = lineage
-    return world
+        lineage = new_lineage(seed, 0.0, species_of(name))
+    parts = Parts(sim=Simulation(rules, state), tree=tree, genome=traits, roots=_restore_roots(growth, where, seed),
+                  carbon=carbon_budget(data.get("carbon") if "carbon" in data else None, where),
+                  journal=Journal.from_rows(table(data, "journal", where, required=False).get("entries", []))[0],
+                  lineage=lineage, rng=rng, steps=value(data, "steps", *TREE_FIELDS["steps"], where),
+                  last_light=value(growth, "last_light", *GROWTH_FIELDS["last_light"], where, default=float("-inf")),
+                  dropped_lineage=dropped)
+    position = tuple(vector(data, "position", 2, where, [0.0, 0.0], limit=POSITION_LIMIT))
+    return World(system, rules, seed=seed, position=position, parts=parts)
 
 
-def _restore_growth(world: World, growth: dict, where: Where, budget_slack: float) -> None:
-    tree = world.tree
-    limit = int((world.system.budget or 10**6) * 2 * budget_slack)
+def _restore_growth(tree: GrowingTree, system, growth: dict, where: Where, budget_slack: float) -> GrowingTree:
+    """``tree`` (new, of the saved genome) with its saved L-string, clocks, light and generator."""
+    limit = int((system.budget or 10**6) * 2 * budget_slack)
     modules = value(growth, "modules", "int", 0, 2**31, where)
     lstring_text = text_value(growth, "lstring", where, 64 * max(limit, 1))
     if modules > limit:
         raise where.error(f"the tree is larger than this L-system's budget allows ({limit:,} modules)", "modules")
     try:
-        tree.lstring = parse_lstring(lstring_text, str(where.path))
+        lstring = parse_lstring(lstring_text, str(where.path))
     except LSysError as err:
         if "\n" in lstring_text:  # a literal block: its lines are the file's lines
             line, col = where.line("lstring") + err.line, err.col
         else:  # one line once TOML has joined the wrapped lines of an older save
             line, col = where.line("lstring") + 1 + (err.col - 1) // WRAP, (err.col - 1) % WRAP + 1
         raise SaveError(f"in the L-string: {err.message}", str(where.path), line, col) from None
-    if len(tree.lstring) > limit:
+    if len(lstring) > limit:
         raise where.error(f"the tree is larger than this L-system's budget allows ({limit:,} modules)", "lstring")
-    lstring_sane(tree.lstring, where)
-    tree.last_rewrite_T = value(growth, "last_rewrite_T", *GROWTH_FIELDS["last_rewrite_T"], where)
+    lstring_sane(lstring, where)
     direction = np.array(vector(growth, "light_dir", 3, where, [0.0, 1.0, 0.0], limit=10.0))
     if not 0.5 < float(np.linalg.norm(direction)) < 2.0:
         raise where.error("'light_dir' must be a direction (a vector of length 1)", "light_dir")
-    tree.light_dir = _direction(direction)
-    tree.mean_light = value(growth, "mean_light", *GROWTH_FIELDS["mean_light"], where, default=1.0)
-    tree.shed_total = value(growth, "shed_total", *GROWTH_FIELDS["shed_total"], where, default=0)
-    world.last_light = value(growth, "last_light", *GROWTH_FIELDS["last_light"], where, default=float("-inf"))
-    if "last_sense_length" in growth or "last_sense_girth" in growth:
-        tree.last_sense_length = value(growth, "last_sense_length", *GROWTH_FIELDS["last_sense_length"], where)
-        tree.last_sense_girth = value(growth, "last_sense_girth", *GROWTH_FIELDS["last_sense_girth"], where)
-    restore_rng(world.rng, text_value(growth, "rng_world", where, 4096), "rng_world", where)
-    _restore_roots(world, growth, where)
+    sensed = "last_sense_length" in growth or "last_sense_girth" in growth
+    tree.restore(lstring, last_rewrite_T=value(growth, "last_rewrite_T", *GROWTH_FIELDS["last_rewrite_T"], where),
+                 light_dir=_direction(direction),
+                 mean_light=value(growth, "mean_light", *GROWTH_FIELDS["mean_light"], where, default=1.0),
+                 shed_total=value(growth, "shed_total", *GROWTH_FIELDS["shed_total"], where, default=0),
+                 sensed=(value(growth, "last_sense_length", *GROWTH_FIELDS["last_sense_length"], where),
+                         value(growth, "last_sense_girth", *GROWTH_FIELDS["last_sense_girth"], where))
+                 if sensed else None)
     restore_rng(tree.deriver.rng, text_value(growth, "rng_tree", where, 4096), "rng_tree", where)
+    return tree
 
 
-def _restore_roots(world: World, growth: dict, where: Where) -> None:
+def _restore_roots(growth: dict, where: Where, seed: int) -> Roots:
     """The roots (saves from before roots have none: the tree starts a root system)."""
+    roots = Roots(seed=seed)
     if "roots" not in growth:
-        return
-    roots = world.roots
+        return roots
     limit = 2 * (roots.system.budget or 10_000)
     text = text_value(growth, "roots", where, 64 * limit)
     try:
-        roots.lstring = parse_lstring(text, str(where.path))
+        lstring = parse_lstring(text, str(where.path))
     except LSysError as err:
         raise SaveError(f"in the roots: {err.message}", str(where.path), where.line("roots"), err.col) from None
-    if len(roots.lstring) > limit:
+    if len(lstring) > limit:
         raise where.error(f"the roots are larger than their budget allows ({limit:,} modules)", "roots")
-    lstring_sane(roots.lstring, where)
-    roots.last_rewrite = value(growth, "roots_rewrite", *GROWTH_FIELDS["roots_rewrite"], where)
+    lstring_sane(lstring, where)
+    roots = Roots(seed=seed, lstring=lstring,
+                  last_rewrite=value(growth, "roots_rewrite", *GROWTH_FIELDS["roots_rewrite"], where))
     restore_rng(roots.deriver.rng, text_value(growth, "rng_roots", where, 4096), "rng_roots", where)
-    world.sync_roots()
+    return roots
 
 
 def read_garden(path: str | Path, rules: Rules | None = None, budget_slack: float = 1.0) -> SavedGarden:

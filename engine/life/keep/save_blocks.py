@@ -15,10 +15,11 @@ from __future__ import annotations
 import secrets
 import tomllib
 
+from arbor.engine.base.reader import COSTLY_WORK, LINE_WORK, MAX_WORK, nesting_problem, position, reading_work
+
+__all__ = ["COSTLY_WORK", "LINE_WORK", "MAX_WORK", "TooDeepError", "TooMuchWorkError", "loads", "reading_work"]
+
 _KEYS = (b"\nlstring = '''\n", b"\nroots = '''\n")  # at a line start, as the writer puts them
-MAX_WORK = 2_000_000  # reading work TOML may be given (at most 1.6 s on this machine): see :func:`reading_work`
-_COSTLY = (b",", b"[", b"{", b"=", b"\\")  # a value, a table, a key or an escape: about 8-34 us each
-COSTLY_WORK, LINE_WORK = 32, 2
 
 
 class TooMuchWorkError(ValueError):
@@ -31,13 +32,13 @@ class TooMuchWorkError(ValueError):
         self.work = work
 
 
-def reading_work(text: bytes) -> int:
-    """A bound of the time the standard library's TOML reader takes on ``text``, in units of 0.2-0.8 us
-    (measured on shapes from lists of numbers to table headers): it is pure Python and spends 8-34 us on
-    every value, key, table header or escape (a 33 MB journal took 65 s), about 0.5 us on a line and
-    less on other bytes. Counted with
-    bytes.count, before any parsing, so a hostile save cannot make the start hang in TOML."""
-    return len(text) + LINE_WORK * text.count(b"\n") + COSTLY_WORK * sum(text.count(c) for c in _COSTLY)
+class TooDeepError(ValueError):
+    """The text nests arrays, tables or keys deeper than any save does (checked before TOML reads it,
+    whose reader would run out of stack): ``line`` and ``col`` say where."""
+
+    def __init__(self, what: str, line: int, col: int) -> None:
+        super().__init__(f"nested too deeply: {what}")
+        self.line, self.col = line, col
 
 
 def loads(raw: bytes) -> tuple[dict, str]:
@@ -66,6 +67,10 @@ def _check_work(text: bytes) -> None:
     work = reading_work(text)
     if work > MAX_WORK:
         raise TooMuchWorkError(work)
+    decoded = text.decode("utf-8", "replace")
+    problem = nesting_problem(decoded)
+    if problem is not None:
+        raise TooDeepError(problem[1], *position(decoded, problem[0]))
 
 
 def _lift(raw: bytes) -> tuple[bytes, dict[str, bytes]]:
