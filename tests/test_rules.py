@@ -11,7 +11,17 @@ from arbor.engine.base.errors import ExperimentError, LSysError, RulesError, Set
 from arbor.engine.life.experiment.lab import Lab, load_experiment
 from arbor.engine.life.experiment.sweep import Factor
 from arbor.engine.life.experiment.sweep_file import load_sweep
-from arbor.engine.life.rules.rules import RATES, TIMES, Rules, load_rules
+from arbor.engine.life.rules.rules import (
+    OVERRIDE_MARKERS,
+    RATES,
+    TIMES,
+    Rules,
+    file_overrides,
+    load_rules,
+    overrides_markdown,
+    restated_defaults,
+    write_rules_doc,
+)
 from arbor.engine.life.rules.schema import SCHEMA, TABLE_MARKERS, Rule, rules_table_markdown
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -25,14 +35,55 @@ def write(tmp_path: Path, text: str, name: str = "rules.toml") -> Path:
     return path
 
 
-def test_docs_table_is_the_schema():
+REGENERATE = ("python -c \"from arbor.engine.life.rules.rules import write_rules_doc; "
+              "write_rules_doc('docs/rules.md', 'assets/rules.toml')\"")
+
+
+def _between(text: str, markers: tuple[str, str]) -> str:
+    start, end = markers
+    assert start in text and end in text, f"docs/rules.md lost its markers {markers}"
+    return text.partition(start)[2].partition(end)[0]
+
+
+def test_docs_tables_are_the_schema_and_the_rules_file():
+    """docs/rules.md's two tables are made from the schema and from assets/rules.toml: a rule changed in
+    either (say the can's fill_rate set in rules.toml) leaves the doc stale and fails here."""
     text = (ROOT / "docs" / "rules.md").read_text(encoding="utf-8")
-    start, end = TABLE_MARKERS
-    documented = text.partition(start)[2].partition(end)[0]
-    assert documented == rules_table_markdown(), (
-        "docs/rules.md is out of date: python -c \"from arbor.engine.life.rules.schema import write_rules_doc; "
-        "write_rules_doc('docs/rules.md')\"")
+    assert _between(text, TABLE_MARKERS) == rules_table_markdown(), f"docs/rules.md is out of date: {REGENERATE}"
+    assert _between(text, OVERRIDE_MARKERS) == overrides_markdown(ASSETS / "rules.toml"), (
+        f"docs/rules.md does not list what assets/rules.toml changes: {REGENERATE}")
+    assert REGENERATE.partition("-c ")[2].strip('\\"') in text.replace("`", "")
     assert "(docs/rules.md)" in (ROOT / "README.md").read_text(encoding="utf-8")
+
+
+def test_the_rules_file_holds_only_overrides():
+    """Every default lives in the schema alone: assets/rules.toml repeats none (not even at a pace's scale)."""
+    assert restated_defaults(ASSETS / "rules.toml") == [], "rules.toml repeats these defaults: remove them"
+    for table, key, value, default in file_overrides(ASSETS / "rules.toml"):
+        assert value != default, (table, key)
+
+
+def test_a_restated_default_is_found(tmp_path):
+    fill = next(r for r in SCHEMA if r.key == "water.fill_rate")
+    death = next(r for r in SCHEMA if r.key == "health.death_time")
+    path = write(tmp_path, f"pace = \"demo\"\n[water]\nfill_rate = {fill.default!r}\ndrain_rate = 0.5\n"
+                           f"[paces.slow]\ntime_scale = 10\n\"health.death_time\" = {death.default * 10!r}\n")
+    assert restated_defaults(path) == ["(top) pace = 'demo'", f"[water] fill_rate = {fill.default!r}",
+                                       f"[paces.slow] health.death_time = {death.default * 10!r}"]
+    path.write_text(path.read_text().replace("fill_rate", "fill_rate = 0.3\n#"))
+    assert f"[water] fill_rate = {fill.default!r}" not in restated_defaults(path)
+
+
+def test_the_docs_regenerate(tmp_path):
+    doc = tmp_path / "rules.md"
+    doc.write_text("intro\n" + "".join(TABLE_MARKERS) + "between\n" + "".join(OVERRIDE_MARKERS) + "end\n")
+    rules = write(tmp_path, "pace = \"demo\"\n[sun]\nside = 0.5\n")
+    write_rules_doc(doc, rules)
+    text = doc.read_text()
+    assert text.startswith("intro\n") and "between\n" in text and text.endswith("end\n")
+    side = next(r for r in SCHEMA if r.key == "sun.side").default
+    assert f"| [sun] | `side` | 0.5 | {side:g} |" in _between(text, OVERRIDE_MARKERS)
+    assert _between(text, TABLE_MARKERS) == rules_table_markdown()
 
 
 def test_a_rule_added_to_the_schema_is_read_checked_scaled_and_documented(tmp_path):

@@ -1,4 +1,4 @@
-"""Every game rule in one file (assets/rules.toml), read strictly, with named paces.
+"""The game rules: the schema's defaults with the overrides of assets/rules.toml, read strictly, with named paces.
 
 A pace scales time: the same rules run at the tamagotchi thesis's demonstration pace (a day of the sun in about
 two minutes, growth earned after 20 s above half) or at a home pace (a day of the sun in a day, meters
@@ -18,7 +18,7 @@ from pathlib import Path
 
 from arbor.engine.base.config import toml_position
 from arbor.engine.base.errors import LSysError, RulesError
-from arbor.engine.life.rules.schema import SCHEMA, SECTION_DOCS, Rule, find_rule
+from arbor.engine.life.rules.schema import SCHEMA, SECTION_DOCS, TABLE_MARKERS, Rule, find_rule, rules_table_markdown
 
 SECTIONS = tuple(SECTION_DOCS)
 
@@ -132,3 +132,61 @@ def check_rules(rules: Rules, file: str, error: type[LSysError] = RulesError) ->
         raise error("[sun] speed must lie between speed_min and speed_max", file)
     if rules.replant.meter_min > rules.replant.meter_max:
         raise error("[replant] meter_min must not be above meter_max", file)
+
+
+OVERRIDE_MARKERS = ("<!-- rules-overrides -->\n", "<!-- /rules-overrides -->\n")
+
+
+def file_overrides(path: str | Path, schema: tuple[Rule, ...] = SCHEMA) -> list[tuple[str, str, object, object]]:
+    """What a rules file sets, in its order: ``(table, key, value, default)``, ``table`` "" for the top level
+    (the pace played at, default "demo") and ``"paces.NAME"`` for a pace, whose default is the schema's
+    default at that pace's time scale (a pace's own ``time_scale`` defaults to 1)."""
+    data = tomllib.loads(Path(path).read_text(encoding="utf-8"))
+    found = [("", "pace", data["pace"], "demo")] if "pace" in data else []
+    for table, values in data.items():
+        if table in SECTIONS:
+            found += [(table, k, v, find_rule(f"{table}.{k}", schema).default) for k, v in values.items()]
+    for name, pace in data.get("paces", {}).items():
+        scale = pace.get("time_scale", 1.0)
+        for key, value in pace.items():
+            rule = find_rule(key, schema)
+            default = 1.0 if rule is None else _paced(rule, scale)
+            found.append((f"paces.{name}", key, value, default))
+    return found
+
+
+def _paced(rule: Rule, scale: float) -> float | bool:
+    """``rule``'s default at a pace of time scale ``scale``."""
+    return {"time": rule.default * scale, "rate": rule.default / scale}.get(rule.scales or "", rule.default)
+
+
+def restated_defaults(path: str | Path, schema: tuple[Rule, ...] = SCHEMA) -> list[str]:
+    """Every entry of a rules file that only repeats its default (``"[table] key = value"``): a rules file
+    holds overrides, the defaults live in the schema alone."""
+    return [f"{f'[{table}]' if table else '(top)'} {key} = {value!r}"
+            for table, key, value, default in file_overrides(path, schema)
+            if value == default or (isinstance(value, float) and math.isclose(value, default, rel_tol=1e-9))]
+
+
+def overrides_markdown(path: str | Path, schema: tuple[Rule, ...] = SCHEMA) -> str:
+    """docs/rules.md's table of what ``path`` (assets/rules.toml) changes, each with the default it replaces."""
+
+    def shown(value: object) -> str:
+        return f'"{value}"' if isinstance(value, str) else str(value).lower() if isinstance(value, bool) \
+            else f"{value:g}"
+
+    lines = ["| table | rule | value | default |", "|---|---|---|---|"]
+    lines += [f"| {f'[{table}]' if table else '(top)'} | `{key}` | {shown(value)} | {shown(default)} |"
+              for table, key, value, default in file_overrides(path, schema)]
+    return "\n".join(lines) + "\n"
+
+
+def write_rules_doc(doc: str | Path, rules_file: str | Path, schema: tuple[Rule, ...] = SCHEMA) -> None:
+    """Rewrite docs/rules.md's two generated tables: every rule of ``schema`` and what ``rules_file`` changes."""
+    doc = Path(doc)
+    text = doc.read_text(encoding="utf-8")
+    for (start, end), table in ((TABLE_MARKERS, rules_table_markdown(schema)),
+                                (OVERRIDE_MARKERS, overrides_markdown(rules_file, schema))):
+        head, _, rest = text.partition(start)
+        text = head + start + table + end + rest.partition(end)[2]
+    doc.write_text(text, encoding="utf-8")

@@ -10,7 +10,6 @@ pace; ``scales`` says what a pace does to a rule: ``"time"`` is multiplied by it
 from __future__ import annotations
 
 from dataclasses import dataclass
-from pathlib import Path
 
 
 @dataclass(frozen=True)
@@ -185,13 +184,4 @@ def rules_table_markdown(schema: tuple[Rule, ...] = SCHEMA) -> str:
     return "\n".join(lines)
 
 
-TABLE_MARKERS = ("<!-- rules-table -->\n", "<!-- /rules-table -->\n")
-
-
-def write_rules_doc(path: str | Path, schema: tuple[Rule, ...] = SCHEMA) -> None:
-    """Rewrite the table between the markers of ``path`` (docs/rules.md) from ``schema``, keeping the rest."""
-    path = Path(path)
-    start, end = TABLE_MARKERS
-    head, _, rest = path.read_text(encoding="utf-8").partition(start)
-    tail = rest.partition(end)[2]
-    path.write_text(head + start + rules_table_markdown(schema) + end + tail, encoding="utf-8")
+TABLE_MARKERS = ("<!-- rules-table -->\n", "<!-- /rules-table -->\n")  # its place in docs/rules.md
