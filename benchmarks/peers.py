@@ -129,3 +129,31 @@ def plain_step(modules: list[Module], rules: dict[str, str]) -> list[Module]:
         else:
             out.extend(succ)
     return out
+
+
+# --- string peers for the non-parametric plants: str.replace, and the l-system-fractals package ------
+def replace_order(rules: dict[str, str]) -> list[tuple[str, str]]:
+    """The rules in an order where sequential ``str.replace`` passes give the parallel step: a rule goes
+    after every rule whose predecessor its successor writes (F -> FF before X -> F[+X]F[-X]+X)."""
+    left, order = dict(rules), []
+    while left:
+        ready = [k for k in left if not any(other != k and other in left[k] for other in left)]
+        if not ready:
+            raise ValueError("successors write each other's predecessors: no replace order is parallel")
+        order.append((ready[0], left.pop(ready[0])))
+    return order
+
+
+def replace_step(text: str, order: list[tuple[str, str]]) -> str:
+    """One step as one ``str.replace`` pass per rule (two passes for 1.24 d and e)."""
+    for symbol, successor in order:
+        text = text.replace(symbol, successor)
+    return text
+
+
+def fractals_step(text: str, order: list[tuple[str, str]]) -> str:
+    """One step by the ``l-system-fractals`` package (0.0.6, PyPI): its LSystem rewrites with
+    ``str.replace`` per rule in the order given, on construction (no drawing)."""
+    from l_system_fractals import LSystem
+
+    return LSystem(1, text, order, [], [], 0, 1, 1, 0).string

@@ -19,6 +19,7 @@ KERNEL_MODULES = (
     "arbor.engine.geometry.mesh_kernel",
     "arbor.engine.geometry.chains",
     "arbor.engine.lsystem.context_kernel",
+    "arbor.engine.lsystem.expand_kernel",
     "arbor.engine.life.plant.light_kernel",
 )
 FIRST_START = "preparing Arbor for this machine (first start only)"

@@ -126,10 +126,10 @@ class Deriver:
         assert self._symbols is not None
         if self._symbols.direct_map is None:
             return None
-        total, rewritten, present = self._symbols.direct_counts(ls.sym)
+        total, rewritten = self._symbols.direct_counts(ls.sym)
         if total > self.budget:
             return None
-        result = _bare(self._symbols.rewrite_direct(ls.sym, present))
+        result = _bare(self._symbols.rewrite_direct(ls.sym, total))
         return _finish(ls, result, rewritten, 0, self._may_cut(ls))
 
     def _may_cut(self, ls: LString) -> bool:

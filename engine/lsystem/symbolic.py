@@ -1,14 +1,20 @@
-"""Symbols-only rewriting: when no module has parameters, a derivation step is a few C-speed byte passes.
+"""Symbols-only rewriting: when no module has parameters, a derivation step is a few byte passes.
 
-Every production alternative gets a placeholder byte that can never be a module symbol (control codes
-and bytes above 126). A step marks each rewritten module with its alternative's placeholder (for plain
-deterministic systems one ``bytes.translate`` does it; otherwise the vectorised matcher decides, with
-contexts, conditions and random choices exactly as in the general path) and then replaces each
-placeholder by its successor with ``bytes.replace``. Successors hold only real symbols, so the
-replacements cannot see each other's output: the step stays parallel, as an L-system step must be.
+Plain deterministic systems (one unconditional, context-free production per symbol) go faster still: a
+compiled loop (expand_kernel) writes every module's successor a 64-bit word at a time, in one pass
+after one pass that measures the output.
+
+Otherwise every production alternative gets a placeholder byte that can never be a module symbol
+(control codes and bytes above 126). A step marks each rewritten module with its alternative's
+placeholder (the vectorised matcher decides, with contexts, conditions and random choices exactly as in
+the general path) and then replaces each placeholder by its successor with ``bytes.replace``. Successors
+hold only real symbols, so the replacements cannot see each other's output: the step stays parallel, as
+an L-system step must be.
 """
 
 from __future__ import annotations
+
+import sys
 
 import numpy as np
 
@@ -28,6 +34,8 @@ class SymbolRewriter:
         self.direct_map, self.lengths = self._direct(system)
         self.ruled = np.zeros(256, bool) if self.direct_map is None else (
             np.frombuffer(self.direct_map, np.uint8) != np.arange(256))
+        self.out_lengths = np.where(self.ruled, self.lengths, 1)  # copied symbols write themselves
+        self.words = self._words(system) if self.direct_map is not None else None
 
     @staticmethod
     def usable(system: LSystem) -> bool:
@@ -55,17 +63,37 @@ class SymbolRewriter:
             lengths[p.pred.symbol] = len(alt.symbols)
         return bytes(table), lengths
 
-    def direct_counts(self, sym: np.ndarray) -> tuple[int, int, list[int]]:
-        """Output length, number of rewritten modules and the symbols rewritten, for a direct step."""
-        counts = np.bincount(sym, minlength=256)
-        present = np.flatnonzero(self.ruled & (counts > 0))
-        rewritten = int(counts[present].sum())
-        return len(sym) - rewritten + int(counts[present] @ self.lengths[present]), rewritten, present.tolist()
+    def _words(self, system: LSystem) -> np.ndarray:
+        """Each symbol's output as little-endian 64-bit words padded with zeros (see expand_kernel)."""
+        width = max(2, -(-int(self.out_lengths.max()) // 8))
+        table = np.zeros((256, 8 * width), np.uint8)
+        table[:, 0] = np.arange(256)
+        for p in system.productions:
+            succ = p.alternatives[0].symbols
+            table[p.pred.symbol] = 0
+            table[p.pred.symbol, :len(succ)] = succ
+        return table.view("<u8").astype(np.uint64)
 
-    def rewrite_direct(self, sym: np.ndarray, present: list[int]) -> np.ndarray:
-        """One step of a direct system over the whole string (``present``: the rewritten symbols)."""
-        assert self.direct_map is not None
-        return self._expand(sym.tobytes().translate(self.direct_map), [self.direct_map[s] for s in present])
+    def direct_counts(self, sym: np.ndarray) -> tuple[int, int]:
+        """Output length and number of rewritten modules of a direct step over ``sym``."""
+        from arbor.engine.lsystem.expand_kernel import measure
+
+        total, rewritten = measure(np.ascontiguousarray(sym, np.uint8), self.out_lengths,
+                                   self.ruled.astype(np.int64))
+        return int(total), int(rewritten)
+
+    def rewrite_direct(self, sym: np.ndarray, total: int) -> np.ndarray:
+        """One step of a direct system over the whole string, ``total`` modules long (direct_counts)."""
+        from arbor.engine.lsystem.expand_kernel import expand
+
+        assert self.words is not None
+        width = self.words.shape[1]
+        out = np.empty(total // 8 + width + 1, np.uint64)
+        written = expand(np.ascontiguousarray(sym, np.uint8), self.out_lengths, self.words, out)
+        assert written == total
+        if sys.byteorder == "big":  # the words' values are little-endian
+            out.byteswap(inplace=True)
+        return out.view(np.uint8)[:total]
 
     def rewrite_marked(self, sym: np.ndarray, marks: list[tuple[np.ndarray, Alternative]]) -> np.ndarray:
         """One step where the modules ``idx`` of each (idx, alternative) pair get that successor."""
