@@ -23,6 +23,7 @@ class Rule:
     unit: str
     meaning: str
     scales: str | None = None
+    source: str = ""  # where the value comes from (authors, title), for the rules' table
 
     @property
     def section(self) -> str:
@@ -161,6 +162,28 @@ SCHEMA: tuple[Rule, ...] = (
     Rule("carbon.root_cost", 0.02, 0.0, 100.0, "g per s", "what roots growing at full speed cost", "rate"),
     Rule("carbon.root_drought", 2.0, 0.0, 10.0, "x", "roots grow up to 1 + this times as fast in drought "
          "(a functional balance: more roots where water is short)"),
+    # The sun from solar geometry through a clear sky (engine/life/plant/solar.py); issue 43.
+    Rule("sun.solar_constant", 1361.0, 1300.0, 1420.0, "W/m²", "the sun's irradiance at the top of the "
+         "atmosphere at the mean Earth-Sun distance", source="Kopp & Lean 2011, A new, lower value of total solar "
+         "irradiance"),
+    Rule("sun.transmittance", 0.7, 0.3, 0.95, "share (0..1)", "clear-sky beam transmittance: the beam reaching the "
+         "ground is solar_constant x transmittance^(air mass^transmittance_power) (air mass by Kasten & Young 1989)",
+         source="Meinel & Meinel 1976, Applied Solar Energy"),
+    Rule("sun.transmittance_power", 0.678, 0.3, 1.5, "exponent", "... the power of the air mass in it",
+         source="Meinel & Meinel 1976, Applied Solar Energy"),
+    Rule("sun.diffuse", 0.1, 0.0, 1.0, "share of the beam", "diffuse light from a clear sky on the horizontal, as "
+         "a share of the direct beam there", source="Meinel & Meinel 1976 (the ten per cent rule of thumb)"),
+    Rule("sun.par_share", 0.48, 0.4, 0.55, "share (0..1)", "share of the global irradiance that is "
+         "photosynthetically active (PAR, 400-700 nm)", source="McCree 1972, Test of current definitions of "
+         "photosynthetically active radiation against leaf photosynthesis data (0.45-0.50)"),
+    Rule("sun.par_photons", 4.57, 4.0, 5.0, "µmol per J", "photons per joule of sunlight's PAR",
+         source="McCree 1972, as above"),
+    Rule("sun.shade", 0.0, 0.0, 0.99, "share (0..1)", "share of the sun's light removed above the tree (a shade "
+         "cloth or a canopy): it dims the sun, the day stays as long"),
+    Rule("seasons.real_year", 365.0, 1.0, 3650.0, "real days", "the declared time scale: a game year (year_days "
+         "game days) stands for this span of a real tree's life, so a game day stands for real_year / year_days "
+         "real days of its growing year (13 at the defaults, at every pace: the pace sets only how long a game day "
+         "lasts to the player); rates are reported in real units over this scale"),
 )
 
 
@@ -178,8 +201,9 @@ def rules_table_markdown(schema: tuple[Rule, ...] = SCHEMA) -> str:
         for r in (r for r in schema if r.section == section):
             span = "" if r.low is None else f"{r.low:g} .. {r.high:g}"
             default = str(r.default).lower() if isinstance(r.default, bool) else f"{r.default:g}"
+            cited = f" (source: {r.source})" if r.source else ""
             pace = {"time": "x time_scale", "rate": "/ time_scale"}.get(r.scales or "", "")
-            lines.append(f"| `{r.name}` | {default} | {span} | {r.unit} | {r.meaning} | {pace} |")
+            lines.append(f"| `{r.name}` | {default} | {span} | {r.unit} | {r.meaning}{cited} | {pace} |")
         lines.append("")
     return "\n".join(lines)
 
