@@ -116,6 +116,9 @@ def _cmd_export(args: argparse.Namespace) -> int:
 
 
 def _cmd_lab(args: argparse.Namespace) -> int:
+    from arbor.game.errors import need_lab_extra
+
+    need_lab_extra("arbor lab (its charts)")
     if args.out is None:
         from arbor.game.app import run_lab_window
 
@@ -129,7 +132,10 @@ def _cmd_lab(args: argparse.Namespace) -> int:
 
 def _cmd_sweep(args: argparse.Namespace) -> int:
     from arbor.game.commands.sweep import run_sweep
+    from arbor.game.errors import need_lab_extra
 
+    if not args.no_plots:
+        need_lab_extra("arbor sweep's figures (--no-plots writes the CSV tables without it)")
     return run_sweep(args.sweep, args.out, args.workers, args.scheduler, plots=not args.no_plots, keep=args.keep)
 
 
@@ -187,8 +193,10 @@ def _cmd_import(args: argparse.Namespace) -> int:
         world, count = import_card(args.card, lock.folder)
     finally:
         lock.release()
+    where = "as the garden's first tree" if count == 1 else \
+        f"beside the other{'s' if count > 2 else ''} ({count} trees in the garden)"
     say(f"{lock.folder / 'autosave.arbor'}: planted {world.lineage.species} {world.lineage.id} from {args.card} "
-          f"beside the others ({count} trees in the garden)")
+        f"{where}")
     return 0
 
 
@@ -203,9 +211,50 @@ def _add_growth_args(p: argparse.ArgumentParser, saves: bool = False) -> None:
                    help=f"module budget, at most {MAX_BUDGET:,} (default: the file's budget:, else {DEFAULT_BUDGET:,})")
 
 
+def _add_global_options(parser: argparse.ArgumentParser, here: bool) -> None:
+    """The options every command takes, anywhere on the line (``arbor -q render X`` and ``arbor render X -q``,
+    as git and pip accept theirs). ``here``: the top-level parser, which holds the defaults; a subcommand's
+    copies default to SUPPRESS, so an option given before the subcommand is not reset by the subcommand."""
+    group = parser.add_argument_group("options of every command (before or after the command)")
+
+    def add(*flags: str, **kw) -> None:
+        if not here:
+            kw["default"] = argparse.SUPPRESS
+        group.add_argument(*flags, **kw)
+
+    add("--saves", type=Path, default=None, metavar="DIR",
+        help="folder for save files (default: saves/ in a checkout, else ~/.local/share/arbor/saves)")
+    add("--tuio", action="store_true", default=False, help="accept TUIO 1.1 touch over UDP")
+    add("--tuio-host", default="127.0.0.1", metavar="ADDRESS", help="address to listen on for TUIO (default 127.0.0.1)")
+    add("--tuio-port", type=_bounded(1, 65535, "--tuio-port"), default=3333, metavar="PORT",
+        help="UDP port to listen on for TUIO (default 3333, TUIO's own)")
+    add("--record", type=Path, default=None, metavar="FILE", help="record this session's input to a file")
+    add("--replay", type=Path, default=None, metavar="FILE", help="replay recorded input")
+    add("--pace", choices=("home", "demo"), default=None,
+        help="home: a day of the sun lasts a day (default); demo: 2-minute days, as in the thesis")
+    add("--kiosk", action="store_true", default=False, help="unattended touchscreen mode (see assets/kiosk.toml)")
+    add("--windowed", action="store_true", default=False, help="with --kiosk: a window instead of fullscreen")
+    add("-q", "--quiet", action="store_true", default=False, help="say nothing but errors: no report of what was "
+        "written, no progress, no first-start notice (errors still say one line)")
+    add("-v", "--verbose", action="store_true", default=False, help="each step of a long run (every finished "
+        "sweep run) and the time taken")
+
+
+EPILOG = """examples:
+  arbor                                      the game (a window)
+  arbor render assets/lsystems/abop_2_8_tree.lsys --out tree.png
+  arbor export saves/autosave.arbor --out tree.glb -q
+  arbor sweep assets/experiments/sweep_sun_height.toml --out sun/ -v
+  arbor card saves/autosave.arbor --out tree.png && arbor import tree.png --saves other/
+
+Every command exits 0 when done, 1 on a failure at run time (one line on stderr says what to fix) and 2 on
+bad arguments. Documentation: README.md and docs/ (https://github.com/arbor-trees/arbor)."""
+
+
 def build_parser() -> argparse.ArgumentParser:
     """The argument parser for `arbor` and its subcommands."""
-    parser = argparse.ArgumentParser(prog="arbor", description="Grow and model 3D trees.")
+    parser = argparse.ArgumentParser(prog="arbor", description="Grow and model 3D trees.", epilog=EPILOG,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
     sub = parser.add_subparsers(dest="command")
     derive = sub.add_parser("derive", help="print the L-string an .lsys source derives")
     _add_growth_args(derive)
@@ -243,7 +292,8 @@ def build_parser() -> argparse.ArgumentParser:
     sweep.add_argument("--workers", type=_bounded(1, 256, "--workers"), default=None,
                        help="worker processes (default: every core)")
     sweep.add_argument("--scheduler", default=None, metavar="ADDRESS",
-                       help="run on an existing Dask cluster, e.g. tcp://10.0.0.5:8786 (pip install 'arbor[cluster]')")
+                       help="run on an existing Dask cluster, e.g. tcp://10.0.0.5:8786 "
+                       "(pip install 'arbor-trees[cluster]')")
     sweep.add_argument("--no-plots", action="store_true", help="CSV tables only")
     sweep.add_argument("--keep", choices=("all", "first", "none"), default="first",
                        help="final trees saved in DIR/trees, named by level and seed: every seed, each level's "
@@ -285,22 +335,10 @@ def build_parser() -> argparse.ArgumentParser:
     imp.add_argument("card", type=Path, help="the postcard (.png)")
     imp.set_defaults(run=_cmd_import)
     sub.add_parser("watchdog", help="arbor watchdog ARGS...: keep `arbor ARGS...` running (restarts it when it "
-                   "crashes or hangs; for kiosks: arbor watchdog --kiosk)")
-    parser.add_argument("--saves", type=Path, default=None, help="folder for save files (default: saves/)")
-    parser.add_argument("--tuio", action="store_true", help="accept TUIO 1.1 touch over UDP")
-    parser.add_argument("--tuio-host", default="127.0.0.1", help="address to listen on for TUIO")
-    parser.add_argument("--tuio-port", type=_bounded(1, 65535, "--tuio-port"), default=3333)
-    parser.add_argument("--record", type=Path, default=None, help="record this session's input to a file")
-    parser.add_argument("--replay", type=Path, default=None, help="replay recorded input")
-    parser.add_argument("--pace", choices=("home", "demo"), default=None,
-                        help="home: a day of the sun lasts a day (default); demo: 2-minute days, as in the thesis")
-    parser.add_argument("--kiosk", action="store_true", help="unattended touchscreen mode (see assets/kiosk.toml)")
-    parser.add_argument("--windowed", action="store_true", help="with --kiosk: a window instead of fullscreen")
-    talk = parser.add_mutually_exclusive_group()
-    talk.add_argument("-q", "--quiet", action="store_true", help="headless commands: no report of what was written "
-                      "and no progress bar (errors still say one line)")
-    talk.add_argument("-v", "--verbose", action="store_true", help="headless commands: each step of a long run "
-                      "(every finished sweep run) and the time taken")
+                   "crashes or hangs; for kiosks: arbor watchdog --kiosk; arbor watchdog --help says more)")
+    _add_global_options(parser, here=True)
+    for command in sub.choices.values():
+        _add_global_options(command, here=False)
     parser.add_argument("--version", action="version", version=f"arbor {_version()}")
     return parser
 
@@ -311,12 +349,57 @@ EXIT_OK, EXIT_FAILED, EXIT_USAGE = 0, 1, 2  # argparse exits with EXIT_USAGE for
 
 def _version() -> str:
     """The installed distribution's version (what `arbor --version` prints)."""
-    from importlib.metadata import PackageNotFoundError, version
+    from arbor.engine.base.version import version
 
-    try:
-        return version("arbor")
-    except PackageNotFoundError:  # run from a checkout that was never installed
-        return "unknown (not installed)"
+    return version()
+
+
+INPUTS = ("source", "experiment", "sweep", "save", "card", "a", "b")  # the argument names of files a command reads
+OUTPUTS = ("out", "glb")  # ... and of files it writes (lab's and sweep's --out are folders, made by them)
+
+
+def check_files(args: argparse.Namespace) -> None:
+    """Before anything slow: every file the command reads is there and a plain file, every file it writes
+    has its folder, and an .lsys source parses (an OSError, LSysError or UserError naming the file)."""
+    import errno
+
+    for name in INPUTS:
+        path = getattr(args, name, None)
+        if isinstance(path, Path):
+            if path.is_dir():
+                raise UserError(f"{path}: is a folder; give a file")
+            with open(path, "rb"):  # FileNotFoundError / PermissionError name it
+                pass
+            if path.suffix.lower() == ".lsys":
+                from arbor.engine.lsystem.lsys import load_lsystem
+
+                load_lsystem(path)
+    if args.command in ("lab", "sweep"):
+        return
+    for name in OUTPUTS:
+        path = getattr(args, name, None)
+        if isinstance(path, Path) and not path.absolute().parent.is_dir():
+            raise FileNotFoundError(errno.ENOENT, f"no such folder (to write {path.name} in)", str(path.parent))
+
+
+def watchdog_help() -> str:
+    """What `arbor watchdog --help` prints: the watchdog's own behaviour and its limits (the watched app's
+    options are `arbor --help`'s)."""
+    from arbor.game import watchdog as w
+
+    return (f"usage: arbor watchdog [ARBOR OPTIONS...]\n\n"
+            f"Keep `arbor ARBOR OPTIONS...` running: start it again whenever it crashes or hangs (for kiosks:\n"
+            f"arbor watchdog --kiosk; docs/kiosk.md has a systemd unit). Every option after `watchdog` is the\n"
+            f"watched app's (arbor --help lists them).\n\n"
+            f"  start-up grace   {w.START_GRACE:g} s for the app's first heartbeat\n"
+            f"  hang time        no heartbeat for {w.HANG_SECONDS:g} s after that: killed and restarted\n"
+            f"  restarts         after 1 s, 2 s, 4 s, ... at most 30 s while crashes come quickly; back to 1 s\n"
+            f"                   after a run of over a minute\n"
+            f"  crash loop       {w.CRASH_LOOP} runs in a row shorter than {w.YOUNG:g} s: the kiosk's saved garden\n"
+            f"                   is moved aside (autosave.TIME.crashed) so a bad save cannot keep it down\n"
+            f"  stops when       staff quit the kiosk with the PIN (status {w.STAFF_EXIT}), the app refuses its\n"
+            f"                   arguments (status {w.USAGE_EXIT}), the home game quits cleanly (0), or the\n"
+            f"                   watchdog gets SIGTERM, SIGINT or SIGHUP (passed on: the app saves and exits)")
 
 
 def _failure(err: BaseException) -> str:
@@ -356,12 +439,18 @@ def main(argv: list[str] | None = None) -> int:
     error (bad arguments; argparse's own status); the kiosk's staff quit is 3 (game/watchdog.py)."""
     argv = sys.argv[1:] if argv is None else argv
     if argv[:1] == ["watchdog"]:  # everything after it belongs to the watched app
+        if argv[1:] in (["-h"], ["--help"]):
+            print(watchdog_help())
+            return EXIT_OK
         from arbor.game.watchdog import main as watchdog
 
         return watchdog(argv[1:])
     parser = build_parser()
     args = parser.parse_args(argv)
+    if args.quiet and args.verbose:
+        parser.error("-q/--quiet and -v/--verbose ask for opposite things: give one of them")
     keep_freed_memory()
+    set_level(args.quiet, args.verbose)
     try:
         if args.command is None:
             from arbor.game.app import run_app, run_kiosk
@@ -372,8 +461,8 @@ def main(argv: list[str] | None = None) -> int:
         if args.command in COMPILING:
             from arbor.game.first_start import headless_notice
 
-            headless_notice()
-        set_level(args.quiet, args.verbose)
+            check_files(args)  # a mistyped name is told at once, not after a first start's compile
+            headless_notice(quiet=args.quiet)
         started = time.perf_counter()
         status = args.run(args)
         detail(f"arbor {args.command}: {time.perf_counter() - started:.1f} s")

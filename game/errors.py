@@ -12,3 +12,15 @@ NO_DISPLAY = ("no OpenGL 3.3 display ({detail}). Run it on a desktop, or headles
 
 NO_DISPLAY_FOUND = ("no display found (SDL fell back to its {driver} driver: the window would be invisible). "
                     "Run it on a desktop, or under a virtual display: xvfb-run -a arbor")
+
+LAB_EXTRA = ("{what} needs matplotlib, which a player's install leaves out (82 MB): pip install 'arbor-trees[lab]' "
+             "(in a checkout: .venv/bin/pip install -e '.[lab]')")
+
+
+def need_lab_extra(what: str) -> None:
+    """Refuse, in one line saying what to install, a teacher's command whose figures need matplotlib (the
+    `lab` extra) when it is missing; imports nothing when it is there."""
+    from importlib.util import find_spec
+
+    if find_spec("matplotlib") is None:
+        raise UserError(LAB_EXTRA.format(what=what))

@@ -1,9 +1,9 @@
 """The first start that talks: Arbor's compiled kernels (numba) are built once per machine, which takes
 tens of seconds; the window shows a title and a progress bar meanwhile, headless commands say one line.
 
-The kernels compile on a thread (``Warmup``) by growing a small tree through the public engine API; the
-progress is the share of kernel functions that have a compiled (or cache-loaded) version, so the bar moves
-with numba's real work rather than with a guess."""
+The kernels compile on a thread (``Warmup``) by growing a small tree through the public engine API, stage
+by stage; the progress is the share of the stages' measured compile time done (STAGES), so the bar moves
+with numba's real work rather than with the count of kernels (one of which took half the time)."""
 
 from __future__ import annotations
 
@@ -58,32 +58,96 @@ def compiled_share(dispatchers: list) -> float:
     return sum(1 for d in dispatchers if d.overloads) / max(len(dispatchers), 1)
 
 
-def warm_kernels() -> None:
-    """Use every kernel once on a small tree (context rules, turtle, leaves, mesh, chains): compiles what
-    the cache lacks and loads the rest, so the garden's first tree finds them ready."""
+def _warm_context() -> None:
     from arbor.engine.base.assets import assets_dir
-    from arbor.engine.geometry.tree import build_geometry
     from arbor.engine.lsystem.derive import Deriver
-    from arbor.engine.lsystem.lsys import load_lsystem, parse_lsystem
+    from arbor.engine.lsystem.lsys import load_lsystem
 
-    context = load_lsystem(assets_dir() / "lsystems" / "context_plant.lsys")
-    Deriver(context, seed=0).derive(steps=4)
+    Deriver(load_lsystem(assets_dir() / "lsystems" / "context_plant.lsys"), seed=0).derive(steps=4)
+
+
+def _warm_plain() -> None:
+    from arbor.engine.lsystem.derive import Deriver
+    from arbor.engine.lsystem.lsys import parse_lsystem
+
+    Deriver(parse_lsystem("w: F\np1: F -> F[+F]F[-F]F[+F]F[-F]FF\n"), seed=0).derive(steps=2)
+
+
+def _small_tree():
+    from arbor.engine.lsystem.derive import Deriver
+    from arbor.engine.lsystem.lsys import parse_lsystem
+
     tree = parse_lsystem("n: 3\ndelta: 30\nw: A\np1: A -> F[+A L][-A L]F A\n")
-    ls, _ = Deriver(tree, seed=0).derive(steps=3)
-    for lod in (0, 1):
-        build_geometry(ls, tree, lod=lod)  # leaves where the string has them
+    return tree, Deriver(tree, seed=0).derive(steps=3)[0]
+
+
+def _warm_geometry(lod: int) -> None:
+    from arbor.engine.geometry.tree import build_geometry
+
+    tree, ls = _small_tree()
+    build_geometry(ls, tree, lod=lod)  # leaves where the string has them
+
+
+def _warm_tips() -> None:
+    from arbor.engine.geometry.tree import build_geometry
+
+    tree, ls = _small_tree()
     build_geometry(ls, tree, lod=0, leaves_at_tips=3)  # and clusters at the twigs' tips
 
 
-def headless_notice(stream=None) -> bool:
+def _warm_light() -> None:
+    import numpy as np
+
+    from arbor.engine.life.plant.light import optical_depth
+
+    points = np.array([[0.0, 1.0, 0.0], [0.1, 2.0, 0.0], [0.0, 3.0, 0.1]])
+    optical_depth(points, np.ones(3), points, np.array([0.0, 1.0, 0.0]), 0.5, np.arange(3))
+
+
+# The warm-up's stages with the seconds each took to compile on a cold cache (measured on 2 shared cores at
+# load 1-3: NUMBA_CACHE_DIR set to an empty folder, each stage timed in turn); the progress moves by this
+# measured work, not by the count of kernels (the mesh's and the light grid's kernels are nine tenths of it).
+STAGES = (
+    ("context rules", _warm_context, 1.2),
+    ("plain rules", _warm_plain, 1.6),
+    ("the turtle and the mesh", lambda: _warm_geometry(0), 18.0),
+    ("the coarser mesh", lambda: _warm_geometry(1), 0.3),
+    ("leaf clusters", _warm_tips, 0.6),
+    ("the light grid", _warm_light, 18.2),
+)
+
+
+def warm_kernels(progress=None) -> None:
+    """Use every kernel once on a small tree (context rules, turtle, leaves, mesh, chains, the light grid):
+    compiles what the cache lacks and loads the rest, so the garden's first tree finds them ready.
+    ``progress(done, total, stage)`` is called before each stage and at the end with the measured seconds."""
+    total = sum(weight for _, _, weight in STAGES)
+    done = 0.0
+    for name, run, weight in STAGES:
+        if progress is not None:
+            progress(done, total, name)
+        run()
+        done += weight
+    if progress is not None:
+        progress(total, total, "ready")
+
+
+def headless_notice(stream=None, quiet: bool = False) -> bool:
     """Before a headless command, when some kernel has no build on disk: say so in one line and build them
     all (not only the ones this command uses), so the notice's "first start only" holds for the next
-    command too. True when it did."""
+    command too; under ``quiet`` build them without a word. True when it did."""
     if not kernels_cold():
         return False
-    print(f"arbor: {FIRST_START}: compiling its kernels, about half a minute...", file=stream or sys.stderr,
-          flush=True)
-    warm_kernels()
+    if quiet:
+        warm_kernels()
+        return True
+    from arbor.game.progress import Progress
+
+    stream = stream or sys.stderr
+    total = sum(weight for _, _, weight in STAGES)
+    print(f"arbor: {FIRST_START}: compiling its kernels, about {total:.0f} s on 2 cores...", file=stream, flush=True)
+    with Progress("compiling", total, unit="s of work", stream=stream) as bar:
+        warm_kernels(lambda done, _total, stage: bar.to(done, stage))
     return True
 
 
@@ -96,16 +160,23 @@ class Warmup:
         self.error: BaseException | None = None
         self.started = time.perf_counter()
         self._extra = extra
+        self.share = 0.0  # of the warm-up's measured work done (STAGES)
+        self._stage_at, self._stage_share, self._stage_seconds = self.started, 0.0, 1.0
         self._thread = threading.Thread(target=self._run, name="arbor-warmup", daemon=True)
         self._thread.start()
 
     def _run(self) -> None:
         try:
-            warm_kernels()
+            warm_kernels(self._advance)
             if self._extra is not None:
                 self._extra()
         except BaseException as exc:  # handed to the main thread, which raises it there
             self.error = exc
+
+    def _advance(self, done: float, total: float, _stage: str) -> None:
+        self.share, self._stage_at = done / total, time.perf_counter()
+        self._stage_seconds = next((w for name, _, w in STAGES if name == _stage), 0.0)
+        self._stage_share = self._stage_seconds / total
 
     @property
     def done(self) -> bool:
@@ -114,8 +185,12 @@ class Warmup:
 
     @property
     def progress(self) -> float:
-        """0..1: the kernels compiled so far (the last tenth is the imports after them)."""
-        return 1.0 if self.done else 0.9 * compiled_share(self.dispatchers)
+        """0..1: the warm-up's measured work done so far (the last tenth is the imports after it)."""
+        if self.done:
+            return 1.0
+        # within a stage: its measured seconds, at most nine tenths of it until it ends
+        inside = min((time.perf_counter() - self._stage_at) / max(self._stage_seconds, 1e-3), 0.9)
+        return 0.9 * (self.share + inside * self._stage_share)
 
     def result(self) -> None:
         """Wait for the thread; raise what it raised."""
@@ -203,9 +278,10 @@ class TitleScreen:
         self.vao.render(mode=self.ctx.TRIANGLE_STRIP)
 
 
-def show_until_ready(ctx, size: tuple[int, int], extra=None) -> bool:
+def show_until_ready(ctx, size: tuple[int, int], extra=None, beat=None) -> bool:
     """Show the title screen while the kernels warm up on a thread (and ``extra`` runs after them);
-    False when the player closed the window meanwhile."""
+    False when the player closed the window meanwhile. ``beat(now)`` is called every frame (a watchdog's
+    heartbeat: a first start that compiles for minutes on a slow machine is alive, not hung)."""
     import pygame
 
     screen, clock = TitleScreen(ctx, size), pygame.time.Clock()
@@ -215,6 +291,8 @@ def show_until_ready(ctx, size: tuple[int, int], extra=None) -> bool:
     while not warm.done:
         if any(e.type == pygame.QUIT for e in pygame.event.get()):
             return False
+        if beat is not None:
+            beat(time.perf_counter())
         screen.draw(warm.progress, line)
         pygame.display.flip()
         if first:

@@ -73,3 +73,62 @@ def test_the_first_start_builds_every_compiled_kernel():
     compiled = {"arbor." + ".".join(path.relative_to(root).with_suffix("").parts)
                 for path in (root / "engine").rglob("*.py") if "numba.njit" in path.read_text(encoding="utf-8")}
     assert compiled and compiled <= set(KERNEL_MODULES), sorted(compiled - set(KERNEL_MODULES))
+
+
+def test_the_warm_up_reaches_every_kernel_the_cold_check_reads():
+    """warm_kernels() builds (or loads) exactly the kernels kernels_cold() checks: run in a fresh process,
+    every dispatcher kernels_cold() reads is used by the warm-up itself or called from a kernel it used
+    (a kernel called from another is built and cached with it). The light grid's kernel was left out once:
+    every headless command said "first start" again."""
+    code = """
+from arbor.game.first_start import kernel_dispatchers, warm_kernels
+warm_kernels()
+found = kernel_dispatchers()
+by_name = {(d.py_func.__module__, d.__name__): d for d in found}
+reached = {key for key, d in by_name.items() if d.overloads}
+todo = list(reached)
+while todo:
+    d = by_name[todo.pop()]
+    for name in d.py_func.__code__.co_names:
+        key = (d.py_func.__module__, name)
+        if key in by_name and key not in reached:
+            reached.add(key)
+            todo.append(key)
+print(sorted(n for key, n in ((k, k[1]) for k in by_name) if key not in reached))
+"""
+    run = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=300)
+    assert run.returncode == 0, run.stderr
+    assert run.stdout.strip() == "[]"
+
+
+def test_the_first_start_notice_is_true(tmp_path, capsys, monkeypatch, gl_ctx):
+    """A warm machine prints no notice after render, export and card; a cold one prints it once, after the
+    arguments and files are checked (a mistyped name costs no compile), and never under -q."""
+    from arbor.engine.life.keep.save import SavedGarden, write_garden
+    from arbor.engine.life.rules.rules import load_rules
+    from arbor.engine.life.world.world import World
+    from arbor.engine.lsystem.lsys import load_lsystem
+    from arbor.game import first_start
+    from arbor.game.cli import main
+    from arbor.game.paths import ASSETS
+
+    first_start.warm_kernels()
+    source = tmp_path / "t.lsys"
+    source.write_text("n: 3\nw: A\np1: A -> F[+A L][-A L]F A\n")
+    save = tmp_path / "g.arbor"
+    write_garden(SavedGarden([World(load_lsystem(ASSETS / "lsystems" / "game_tree.lsys"), load_rules(
+        ASSETS / "rules.toml"), seed=1)]), save)
+    for line in (["render", str(source), "--size", "64x64", "--out", str(tmp_path / "r.png")],
+                 ["export", str(source), "--out", str(tmp_path / "e.glb")],
+                 ["card", str(save), "--out", str(tmp_path / "c.png")]):
+        assert main(line) == 0
+        assert first_start.FIRST_START not in capsys.readouterr().err
+    warmed = []
+    monkeypatch.setattr(first_start, "kernels_cold", lambda: True)  # as on a fresh install
+    monkeypatch.setattr(first_start, "warm_kernels", lambda progress=None: warmed.append(1))
+    assert main(["render", str(tmp_path / "mistyped.lsys")]) == 1
+    assert warmed == [] and first_start.FIRST_START not in capsys.readouterr().err
+    assert main(["export", str(source), "--out", str(tmp_path / "f.glb"), "-q"]) == 0
+    assert warmed == [1] and capsys.readouterr().err == ""
+    assert main(["export", str(source), "--out", str(tmp_path / "g.glb")]) == 0
+    assert warmed == [1, 1] and first_start.FIRST_START in capsys.readouterr().err

@@ -26,7 +26,7 @@ def installed(tmp_path_factory) -> Path:
         subprocess.run([sys.executable, "-m", "pip", "wheel", "-q", "--no-deps", "-w", str(work), str(ROOT)], **run)
     except subprocess.CalledProcessError as exc:
         pytest.fail(f"the wheel does not build: {exc.stderr[-2000:]}")
-    wheel = next(work.glob("arbor-*.whl"))
+    wheel = next(work.glob("arbor_trees-*.whl"))  # the distribution arbor-trees (README: why)
     venv = work / "venv"
     subprocess.run([sys.executable, "-m", "venv", "--without-pip", str(venv)], **run)
     python = venv / "bin" / "python"
@@ -43,7 +43,7 @@ def test_site_packages_holds_arbor_and_nothing_else_of_ours(installed):
     names = {p.name for p in _site_packages(installed).iterdir()} - VENV_OWN
     dist_info = {n for n in names if n.endswith(".dist-info")}
     assert names - dist_info == {"arbor"}
-    assert [n.split("-")[0] for n in dist_info] == ["arbor"]
+    assert [n.split("-")[0] for n in dist_info] == ["arbor_trees"]
     arbor = _site_packages(installed) / "arbor"
     assert {p.name for p in arbor.iterdir()} >= {"engine", "game", "assets"}
     assert (arbor / "assets" / "lsystems" / "game_tree.lsys").is_file()

@@ -1,9 +1,15 @@
 """Export a tree as GLB (binary glTF 2.0) or OBJ+MTL through trimesh.
 
 Wood, leaves and blossoms are separate primitives with their own materials: bark is opaque, leaves
-and blossoms use alpha masking (cutoff 0.5) and are double-sided, as glTF allows. glTF's unit is the metre:
-``metres`` (metres per scene unit) scales the positions, and the GLB's asset block records the scale and the
-tree's height in metres (``asset.extras``).
+and blossoms use alpha masking (cutoff 0.5) and are double-sided, as glTF allows. In a GLB they are the
+children of one root node named after the tree, so Blender or any viewer imports one object hierarchy that
+moves as one; images and materials carry names (bark, leaf, blossom) and the generator is Arbor with its
+version. glTF's unit is the metre: ``metres`` (metres per scene unit) scales the positions, and the GLB's
+asset block records the scale and the tree's height in metres (``asset.extras``). An OBJ's textures are
+named after the export (``NAME_bark.png``), so exports sharing a folder keep their own.
+
+The tree's height is the top of its leaves (or of its wood, when it has none) above its base: the one
+definition the HUD, the postcard and the export share (``tree_height``).
 """
 
 from __future__ import annotations
@@ -15,6 +21,7 @@ import trimesh
 from PIL import Image
 
 from arbor.engine.base.files import atomic_write
+from arbor.engine.base.version import version
 from arbor.engine.geometry.mesh import Mesh, TreeMesh
 
 PARTS = (("wood", "bark", False), ("leaves", "leaf", True), ("blossoms", "blossom", True))
@@ -57,23 +64,60 @@ def tree_scene(tree: TreeMesh, textures: Path, metres: float = 1.0) -> trimesh.S
 
 
 def tree_height(tree: TreeMesh) -> float:
-    """Height of the tree's geometry above its base (scene units): what ``--height`` sets on export."""
+    """Height of the tree's geometry above its base (scene units): the top of its leaves and blossoms, or
+    of its wood when higher (what ``--height`` sets on export, the HUD and the postcard show)."""
     ys = [part.positions[:, 1] for part in (tree.wood, tree.leaves, tree.blossoms) if len(part.positions)]
     return float(np.concatenate(ys).max()) if ys else 0.0
 
 
-def _asset_block(metres: float, height: float):
-    """A glTF tree postprocessor: the asset block says the file's unit and the tree's height in metres."""
+ARRAY_BUFFER, ELEMENT_ARRAY_BUFFER = 34962, 34963  # glTF bufferView targets: vertex data, indices
+
+
+def _finish(name: str, metres: float, height: float):
+    """A glTF tree postprocessor: the asset block says who wrote the file, its unit and the tree's height in
+    metres; the parts become children of one root node ``name``; images are named after their materials;
+    every bufferView of vertex data or indices says so (its target)."""
     def write(tree: dict) -> None:
-        tree.setdefault("asset", {})["extras"] = {"unit": "metre", "metres_per_scene_unit": metres,
-                                                  "height_m": round(height * metres, 4)}
+        _label(tree)
+        tree["asset"]["extras"] = {"unit": "metre", "metres_per_scene_unit": metres,
+                                   "height_m": round(height * metres, 4)}
+        _one_root(tree, name)
     return write
 
 
+def _label(tree: dict) -> None:
+    """Arbor as the generator, images named after their materials, bufferView targets set."""
+    tree.setdefault("asset", {})["generator"] = f"Arbor {version()}"
+    for material in tree.get("materials", []):
+        texture = material.get("pbrMetallicRoughness", {}).get("baseColorTexture")
+        if texture is not None:
+            tree["images"][tree["textures"][texture["index"]]["source"]]["name"] = material["name"]
+    _targets(tree)
+
+
+def _one_root(tree: dict, name: str) -> None:
+    """Put the scene's top nodes under one new root node called ``name``."""
+    scene = tree["scenes"][tree.get("scene", 0)]
+    tree.setdefault("nodes", []).append({"name": name, "children": scene.get("nodes", [])})
+    scene["nodes"] = [len(tree["nodes"]) - 1]
+
+
+def _targets(tree: dict) -> None:
+    """Set each mesh bufferView's target (vertex attributes, indices), as the glTF validator hints."""
+    views, accessors = tree.get("bufferViews", []), tree.get("accessors", [])
+    for mesh in tree.get("meshes", []):
+        for primitive in mesh["primitives"]:
+            for accessor in primitive["attributes"].values():
+                views[accessors[accessor]["bufferView"]]["target"] = ARRAY_BUFFER
+            if "indices" in primitive:
+                views[accessors[primitive["indices"]]["bufferView"]]["target"] = ELEMENT_ARRAY_BUFFER
+
+
 def export_tree(tree: TreeMesh, path: str | Path, textures: Path, file_format: str | None = None,
-                metres: float = 1.0) -> list[Path]:
+                metres: float = 1.0, name: str | None = None) -> list[Path]:
     """Write ``tree`` to ``path`` as 'glb' or 'obj' (OBJ also writes .mtl and texture files beside it),
-    ``metres`` per scene unit (the game's trees: 1 / METRE, so they arrive in Blender at their height).
+    ``metres`` per scene unit (the game's trees: 1 / METRE, so they arrive in Blender at their height);
+    ``name`` names the tree's root node (default: the file's stem).
 
     Returns the files written. The main file is written to a temp name and renamed, so an existing
     export is never left half-written.
@@ -81,8 +125,9 @@ def export_tree(tree: TreeMesh, path: str | Path, textures: Path, file_format: s
     path = Path(path)
     fmt = (file_format or path.suffix.lstrip(".")).lower()
     if fmt == "glb":
+        finish = _finish(name or path.stem, metres, tree_height(tree))
         data = trimesh.exchange.gltf.export_glb(tree_scene(tree, textures, metres), include_normals=True,
-                                                tree_postprocessor=_asset_block(metres, tree_height(tree)))
+                                                tree_postprocessor=finish)
         atomic_write(path, data)
         return [path]
     if fmt == "obj":
@@ -105,8 +150,8 @@ def _export_obj(tree: TreeMesh, path: Path, textures: Path, metres: float = 1.0)
         mesh: Mesh = getattr(tree, attr)
         if not mesh.n_triangles:
             continue
-        image = f"{tex}.png"
-        atomic_write(path.parent / image, (textures / image).read_bytes())
+        image = f"{path.stem}_{tex}.png"  # after the export: two exports in one folder keep their own
+        atomic_write(path.parent / image, (textures / f"{tex}.png").read_bytes())
         written.append(path.parent / image)
         mtl.append(f"newmtl {tex}\nKa 1 1 1\nKd 1 1 1\nKs 0 0 0\nillum 1\nmap_Kd {image}\n"
                    + (f"map_d {image}\nd 1.0\n" if masked else "d 1.0\n"))
@@ -145,5 +190,5 @@ def export_garden(presets, instances, path: str | Path, textures: Path, lod: int
                     scene.graph.update(frame_from=scene.graph.base_frame, frame_to=node, matrix=matrices[i],
                                        geometry=geom)
     path = Path(path)
-    atomic_write(path, trimesh.exchange.gltf.export_glb(scene, include_normals=True))
+    atomic_write(path, trimesh.exchange.gltf.export_glb(scene, include_normals=True, tree_postprocessor=_label))
     return path

@@ -114,7 +114,7 @@ def _dask(tasks: list[Task], scheduler: str) -> Iterable[Outcome | tuple[Run, st
     try:
         from dask.distributed import Client, as_completed
     except ImportError:
-        raise UserError("--scheduler needs Dask: pip install 'arbor[cluster]'") from None
+        raise UserError("--scheduler needs Dask: pip install 'arbor-trees[cluster]'") from None
     try:
         client = Client(scheduler, timeout="10s")
     except (OSError, TimeoutError) as exc:

@@ -1,0 +1,79 @@
+"""Progress of a long headless command (a first start's compile, a render, an export, a landscape, a
+derivation): a tqdm bar with its estimate of the time left on a terminal, one line per stage when the
+output is piped or logged (a bar's carriage returns would fill a log), nothing under ``--quiet``.
+
+A command that may pass 2 s opens a ``Progress`` over its measured work (seconds, modules, trees) and moves
+it with ``to(done, stage)``; a command that ends sooner than ``QUIET_SECONDS`` shows nothing at all."""
+
+from __future__ import annotations
+
+import sys
+import time
+from typing import TextIO
+
+from arbor.game import report
+
+QUIET_SECONDS = 2.0  # a bar appears only once the work has taken this long (short commands stay one line)
+
+
+class Progress:
+    """A progress report on ``stream`` (stderr by default, so stdout keeps only a command's product)."""
+
+    def __init__(self, what: str, total: float, unit: str = "", stream: TextIO | None = None,
+                 tty: bool | None = None) -> None:
+        self.what, self.total, self.unit = what, max(float(total), 1e-9), unit
+        self.stream = stream or sys.stderr
+        self.tty = self.stream.isatty() if tty is None else tty
+        self.started = time.perf_counter()
+        self.done, self.stage = 0.0, ""
+        self._bar = None
+        self._said = ""  # the last stage given a line when piped
+
+    def __enter__(self) -> Progress:
+        return self
+
+    def __exit__(self, *exc) -> None:
+        self.close()
+
+    def left(self) -> float | None:
+        """Seconds still to go at the pace so far (None before any work is done)."""
+        if self.done <= 0:
+            return None
+        return (time.perf_counter() - self.started) * (self.total - self.done) / self.done
+
+    def line(self) -> str:
+        """The piped form: what, the stage, the share done and the estimate of the time left."""
+        left = self.left()
+        estimate = f", about {left:.0f} s left" if left is not None and self.done < self.total else ""
+        stage = f": {self.stage}" if self.stage else ""
+        return f"arbor: {self.what}{stage} ({100 * self.done / self.total:.0f} % done{estimate})"
+
+    def to(self, done: float, stage: str = "") -> None:
+        """Move to ``done`` of ``total`` (now at ``stage``, when the work has named stages)."""
+        self.done, self.stage = min(float(done), self.total), stage or self.stage
+        if report.level < report.NORMAL or (time.perf_counter() - self.started < QUIET_SECONDS and self._bar is None \
+                and not self._said):
+            return
+        if self.tty:
+            self._tqdm().update(self.done - self._bar.n)
+            if stage:
+                self._bar.set_postfix_str(stage, refresh=False)
+        elif self.stage != self._said or done >= self.total:
+            self._said = self.stage
+            print(self.line(), file=self.stream, flush=True)
+
+    def _tqdm(self):
+        if self._bar is None:
+            from tqdm import tqdm
+
+            tqdm.monitor_interval = 0  # no monitor thread (a sweep's pool may fork after)
+            self._bar = tqdm(total=self.total, desc=self.what, unit=self.unit or "it", file=self.stream,
+                             mininterval=0.3, dynamic_ncols=True, leave=False,
+                             bar_format="{desc}: {percentage:3.0f}%|{bar}| {elapsed}<{remaining}{postfix}")
+        return self._bar
+
+    def close(self) -> None:
+        """End the bar (a terminal's bar is cleared: the command's own report line follows)."""
+        if self._bar is not None:
+            self._bar.close()
+            self._bar = None
