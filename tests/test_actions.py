@@ -11,8 +11,10 @@ from pathlib import Path
 import pytest
 
 from arbor.engine.life.rules.rules import load_rules
-from arbor.engine.life.world.actions import WORLD_ACTIONS, Action
-from arbor.engine.life.world.world import World, replay
+from arbor.engine.life.world.actions import Action
+from arbor.engine.life.world.commands import Water
+from arbor.engine.life.world.log import Run, replay
+from arbor.engine.life.world.world import World
 from arbor.engine.lsystem.lsys import load_lsystem
 from tests.test_layers import imports_of
 
@@ -52,7 +54,6 @@ def test_a_world_applies_only_its_own_actions_and_logs_them_for_replay(lsys_dir)
         if step in (3, 12):
             world.apply(Action.WATER, float(step == 3))
         world.step(0.5)
-    assert [(s, a) for s, a, _ in world.input_log] == [(3, Action.WATER), (12, Action.WATER)]
-    assert {a for _, a, _ in world.input_log} <= WORLD_ACTIONS
-    again = replay(system, rules, 4, world.input_log, world.steps, 0.5)
+    assert world.log.entries == [Run(0.5, 3), Water(True), Run(0.5, 9), Water(False), Run(0.5, 18)]
+    again = replay(world.log)
     assert again.sim.state == world.sim.state

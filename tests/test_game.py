@@ -6,10 +6,8 @@ import numpy as np
 import pygame
 import pytest
 
-from arbor.engine.life.rules.rules import load_rules
 from arbor.engine.life.world.actions import Action
-from arbor.engine.life.world.world import replay
-from arbor.engine.lsystem.lsys import load_lsystem
+from arbor.engine.life.world.log import replay
 from arbor.game.input.gestures import MAX_TILT
 from arbor.game.screens.game import Game, GameConfig
 from tests.conftest import FakeClock
@@ -219,9 +217,7 @@ def test_input_log_replays_identically(game):
         if i == 70:
             game.act(Action.ORBIT_HEIGHT, 0.9)
         game.update(1 / 30)
-    rules = load_rules(game.config.rules, pace=game.rules.pace)
-    again = replay(load_lsystem(game.config.lsystem), rules, game.world.seed,
-                   game.world.input_log, game.world.steps, game.loop.dt)
+    again = replay(game.world.log)
     assert again.sim.state == game.world.sim.state
     assert again.tree.lstring.to_text() == game.world.tree.lstring.to_text()
 

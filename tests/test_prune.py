@@ -16,6 +16,7 @@ from arbor.engine.life.experiment.measure import measure
 from arbor.engine.life.keep.save import read_garden, save_text
 from arbor.engine.life.plant.carbon import AREA
 from arbor.engine.life.rules.rules import load_rules
+from arbor.engine.life.world.commands import Prune
 from arbor.game.paths import ASSETS
 
 DAY = 125.66667
@@ -83,7 +84,7 @@ def test_a_cut_keeps_the_carbon_budget_and_the_wood_consistent(lab):
     before = measure(world)
     girth, pool, built = before["girth"], world.carbon.pool, world.carbon.built
     sapwood, modules = world.carbon.sapwood, len(world.tree.lstring)
-    cut = world.prune(keep_height=0.6)
+    cut = world.apply(Prune(keep_height=0.6))
     after = measure(world)
     assert cut > 0 and after["height"] <= 0.6 + 1e-9 and len(world.tree.lstring) < modules
     now = world.sim.state.length_time
@@ -98,10 +99,10 @@ def test_a_cut_keeps_the_carbon_budget_and_the_wood_consistent(lab):
 
 def test_a_cut_counts_branches_once_and_keeps_the_trunks_base(lab):
     world = copy.deepcopy(lab.worlds[0])
-    assert world.prune(keep_height=0.001) == 1  # everything above the first piece: one cut
+    assert world.apply(Prune(keep_height=0.001)) == 1  # everything above the first piece: one cut
     segs = world.tree.geometry(world.clocks()).turtle.segments
     assert len(segs) == 1 and np.isclose(segs.start[0, 1], 0.0)
-    assert world.prune(lowest=1.0) == 0 and world.prune() == 0  # nothing left to cut, nothing asked
+    assert world.apply(Prune(lowest=1.0)) == 0 and world.apply(Prune()) == 0  # nothing left to cut, nothing asked
 
 
 def test_a_cut_inside_a_branch_already_cut_is_not_counted_again():

@@ -20,7 +20,7 @@ def world(lsys_dir):
     w = World(load_lsystem(lsys_dir / "game_tree.lsys"), load_rules("assets/rules.toml", pace="demo"), seed=5)
     w.sim.state.sun_meter = w.sim.state.water_meter = 0.9
     for _ in range(2400):
-        w.apply(Action.WATER, float(w.sim.state.water_meter < 0.6))
+        w.apply(Water(w.sim.state.water_meter < 0.6))
         w.step(0.5)
     return w
 
@@ -103,12 +103,13 @@ from arbor.engine.lsystem.lsys import load_lsystem
 from arbor.engine.life.rules.rules import load_rules
 from arbor.engine.life.world.world import World
 from arbor.engine.life.keep.save import SavedGarden, write_garden
+from arbor.engine.life.world.commands import Water
 w = World(load_lsystem("assets/lsystems/game_tree.lsys"), load_rules("assets/rules.toml", pace="demo"), seed=1)
 w.sim.state.sun_meter = w.sim.state.water_meter = 0.9
 print("ready", flush=True)
 while True:
     for _ in range(40):
-        w.apply(Action.WATER, float(w.sim.state.water_meter < 0.6))
+        w.apply(Water(w.sim.state.water_meter < 0.6))
         w.step(0.5)
     write_garden(SavedGarden([w]), sys.argv[1])
 """

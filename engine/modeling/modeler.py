@@ -434,6 +434,15 @@ class Modeler(Undoable):
         # (at the start of the string the turtle is still at the base with its initial frame)
         return concat(parse_lstring("[" + move + body + "]"), self.lstring), result
 
+    def preview(self, stroke: Stroke) -> tuple[LString, StrokeResult]:
+        """What :meth:`convert` gives for ``stroke``, leaving the session's random generator as it was (a
+        live preview redrawn many times must not change what the committed stroke grows)."""
+        state = self.rng.bit_generator.state
+        try:
+            return self.convert(stroke)
+        finally:
+            self.rng.bit_generator.state = state
+
     def _trunk_under(self, path: np.ndarray, widths: np.ndarray, growth, top: float,
                      result: StrokeResult) -> tuple[LString, StrokeResult]:
         """A trunk drawn up from the foot of a grown sapling: it becomes the tree's trunk and the sapling

@@ -11,9 +11,9 @@ import math
 from collections.abc import Callable
 
 from arbor.engine.life.keep.generations import generations
-from arbor.engine.life.lineage.lineage import new_lineage
 from arbor.engine.life.rules.rules import Rules
 from arbor.engine.life.world.actions import Action
+from arbor.engine.life.world.commands import Replant
 from arbor.engine.life.world.garden import MAX_GARDEN, MAX_ROCKS
 from arbor.engine.lsystem.lsys import LSystem
 from arbor.game.loop import SPEEDS
@@ -96,8 +96,7 @@ class CareActions:
             state.say(text("messages.replant_confirm", number=state.garden.current + 1), CONFIRM_SECONDS)
             return
         self.replant_asked = None
-        world.apply(Action.REPLANT, 1.0)
-        world.lineage = new_lineage(world.lineage.seed, self.wall_clock(), world.lineage.species)
+        world.apply(Replant(planted=self.wall_clock()))
         state.garden.family.add(world.lineage)
         state.remember()
         state.sow()  # (the new sapling is seen rising from its seed)

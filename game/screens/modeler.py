@@ -20,11 +20,11 @@ from collections.abc import Callable
 import numpy as np
 import pygame
 
-from arbor.engine.life.form.interpret import grow_geometry
+from arbor.engine.life.world.commands import BeginEditing, Redo, Stroke, Undo
 from arbor.engine.lsystem.lstring import LString
 from arbor.engine.modeling.edits import EDIT_SETS, load_edit_sets
-from arbor.engine.modeling.modeler import Modeler, ModelerSettings
-from arbor.engine.modeling.strokes import Stroke
+from arbor.engine.modeling.modeler import Modeler
+from arbor.engine.modeling.strokes import Stroke as StrokePoints
 from arbor.game.paths import ASSETS
 from arbor.game.render.camera import OrbitCamera, unproject_to_plane
 from arbor.game.render.garden import GardenRenderer
@@ -72,7 +72,6 @@ class ModelingMode(ToolChoice):
                  camera: Callable[[], OrbitCamera]) -> None:
         self.state, self.renderer, self.size, self.camera = state, renderer, size, camera
         self.active = False
-        self.modeler: Modeler | None = None
         self.points: list[np.ndarray] = []
         self.times: list[float] = []
         self.preview: LString | None = None
@@ -93,17 +92,16 @@ class ModelingMode(ToolChoice):
         self.edit_sets = load_edit_sets(ASSETS / "edits")
         self.bar = ToolBar(size)
         self.garden_zoom = 1.0  # the camera's zoom before the modeler (given back when it is left)
-        self._segments: tuple | None = None
         self._preview_at = float("-inf")  # stroke time of the last live preview
 
+    @property
+    def modeler(self) -> Modeler | None:
+        """The cared-for tree's edit session (its world's; engine/life/world/commands.py), None before one."""
+        return self.state.world.editor if self.active else None
+
     def segments(self, ls: LString):
-        """The tree's segments as drawn now (the modeler's view of the geometry), cached per L-string:
-        a stroke's every pointer move asks for them."""
-        world = self.state.world
-        key = (id(ls), len(ls), world.clocks().length_time)
-        if self._segments is None or self._segments[0] != key:
-            self._segments = (key, grow_geometry(ls, world.clocks(), world.tree.geometry_constants).turtle.segments)
-        return self._segments[1]
+        """The tree's segments as drawn now (the modeler's view of the geometry; see World.drawn_segments)."""
+        return self.state.world.drawn_segments(ls)
 
     def toggle(self) -> None:
         """Enter the modeler with the draw tool (pausing the simulation) or leave it, clearing what the
@@ -125,9 +123,8 @@ class ModelingMode(ToolChoice):
     def _start(self) -> None:
         """A new editing session on the cared-for tree: the draw tool, no overlays, earlier steps (and
         crown steps) out of undo's reach, the view framing the tree as it is drawn now."""
-        tree = self.state.world.tree  # drawn axes get the species' density of side shoots, lambda(s)
-        self.modeler = Modeler(lstring=tree.lstring, settings=ModelerSettings.for_species(tree.geometry_constants),
-                               segments_of=self.segments)
+        tree = self.state.world.tree
+        self.state.world.apply(BeginEditing())
         segs = self.segments(tree.lstring)  # (the tree itself: the renderer may still hold the one it replaced)
         self.bounds = entry_box(np.r_[segs.start, segs.end])
         self.state.control.distance = 1.0  # (a garden zoomed out or in would show the tree too small or cut)
@@ -143,7 +140,7 @@ class ModelingMode(ToolChoice):
     def follow(self) -> None:
         """If the cared-for tree changed outside the modeler while it is open (another tree cared for, a
         garden loaded, time run on), edit that tree from now on: a new session, keeping the tool."""
-        if self.active and self.modeler is not None and self.modeler.lstring is not self.state.world.tree.lstring:
+        if self.active and (self.modeler is None or self.modeler.lstring is not self.state.world.tree.lstring):
             tool = self.current_tool
             self._start()
             self.tool(tool, quiet=True)
@@ -228,7 +225,7 @@ class ModelingMode(ToolChoice):
             self.region_tool.drag(self.points[-1], pixel)
         elif self._preview_due(t):
             self._preview_at = t
-            self.preview, result = self.modeler.convert(Stroke(np.array(self.points), np.array(self.times)))
+            self.preview, result = self.modeler.preview(StrokePoints(np.array(self.points), np.array(self.times)))
             self.joint = result.snap_point
 
     def _preview_due(self, t: float) -> bool:
@@ -247,15 +244,11 @@ class ModelingMode(ToolChoice):
         elif self.pruning:
             pass  # the prune tool cuts with taps
         elif self.modeler is not None and len(self.points) >= 3:
-            new, result = self.modeler.convert(Stroke(np.array(self.points), np.array(self.times)))
-            budget = self.state.world.tree.deriver.budget
-            if budget is not None and len(new) > max(budget, len(self.modeler.lstring)):
+            result = self.state.world.apply(Stroke(np.array(self.points), np.array(self.times)))
+            if result is None:
                 self.state.say(text("messages.stroke_budget"))  # nothing is lost: the stroke is just not added
                 self.cancel()
                 return
-            if result.pieces:
-                self.modeler.commit(new)
-            self.state.world.tree.lstring = self.modeler.lstring
             self.reframe()  # (a tracker can draw past the view)
             how = text("messages.stroke_merged" if result.merged else "messages.stroke_joined"
                        if result.snapped_to is not None else "messages.stroke_new")
@@ -277,7 +270,7 @@ class ModelingMode(ToolChoice):
     def born_visible(self) -> float:
         """A birth time for leaves and blossoms added while the garden is paused: one growth time
         constant ago, so they show at once (63 % grown) and finish growing when time runs again."""
-        return self.state.world.clocks().length_time - self.state.world.tree.geometry_constants["TAU"]
+        return self.state.world.born_visible()
 
     def edit_at(self, x: float, y: float, camera: OrbitCamera) -> bool:
         """With the symbols tool, a tap inside the region applies the chosen edit there (undoable).
@@ -296,16 +289,15 @@ class ModelingMode(ToolChoice):
 
     def undo(self) -> None:
         """Take back the last stroke (and say so, or that there is nothing to take back)."""
-        self._step_history(lambda modeler: modeler.undo(), "undone", "undo_none")
+        self._step_history(Undo(), "undone", "undo_none")
 
     def redo(self) -> None:
         """Put back the last undone stroke (and say so, or that there is nothing to put back)."""
-        self._step_history(lambda modeler: modeler.redo(), "redone", "redo_none")
+        self._step_history(Redo(), "redone", "redo_none")
 
-    def _step_history(self, step, done: str, none: str) -> None:
+    def _step_history(self, command: Undo | Redo, done: str, none: str) -> None:
         self.follow()
-        if self.modeler is not None and step(self.modeler):
-            self.state.world.tree.lstring = self.modeler.lstring
+        if self.modeler is not None and self.state.world.apply(command):
             self.state.say(text(f"messages.{done}"))
         else:
             self.state.say(text(f"messages.{none}"))

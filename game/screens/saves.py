@@ -19,10 +19,9 @@ from arbor.engine.base.files import atomic_write, set_aside
 from arbor.engine.life.keep.away import AwaySummary, away_seconds, live_away
 from arbor.engine.life.keep.generations import rotate
 from arbor.engine.life.keep.save import SavedGarden, garden_text, read_garden, write_garden
-from arbor.engine.life.lineage.lineage import new_lineage, species_of
 from arbor.engine.life.plant.sim import sun_angle_at
 from arbor.engine.life.rules.rules import Rules
-from arbor.engine.life.world.actions import Action
+from arbor.engine.life.world.commands import SunAt
 from arbor.engine.life.world.garden import MAX_GARDEN, Garden
 from arbor.engine.life.world.world import World
 from arbor.engine.lsystem.lsys import LSystem
@@ -50,12 +49,10 @@ class SaveKeeper:
     def new_world(self) -> World:
         """A fresh sapling with meters at a random 25-100 %, seeded from the config or the clock."""
         seed = self.config.seed if self.config.seed is not None else int(self.wall_clock() * 1000) % 2**31
-        world = World(self.system, self.rules, seed=seed)
-        world.apply(Action.REPLANT, 1.0)
-        world.lineage = new_lineage(world.lineage.seed, self.wall_clock(), species_of(self.system.file))
+        world = World(self.system, self.rules, seed=seed, replanted=True, planted=self.wall_clock())
         if self.rules.pace == "home":  # a day of the sun lasts a day: start it at the player's time of day
             now = time.localtime(self.wall_clock())
-            world.sim.state.sun_angle = sun_angle_at(now.tm_hour * 3600 + now.tm_min * 60 + now.tm_sec)
+            world.apply(SunAt(sun_angle_at(now.tm_hour * 3600 + now.tm_min * 60 + now.tm_sec)))
         return world
 
     def start(self) -> Garden:

@@ -14,6 +14,7 @@ from collections.abc import Callable
 from arbor.engine.life.form.interpret import Clocks
 from arbor.engine.life.plant.sim import sun_angle_at
 from arbor.engine.life.rules.rules import Rules
+from arbor.engine.life.world.commands import SunAt
 from arbor.engine.life.world.garden import Garden
 from arbor.engine.life.world.guardian import Guardian, Need
 from arbor.engine.life.world.world import World
@@ -75,7 +76,7 @@ class GameState:
             return False
         angle = sun_angle_at(FIRST_HOUR * 3600.0)
         for world in self.garden.worlds:
-            world.sim.state.sun_angle = angle
+            world.apply(SunAt(angle))
         self.remember()
         return True
 

@@ -19,9 +19,8 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 import pygame
 
+from arbor.engine.life.world.commands import Crown
 from arbor.engine.lsystem.lstring import LString
-from arbor.engine.lsystem.text import format_number
-from arbor.engine.modeling.crown_fill import MAX_CROWN_MODULES, grow_within
 from arbor.engine.modeling.lobes import Lobe, lobe_from_loops, lobe_from_outline
 from arbor.game.render.camera import OrbitCamera, project_points, unproject_to_plane
 from arbor.game.render.ui import draw_polyline
@@ -131,11 +130,11 @@ class CrownTool:
     def _regrow_into(self, state: CrownState, key: str, **extra) -> None:
         """Regrow the crown from the tree before it into ``state``'s lobes; one undoable step."""
         start = time.perf_counter()
-        grown, added, limited = self.regrow(state.base, state.lobes)
+        world = self.mode.state.world
+        grown = world.apply(Crown(state.base, tuple(state.lobes)))
+        added, limited = grown.added, grown.limited
         ms = (time.perf_counter() - start) * 1e3
-        self.mode.modeler.commit(grown)
-        self._remember(grown, state)
-        self.mode.state.world.tree.lstring = self.mode.modeler.lstring
+        self._remember(world.tree.lstring, state)
         self.mode.reframe(zoom=True)  # the view holds the grown crown and every lobe
         if added == 0:
             key = "messages.crown_none"
@@ -143,16 +142,6 @@ class CrownTool:
             key = "messages.crown_full"
         lobes = f"{len(state.lobes)} lobe{'' if len(state.lobes) == 1 else 's'}"
         self.mode.state.say(text(key, count=added, ms=ms, lobes=lobes, **extra))
-
-    def regrow(self, base: LString, lobes: list[Lobe]) -> tuple[LString, int, bool]:
-        """The crown grown from ``base`` into ``lobes`` within the tree's module budget: a try that is
-        too big is grown again with proportionally fewer nodes (at most four tries). Returns the L-string,
-        the branch pieces added and whether the budget limited them."""
-        mode = self.mode
-        budget = mode.state.world.tree.deriver.budget
-        room = MAX_CROWN_MODULES if budget is None else budget - len(base)
-        return grow_within(base, lobes, room, int(mode.modeler.rng.integers(2**31)), mode.segments,
-                           tip=f"[&(45)L({format_number(mode.born_visible())})]")
 
     def next_op(self) -> str:
         """Choose the next shape operation (the menu's option button cycles through them)."""

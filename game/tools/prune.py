@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from arbor.engine.modeling.regions import prune
+from arbor.engine.life.world.commands import Cut
 from arbor.game.render.camera import OrbitCamera, project_points
 from arbor.game.strings import text
 
@@ -36,7 +36,6 @@ class PruneTool:
         if segs.parent[k] < 0:
             mode.state.say(text("messages.prune_base"))
             return True
-        mode.modeler.commit(prune(mode.modeler.lstring, int(segs.module[k])))
-        mode.state.world.tree.lstring = mode.modeler.lstring
-        mode.state.say(text("messages.pruned", count=len(segs) - len(mode.segments(mode.modeler.lstring))))
+        removed = mode.state.world.apply(Cut(int(segs.module[k])))
+        mode.state.say(text("messages.pruned", count=removed))
         return True

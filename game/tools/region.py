@@ -17,10 +17,8 @@ from scipy.spatial import ConvexHull, QhullError
 
 from arbor.engine.geometry.turtle import TurtleConfig, module_positions
 from arbor.engine.life.form.interpret import render_view
-from arbor.engine.life.plant.growth import new_axis_text
+from arbor.engine.life.world.commands import RegionEdit
 from arbor.engine.lsystem.lstring import LString
-from arbor.engine.modeling.bend import bend_region
-from arbor.engine.modeling.edits import apply_edit, prune_region
 from arbor.engine.modeling.regions import Sphere, Supertoroid, fit_supertoroid, moved_region, scaled_region
 from arbor.game.render.camera import OrbitCamera, project_ball, project_points
 from arbor.game.render.ui import draw_polyline
@@ -29,7 +27,6 @@ from arbor.game.tools.symbols import draw_symbols
 
 CONTOUR_PIXELS = 80.0  # a drag at least this tall, and twice as tall as wide, is a contour
 GROUPS = {"grow": "grown", "prune": "pruned_region"}  # edits with their own message
-GROW_STEPS = 20  # growth steps a Grow region keeps all growth inside it
 HANDLE_PIXELS = 12.0  # radius of the region's centre handle (a touch-sized disc): a drag from it moves the region
 MOVE_INSIDE = 0.6  # a drag starting within this share of the way from the centre to the rim moves the region
 RIM_PIXELS = 16.0  # a drag starting up to this far outside the rim (as seen) still resizes the region
@@ -203,26 +200,8 @@ class RegionTool:
         mode = self.mode
         if mode.modeler is None or not self.hit(x, y, camera):
             return False
-        world = mode.state.world
-        ls, clocks = world.tree.lstring, world.clocks()
-        now, plastochron = clocks.length_time, float(world.tree.system.constants.get("P", 4.0))
-        const = world.tree.geometry_constants
-        extern = {"T": mode.born_visible(), "G": clocks.girth_time, "NOW": now, "P": plastochron, "IL": const["IL"],
-                  "IO": const["IO"], "MAXO": float(world.tree.system.constants.get("MAXO", 4.0))}
-        axis = new_axis_text(world.tree.system, now, clocks.girth_time) if edit == "grow" else None
-        if edit == "prune":
-            (new, changed), held = prune_region(ls, self.positions(ls), self.region), 0
-        elif edit == "bend":
-            (new, changed), held = bend_region(ls, render_view(ls, clocks, world.tree.geometry_constants),
-                                               self.region), 0
-        else:
-            new, changed, held = apply_edit(ls, self.positions(ls), self.region, system, extern, new_axis=axis,
-                                            budget=world.tree.deriver.budget)
-        if changed:
-            mode.modeler.commit(new)
-            world.tree.lstring = new
-        if edit == "grow":  # the tree grows only inside the region for its next growth steps
-            world.tree.confine, world.tree.confine_left = self.region, GROW_STEPS
+        done = mode.state.world.apply(RegionEdit(edit, self.region, system))
+        changed, held = done.changed, done.held
         key = "messages.new_axis" if changed < 0 else f"messages.{GROUPS.get(edit, 'edited')}"
         message = text(key, edit=text(f"edits.{edit}"), count=changed)
         mode.state.say(message + (" " + text("messages.budget") if held else ""))

@@ -28,9 +28,11 @@ from arbor.engine.base.units import METRE
 from arbor.engine.life.experiment import schema
 from arbor.engine.life.experiment.measure import METRICS, Meters, crown_shape, measure
 from arbor.engine.life.experiment.schema import Reader
+from arbor.engine.life.lineage.lineage import new_lineage, species_of
 from arbor.engine.life.rules.rules import Rules, check_rules, set_rule
 from arbor.engine.life.world.actions import Action
-from arbor.engine.life.world.world import World, sense_light
+from arbor.engine.life.world.commands import Prune
+from arbor.engine.life.world.world import World, step_together
 from arbor.engine.lsystem.lsys import LSystem, load_lsystem
 
 MAX_TREES = 6
@@ -67,7 +69,7 @@ class Pruning:
 
     def apply(self, world: World) -> int:
         """Prune ``world`` now; the branches cut."""
-        return world.prune(self.keep_height, self.lowest)
+        return world.apply(Prune(self.keep_height, self.lowest))
 
 
 @dataclass
@@ -326,16 +328,19 @@ class Lab:
     def _world(self, index: int, regime: Regime, base_rules: Rules) -> World:
         """One tree's world: its rules, its sun, its own lineage and (on a shared plot) its place in the row."""
         rules = regime_rules(base_rules, regime, str(self.experiment.file))
-        world = World(self.system, rules, seed=self.experiment.seed)
-        ident = hashlib.sha256(f"{world.lineage.id}|lab|{index}|{regime.name}".encode()).hexdigest()[:16]
-        world.lineage = replace(world.lineage, id=ident)  # every tree a line of its own
+        seed = self.experiment.seed
+        lineage = new_lineage(seed, 0.0, species_of(self.system.file))
+        ident = hashlib.sha256(f"{lineage.id}|lab|{index}|{regime.name}".encode()).hexdigest()[:16]
+        position = (0.0, 0.0)
+        if self.experiment.spacing:
+            n = len(self.experiment.regimes)
+            position = ((index - (n - 1) / 2) * self.experiment.spacing * METRE, 0.0)
+        world = World(self.system, rules, seed=seed, position=position,
+                      lineage=replace(lineage, id=ident))  # every tree a line of its own
         if regime.orbit_height is not None or sun_of(regime)[0] is not None:
             world.apply(Action.ORBIT_HEIGHT, orbit_height(regime, rules))
         if regime.sun_speed is not None:
             world.apply(Action.SUN_SPEED, regime.sun_speed)
-        if self.experiment.spacing:
-            n = len(self.experiment.regimes)
-            world.position = ((index - (n - 1) / 2) * self.experiment.spacing * METRE, 0.0)
         return world
 
     def step(self) -> None:
@@ -353,16 +358,9 @@ class Lab:
             if s.sun_turns >= self._next_prune[i] and regime.prune is not None:
                 regime.prune.apply(world)
                 self._next_prune[i] += regime.prune.every_days
-        if self.experiment.spacing:
-            for world in self.worlds:
-                world.advance(dt)
-            if self.worlds[0].light_due():
-                sense_light(self.worlds)
-            for world in self.worlds:
-                world.grow()
-        else:
-            for world in self.worlds:
-                world.step(dt)
+        plots = [self.worlds] if self.experiment.spacing else [[world] for world in self.worlds]
+        for plot in plots:  # (trees on one plot read the light together)
+            step_together(plot, dt)
         for world, meters in zip(self.worlds, self.meters, strict=True):
             meters.add(world, dt)
         self.time += dt

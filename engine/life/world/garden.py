@@ -9,14 +9,13 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-import numpy as np
-
 from arbor.engine.life.lineage.breed import cross
 from arbor.engine.life.lineage.lineage import Family, new_lineage, species_of
 from arbor.engine.life.plant import collide
 from arbor.engine.life.rules.rules import Rules
 from arbor.engine.life.world.actions import Action
-from arbor.engine.life.world.world import MAX_CATCH_UP_STEPS, World, catch_up_steps, sense_light
+from arbor.engine.life.world.commands import Harvest, Place
+from arbor.engine.life.world.world import MAX_CATCH_UP_STEPS, World, live, step_together
 from arbor.engine.lsystem.lsys import LSystem
 
 MAX_GARDEN = 6  # trees in one garden
@@ -76,12 +75,10 @@ class Garden:
             raise ValueError(f"a garden holds at most {MAX_GARDEN} trees")
         k = len(self.worlds)
         seed = (self.world.seed * 7919 + k * 104729) % 2**31 if seed is None else seed
-        world = World(system, rules, seed=seed)
-        world.apply(Action.REPLANT, 1.0)
+        lineage = new_lineage(seed, now, species or species_of(system.file), tuple(p.lineage for p in parents))
+        world = World(system, rules, seed=seed, lineage=lineage, replanted=True)
         self._place(world)
         world.journal.write(world.sim.state.time, "planted", float(world.seed))
-        world.lineage = new_lineage(world.seed, now, species or species_of(system.file),
-                                    tuple(p.lineage for p in parents))
         self.family.add(world.lineage)
         self.worlds.append(world)
         self.current = len(self.worlds) - 1
@@ -103,30 +100,19 @@ class Garden:
         k = len(self.worlds)
         angle = k * 2.39996  # golden angle: the garden spirals outwards without crowding
         radius = GARDEN_SPACING * math.sqrt(k)
-        world.position = (radius * math.cos(angle), radius * math.sin(angle))
-        sun, state = self.world.sim.state, world.sim.state
-        world.apply(Action.ORBIT_HEIGHT, sun.orbit_height)
-        world.apply(Action.SUN_SPEED, sun.sun_speed)
-        state.sun_angle = sun.sun_angle  # one sun: the new tree sees it where the others do
-        state.sun_turns, state.weather_seed = sun.sun_turns, sun.weather_seed  # one calendar, one weather
+        sun = self.world.sim.state  # one sun, one calendar, one weather: the new tree sees them as the others do
+        world.apply(Place((radius * math.cos(angle), radius * math.sin(angle)),
+                          (sun.orbit_height, sun.sun_speed, sun.sun_angle, sun.sun_turns, sun.weather_seed)))
 
     def harvest(self, world: World, fruit_module: int) -> Seed | None:
         """Pick the fruit that is module ``fruit_module`` of ``world``'s tree: it leaves the tree and its
         seed (which knows its parent) goes into the seed bag. None when that is not a ripe fruit."""
-        ls = world.tree.lstring
-        if not 0 <= fruit_module < len(ls) or ls.sym[fruit_module] != ord("O") or ls.nparams[fruit_module] < 1:
+        born = world.apply(Harvest(fruit_module))
+        if born is None:
             return None
-        born = float(ls.params[ls.offsets[fruit_module]])
-        if world.sim.state.length_time - born < world.tree.geometry_constants["RIPEN"]:
-            return None
-        keep = np.ones(len(ls), bool)
-        keep[fruit_module] = False
-        world.tree.lstring = ls.select(keep)
         seed = Seed(parent_seed=world.seed, parent_sha=world.system.sha256, number=int(born * 1000) % 2**31)
         if len(self.seeds) < MAX_SEEDS:
             self.seeds.append(seed)
-        world.journal.write(world.sim.state.time, "harvest", float(len([e for e in world.journal.entries
-                                                                        if e[1] == "harvest"]) + 1))
         return seed
 
     def plant_seed(self, rules: Rules, fallback: LSystem, now: float = 0.0) -> World | None:
@@ -165,20 +151,10 @@ class Garden:
             world.apply(action, value)
 
     def step(self, dt: float) -> None:
-        """Advance every tree by ``dt``; one light reading for the whole garden when it is due, so
-        neighbours shade each other."""
-        for world in self.worlds:
-            world.advance(dt)
-        due = [w for w in self.worlds if w.light_due()]
-        if due:
-            sense_light(self.worlds, collide.rocks(self.rocks))
-        for world in self.worlds:
-            world.grow()
+        """Advance every tree by ``dt`` through the one step loop (neighbours shade each other)."""
+        step_together(self.worlds, dt, collide.rocks(self.rocks))
 
     def catch_up(self, seconds: float, dt: float = 1.0, max_steps: int = MAX_CATCH_UP_STEPS) -> int:
         """Every tree lives ``seconds`` of game time unattended, under one sun, in at most ``max_steps``
         steps. Returns the steps taken."""
-        steps, dt = catch_up_steps(seconds, dt, max_steps)
-        for _ in range(steps):
-            self.step(dt)
-        return steps
+        return live(self.worlds, seconds, dt, max_steps, collide.rocks(self.rocks))

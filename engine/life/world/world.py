@@ -1,19 +1,25 @@
 """The game's world: simulation + growing tree + the player's actions, stepped deterministically.
 
-Given the same seed, rules, L-system and the same actions at the same steps, two worlds produce
-identical trees and meters (tests rely on it; every world's input log makes its life replayable).
+Given the same seed, rules, L-system and the same commands at the same steps, two worlds produce
+identical trees and meters. The world is the only writer of its own state: the game, the tools, the
+kiosk, the lab and the garden change it through :meth:`World.apply` with a command
+(engine/life/world/commands.py), which is logged with the steps between (engine/life/world/log.py),
+so a world's life replays from its log (:func:`~arbor.engine.life.world.log.replay`). Every running
+world (the game, a garden, time away, the lab and sweeps) steps through one loop, :func:`step_together`.
 """
 
 from __future__ import annotations
 
 import math
 from dataclasses import InitVar, dataclass, field
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from arbor.engine.life.form.interpret import Clocks
+from arbor.engine.geometry.turtle import TurtleConfig, module_positions
+from arbor.engine.life.form.interpret import Clocks, grow_geometry, render_view
 from arbor.engine.life.lineage.lineage import Lineage, new_lineage, species_of
-from arbor.engine.life.plant import carbon, collide, genome, seasons
+from arbor.engine.life.plant import carbon, collide, genome, photosynthesis, seasons
 from arbor.engine.life.plant.carbon import CarbonBudget, Economy
 from arbor.engine.life.plant.collide import Obstacles
 from arbor.engine.life.plant.growth import GrowingTree
@@ -21,49 +27,93 @@ from arbor.engine.life.plant.journal import Journal
 from arbor.engine.life.plant.light import exposure
 from arbor.engine.life.plant.roots import Roots
 from arbor.engine.life.plant.sim import Rules, SimState, Simulation
-from arbor.engine.life.world import prune
 from arbor.engine.life.world.actions import Action
+from arbor.engine.life.world.commands import BeginEditing, of_action
+from arbor.engine.life.world.log import Log, snapshot
 from arbor.engine.lsystem.lsys import LSystem
 
+if TYPE_CHECKING:
+    from arbor.engine.modeling.modeler import Modeler
+
 MAX_CATCH_UP_STEPS = 20_000  # a catch-up never takes more steps than this, whatever the rules say
-InputLog = list[tuple[int, Action, float]]  # (step, action, value): what was applied before which step
+
+
+@dataclass
+class Parts:
+    """A tree's parts as a save holds them, for :class:`World` to be built from once (loading)."""
+
+    sim: Simulation
+    tree: GrowingTree
+    genome: dict[str, float]
+    roots: Roots
+    carbon: CarbonBudget
+    journal: Journal
+    lineage: Lineage
+    rng: np.random.Generator
+    steps: int = 0
+    last_light: float = float("-inf")
+    dropped_lineage: int = 0
 
 
 @dataclass
 class World:
-    """Everything that evolves in the tamagotchi game, advanced with a fixed time step."""
+    """Everything that evolves in the tamagotchi game, advanced with a fixed time step.
+
+    Built once in one of three ways: ``World(system, rules, seed)`` plants the seed's sapling (meters
+    full); with ``replanted=True`` the sapling of a new line (meters at a random 25-100 %, the seedling's
+    seed drawn from the world's generator: a garden's newcomer, a new game); with ``parts`` a saved tree.
+    """
 
     system: LSystem
     rules: Rules
     seed: int = 0
+    position: tuple[float, float] = (0.0, 0.0)  # where the tree stands in a garden (x, z)
+    lineage: Lineage | None = None  # parents, generation, planting (None: a line of its own starts)
     sim: Simulation = field(init=False)
     tree: GrowingTree = field(init=False)
     rng: np.random.Generator = field(init=False)
-    steps: int = 0
-    position: tuple[float, float] = (0.0, 0.0)  # where the tree stands in a garden (x, z)
-    last_light: float = float("-inf")  # game time of the last light reading
-    journal: Journal = field(default_factory=Journal)
-    input_log: InputLog = field(default_factory=list)  # every applied action, for :func:`replay`
-    bare_at: float = -1.0  # the day of the sun winter last stripped the leaves
-    lineage: Lineage = field(init=False)  # parents, generation, planting (engine/life/lineage.py)
-    roots: Roots = field(init=False)  # grown below ground on water (engine/life/roots.py)
+    steps: int = field(default=0, init=False)
+    last_light: float = field(default=float("-inf"), init=False)  # game time of the last light reading
+    journal: Journal = field(default_factory=Journal, init=False)
+    log: Log = field(default_factory=Log, init=False)  # a checkpoint and every step and command since
+    bare_at: float = field(default=-1.0, init=False)  # the day of the sun winter last stripped the leaves
+    roots: Roots = field(init=False)  # grown below ground on water (engine/life/plant/roots.py)
     carbon: CarbonBudget = field(init=False)  # the sugar its leaves fix and its growth spends (plant/carbon.py)
     genome: dict[str, float] = field(init=False)  # its own values of the species' varying defines (plant/genome.py)
+    editor: Modeler | None = field(default=None, init=False)  # the modeler's edit session (commands.py)
+    _segments: tuple | None = field(default=None, init=False, repr=False)  # (key, L-string, its drawn segments)
     # 1 when the save this tree was read from held a lineage that could not be trusted (so it starts a
     # line of its own): told to the player by the loader, never written back
     dropped_lineage: int = field(default=0, init=False)
 
-    plant: InitVar[bool] = True  # False: an empty tree, for a save to fill in (loading plants nothing)
+    replanted: InitVar[bool] = False
+    planted: InitVar[float] = 0.0  # wall-clock seconds of the planting, for a new lineage
+    parts: InitVar[Parts | None] = None
 
-    def __post_init__(self, plant: bool) -> None:
-        self.sim = Simulation(self.rules)
-        self.sim.state.weather_seed = self.seed
-        self.rng = np.random.Generator(np.random.PCG64(self.seed))
-        self.genome = genome.draw(self.system, self.seed)
-        self.tree = self._plant(self.seed) if plant else GrowingTree(self.expressed(), seed=self.seed)
-        self.lineage = new_lineage(self.seed, 0.0, species_of(self.system.file))
-        self.roots = Roots(seed=self.seed)
-        self.carbon = CarbonBudget.for_seedling(self.rules)
+    def __post_init__(self, replanted: bool, planted: float, parts: Parts | None) -> None:
+        if parts is not None:
+            self._take(parts)
+        else:
+            self.sim = Simulation(self.rules)
+            self.sim.state.weather_seed = self.seed
+            self.rng = np.random.Generator(np.random.PCG64(self.seed))
+            given, self.lineage = self.lineage, self.lineage or new_lineage(self.seed, planted,
+                                                                            species_of(self.system.file))
+            if replanted:
+                self._replant(planted, given)
+            else:
+                self.genome = genome.draw(self.system, self.seed)
+                self.tree = self._plant(self.seed)
+                self.roots = Roots(seed=self.seed)
+                self.carbon = CarbonBudget.for_seedling(self.rules)
+        self.log.origin = snapshot(self)
+
+    def _take(self, parts: Parts) -> None:
+        """A saved tree's parts as this world's."""
+        self.sim, self.tree, self.genome, self.roots = parts.sim, parts.tree, parts.genome, parts.roots
+        self.carbon, self.journal, self.rng, self.steps = parts.carbon, parts.journal, parts.rng, parts.steps
+        self.last_light, self.dropped_lineage, self.lineage = parts.last_light, parts.dropped_lineage, parts.lineage
+        self.sync_roots()
 
     def expressed(self) -> LSystem:
         """The species' L-system with this tree's own genome (engine/life/plant/genome.py)."""
@@ -80,18 +130,15 @@ class World:
         return tree
 
     def step(self, dt: float) -> None:
-        """Advance the simulation by ``dt``: read the light when due, rewrite the L-string each time T
-        passed one rewrite step."""
-        self.advance(dt)
-        if self.light_due():
-            sense_light([self])
-        self.grow()
+        """Advance the simulation by ``dt`` (see :func:`step_together`)."""
+        step_together([self], dt)
 
     def advance(self, dt: float) -> None:
         """The simulation's part of a step (meters, clocks, health)."""
         self.sim.leaf_light = self.tree.mean_light  # (the sun meter fills with the light the leaves catch)
         self.sim.step(dt)
         self.steps += 1
+        self.log.ran(dt)
 
     def light_due(self) -> bool:
         """True when the rules' light interval has passed since the last light reading."""
@@ -128,9 +175,9 @@ class World:
         s, rules = self.sim.state, self.rules
         drowned = s.drowning > rules.water.drown_time
         activity = min(max(seasons.growth_factor(s.sun_turns, rules), rules.carbon.dormant), 1.0)
-        return Economy(self.carbon, rules, seconds, shine, carbon.stomata(self.sim.drought(), drowned), activity,
+        return Economy(self.carbon, rules, seconds, shine, carbon.stomata(s.water_meter, drowned, rules), activity,
                        carbon.wood_density(self.tree.system.constants, rules), seasons.leafy(s.sun_turns, rules),
-                       self.sim.light_growth())
+                       self.sim.light_growth(), photosynthesis.leaf_traits(self.tree.system.constants, rules))
 
     def settle(self, seconds: float) -> None:
         """After a reading: the roots get their share of the pool (more in drought: a functional balance)
@@ -148,15 +195,10 @@ class World:
         """The light the leaves fixed sugar with at the last reading, 0..1 of what fully lit, open leaves of
         the same area would fix (0 at night); a bare tree counts the light its leaves last had."""
         area, rules = self.carbon.leaf_area, self.rules
-        if area > 0:
-            return min(self.carbon.last_fixed_rate / (rules.carbon.assimilation * area), 1.0)
+        if area > 0 and self.carbon.full_rate > 0:
+            return self.carbon.caught()
         drowned = self.sim.state.drowning > rules.water.drown_time
-        return self.sim.sunshine() * carbon.stomata(self.sim.drought(), drowned) * self.tree.mean_light
-
-    def prune(self, keep_height: float | None = None, lowest: float = 0.0) -> int:
-        """Cut the tree back to ``keep_height`` metres and/or cut the ``lowest`` share of its trunk's
-        branches (engine/life/world/prune.py); recorded in the journal. Returns the branches cut."""
-        return prune.prune(self, keep_height, lowest)
+        return self.sim.sunshine() * carbon.stomata(self.sim.state.water_meter, drowned, rules) * self.tree.mean_light
 
     def sync_roots(self) -> None:
         """Tell the simulation how big the roots are (they spare water)."""
@@ -171,40 +213,60 @@ class World:
             return "needs_light"
         return status
 
-    def apply(self, action: Action, value: float = 0.0) -> None:
-        """A world action (:data:`~arbor.engine.life.world.actions.WORLD_ACTIONS`): water (1 = can held,
-        0 = released), the sun's sliders (simulation values) or replant; logged against the step."""
-        if not action.on_world:
-            raise ValueError(f"not an action of the world: {action.value!r}")
-        self.input_log.append((self.steps, action, value))
-        if action is Action.WATER:
-            self.sim.state.watering = bool(value)
-        elif action is Action.ORBIT_HEIGHT:
-            self.sim.set_orbit_height(value)
-        elif action is Action.SUN_SPEED:
-            self.sim.set_sun_speed(value)
-        else:
-            self._replant()
+    def apply(self, command: Any, value: float = 0.0) -> Any:
+        """Carry out a command (engine/life/world/commands.py; a world
+        :class:`~arbor.engine.life.world.actions.Action` with its value stands for one), logged against the
+        step; returns the command's result (what happened, for the screen and the sound)."""
+        if isinstance(command, Action):
+            command = of_action(command, value)
+        self.log.applied(self, command)
+        return command.run(self)
 
-    def _replant(self) -> None:
-        """A fresh sapling (and a fresh line of descent) in this tree's place."""
+    def editing(self) -> Modeler:
+        """The edit session the modeler's commands work on (a new one when there is none)."""
+        return self.editor if self.editor is not None else BeginEditing().run(self)
+
+    def drawn_segments(self, ls):
+        """The segments of ``ls`` as the tree draws now (the modeler's view of its geometry; cached per
+        L-string and clock: a stroke's every pointer move asks for them)."""
+        key = (id(ls), len(ls), self.sim.state.length_time)
+        cached = self._segments
+        if cached is None or cached[0] != key or cached[1] is not ls:
+            segs = grow_geometry(ls, self.clocks(), self.tree.geometry_constants).turtle.segments
+            self._segments = cached = (key, ls, segs)
+        return cached[2]
+
+    def module_positions(self, ls) -> np.ndarray:
+        """The turtle position of every module of ``ls`` as the tree draws now (for region edits)."""
+        view = render_view(ls, self.clocks(), self.tree.geometry_constants)
+        return module_positions(view, TurtleConfig(pipe_model=False, leaves_at_tips=0))
+
+    def born_visible(self) -> float:
+        """A birth time for leaves and blossoms added by an edit while time stands still: one growth time
+        constant ago, so they show at once (63 % grown) and finish growing when time runs again."""
+        return self.clocks().length_time - self.tree.geometry_constants["TAU"]
+
+    def replant_now(self, planted: float | None = None) -> None:
+        """A fresh sapling (and a fresh line of descent) in this tree's place (the :class:`Replant` command)."""
+        self._replant(self.lineage.planted if planted is None else planted)
+        self.editor = None  # (the old tree's edits are gone with it)
+
+    def _replant(self, planted: float, lineage: Lineage | None = None) -> None:
+        """The sapling of a new seed drawn from the world's generator, meters at the rules' random refill;
+        ``lineage``: its line (default: a new one, planted at ``planted``)."""
         self.sim.replant(self.rng)
         seed = int(self.rng.integers(2**31))
         self.genome = genome.draw(self.system, seed)  # a new seedling: its own traits
         self.tree = self._plant(seed)
-        self.lineage = new_lineage(seed, self.lineage.planted, self.lineage.species)  # a new line starts
+        self.lineage = lineage or new_lineage(seed, planted, self.lineage.species)  # a new line starts
         self.roots = Roots(seed=seed)
         self.carbon = CarbonBudget.for_seedling(self.rules)
         self.last_light = float("-inf")  # (the new sim's clock starts at 0: its light is read at once)
         self.sync_roots()
 
     def catch_up(self, seconds: float, dt: float = 1.0, max_steps: int = MAX_CATCH_UP_STEPS) -> int:
-        """Let the tree live ``seconds`` of game time unattended (offline growth), in coarse steps:
-        never more than ``max_steps`` (longer times take longer steps). Returns the steps taken."""
-        steps, dt = catch_up_steps(seconds, dt, max_steps)
-        for _ in range(steps):
-            self.step(dt)
-        return steps
+        """Let the tree live ``seconds`` of game time unattended (offline growth; see :func:`live`)."""
+        return live([self], seconds, dt, max_steps)
 
     def clocks(self, previous: SimState | None = None, alpha: float = 1.0) -> Clocks:
         """The clocks to draw, interpolated between the previous and the current sim state."""
@@ -224,6 +286,28 @@ def catch_up_steps(seconds: float, dt: float, max_steps: int) -> tuple[int, floa
     if wanted <= max_steps:
         return int(wanted), dt
     return max_steps, seconds / max_steps
+
+
+def step_together(worlds: list[World], dt: float, rocks: Obstacles | None = None) -> None:
+    """The one step loop: advance every tree of a plot or garden by ``dt`` (meters, clocks, health), one
+    light reading for all of them when it is due (neighbours shade each other; shoots grow round
+    ``rocks``), then each tree rewrites its L-string if T has passed one rewrite step."""
+    for world in worlds:
+        world.advance(dt)
+    if any(world.light_due() for world in worlds):
+        sense_light(worlds, rocks)
+    for world in worlds:
+        world.grow()
+
+
+def live(worlds: list[World], seconds: float, dt: float = 1.0, max_steps: int = MAX_CATCH_UP_STEPS,
+         rocks: Obstacles | None = None) -> int:
+    """``worlds`` live ``seconds`` of game time unattended under one sun, in coarse steps: never more than
+    ``max_steps`` (longer times take longer steps). Returns the steps taken."""
+    steps, dt = catch_up_steps(seconds, dt, max_steps)
+    for _ in range(steps):
+        step_together(worlds, dt, rocks)
+    return steps
 
 
 def sense_light(worlds: list[World], rocks: Obstacles | None = None) -> None:
@@ -277,16 +361,3 @@ def _obstacles(world: World, worlds: list[World], scenes: list, offsets: list[np
     if rocks is not None:
         parts.append(rocks.moved(-here))
     return collide.Obstacles.join(parts)
-
-
-def replay(system: LSystem, rules: Rules, seed: int, log: InputLog, steps: int, dt: float) -> World:
-    """A new world run for ``steps`` fixed steps, applying each logged action before its step."""
-    world = World(system, rules, seed=seed)
-    pending = sorted(log, key=lambda entry: entry[0])
-    k = 0
-    for i in range(steps):
-        while k < len(pending) and pending[k][0] <= i:
-            world.apply(pending[k][1], pending[k][2])
-            k += 1
-        world.step(dt)
-    return world

@@ -1,0 +1,327 @@
+"""Commands: every change a player, a tool, the kiosk, the lab or the garden makes to a :class:`World`.
+
+A command is a small frozen value; :meth:`World.apply <arbor.engine.life.world.world.World.apply>` logs
+it (engine/life/world/log.py) and runs it, and its ``run`` is the only code that changes the world for
+it. Its result tells the screen and the sound what happened (a stroke's :class:`StrokeResult`, a crown's
+:class:`CrownResult`, the modules an edit changed...). Commands carry what they need in the world's own
+terms (scene units, module indices, regions), never screen pixels, so a log replays to the same tree.
+
+The modeler's commands work on the world's edit session (:attr:`World.editor`, an
+:class:`~arbor.engine.modeling.modeler.Modeler` holding the undo history): :class:`BeginEditing` starts
+one on the tree as it is; each edit commits one undoable step and the tree takes its L-string.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from arbor.engine.life.form.interpret import render_view
+from arbor.engine.life.plant.growth import new_axis_text
+from arbor.engine.life.world import prune
+from arbor.engine.life.world.actions import Action
+from arbor.engine.lsystem.lstring import LString
+from arbor.engine.lsystem.lsys import LSystem
+from arbor.engine.lsystem.text import format_number
+from arbor.engine.modeling.bend import bend_region
+from arbor.engine.modeling.edits import apply_edit, prune_region
+from arbor.engine.modeling.regions import prune as prune_branch
+from arbor.engine.modeling.strokes import Stroke as StrokePoints
+
+if TYPE_CHECKING:
+    from arbor.engine.life.world.world import World
+    from arbor.engine.modeling.lobes import Lobe
+    from arbor.engine.modeling.modeler import Modeler, StrokeResult
+
+# (the modeler and the crown filler are imported when first used: they bring scipy, which a game that
+# never models need not load at start)
+
+GROW_STEPS = 20  # growth steps a region's "grow" edit keeps all of the tree's growth inside it
+
+
+@dataclass(frozen=True)
+class Water:
+    """The can: held (True) or let go (False)."""
+
+    held: bool
+
+    def run(self, world: World) -> None:
+        """Turn the can on or off."""
+        world.sim.state.watering = bool(self.held)
+
+
+@dataclass(frozen=True)
+class SunHeight:
+    """The sun's orbit height slider (a simulation value; clamped by the rules)."""
+
+    value: float
+
+    def run(self, world: World) -> None:
+        """Move the sun's orbit."""
+        world.sim.set_orbit_height(self.value)
+
+
+@dataclass(frozen=True)
+class SunSpeed:
+    """The sun's speed slider (a simulation value; clamped by the rules)."""
+
+    value: float
+
+    def run(self, world: World) -> None:
+        """Change how fast the sun goes round."""
+        world.sim.set_sun_speed(self.value)
+
+
+@dataclass(frozen=True)
+class SunAt:
+    """The sun moved to ``angle`` (rad) of its day: a new game or a visitor starting at a time of day."""
+
+    angle: float
+
+    def run(self, world: World) -> None:
+        """Move the sun."""
+        world.sim.state.sun_angle = float(self.angle)
+
+
+@dataclass(frozen=True)
+class Replant:
+    """A fresh sapling, of a new line of descent, in the tree's place; ``planted``: wall-clock seconds
+    for its lineage (None: the game time's start)."""
+
+    planted: float | None = None
+
+    def run(self, world: World) -> None:
+        """Replant (the world draws the new seedling's seed from its own generator)."""
+        world.replant_now(self.planted)
+
+
+@dataclass(frozen=True)
+class Place:
+    """Where a tree stands in a garden (x, z scene units) and the garden's one sun and calendar it joins:
+    (orbit height, speed, angle, turns, weather seed); None keeps the tree's own."""
+
+    position: tuple[float, float]
+    sun: tuple[float, float, float, float, int] | None = None
+
+    def run(self, world: World) -> None:
+        """Stand the tree there, under that sun."""
+        world.position = (float(self.position[0]), float(self.position[1]))
+        if self.sun is None:
+            return
+        height, speed, angle, turns, weather = self.sun
+        world.sim.set_orbit_height(height)
+        world.sim.set_sun_speed(speed)
+        state = world.sim.state
+        state.sun_angle, state.sun_turns, state.weather_seed = angle, turns, weather
+
+
+@dataclass(frozen=True)
+class Prune:
+    """Cut the tree back to ``keep_height`` metres and/or its ``lowest`` share of trunk branches
+    (engine/life/world/prune.py). Result: the branches cut."""
+
+    keep_height: float | None = None
+    lowest: float = 0.0
+
+    def run(self, world: World) -> int:
+        """Cut (recorded in the journal)."""
+        return prune.prune(world, self.keep_height, self.lowest)
+
+
+@dataclass(frozen=True)
+class Harvest:
+    """Pick the ripe fruit that is module ``module``. Result: the fruit's birth time, None if there is
+    no ripe fruit there."""
+
+    module: int
+
+    def run(self, world: World) -> float | None:
+        """Take the fruit off the tree (the garden puts its seed in the bag)."""
+        ls = world.tree.lstring
+        k = self.module
+        if not 0 <= k < len(ls) or ls.sym[k] != ord("O") or ls.nparams[k] < 1:
+            return None
+        born = float(ls.params[ls.offsets[k]])
+        if world.sim.state.length_time - born < world.tree.geometry_constants["RIPEN"]:
+            return None
+        keep = np.ones(len(ls), bool)
+        keep[k] = False
+        world.tree.lstring = ls.select(keep)
+        harvests = sum(1 for entry in world.journal.entries if entry[1] == "harvest")
+        world.journal.write(world.sim.state.time, "harvest", float(harvests + 1))
+        return born
+
+
+@dataclass(frozen=True)
+class BeginEditing:
+    """A new edit session on the tree as it is now (earlier edits out of undo's reach)."""
+
+    def run(self, world: World) -> Modeler:
+        """Start it; the result is the session."""
+        from arbor.engine.modeling.modeler import Modeler, ModelerSettings
+
+        tree = world.tree  # drawn axes get the species' density of side shoots, lambda(s)
+        world.editor = Modeler(lstring=tree.lstring, settings=ModelerSettings.for_species(tree.geometry_constants),
+                               segments_of=world.drawn_segments)
+        return world.editor
+
+
+def _commit(world: World, new: LString) -> None:
+    """One undoable edit: the session and the tree take ``new``."""
+    world.editor.commit(new)
+    world.tree.lstring = new
+
+
+@dataclass(frozen=True, eq=False)
+class Stroke:
+    """A drawn branch or trunk: its points (scene units) and their times (s). Result: the
+    :class:`StrokeResult` (None when it would not fit the module budget: nothing is added)."""
+
+    points: np.ndarray
+    times: np.ndarray
+
+    def run(self, world: World) -> StrokeResult | None:
+        """Convert the stroke on the tree as edited and commit it (undoable)."""
+        editor = world.editing()
+        new, result = editor.convert(StrokePoints(np.asarray(self.points), np.asarray(self.times)))
+        budget = world.tree.deriver.budget
+        if budget is not None and len(new) > max(budget, len(editor.lstring)):
+            return None
+        if result.pieces:
+            _commit(world, new)
+        return result
+
+
+@dataclass
+class CrownResult:
+    """What a crown regrowth did: the branch pieces added, whether the budget limited them."""
+
+    added: int
+    limited: bool
+
+
+@dataclass(frozen=True, eq=False)
+class Crown:
+    """Regrow the crown from ``base`` (the tree before any crown) into ``lobes`` (Zhang et al.), within
+    the module budget; one undoable step. Result: a :class:`CrownResult`."""
+
+    base: LString
+    lobes: tuple[Lobe, ...]
+
+    def run(self, world: World) -> CrownResult:
+        """Grow the crown and commit it."""
+        from arbor.engine.modeling.crown_fill import MAX_CROWN_MODULES, grow_within
+
+        editor = world.editing()
+        budget = world.tree.deriver.budget
+        room = MAX_CROWN_MODULES if budget is None else budget - len(self.base)
+        grown, added, limited = grow_within(self.base, list(self.lobes), room, int(editor.rng.integers(2**31)),
+                                            world.drawn_segments,
+                                            tip=f"[&(45)L({format_number(world.born_visible())})]")
+        _commit(world, grown)
+        return CrownResult(added, limited)
+
+
+@dataclass(frozen=True)
+class Cut:
+    """Cut the branch that module ``module`` starts and what grows from it (the modeler's prune tool).
+    Result: the segments removed (0: it was the trunk's base, which stays)."""
+
+    module: int
+
+    def run(self, world: World) -> int:
+        """Cut, one undoable step."""
+        editor = world.editing()
+        segs = world.drawn_segments(editor.lstring)
+        before = len(segs)
+        k = np.flatnonzero(segs.module == self.module)
+        if len(k) == 0 or segs.parent[k[0]] < 0:
+            return 0
+        _commit(world, prune_branch(editor.lstring, self.module))
+        return before - len(world.drawn_segments(editor.lstring))
+
+
+@dataclass
+class EditResult:
+    """What a region edit did: modules changed (negative: a new axis was started), modules the budget
+    held back."""
+
+    changed: int
+    held: int
+
+
+@dataclass(frozen=True, eq=False)
+class RegionEdit:
+    """An edit inside a region (engine/modeling/regions.py) with the production set ``system`` (None for
+    the built-in prune and bend), as Onishi et al. 2003's region edits; "grow" also keeps the tree's
+    next growth steps inside the region. Result: an :class:`EditResult`."""
+
+    edit: str
+    region: Any
+    system: LSystem | None = None
+
+    def run(self, world: World) -> EditResult:
+        """Apply the edit to the modules inside the region (undoable when it changed any)."""
+        editor, tree = world.editing(), world.tree
+        ls, clocks = editor.lstring, world.clocks()
+        now, const = clocks.length_time, tree.geometry_constants
+        if self.edit == "prune":
+            (new, changed), held = prune_region(ls, world.module_positions(ls), self.region), 0
+        elif self.edit == "bend":
+            (new, changed), held = bend_region(ls, render_view(ls, clocks, const), self.region), 0
+        else:
+            extern = {"T": world.born_visible(), "G": clocks.girth_time, "NOW": now,
+                      "P": float(tree.system.constants.get("P", 4.0)), "IL": const["IL"], "IO": const["IO"],
+                      "MAXO": float(tree.system.constants.get("MAXO", 4.0))}
+            axis = new_axis_text(tree.system, now, clocks.girth_time) if self.edit == "grow" else None
+            new, changed, held = apply_edit(ls, world.module_positions(ls), self.region, self.system, extern,
+                                            new_axis=axis, budget=tree.deriver.budget)
+        if changed:
+            _commit(world, new)
+        if self.edit == "grow":
+            tree.confine, tree.confine_left = self.region, GROW_STEPS
+        return EditResult(changed, held)
+
+
+@dataclass(frozen=True)
+class Undo:
+    """Take back the last edit. Result: False when there was none."""
+
+    def run(self, world: World) -> bool:
+        """Step back in the edit session's history."""
+        editor = world.editing()
+        if not editor.undo():
+            return False
+        world.tree.lstring = editor.lstring
+        return True
+
+
+@dataclass(frozen=True)
+class Redo:
+    """Put back the last undone edit. Result: False when there was none."""
+
+    def run(self, world: World) -> bool:
+        """Step forward in the edit session's history."""
+        editor = world.editing()
+        if not editor.redo():
+            return False
+        world.tree.lstring = editor.lstring
+        return True
+
+
+WORLD_COMMANDS = {  # a world action (with its value) as the command it stands for
+    Action.WATER: lambda value: Water(bool(value)),
+    Action.ORBIT_HEIGHT: lambda value: SunHeight(float(value)),
+    Action.SUN_SPEED: lambda value: SunSpeed(float(value)),
+    Action.REPLANT: lambda value: Replant(),
+}
+
+
+def of_action(action: Action, value: float = 0.0):
+    """The command a world action (:data:`~arbor.engine.life.world.actions.WORLD_ACTIONS`) with its value
+    stands for; a ValueError for an action that is the game's, not the world's."""
+    if action not in WORLD_COMMANDS:
+        raise ValueError(f"not an action of the world: {action.value!r}")
+    return WORLD_COMMANDS[action](value)
