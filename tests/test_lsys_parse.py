@@ -93,3 +93,11 @@ def test_missing_file_is_a_clear_error(tmp_path):
     with pytest.raises(LSysError) as info:
         load_lsystem(tmp_path / "nope.lsys")
     assert "cannot read" in info.value.message and info.value.file.endswith("nope.lsys")
+
+
+def test_a_source_declares_its_unit_in_metres_per_turtle_unit():
+    assert parse_lsystem("unit: 0.01 // F(1) is a centimetre\nw: F\n").unit == 0.01
+    assert parse_lsystem("w: F\n").unit is None  # the scene's unit (engine/base/units.py)
+    for bad in ("0", "-1", "5000"):
+        with pytest.raises(LSysError, match="metres per turtle unit"):
+            parse_lsystem(f"unit: {bad}\nw: F\n")

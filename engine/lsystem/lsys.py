@@ -8,7 +8,7 @@ A source is read line by line::
     #extern T R                 names the host program supplies at each derivation step
     #host children              functions the host program supplies (the file cannot run alone)
     n: 6                        header values: n, delta (or angle), step, width, width_scale, seed,
-                                budget, leaf_size, leaves_at_tips
+                                budget, leaf_size, leaves_at_tips, unit (metres per turtle unit)
     w: !(1)F(200)/(45)A         the axiom (also 'axiom:' or 'ω:')
     p1: A : * -> !(vr)F(50)[&(a)F(50)A]
     p2: B(x) < A(y) > C : x > y -> A(x + y)
@@ -50,6 +50,7 @@ HEADER_KEYS = {
     "tropism_z": "tropism_z",
     "seed": "seed",
     "budget": "budget",
+    "unit": "unit",
 }
 AXIOM_KEYS = {"w", "ω", "axiom"}
 _LABEL = re.compile(r"\s*[pP]\d+\s*:")
@@ -111,6 +112,7 @@ class LSystem:
     leaves_at_tips: int | None = None
     seed: int = 0
     budget: int | None = None
+    unit: float | None = None  # metres per turtle unit ('unit: 0.01': F(1) is a centimetre); None: the scene's
     externs: tuple[str, ...] = ()
     overrides: dict[str, float] = field(default_factory=dict)
     tropism_x: float | None = None
@@ -272,6 +274,8 @@ def _set_header(system: LSystem, attr: str, value: float, cur: Cursor) -> None:
         if value != int(value) or value < 0 or value > top:
             raise cur.error(f"'{attr}' must be a whole number from 0 to {top:,}")
         setattr(system, attr, int(value))
+    elif attr == "unit" and not 1e-6 <= value <= 1000:
+        raise cur.error("'unit' is metres per turtle unit: from 0.000001 (a micrometre) to 1000")
     elif abs(value) > NUMBER_LIMIT:
         raise cur.error(f"'{attr}' must be between {-NUMBER_LIMIT:g} and {NUMBER_LIMIT:g}")
     else:
