@@ -18,7 +18,7 @@ import time
 import numpy as np
 
 from arbor.engine.geometry.turtle import TurtleConfig, interpret
-from arbor.engine.life.form.interpret import CONSTANT_DEFAULTS, Clocks, grow_geometry
+from arbor.engine.life.form.interpret import Clocks, grow_geometry, reference_constants
 from arbor.engine.modeling.crown import grow_into_lobes
 from arbor.engine.modeling.crown_fill import grow_within, lobe_fill
 from arbor.engine.modeling.lobes import Crossings, lobe_from_loops, lobe_from_outline
@@ -47,7 +47,7 @@ LEAF_TIP = "[&(45)L(1)]"  # the game ends every crown branch with a leaf
 
 def game_segments(ls):
     """The segments as the game draws them (its radii: engine/life/form/interpret.py), fully grown."""
-    return grow_geometry(ls, Clocks(1e6, 1e6), CONSTANT_DEFAULTS).turtle.segments
+    return grow_geometry(ls, Clocks(1e6, 1e6), reference_constants()).turtle.segments
 
 
 def _hand(points: np.ndarray, rng: np.random.Generator, jitter: float = 0.01) -> np.ndarray:

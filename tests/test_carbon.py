@@ -121,14 +121,14 @@ def test_seedlings_differ_within_their_species_ranges_and_keep_their_traits(syst
 
 
 def test_old_straight_bare_wood_is_consolidated_with_its_geometry_girth_and_age(system):
-    from arbor.engine.life.form.interpret import CONSTANT_DEFAULTS, Clocks, grow_geometry
+    from arbor.engine.life.form.interpret import Clocks, grow_geometry, reference_constants
     from arbor.engine.life.plant.consolidate import consolidated
     from arbor.engine.lsystem.lstring import parse_lstring
 
     text = ("I(0,0,0,0,0.02)+(0.3)^(-0.2)/(137.5)I(1,1,0,0,0.018)+(0.2)^(0.1)/(137.5)I(2,2,0,0,0.016)"
             "+(-0.4)^(0.3)/(137.5)I(3,3,0,0,0.015)[+(40)I(3,3,1,0,0.002)[&(62)L(3,1,0)]]"  # a branch: the run ends
             "+(0.1)^(0)/(137.5)I(4,4,0,0,0.01)+(0.1)^(0)/(137.5)I(90,90,0,0,0.002)[&(62)L(90,1,0)]A(0,0,6,1,0,0)")
-    ls, now, const = parse_lstring(text), 100.0, dict(CONSTANT_DEFAULTS)
+    ls, now, const = parse_lstring(text), 100.0, reference_constants()
     merged, saved = consolidated(ls, now, const["TAU"])
     # the first piece has no roll of its own to take the others' rolls: the run starts at the second;
     # the branch ends it; the last internode is young

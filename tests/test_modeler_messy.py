@@ -45,7 +45,7 @@ def test_crowns_fill_every_lobe_within_the_game_budget_and_keep_the_drawn_trunk(
 def test_wood_grown_on_a_thin_drawn_trunk_is_no_wider_than_it():
     """A sapling growing on from the top of a trunk drawn fast (thin), carrying a big crown's pipes: its
     grown wood starts no wider than the drawn trunk's top and tapers from there (the pipe law kept)."""
-    from arbor.engine.life.form.interpret import CONSTANT_DEFAULTS, Clocks, grow_geometry
+    from arbor.engine.life.form.interpret import Clocks, grow_geometry, reference_constants
     from arbor.engine.lsystem.lstring import concat, parse_lstring
     from arbor.engine.modeling.modeler import Modeler
 
@@ -54,7 +54,7 @@ def test_wood_grown_on_a_thin_drawn_trunk_is_no_wider_than_it():
     modeler.add_stroke(Stroke(np.stack([0 * u, 3.0 * u, 0 * u], 1), 0.2 * u))  # fast: thin
     crown = "I(0,0,0,0,0)" * 3 + "[&(50)I(0,0,1,0,0)L(0,1,0)]/(137)" * 120 + "I(0,0,0,0,0)"
     ls = concat(modeler.lstring, parse_lstring(crown))
-    segs = grow_geometry(ls, Clocks(1e6, 1e6), CONSTANT_DEFAULTS).turtle.segments
+    segs = grow_geometry(ls, Clocks(1e6, 1e6), reference_constants()).turtle.segments
     drawn = (ls.sym[segs.module] == ord("F")) & (ls.nparams[segs.module] == 11)
     grown = ls.sym[segs.module] == ord("I")
     first = np.flatnonzero(grown)[0]

@@ -8,10 +8,14 @@ regions); the renderer uses it, through GrowthView, to draw.
 
 from __future__ import annotations
 
+import functools
+from collections.abc import Mapping
 from dataclasses import dataclass
 
 import numpy as np
 
+from arbor.engine.base.assets import assets_dir
+from arbor.engine.base.errors import LSysError
 from arbor.engine.geometry.mesh import LOD_LEVELS, tree_mesh
 from arbor.engine.geometry.tree import TreeGeometry
 from arbor.engine.geometry.turtle import (
@@ -25,18 +29,41 @@ from arbor.engine.geometry.turtle import (
 )
 from arbor.engine.lsystem import brackets
 from arbor.engine.lsystem.lstring import LString, params_where, replace_modules
+from arbor.engine.lsystem.lsys import load_lsystem
 
 INTERNODE, LEAF, BLOSSOM, PITCH, APEX, BUD, FRUIT, LEAF_BUD = (ord(c) for c in "ILK&ADOV")
 FRUIT_SIZE = 0.55  # a ripe fruit's diameter, in leaf lengths
-CONSTANT_DEFAULTS = {
-    "IL": 1.0, "IO": 0.72, "LS": 1.2, "TIP": 0.012, "GMAX": 3.0, "GT": 200.0, "TAU": 4.0, "LFADE": 3.0,
-    "SHED": 14.0, "SHQ": 0.25, "PHOTO": 7.0, "PHOTOB": 12.0, "UPW": 1.2, "UPB": 0.15, "RING": 0.012,
-    "STRAIGHT": 1.0, "SUNW": 0.35, "LIGHTW": 1.2, "RIPEN": 12.0,
-    "BHL": 0.5,  # apical control of the Borchert-Honda vigour sharing (engine/life/plant/vigour.py)
-    # the modeler's lambda(s): growth points per scene unit at 0, 1/4, 1/2, 3/4, 1 of a drawn axis
-    # (Wakabayashi & Durikovic; engine/modeling/modeler.py ModelerSettings.for_species)
-    "LAM0": 0.0, "LAM1": 0.0, "LAM2": 1.2, "LAM3": 1.2, "LAM4": 1.2,
-}
+# The constants the interpretation reads: named here, valued only in the species' .lsys #defines (the
+# game's trees define them all; what an .lsys leaves out it takes from the reference species below).
+# BHL: apical control of the Borchert-Honda vigour sharing (engine/life/plant/vigour.py); LAM0..LAM4: the
+# modeler's lambda(s), growth points per scene unit at 0, 1/4, 1/2, 3/4, 1 of a drawn axis (Wakabayashi &
+# Durikovic; engine/modeling/modeler.py ModelerSettings.for_species).
+CONSTANT_NAMES = ("IL", "IO", "LS", "TIP", "GMAX", "GT", "TAU", "LFADE", "SHED", "SHQ", "PHOTO", "PHOTOB", "UPW",
+                  "UPB", "RING", "STRAIGHT", "SUNW", "LIGHTW", "RIPEN", "BHL", "LAM0", "LAM1", "LAM2", "LAM3", "LAM4")
+REFERENCE_SPECIES = "game_tree.lsys"  # in assets/lsystems: it defines every one of CONSTANT_NAMES
+
+
+@functools.cache
+def _reference() -> tuple[tuple[str, float], ...]:
+    system = load_lsystem(assets_dir() / "lsystems" / REFERENCE_SPECIES)
+    missing = [k for k in CONSTANT_NAMES if k not in system.constants]
+    if missing:
+        raise LSysError(f"the reference species must #define {', '.join(missing)} (engine/life/form/interpret.py "
+                        "reads them)", system.file)
+    return tuple((k, float(system.constants[k])) for k in CONSTANT_NAMES)
+
+
+def reference_constants() -> dict[str, float]:
+    """The interpretation constants of the reference species (its #defines of CONSTANT_NAMES), read once."""
+    return dict(_reference())
+
+
+def interpretation_constants(constants: Mapping[str, float]) -> dict[str, float]:
+    """The interpretation constants a tree with these .lsys ``constants`` is drawn with: its own #defines,
+    and the reference species' for any it leaves out (an imported .lsys, an old save's embedded source)."""
+    return {k: float(constants.get(k, v)) for k, v in _reference()}
+
+
 DROOP = 0.6  # branch and leaf angles grow by this fraction at full wilt
 LEAF_ASPECT = 0.5  # leaf quads are half as wide as long (engine/geometry/mesh.py)
 CLUSTER_ANGLES = (0.0, 38.0, -38.0)  # degrees the blades of one leaf cluster fan out

@@ -40,13 +40,13 @@ from arbor.engine.life.form.interpret import (
     APEX,
     BUD,
     CLUSTER_AREA,
-    CONSTANT_DEFAULTS,
     INTERNODE,
     LEAF,
     LEAF_ASPECT,
     LEAF_BUD,
     Clocks,
     grow_geometry,
+    interpretation_constants,
     leaf_area,
     pipe_area,
     render_view,
@@ -135,16 +135,7 @@ class GrowingTree:
         self.deriver = Deriver(self.system, seed=self.seed, budget=self.budget)
         if self.lstring is None:
             self.lstring = self.system.axiom
-        self.geometry_constants = {k: float(self.system.constants.get(k, v)) for k, v in CONSTANT_DEFAULTS.items()}
-
-    def restore(self, lstring: LString, last_rewrite_T: float, light_dir: np.ndarray, mean_light: float,  # noqa: N803
-                shed_total: int, sensed: tuple[float, float] | None) -> None:
-        """Take a saved tree's L-string and clocks (a new tree being loaded; ``sensed``: the length and
-        girth times of its last light reading, None when the save has none)."""
-        self.lstring, self.last_rewrite_T, self.light_dir = lstring, last_rewrite_T, light_dir
-        self.mean_light, self.shed_total = mean_light, shed_total
-        if sensed is not None:
-            self.last_sense_length, self.last_sense_girth = sensed
+        self.geometry_constants = interpretation_constants(self.system.constants)
 
     @property
     def budget_hit(self) -> bool:
