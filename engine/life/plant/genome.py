@@ -14,6 +14,8 @@ import numpy as np
 from arbor.engine.lsystem.lsys import LSystem, parse_lsystem
 
 SUFFIX = "_VAR"
+MAX_EXPRESSED = 32  # species-and-genome systems kept parsed (systems are never changed after parsing)
+_EXPRESSED: dict[tuple, tuple[LSystem, LSystem]] = {}
 
 
 def ranges(system: LSystem) -> dict[str, float]:
@@ -41,9 +43,18 @@ def checked(system: LSystem, genome: dict[str, float]) -> dict[str, float]:
 
 
 def expressed(system: LSystem, genome: dict[str, float]) -> LSystem:
-    """The species' system with ``genome``'s values in place of its defines (the species itself when none)."""
+    """The species' system with ``genome``'s values in place of its defines (the species itself when none).
+    Parsed once per species and genome (the last MAX_EXPRESSED kept): a tree loaded again (a Restore, the next start)
+    or replayed does not parse its species anew."""
     if not genome:
         return system
+    key = (id(system), tuple(sorted((str(k), float(v)) for k, v in genome.items())))
+    kept = _EXPRESSED.get(key)
+    if kept is not None and kept[0] is system:
+        return kept[1]
     varied = parse_lsystem(system.source, system.file, overrides={**system.overrides, **genome}, host=system.host)
     varied.budget = system.budget
+    _EXPRESSED[key] = (system, varied)  # (the species' system is kept too, so its id stays its own)
+    while len(_EXPRESSED) > MAX_EXPRESSED:
+        del _EXPRESSED[next(iter(_EXPRESSED))]
     return varied
