@@ -189,7 +189,7 @@ class CareActions:
 
     def sow(self) -> None:
         """Plant the oldest seed from the bag beside the others: a cross of its parent and the tree whose
-        pollen reached it (engine/life/garden.py)."""
+        pollen reached it (engine/life/world/garden.py)."""
         state = self.state
         if not state.garden.seeds:
             state.say(text("messages.no_seeds"), 5)

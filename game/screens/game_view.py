@@ -52,7 +52,7 @@ class GameView:
 
     def rebuild(self) -> None:
         """Bring every tree's records up to date: a full build when its L-string (or wilt) changed,
-        else only its growing parts move (engine/life/growth_view.py)."""
+        else only its growing parts move (engine/life/form/growth_view.py)."""
         state, renderer = self.state, self.renderer
         here = np.array([state.world.position[0], 0.0, state.world.position[1]])
         placed, seen = [], set()

@@ -67,8 +67,8 @@ class SimState:
     dead_for: float = 0.0
     alive: bool = True
     sun_turns: float = 0.0  # days of the sun so far (turns of its orbit): the calendar of the seasons
-    weather_seed: int = 0  # which days it rains (see engine/life/seasons.py)
-    root_time: float = 0.0  # the roots' clock: runs on water (engine/life/roots.py)
+    weather_seed: int = 0  # which days it rains (see engine/life/plant/seasons.py)
+    root_time: float = 0.0  # the roots' clock: runs on water (engine/life/plant/roots.py)
     # the light the leaves fixed sugar with, remembered (0..1 of fully lit, open leaves); a sapling's is the norm
     daylight: float = find_rule("growth.daylight_full").default
     sun_cycle: GrowthCycle = field(default_factory=GrowthCycle)

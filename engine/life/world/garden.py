@@ -133,7 +133,7 @@ class Garden:
         return self.breed(parent, pollen, child_seed, rules, now)
 
     def breed(self, mother: World, father: World, seed: int, rules: Rules, now: float = 0.0) -> World:
-        """Cross two trees into a sapling planted in this garden (see engine/life/breed.py)."""
+        """Cross two trees into a sapling planted in this garden (see engine/life/lineage/breed.py)."""
         child = cross(mother.system, father.system, seed, name=f"{mother.lineage.species} x {father.lineage.species}")
         species = mother.lineage.species if mother.lineage.species == father.lineage.species else "cross"
         return self.plant(child.system, rules, seed=seed, now=now, parents=(mother, father), species=species)

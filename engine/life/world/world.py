@@ -312,7 +312,7 @@ def live(worlds: list[World], seconds: float, dt: float = 1.0, max_steps: int = 
 
 def sense_light(worlds: list[World], rocks: Obstacles | None = None) -> None:
     """One light reading for trees that share a sun (a garden): every tree's leaves shade every tree;
-    every tree's shoots bend away from the others' wood and from ``rocks`` (engine/life/collide.py)."""
+    every tree's shoots bend away from the others' wood and from ``rocks`` (engine/life/plant/collide.py)."""
     if not worlds:
         return
     sim = worlds[0].sim
