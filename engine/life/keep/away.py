@@ -21,6 +21,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from arbor.engine.life.plant.journal import METRE
+from arbor.engine.life.world.commands import TopUp
 from arbor.engine.life.world.garden import Garden
 from arbor.engine.life.world.world import MAX_CATCH_UP_STEPS, catch_up_steps
 
@@ -101,7 +102,7 @@ def water_away(garden: Garden) -> int:
     for world in garden.worlds:
         s, rules = world.sim.state, world.rules
         if s.alive and s.water_meter <= rules.growth.threshold + rules.health.guard_margin:
-            s.water_meter = max(s.water_meter, rules.health.comfort)
+            world.apply(TopUp(rules.health.comfort))
             watered += 1
     return watered
 

@@ -53,6 +53,19 @@ class Water:
 
 
 @dataclass(frozen=True)
+class TopUp:
+    """Water poured to bring the water meter up to ``level`` (0..1) at once (a neighbour's round while the
+    player is away); a fuller meter stays as it is."""
+
+    level: float
+
+    def run(self, world: World) -> None:
+        """Pour."""
+        state = world.sim.state
+        state.water_meter = max(state.water_meter, min(max(float(self.level), 0.0), 1.0))
+
+
+@dataclass(frozen=True)
 class SunHeight:
     """The sun's orbit height slider (a simulation value; clamped by the rules)."""
 
