@@ -2,7 +2,7 @@
 
 One template per level of detail (sides per ring); one buffer of records per tree part. A grown tree
 is uploaded once; after that each frame rewrites only the rows that grew (the young block at the end of
-each view's records, see engine/life/growth_view.py, kept in buffers of their own), so a frame costs
+each view's records, see engine/life/form/growth_view.py, kept in buffers of their own), so a frame costs
 what changed, not the tree.
 
 The grown (old) block is uploaded in order of importance: segments thickest first, leaves by the hash

@@ -3,7 +3,7 @@
 Obstacles are capsules (a segment with a radius; a rock is a capsule of zero length): the wood of the
 neighbouring trees and the garden's rocks. At every light reading each growing apex looks one
 lookahead ahead along its heading; where that point comes within ``margin`` of an obstacle, the apex
-is turned away from it (engine/life/growth.py adds the push to its target direction) and an apex
+is turned away from it (engine/life/plant/growth.py adds the push to its target direction) and an apex
 already touching one stops growing. The test is vectorised over all apices and obstacles at once
 (obstacles far from every apex are dropped first by their bounding boxes; the rest go in chunks).
 """

@@ -12,7 +12,7 @@ functions of the tree's clocks, evaluated for every frame:
 * leaves unfold from zero, wither before they fall (``falling since``), and shrink away as the tree wilts;
   branches droop with wilt.
 
-Between rewrites :meth:`GrowingTree.sense` takes a light reading (engine/life/light.py) and writes it into
+Between rewrites :meth:`GrowingTree.sense` takes a light reading (engine/life/plant/light.py) and writes it into
 the string: buds and apices remember their light (shaded buds stay asleep, shaded apices stop), apices
 turn toward the mean light direction (phototropism), every internode counts the time its leaves spend in
 deep shade, and lateral branches that stayed in deep shade for SHED are shed (cut from the string; the
@@ -235,7 +235,7 @@ class GrowingTree:
         ``leafy`` is False while a deciduous crown is bare or
         half bare (leaf fall, winter, the first days of spring): shade is not counted then, or every
         branch would starve for want of leaves it does not grow yet. ``obstacles`` (in this tree's
-        frame: neighbours' wood, rocks) turn apices away or stop them (engine/life/collide.py).
+        frame: neighbours' wood, rocks) turn apices away or stop them (engine/life/plant/collide.py).
         ``economy`` books the reading in the tree's carbon budget and pays for the wood (plant/carbon.py).
         """
         now, girth = clocks.length_time, clocks.girth_time
