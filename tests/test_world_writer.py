@@ -40,21 +40,51 @@ def _chain(node: ast.AST) -> list[str]:
     return names[::-1]
 
 
-def world_writes(path: Path) -> list[str]:
-    """The assignments in ``path`` to a world's state (through a name like ``world``) or to any object's
-    ``lstring`` but the object's own (``self.lstring``)."""
-    found = []
-    for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
-        targets = (node.targets if isinstance(node, ast.Assign)
-                   else [node.target] if isinstance(node, ast.AugAssign | ast.AnnAssign) else [])
-        for target in targets:
-            for leaf in ast.walk(target):
-                if not isinstance(leaf, ast.Attribute) or not isinstance(leaf.ctx, ast.Store):
-                    continue
-                base = _chain(leaf.value)
-                if any(name in WORLDISH for name in base) or (leaf.attr == "lstring" and base != ["self"]):
-                    found.append(f"{path.relative_to(ROOT)}:{leaf.lineno}: {ast.unparse(leaf)} = ...")
+def _refers(value: ast.AST, worldish: set[str]) -> bool:
+    """Whether ``value`` is a reference into a world (a plain chain like ``world.sim.state`` or
+    ``garden.worlds[0]``), not a value computed from one."""
+    return isinstance(value, ast.Name | ast.Attribute | ast.Subscript) and bool(set(_chain(value)) & worldish)
+
+
+def _aliases(scope: ast.AST) -> set[str]:
+    """Names that hold a world or a part of one in ``scope``: ``s = world.sim.state``, ``for w in
+    garden.worlds``, ``tree = self.state.world.tree`` (and aliases of those)."""
+    found: set[str] = set()
+    for _ in range(3):  # (an alias of an alias)
+        worldish = set(WORLDISH) | found
+        for node in ast.walk(scope):
+            pairs = []
+            if isinstance(node, ast.Assign):
+                for target in node.targets:
+                    if isinstance(target, ast.Tuple) and isinstance(node.value, ast.Tuple):
+                        pairs += list(zip(target.elts, node.value.elts, strict=False))
+                    else:
+                        pairs.append((target, node.value))
+            elif isinstance(node, ast.For):
+                pairs = [(node.target, node.iter)]
+            found |= {t.id for t, v in pairs if isinstance(t, ast.Name) and _refers(v, worldish)}
     return found
+
+
+def world_writes(path: Path) -> list[str]:
+    """The assignments in ``path`` to a world's state (through a name like ``world``, or a name that holds
+    a world or a part of one) or to any object's ``lstring`` but the object's own (``self.lstring``)."""
+    found = []
+    tree = ast.parse(path.read_text(encoding="utf-8"))
+    for scope in [node for node in ast.walk(tree) if isinstance(node, ast.FunctionDef | ast.AsyncFunctionDef)]:
+        worldish = set(WORLDISH) | _aliases(scope)
+        for node in ast.walk(scope):
+            targets = (node.targets if isinstance(node, ast.Assign)
+                       else [node.target] if isinstance(node, ast.AugAssign | ast.AnnAssign) else [])
+            for target in targets:
+                for leaf in ast.walk(target):
+                    if not isinstance(leaf, ast.Attribute) or not isinstance(leaf.ctx, ast.Store):
+                        continue
+                    base = _chain(leaf.value)
+                    if (base[:1] != ["self"] and set(base[:1]) & worldish) or set(base) & set(WORLDISH) or \
+                            (leaf.attr == "lstring" and base != ["self"]):
+                        found.append(f"{path.relative_to(ROOT)}:{leaf.lineno}: {ast.unparse(leaf)} = ...")
+    return sorted(set(found), key=lambda line: int(line.split(":")[1]))
 
 
 def test_nothing_outside_the_world_package_writes_a_world_or_a_tree_s_lstring():
@@ -65,12 +95,15 @@ def test_nothing_outside_the_world_package_writes_a_world_or_a_tree_s_lstring():
 
 def test_the_writer_check_catches_the_writes_it_is_for(tmp_path):
     bad = tmp_path / "tool.py"
-    bad.write_text("def f(mode, tree, w):\n    mode.state.world.tree.lstring = 1\n    tree.lstring = 2\n"
-                   "    w.worlds[0].position = (0, 0)\n    self.lstring = 3\n", encoding="utf-8")
+    bad.write_text("def f(mode, tree, w, garden):\n    mode.state.world.tree.lstring = 1\n    tree.lstring = 2\n"
+                   "    w.worlds[0].position = (0, 0)\n    self.lstring = 3\n"
+                   "    s = garden.world.sim.state\n    s.water_meter = 1.0\n"
+                   "    for v in garden.worlds:\n        v.rules.light.interval = 2\n", encoding="utf-8")
     bad = bad.rename(ROOT / "tests" / f"_probe_{tmp_path.name}.py")
     try:
         assert [line.split(": ", 1)[1] for line in world_writes(bad)] == [
-            "mode.state.world.tree.lstring = ...", "tree.lstring = ...", "w.worlds[0].position = ..."]
+            "mode.state.world.tree.lstring = ...", "tree.lstring = ...", "w.worlds[0].position = ...",
+            "s.water_meter = ...", "v.rules.light.interval = ..."]
     finally:
         bad.unlink()
 

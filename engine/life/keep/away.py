@@ -14,14 +14,13 @@ rain, sun, seasons and everything else stay as they are. Without it the outcome 
 
 from __future__ import annotations
 
-import copy
 import math
 from dataclasses import dataclass, field
 
 import numpy as np
 
 from arbor.engine.life.plant.journal import METRE
-from arbor.engine.life.world.commands import TopUp
+from arbor.engine.life.world.commands import LightEvery, TopUp
 from arbor.engine.life.world.garden import Garden
 from arbor.engine.life.world.world import MAX_CATCH_UP_STEPS, catch_up_steps
 
@@ -71,10 +70,9 @@ def live_away(garden: Garden, seconds: float, watered: bool = False) -> AwaySumm
         return summary
     world = garden.world
     rules = world.rules
-    light = copy.copy(rules.light)
     day = 2 * math.pi / max(world.sim.state.sun_speed, 1e-9)
-    for w in garden.worlds:  # fewer light readings while catching up (restored below)
-        w.rules.light.interval = max(light.interval, day / rules.away.fast_light)
+    for w in garden.worlds:  # fewer light readings while catching up (back to the rules' below)
+        w.apply(LightEvery(max(w.rules.light.interval, day / rules.away.fast_light)))
     turns0, height0, shed0 = world.sim.state.sun_turns, tree_height(world), world.tree.shed_total
     steps, dt = catch_up_steps(seconds, 1.0, MAX_CATCH_UP_STEPS)
     marks = set(np.linspace(0, steps - 1, min(SAMPLES, steps)).astype(int).tolist()) if steps else set()
@@ -87,7 +85,7 @@ def live_away(garden: Garden, seconds: float, watered: bool = False) -> AwaySumm
                 _look(world, summary)
     finally:
         for w in garden.worlds:
-            w.rules.light.interval = light.interval
+            w.apply(LightEvery(None))
     summary.days = world.sim.state.sun_turns - turns0
     summary.grown = (tree_height(world) - height0) / METRE
     summary.shed = world.tree.shed_total - shed0

@@ -66,6 +66,18 @@ class TopUp:
 
 
 @dataclass(frozen=True)
+class LightEvery:
+    """Read the light every ``seconds`` of game time (None: at the rules' interval), e.g. fewer readings
+    while a long time away is caught up."""
+
+    seconds: float | None
+
+    def run(self, world: World) -> None:
+        """Set the interval."""
+        world.light_every = None if self.seconds is None else float(self.seconds)
+
+
+@dataclass(frozen=True)
 class SunHeight:
     """The sun's orbit height slider (a simulation value; clamped by the rules)."""
 

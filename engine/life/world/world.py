@@ -81,6 +81,7 @@ class World:
     carbon: CarbonBudget = field(init=False)  # the sugar its leaves fix and its growth spends (plant/carbon.py)
     genome: dict[str, float] = field(init=False)  # its own values of the species' varying defines (plant/genome.py)
     editor: Modeler | None = field(default=None, init=False)  # the modeler's edit session (commands.py)
+    light_every: float | None = field(default=None, init=False)  # s between light readings, if not the rules'
     _segments: tuple | None = field(default=None, init=False, repr=False)  # (key, L-string, its drawn segments)
     # 1 when the save this tree was read from held a lineage that could not be trusted (so it starts a
     # line of its own): told to the player by the loader, never written back
@@ -141,8 +142,10 @@ class World:
         self.log.ran(dt)
 
     def light_due(self) -> bool:
-        """True when the rules' light interval has passed since the last light reading."""
-        return self.sim.state.time - self.last_light >= self.rules.light.interval
+        """True when the light interval (the rules', or a longer one while catching up: ``light_every``)
+        has passed since the last light reading."""
+        every = self.rules.light.interval if self.light_every is None else self.light_every
+        return self.sim.state.time - self.last_light >= every
 
     def grow(self) -> None:
         """Rewrite the L-string if T has passed one rewrite step since the last rewrite; in the first half
