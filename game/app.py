@@ -12,7 +12,7 @@ from pathlib import Path
 from arbor.engine.base.files import FolderBusyError, FolderLock
 from arbor.game.errors import NO_DISPLAY, NO_DISPLAY_FOUND, UserError
 from arbor.game.signals import StopSignals
-from arbor.game.watchdog import STAFF_EXIT
+from arbor.game.watchdog import STAFF_EXIT, started
 
 WINDOW = (1280, 720)
 
@@ -94,17 +94,20 @@ class Heartbeat:
             self.path.touch()
 
 
-def _main_loop(ctx, size: tuple[int, int], poll, frame, on_first_frame=None) -> None:
+def _main_loop(ctx, size: tuple[int, int], poll, frame, on_first_frame=None,
+               signals: StopSignals | None = None) -> None:
     """Run ``frame(events, seconds)`` at up to 60 fps until it returns False, or until ARBOR_MAX_FRAMES
     frames have run (then save ARBOR_SCREENSHOT if set: used by tests and bug reports). ``poll(events,
     now)`` turns the window's events into input events; ``on_first_frame()`` runs once the first frame
-    is shown (start-up figures)."""
+    is shown (start-up figures). ``signals``: stop signals the caller installed before the window's
+    start (one that came while the garden was being built ends the loop at once)."""
     import pygame
 
     clock = pygame.time.Clock()
     heart = Heartbeat()
     frames, limit, last = 0, _frames_limit(), time.perf_counter()
-    with StopSignals() as signals:  # Ctrl-C, SIGTERM, SIGHUP: leave the loop; the caller saves and exits 0
+    # Ctrl-C, SIGTERM, SIGHUP: leave the loop; the caller saves and exits 0
+    with contextlib.nullcontext(signals) if signals is not None else StopSignals() as signals:
         while not signals.stop:
             now = time.perf_counter()
             heart.beat(now)
@@ -118,6 +121,8 @@ def _main_loop(ctx, size: tuple[int, int], poll, frame, on_first_frame=None) -> 
                     _save_screen(ctx, size, os.environ["ARBOR_SCREENSHOT"])
                 return
             pygame.display.flip()
+            if frames == 1:
+                started()  # (files read at start are not to blame for what follows: game/watchdog.py)
             if frames == 1 and on_first_frame is not None:
                 on_first_frame()
             clock.tick(60)
@@ -148,19 +153,22 @@ def run_app(args: argparse.Namespace | None = None) -> int:
     saves = getattr(args, "saves", None) or os.environ.get("ARBOR_SAVES")
     lock = lock_saves(Path(saves) if saves else default_saves())  # before the window: a second Arbor ends here
     ctx = open_window(WINDOW, "Arbor")  # first: the title screen is up before the game's modules load
-    if not show_until_ready(ctx, WINDOW, lambda: importlib.import_module("arbor.game.screens.game")):
-        pygame.quit()  # closed while the kernels compiled: nothing was played, nothing to save
-        return 0
-    from arbor.game.screens.game import Game, GameConfig
+    with StopSignals() as signals:  # (from the window on: a signal during the start ends it cleanly too)
+        if not show_until_ready(ctx, WINDOW, lambda: importlib.import_module("arbor.game.screens.game"),
+                                beat=Heartbeat().beat, stop=lambda: signals.stop):
+            pygame.quit()  # closed while the kernels compiled: nothing was played, nothing to save
+            return 0
+        from arbor.game.screens.game import Game, GameConfig
 
-    config = GameConfig(title=True, sprout=True)  # (the title screen follows the first start's preparing screen)
-    config.saves = lock.folder
-    if getattr(args, "pace", None):
-        config.pace = args.pace
-    game = Game(ctx, WINDOW, config, clock=time.perf_counter)
-    hub = make_input_hub(args, WINDOW, time.perf_counter())
-    _main_loop(ctx, WINDOW, hub.poll, _screen_frame(game, ctx.screen), on_first_frame=lambda: timing("garden"))
-    game.quit()
+        config = GameConfig(title=True, sprout=True)  # (the title screen follows the first start's preparing screen)
+        config.saves = lock.folder
+        if getattr(args, "pace", None):
+            config.pace = args.pace
+        game = Game(ctx, WINDOW, config, clock=time.perf_counter)
+        hub = make_input_hub(args, WINDOW, time.perf_counter())
+        _main_loop(ctx, WINDOW, hub.poll, _screen_frame(game, ctx.screen), on_first_frame=lambda: timing("garden"),
+                   signals=signals)
+        game.quit()
     hub.close()
     pygame.quit()
     timing("closed")
@@ -172,6 +180,7 @@ def run_kiosk(args: argparse.Namespace) -> int:
     """Kiosk mode: fullscreen, touch only, never quits without the staff PIN, recovers from faults."""
     import pygame
 
+    from arbor.game.first_start import show_until_ready, timing
     from arbor.game.paths import ASSETS
     from arbor.game.screens.game import Game, GameConfig
     from arbor.game.screens.kiosk import Kiosk, kiosk_config_or_defaults
@@ -190,13 +199,17 @@ def run_kiosk(args: argparse.Namespace) -> int:
     ctx = open_window(WINDOW, "Arbor", fullscreen=not args.windowed)
     size = pygame.display.get_surface().get_size()
     pygame.mouse.set_visible(False)
-    kiosk = Kiosk(lambda: Game(ctx, size, config, clock=time.perf_counter), settings, config.saves,
-                  clock=time.perf_counter)
-    if problem:
-        kiosk.game.say(problem, 12)
-    hub = make_input_hub(args, size, time.perf_counter())
-    _main_loop(ctx, size, kiosk.guarded(hub.poll), lambda events, seconds: kiosk.frame(events, seconds, ctx.screen))
-    kiosk.game.quit()
+    with StopSignals() as signals:  # (from the window on: a signal during the start ends it cleanly too)
+        # the preparing screen while the kernels compile (a first start), beating the watchdog's heartbeat
+        show_until_ready(ctx, size, beat=Heartbeat().beat, stop=lambda: signals.stop)
+        kiosk = Kiosk(lambda: Game(ctx, size, config, clock=time.perf_counter), settings, config.saves,
+                      clock=time.perf_counter)
+        if problem:
+            kiosk.game.say(problem, 12)
+        hub = make_input_hub(args, size, time.perf_counter())
+        _main_loop(ctx, size, kiosk.guarded(hub.poll), lambda events, seconds: kiosk.frame(events, seconds, ctx.screen),
+                   on_first_frame=lambda: timing("garden"), signals=signals)
+        kiosk.game.quit()
     hub.close()
     pygame.quit()
     lock.release()
@@ -269,13 +282,16 @@ def run_lab_window(experiment: Path) -> int:
     import pygame
 
     from arbor.game.commands.lab import new_lab
+    from arbor.game.first_start import timing
     from arbor.game.input.events import InputHub
     from arbor.game.screens.lab import LabScreen
 
     lab = new_lab(experiment)
     ctx = open_window(WINDOW, f"Arbor lab - {lab.experiment.title}")
-    screen = LabScreen(ctx, WINDOW, lab)
-    _main_loop(ctx, WINDOW, InputHub(WINDOW).poll, _screen_frame(screen, ctx.screen))
+    with StopSignals() as signals:  # (from the window on: a signal while the screen is built ends it too)
+        screen = LabScreen(ctx, WINDOW, lab)
+        _main_loop(ctx, WINDOW, InputHub(WINDOW).poll, _screen_frame(screen, ctx.screen),
+                   on_first_frame=lambda: timing("garden"), signals=signals)
     pygame.quit()
     return 0
 
@@ -284,11 +300,14 @@ def run_viewer(source: Path) -> int:
     """Open the viewer window on an .lsys file."""
     import pygame
 
+    from arbor.game.first_start import timing
     from arbor.game.input.events import InputHub
     from arbor.game.screens.viewer import Viewer
 
     ctx = open_window(WINDOW, f"Arbor - {source.name}")
-    viewer = Viewer(ctx, WINDOW, source)
-    _main_loop(ctx, WINDOW, InputHub(WINDOW).poll, _screen_frame(viewer, ctx.screen))
+    with StopSignals() as signals:  # (from the window on: a signal while the tree is built ends it too)
+        viewer = Viewer(ctx, WINDOW, source)
+        _main_loop(ctx, WINDOW, InputHub(WINDOW).poll, _screen_frame(viewer, ctx.screen),
+                   on_first_frame=lambda: timing("garden"), signals=signals)
     pygame.quit()
     return 0

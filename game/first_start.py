@@ -278,10 +278,11 @@ class TitleScreen:
         self.vao.render(mode=self.ctx.TRIANGLE_STRIP)
 
 
-def show_until_ready(ctx, size: tuple[int, int], extra=None, beat=None) -> bool:
+def show_until_ready(ctx, size: tuple[int, int], extra=None, beat=None, stop=None) -> bool:
     """Show the title screen while the kernels warm up on a thread (and ``extra`` runs after them);
-    False when the player closed the window meanwhile. ``beat(now)`` is called every frame (a watchdog's
-    heartbeat: a first start that compiles for minutes on a slow machine is alive, not hung)."""
+    False when the player closed the window meanwhile, or ``stop()`` became true (a stop signal).
+    ``beat(now)`` is called every frame (a watchdog's heartbeat: a first start that compiles for minutes
+    on a slow machine is alive, not hung)."""
     import pygame
 
     screen, clock = TitleScreen(ctx, size), pygame.time.Clock()
@@ -289,7 +290,7 @@ def show_until_ready(ctx, size: tuple[int, int], extra=None, beat=None) -> bool:
     line = FIRST_START + "..." if warm.cold else "waking the garden..."
     first = True
     while not warm.done:
-        if any(e.type == pygame.QUIT for e in pygame.event.get()):
+        if any(e.type == pygame.QUIT for e in pygame.event.get()) or (stop is not None and stop()):
             return False
         if beat is not None:
             beat(time.perf_counter())

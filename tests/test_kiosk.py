@@ -145,13 +145,14 @@ def test_watchdog_kills_a_hung_app_and_moves_a_crashing_save_aside(tmp_path):
     counter = tmp_path / "runs"
     script = (f"import os, pathlib, sys, time; p = pathlib.Path({str(counter)!r}); n = int(p.read_text()) "
               "if p.exists() else 0; p.write_text(str(n + 1))\n"
+              f"save = pathlib.Path({str(folder)!r}) / 'autosave.arbor'\n"
+              "if save.exists(): pathlib.Path(os.environ['ARBOR_HEARTBEAT'] + '.reading').write_text(str(save))\n"
               "if n == 0: time.sleep(60)\n"  # hangs, never beats
-              f"sys.exit({STAFF_EXIT} if n >= 3 else 1)")
+              f"sys.exit({STAFF_EXIT} if n >= 3 else 1)")  # (dies while reading the save, as reading() notes)
     started = time.monotonic()
-    status = watch([sys.executable, "-c", script], sleep=lambda s: None, saves=folder, poll=0.05, hang=0.5,
-                   grace=0.5)
+    status = watch([sys.executable, "-c", script], sleep=lambda s: None, poll=0.05, hang=0.5, grace=0.5)
     assert status == STAFF_EXIT and time.monotonic() - started < 20  # the hang was killed in about a second
-    assert not (folder / "autosave.arbor").exists() and list(folder.glob("autosave.*.crashed"))
+    assert not (folder / "autosave.arbor").exists() and (folder / "autosave.arbor.crashed").read_text() == "poison"
 
 
 def test_strings_come_from_one_file(tmp_path, gl_ctx):

@@ -19,22 +19,22 @@ ROOT = Path(__file__).resolve().parent.parent
 
 
 def _start(args, tmp_path):
-    """The real `arbor ARGS` on a virtual display; returns (process, pid file, heartbeat file)."""
+    """The real `arbor ARGS` on a virtual display; returns (process, pid file, its stderr file)."""
     if shutil.which("xvfb-run") is None:
         pytest.skip("needs xvfb-run (CI installs it)")
-    pid, beat = tmp_path / "pid", tmp_path / "beat"
+    pid, beat, err = tmp_path / "pid", tmp_path / "beat", tmp_path / "stderr"
     env = dict(os.environ, SDL_VIDEODRIVER="x11", SDL_AUDIODRIVER="dummy", ARBOR_HEARTBEAT=str(beat),
-               ARBOR_SAVES=str(tmp_path / "saves"))
+               ARBOR_SAVES=str(tmp_path / "saves"), ARBOR_TIMING="1")
     script = f'echo $$ > "{pid}"; exec "{sys.executable}" -m arbor.game.cli "$@"'
     proc = subprocess.Popen(["xvfb-run", "-a", "-s", "-screen 0 1280x800x24", "sh", "-c", script, "arbor", *args],
-                            env=env, cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.PIPE)
-    return proc, pid, beat
+                            env=env, cwd=ROOT, stdout=subprocess.PIPE, stderr=err.open("wb"))
+    return proc, pid, err
 
 
-def _stop_and_time(proc, pid, beat, sig=signal.SIGTERM):
+def _stop_and_time(proc, pid, err, sig=signal.SIGTERM):
     deadline = time.monotonic() + 150
-    while not beat.exists():  # the window's loop runs (its first heartbeat)
-        assert proc.poll() is None, proc.stderr.read().decode()[-2000:]
+    while b"arbor-timing garden" not in err.read_bytes():  # the window's loop shows its first frame
+        assert proc.poll() is None, err.read_text()[-2000:]
         assert time.monotonic() < deadline, "the window never started"
         time.sleep(0.2)
     time.sleep(1.0)
@@ -45,7 +45,7 @@ def _stop_and_time(proc, pid, beat, sig=signal.SIGTERM):
     finally:
         if proc.poll() is None:
             proc.kill()
-    return time.monotonic() - t0, proc.returncode, proc.stderr.read().decode()
+    return time.monotonic() - t0, proc.returncode, err.read_text()
 
 
 @pytest.mark.parametrize("sig", [signal.SIGTERM, signal.SIGINT, signal.SIGHUP])
@@ -65,8 +65,16 @@ def test_sigterm_to_the_kiosk_saves_and_exits_0(tmp_path):
     assert read_garden(tmp_path / "saves" / "kiosk" / "autosave.arbor").worlds
 
 
-def test_sigterm_to_the_lab_window_exits_0(tmp_path):
+@pytest.mark.parametrize("sig", [signal.SIGTERM, signal.SIGINT, signal.SIGHUP])
+def test_a_stop_signal_to_the_lab_window_exits_0_within_5_s(tmp_path, sig):
     proc, pid, beat = _start(["lab", str(ROOT / "assets" / "experiments" / "sun_vs_shade.toml")], tmp_path)
+    seconds, code, err = _stop_and_time(proc, pid, beat, sig)
+    assert code == 0 and seconds < 5.0, err[-2000:]
+    assert "Traceback" not in err
+
+
+def test_sigterm_to_the_viewer_exits_0_within_5_s(tmp_path):
+    proc, pid, beat = _start(["view", str(ROOT / "assets" / "lsystems" / "context_plant.lsys")], tmp_path)
     seconds, code, err = _stop_and_time(proc, pid, beat)
     assert code == 0 and seconds < 5.0, err[-2000:]
     assert "Traceback" not in err

@@ -16,6 +16,7 @@ from arbor.engine.base.reader import read_user_toml
 from arbor.engine.life.world.actions import Action
 from arbor.game.paths import ASSETS, default_saves
 from arbor.game.strings import text
+from arbor.game.watchdog import reading
 
 PREFERENCES = "settings.toml"  # in the saves folder
 PREFERENCES_LIMIT = 16_384  # bytes: a longer file is not ours
@@ -97,7 +98,8 @@ class PlayerSettings:
         self.audio, self.path, self.clock = audio, Path(folder) / PREFERENCES, clock
         self.problem = ""  # one line about a settings file that could not be read ('' when it was fine)
         try:
-            self.prefs = read_preferences(self.path)
+            with reading(self.path):  # (a watchdog sets aside the file a crash loop died reading)
+                self.prefs = read_preferences(self.path)
         except SettingsError as err:
             self.prefs, self.problem = Preferences(), bad_settings_line(err, self.path)
             log.error("%s", self.problem)

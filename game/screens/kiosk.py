@@ -33,6 +33,7 @@ from arbor.game.screens.config import check_volume
 from arbor.game.screens.saves import VisitorSaves
 from arbor.game.screens.title import TitleScreen
 from arbor.game.strings import set_language, text
+from arbor.game.watchdog import reading
 
 CORNER = 90  # px: the staff corner
 PAD_BUTTON = 96
@@ -76,7 +77,8 @@ def kiosk_config_or_defaults(path: str | Path) -> tuple[KioskConfig, str]:
     stderr) when the file cannot be used: a bad kiosk.toml must not stop the kiosk, nor make a watchdog
     count crashes and set the visitors' garden aside."""
     try:
-        return load_kiosk_config(path), ""
+        with reading(path):  # (a watchdog sets aside the file a crash loop died reading)
+            return load_kiosk_config(path), ""
     except SettingsError as err:
         line = f"{err} (the kiosk runs on its default settings: fix the file and restart)"
         log.error("%s", line)

@@ -28,6 +28,7 @@ from arbor.engine.lsystem.lsys import LSystem
 from arbor.game.screens.config import GameConfig
 from arbor.game.screens.state import GameState
 from arbor.game.strings import text
+from arbor.game.watchdog import reading
 
 
 class SaveKeeper:
@@ -68,11 +69,12 @@ class SaveKeeper:
     def load(self, path: Path) -> Garden | None:
         """A saved garden, grown by the time away; None (and the file kept as .broken) if unreadable."""
         try:
-            saved = read_garden(path, self.rules)
-            saved.worlds += self._legacy_trees(path, len(saved.worlds))
-            garden = saved.garden()
-            seconds = away_seconds(self.wall_clock(), saved.saved_at, self.rules.away.cap_days)
-            summary = live_away(garden, seconds, watered=self.away())
+            with reading(path):  # (a watchdog sets aside the file a crash loop died reading)
+                saved = read_garden(path, self.rules)
+                saved.worlds += self._legacy_trees(path, len(saved.worlds))
+                garden = saved.garden()
+                seconds = away_seconds(self.wall_clock(), saved.saved_at, self.rules.away.cap_days)
+                summary = live_away(garden, seconds, watered=self.away())
         except Exception as err:  # a save that breaks loading (a bug it finds) must never break the start
             self._set_aside(path, err.message if isinstance(err, LSysError) else f"{type(err).__name__}: {err}")
             return None
