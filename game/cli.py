@@ -19,7 +19,8 @@ from arbor.game.report import detail, say, set_level
 def _source(args: argparse.Namespace):
     from arbor.game.commands.trees import TreeSource
 
-    return TreeSource(args.source, args.steps, args.seed, args.budget, getattr(args, "tree", 0))
+    return TreeSource(args.source, args.steps, args.seed, args.budget, getattr(args, "tree", 0),
+                      getattr(args, "species", None))
 
 
 def _cmd_derive(args: argparse.Namespace) -> int:
@@ -73,8 +74,19 @@ def _size(text: str) -> tuple[int, int]:
     return w, h
 
 
+def _in_metres(mesh, factor: float):
+    """The mesh with its positions multiplied by ``factor`` (a source's unit to the scene's metre)."""
+    from dataclasses import replace
+
+    if factor == 1.0:
+        return mesh
+    return replace(mesh, **{part: replace(getattr(mesh, part), positions=getattr(mesh, part).positions * factor)
+                            for part in ("wood", "leaves", "blossoms")})
+
+
 def _cmd_render(args: argparse.Namespace) -> int:
-    from arbor.game.commands.trees import check_render_memory, tree_geometry
+    from arbor.engine.geometry.tree import tree_height
+    from arbor.game.commands.trees import check_render_memory, scene_metres, tree_geometry
     from arbor.game.render.renderer import render_image, save_png
 
     check_render_memory(args.size, 0, args.lod)  # the picture alone, before any derivation
@@ -85,19 +97,22 @@ def _cmd_render(args: argparse.Namespace) -> int:
     else:
         from arbor.game.render.scale_bar import frame_for, render_to_scale
 
-        height = float(geometry.turtle.bounds()[1][1]) / METRE
+        metres = scene_metres(_source(args))  # the source's unit: the bar measures real metres
+        height = tree_height(geometry) * metres
         frame = args.scale_bar or frame_for(height)
-        pixels = render_to_scale(geometry.mesh, args.size, frame, yaw=args.yaw, pitch=args.pitch)
-        scale = f", {height:.2f} m tall in a frame {frame:g} m high (metre bar at the left)"
+        mesh = _in_metres(geometry.mesh, metres * METRE)
+        pixels = render_to_scale(mesh, args.size, frame, yaw=args.yaw, pitch=args.pitch)
+        scale = f", {height:.2f} m tall (top of the wood) in a frame {frame:g} m high (metre bar at the left)"
     save_png(pixels, args.out)
     say(f"{args.out}: {len(ls):,} modules, {len(geometry.turtle.segments):,} segments, "
-          f"{geometry.mesh.n_triangles:,} triangles{scale}")
+        f"{geometry.mesh.n_triangles:,} triangles{scale}")
     return 0
 
 
 def _cmd_export(args: argparse.Namespace) -> int:
-    from arbor.engine.geometry.export import export_tree, tree_height
-    from arbor.game.commands.trees import tree_geometry
+    from arbor.engine.geometry.export import export_tree
+    from arbor.engine.geometry.tree import tree_height
+    from arbor.game.commands.trees import scene_metres, size_warning, tree_geometry
 
     fmt = (args.format or args.out.suffix.lstrip(".")).lower()
     if fmt not in ("glb", "obj"):
@@ -105,13 +120,16 @@ def _cmd_export(args: argparse.Namespace) -> int:
                         "(or --format glb|obj)")
     args.format = fmt
     geometry, _ = tree_geometry(_source(args), args.lod, roots=True)
-    height = tree_height(geometry.mesh)
+    height = tree_height(geometry)
     if args.height is not None and height <= 0:
         raise UserError("--height needs a tree with some height: this one has none (more --steps?)")
-    metres = args.height / height if args.height is not None else args.scale or 1.0 / METRE
-    files = export_tree(geometry.mesh, args.out, ASSETS / "textures", args.format, metres)
-    say(f"{args.out}: {geometry.mesh.n_triangles:,} triangles (lod {args.lod}), {height * metres:.2f} m tall; "
-          f"wrote {len(files)} file(s)")
+    metres = args.height / height if args.height is not None else args.scale or scene_metres(_source(args))
+    files = export_tree(geometry.mesh, args.out, ASSETS / "textures", args.format, metres, height=height)
+    warning = size_warning(height * metres)
+    if warning:
+        print(warning, file=sys.stderr)
+    say(f"{args.out}: {geometry.mesh.n_triangles:,} triangles (lod {args.lod}), {height * metres:.2f} m tall "
+        f"(top of the wood); wrote {len(files)} file(s)")
     return 0
 
 
@@ -206,7 +224,12 @@ def _add_growth_args(p: argparse.ArgumentParser, saves: bool = False) -> None:
         p.add_argument("--tree", type=int, default=0, help="which tree of a garden save (default: the first, 0)")
     p.add_argument("--steps", type=_bounded(0, MAX_STEPS, "--steps"), default=None,
                    help=f"derivation steps, 0-{MAX_STEPS} (default: the file's n:)")
-    p.add_argument("--seed", type=_bounded(0, 2**63 - 1, "--seed"), default=None)
+    p.add_argument("--seed", type=_bounded(0, 2**63 - 1, "--seed"), default=None,
+                   help="seed of the source's rand() and stochastic rules (default: the file's seed:, else 0)")
+    p.add_argument("--species", default=None, metavar="NAME",
+                   help="for a source asking for GeoMaTree's functions (geomatree.lsys, divisor_tree.lsys): "
+                   "grow it as this species of assets/presets (broadleaf, weeping) or a preset .toml "
+                   "(default: broadleaf)")
     p.add_argument("--budget", type=_bounded(1, MAX_BUDGET, "--budget"), default=None,
                    help=f"module budget, at most {MAX_BUDGET:,} (default: the file's budget:, else {DEFAULT_BUDGET:,})")
 
@@ -278,9 +301,10 @@ def build_parser() -> argparse.ArgumentParser:
     export.add_argument("--out", type=Path, default=Path("tree.glb"))
     size = export.add_mutually_exclusive_group()
     size.add_argument("--height", type=_metres("--height"), default=None, metavar="METRES",
-                      help="scale the tree to this height in metres (for L-system sources of any unit)")
+                      help="scale the tree to this height in metres, the top of its wood (for sources of any unit)")
     size.add_argument("--scale", type=_metres("--scale"), default=None, metavar="METRES",
-                      help=f"metres per scene unit (default {1 / METRE:g}: the game's {METRE:g} units = 1 m)")
+                      help=f"metres per scene unit (default: the source's 'unit:', else {1 / METRE:g}: the game's "
+                      f"{METRE:g} units = 1 m)")
     export.set_defaults(run=_cmd_export)
     lab = sub.add_parser("lab", help="educators' lab: run an experiment (window, or --out DIR headless)")
     lab.add_argument("experiment", type=Path, help="experiment .toml (see assets/experiments)")
@@ -371,9 +395,9 @@ def check_files(args: argparse.Namespace) -> None:
             with open(path, "rb"):  # FileNotFoundError / PermissionError name it
                 pass
             if path.suffix.lower() == ".lsys":
-                from arbor.engine.lsystem.lsys import load_lsystem
+                from arbor.engine.forest.geomatree import load_grown
 
-                load_lsystem(path)
+                load_grown(path, getattr(args, "species", None))
     if args.command in ("lab", "sweep"):
         return
     for name in OUTPUTS:

@@ -146,28 +146,49 @@ def _glb_json(path: Path) -> dict:
 
 
 def test_exports_arrive_at_their_height_in_metres(tmp_path, lsys_dir, capsys):
-    from arbor.engine.base.units import METRE
-    from arbor.engine.geometry.export import tree_height
+    """The source's declared unit (abop_2_8_tree.lsys: 'unit: 0.01') sets the size by default; the height is
+    the top of the wood (engine.geometry.tree.tree_height), written in the asset block; --height and
+    --scale override the unit."""
+    from arbor.engine.geometry.tree import tree_height
 
     source = lsys_dir / "abop_2_8_tree.lsys"
     system = load_lsystem(source)
-    height = tree_height(build_geometry(derive(system, 4), system, lod=0).mesh)  # scene units
+    assert system.unit == 0.01
+    height = tree_height(build_geometry(derive(system, 4), system, lod=0))  # turtle units
     out = tmp_path / "scene.glb"
     assert main(["export", str(source), "--steps", "4", "--out", str(out)]) == 0
-    loaded = trimesh.load(out, process=False)
-    assert loaded.bounds[1][1] == pytest.approx(height / METRE, rel=1e-3)  # the scene's metre by default
-    assert f"{height / METRE:.2f} m tall" in capsys.readouterr().out
+    wood = trimesh.load(out, process=False).geometry["wood"]
+    assert wood.bounds[1][1] == pytest.approx(height * 0.01, rel=1e-3)  # the top of the wood, in metres
+    out_text, err = capsys.readouterr()
+    assert f"{height * 0.01:.2f} m tall (top of the wood)" in out_text and err == ""  # a likely size: no warning
     asset = _glb_json(out)["asset"]
     assert asset["version"] == "2.0" and asset["extras"]["unit"] == "metre"
-    assert asset["extras"]["height_m"] == pytest.approx(height / METRE, rel=1e-3)
-    for flag, value, metres in (("--height", "12", 12.0), ("--scale", "0.01", height * 0.01)):
+    assert asset["extras"]["height_m"] == pytest.approx(height * 0.01, rel=1e-3)
+    for flag, value, metres in (("--height", "12", 12.0), ("--scale", "0.001", height * 0.001)):
         out = tmp_path / f"{flag[2:]}.glb"
         assert main(["export", str(source), "--steps", "4", flag, value, "--out", str(out)]) == 0
-        assert trimesh.load(out, process=False).bounds[1][1] == pytest.approx(metres, rel=1e-3)
+        assert trimesh.load(out, process=False).geometry["wood"].bounds[1][1] == pytest.approx(metres, rel=1e-3)
     obj = tmp_path / "tree.obj"
     assert main(["export", str(source), "--steps", "4", "--height", "3", "--out", str(obj)]) == 0
-    ys = [float(line.split()[2]) for line in obj.read_text().splitlines() if line.startswith("v ")]
+    lines = obj.read_text().splitlines()
+    wood_lines = lines[:next(i for i, line in enumerate(lines) if line == "o leaves")]
+    ys = [float(line.split()[2]) for line in wood_lines if line.startswith("v ")]
     assert max(ys) == pytest.approx(3.0, rel=1e-3)
+
+
+def test_a_source_without_a_unit_is_in_the_scenes_and_a_tree_of_an_unlikely_size_is_warned(tmp_path, capsys):
+    from arbor.engine.base.units import METRE
+
+    source = tmp_path / "pole.lsys"
+    source.write_text("w: F(30)\n")  # 30 scene units: 3 m
+    assert main(["export", str(source), "--out", str(tmp_path / "p.glb")]) == 0
+    out, err = capsys.readouterr()
+    assert f"{30 / METRE:.2f} m tall" in out and err == ""
+    source.write_text("unit: 5\nw: F(30)\n")  # 150 m
+    assert main(["export", str(source), "--out", str(tmp_path / "q.glb")]) == 0
+    assert "150 m tall (over 100 m)" in capsys.readouterr().err
+    assert main(["export", str(source), "--scale", "0.0001", "--out", str(tmp_path / "r.glb")]) == 0
+    assert "(under 1 cm)" in capsys.readouterr().err
 
 
 @pytest.mark.parametrize("value", ["0", "-2", "nan", "inf", "1e9", "tall"])

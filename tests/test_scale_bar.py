@@ -7,14 +7,13 @@ from __future__ import annotations
 import numpy as np
 import pygame
 
-from arbor.engine.base.units import METRE
 from arbor.game.cli import main
 from arbor.game.commands.trees import TreeSource, tree_geometry
 from arbor.game.render.scale_bar import BAR_RGB, bar_metres, bar_pixels
 from tests.conftest import LSYSTEMS
 
 TREE = LSYSTEMS / "abop_2_8_tree.lsys"
-SIZE, FRAME = (320, 240), 80.0  # a frame 80 m high: both trees fit (the ABOP tree's units read as decimetres)
+SIZE, FRAME = (320, 240), 8.0  # a frame 8 m high: both trees fit (the ABOP tree declares 'unit: 0.01', centimetres)
 
 
 def picture(path) -> np.ndarray:
@@ -41,8 +40,8 @@ def test_two_trees_at_one_scale_differ_in_pixels_with_the_same_bar(tmp_path, cap
                      "--size", "x".join(map(str, SIZE)), "--out", str(out)]) == 0
         shots.append(picture(out))
         geometry, _ = tree_geometry(TreeSource(TREE, steps), 0)
-        metres.append(float(geometry.turtle.bounds()[1][1]) / METRE)
-    assert "in a frame 80 m high" in capsys.readouterr().out
+        metres.append(float(geometry.turtle.bounds()[1][1]) * 0.01)
+    assert "in a frame 8 m high" in capsys.readouterr().out
     _, ground, per_metre = bar_pixels(FRAME, SIZE, 30.0, 0.0)
     bars = [bar_length(p) for p in shots]
     assert bars[0] == bars[1] and abs(bars[0] - bar_metres(FRAME) * per_metre) <= 1.5  # 20 m in both
@@ -56,5 +55,5 @@ def test_two_trees_at_one_scale_differ_in_pixels_with_the_same_bar(tmp_path, cap
 def test_without_a_frame_the_tree_sets_it_in_whole_metres(tmp_path, capsys):
     out = tmp_path / "own.png"
     assert main(["render", str(TREE), "--steps", "2", "--scale-bar", "--size", "160x120", "--out", str(out)]) == 0
-    assert "44.95 m tall in a frame 45 m high" in capsys.readouterr().out
+    assert "4.49 m tall (top of the wood) in a frame 5 m high" in capsys.readouterr().out
     assert bar_length(picture(out)) > 0

@@ -8,6 +8,8 @@ different detail.
 
 from __future__ import annotations
 
+import errno
+import re
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -103,3 +105,45 @@ def growth_system(species: Species, source: Path, seed: int = 0) -> LSystem:
     system.seed = seed
     system.tropism_x, system.tropism_y, system.tropism_z = species.v_ext if any(species.v_ext) else (0.0, 1.0, 0.0)
     return system
+
+
+SUPPLIED = ("children", "seed_dt", "seed_dp")  # the #host functions Arbor supplies (from a species)
+DEFAULT_SPECIES = "broadleaf"
+_HOST = re.compile(r"^\s*#host\b([^\n]*)", re.MULTILINE)
+
+
+def species_file(name: str | Path | None) -> Path:
+    """A species preset: a name from assets/presets (default DEFAULT_SPECIES) or a path to a .toml."""
+    from arbor.engine.base.assets import assets_dir
+
+    presets = assets_dir() / "presets"
+    if name is None:
+        return presets / f"{DEFAULT_SPECIES}.toml"
+    if str(name).endswith(".toml"):
+        return Path(name)
+    path = presets / f"{name}.toml"
+    if not re.fullmatch(r"[A-Za-z0-9_]+", str(name)) or not path.is_file():
+        known = ", ".join(sorted(p.stem for p in presets.glob("*.toml")))
+        raise FileNotFoundError(errno.ENOENT, f"no such species (the species: {known}; or a preset .toml file)",
+                                f"--species {name}")
+    return path
+
+
+def load_grown(path: str | Path, species: str | Path | None = None, seed: int = 0) -> LSystem:
+    """An .lsys source ready to derive. One that asks for GeoMaTree's functions (``#host children seed_dt
+    seed_dp``, or some of them: geomatree.lsys, divisor_tree.lsys) grows as ``species`` (default
+    DEFAULT_SPECIES) with this ``seed``; any other is read as it is (and ``species`` refused)."""
+    from arbor.engine.lsystem.lsys import load_lsystem
+
+    text = read_user_text(path, MAX_SOURCE_BYTES, LSysError)
+    hosts = {name for line in _HOST.findall(text) for name in line.split("//")[0].split()}
+    if not hosts:
+        if species is not None:
+            raise LSysError("--species grows sources that ask for GeoMaTree's functions (#host children seed_dt "
+                            "seed_dp); this one needs none", str(path))
+        return load_lsystem(path)
+    unknown = sorted(hosts - set(SUPPLIED))
+    if unknown:
+        raise LSysError(f"this L-system needs the program to supply {', '.join(f'{n}()' for n in unknown)}; "
+                        f"Arbor supplies {', '.join(f'{n}()' for n in SUPPLIED)} only", str(path))
+    return growth_system(load_species(species_file(species)), Path(path), seed)

@@ -8,8 +8,8 @@ version. glTF's unit is the metre: ``metres`` (metres per scene unit) scales the
 asset block records the scale and the tree's height in metres (``asset.extras``). An OBJ's textures are
 named after the export (``NAME_bark.png``), so exports sharing a folder keep their own.
 
-The tree's height is the top of its leaves (or of its wood, when it has none) above its base: the one
-definition the HUD, the postcard and the export share (``tree_height``).
+The tree's height is the top of its wood above its base: the one definition the HUD, the postcard and the
+export share (``engine.geometry.tree.tree_height``); the export writes it in the asset block.
 """
 
 from __future__ import annotations
@@ -63,11 +63,13 @@ def tree_scene(tree: TreeMesh, textures: Path, metres: float = 1.0) -> trimesh.S
     return scene
 
 
-def tree_height(tree: TreeMesh) -> float:
-    """Height of the tree's geometry above its base (scene units): the top of its leaves and blossoms, or
-    of its wood when higher (what ``--height`` sets on export, the HUD and the postcard show)."""
-    ys = [part.positions[:, 1] for part in (tree.wood, tree.leaves, tree.blossoms) if len(part.positions)]
-    return float(np.concatenate(ys).max()) if ys else 0.0
+def wood_top(tree: TreeMesh) -> float:
+    """The top of a mesh's wood (scene units; of its other parts when it has no wood): the height of a
+    tree whose turtle is not at hand (the caller's ``tree_height`` is the definition)."""
+    for part in (tree.wood, tree.leaves, tree.blossoms):
+        if len(part.positions):
+            return float(part.positions[:, 1].max())
+    return 0.0
 
 
 ARRAY_BUFFER, ELEMENT_ARRAY_BUFFER = 34962, 34963  # glTF bufferView targets: vertex data, indices
@@ -114,10 +116,11 @@ def _targets(tree: dict) -> None:
 
 
 def export_tree(tree: TreeMesh, path: str | Path, textures: Path, file_format: str | None = None,
-                metres: float = 1.0, name: str | None = None) -> list[Path]:
+                metres: float = 1.0, name: str | None = None, height: float | None = None) -> list[Path]:
     """Write ``tree`` to ``path`` as 'glb' or 'obj' (OBJ also writes .mtl and texture files beside it),
     ``metres`` per scene unit (the game's trees: 1 / METRE, so they arrive in Blender at their height);
-    ``name`` names the tree's root node (default: the file's stem).
+    ``name`` names the tree's root node (default: the file's stem); ``height`` (scene units, the top of the
+    wood: engine.geometry.tree.tree_height) goes into the GLB's asset block (default: the mesh's wood top).
 
     Returns the files written. The main file is written to a temp name and renamed, so an existing
     export is never left half-written.
@@ -125,7 +128,7 @@ def export_tree(tree: TreeMesh, path: str | Path, textures: Path, file_format: s
     path = Path(path)
     fmt = (file_format or path.suffix.lstrip(".")).lower()
     if fmt == "glb":
-        finish = _finish(name or path.stem, metres, tree_height(tree))
+        finish = _finish(name or path.stem, metres, wood_top(tree) if height is None else height)
         data = trimesh.exchange.gltf.export_glb(tree_scene(tree, textures, metres), include_normals=True,
                                                 tree_postprocessor=finish)
         atomic_write(path, data)

@@ -18,6 +18,13 @@ class TreeGeometry:
     mesh: TreeMesh
 
 
+def tree_height(geometry: TreeGeometry) -> float:
+    """The tree's height (scene units): the top of its wood above its base (the ground, y = 0). The one
+    definition the HUD, the postcard and exports share; leaf cards may reach a little higher."""
+    ends = geometry.turtle.segments.end
+    return float(ends[:, 1].max()) if len(ends) else 0.0
+
+
 def build_geometry(ls: LString, system: LSystem, lod: int = 0, **turtle_overrides) -> TreeGeometry:
     """Interpret ``ls`` with the defaults of ``system`` and mesh it at LOD level ``lod``."""
     level: LodLevel = LOD_LEVELS[max(0, min(lod, len(LOD_LEVELS) - 1))]

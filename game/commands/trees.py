@@ -15,7 +15,7 @@ from arbor.engine.geometry.tree import TreeGeometry, build_geometry
 from arbor.engine.life.keep.save import read_garden
 from arbor.engine.lsystem.derive import Deriver
 from arbor.engine.lsystem.lstring import LString
-from arbor.engine.lsystem.lsys import load_lsystem
+from arbor.engine.lsystem.lsys import LSystem
 from arbor.game.errors import UserError
 
 
@@ -28,6 +28,7 @@ class TreeSource:
     seed: int | None = None
     budget: int | None = None
     tree: int = 0  # which tree of a garden save
+    species: str | None = None  # the GeoMaTree species a source asking for its functions grows as
 
 
 def is_save(path: Path) -> bool:
@@ -35,9 +36,38 @@ def is_save(path: Path) -> bool:
     return path.suffix.lower() == ".arbor"
 
 
+def scene_metres(source: TreeSource) -> float:
+    """Metres per scene unit of the tree this source grows: the .lsys file's declared ``unit:``, else the
+    game's scene metre (saves and sources without one)."""
+    from arbor.engine.base.units import METRE
+
+    unit = None if is_save(source.path) else load_source(source).unit
+    return unit if unit is not None else 1.0 / METRE
+
+
+TALLEST, SHORTEST = 100.0, 0.01  # metres: an export outside these is likely a unit mistake (a warning says so)
+
+
+def size_warning(height_m: float) -> str | None:
+    """The warning for a tree of ``height_m`` metres outside TALLEST..SHORTEST, else None."""
+    if SHORTEST <= height_m <= TALLEST:
+        return None
+    what = f"over {TALLEST:g} m" if height_m > TALLEST else f"under {SHORTEST * 100:g} cm"
+    return (f"arbor: warning: the tree is {height_m:.3g} m tall ({what}): if its source is in another unit, "
+            "give --height METRES, or declare 'unit: METRES_PER_UNIT' in the .lsys")
+
+
+def load_source(source: TreeSource) -> LSystem:
+    """The .lsys source as it will grow: GeoMaTree's functions supplied from ``source.species`` when it asks
+    for them (engine/forest/geomatree.load_grown)."""
+    from arbor.engine.forest.geomatree import load_grown
+
+    return load_grown(source.path, source.species, source.seed or 0)
+
+
 def derive_source(source: TreeSource):
     """Grow an .lsys source: (system, L-string); says on stderr when the module budget held growth back."""
-    system = load_lsystem(source.path)
+    system = load_source(source)
     if system.externs:
         names = ", ".join(system.externs)
         raise LSysError(f"this L-system needs values from the game at every step (#extern {names}); "

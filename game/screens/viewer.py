@@ -7,9 +7,9 @@ from pathlib import Path
 import numpy as np
 import pygame
 
+from arbor.engine.forest.geomatree import load_grown
 from arbor.engine.geometry.tree import build_geometry
 from arbor.engine.lsystem.derive import Deriver
-from arbor.engine.lsystem.lsys import load_lsystem
 from arbor.game.errors import UserError
 from arbor.game.input.events import DOWN, KEY_DOWN, MOVE, QUIT, WHEEL
 from arbor.game.render.camera import OrbitCamera
@@ -24,7 +24,7 @@ class Viewer:
 
     def __init__(self, ctx, size: tuple[int, int], source: Path) -> None:
         self.size = size
-        self.system = load_lsystem(source)
+        self.system = load_grown(source)  # GeoMaTree's sources grow as the default species
         if self.system.externs:
             raise UserError(f"{source.name} needs values from the game at every step (#extern); "
                             "the viewer grows L-systems that run on their own")

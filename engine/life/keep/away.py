@@ -57,9 +57,11 @@ def away_seconds(now: float, saved_at: float, cap_days: float) -> float:
 
 
 def tree_height(world) -> float:
-    """Height of the top of a world's wood (scene units)."""
-    segs = world.tree.geometry(world.clocks(), lod=3).turtle.segments
-    return float(segs.end[:, 1].max()) if len(segs) else 0.0
+    """Height of the top of a world's wood (scene units): engine.geometry.tree.tree_height, the definition
+    the HUD, the postcard and exports share."""
+    from arbor.engine.geometry.tree import tree_height as top_of_wood
+
+    return top_of_wood(world.tree.geometry(world.clocks(), lod=3))
 
 
 def live_away(garden: Garden, seconds: float, watered: bool = False) -> AwaySummary:
