@@ -333,6 +333,7 @@ class HudInfo:
     raining: bool = False
     hint: str = ""  # a first-run hint, shown large at the top
     reminder: str = ""  # one calm line about what is worth doing now
+    height_m: float = 0.0  # the tree's height, the top of its wood (engine.geometry.tree.tree_height; 0: none)
 
 
 def draw_hud(surface: pygame.Surface, font: pygame.font.Font, info: HudInfo) -> None:
@@ -356,7 +357,10 @@ def draw_hud(surface: pygame.Surface, font: pygame.font.Font, info: HudInfo) -> 
     age = (text("hud.minutes", minutes=minutes) if minutes < 120 else text("hud.hours", hours=minutes / 60)
            if minutes < 2880 else text("hud.days", days=minutes / 1440))
     speed = text("hud.paused") if info.speed == 0 else text("hud.speed", speed=info.speed)
-    y = _text_lines(surface, font, text("hud.line", age=age, speed=speed), (x, y + 4), width)
+    line = text("hud.line", age=age, speed=speed)
+    if info.height_m > 0:
+        line = text("hud.tall", metres=info.height_m) + " - " + line
+    y = _text_lines(surface, font, line, (x, y + 4), width)
     if info.reminder:
         _boxed(surface, font, info.reminder, (x, y + 10), width, (20, 40, 25, 150), anchor="topleft")
     if info.hint:

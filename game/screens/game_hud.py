@@ -10,6 +10,7 @@ from collections.abc import Callable
 import numpy as np
 import pygame
 
+from arbor.engine.base.units import METRE
 from arbor.engine.life.rules.rules import Rules
 from arbor.game.render.backdrop import sky_colors
 from arbor.game.render.camera import OrbitCamera, project_points
@@ -94,7 +95,7 @@ class GameHud:
         if modeling:  # (the garden is paused: its status lines would only lie across the tree being drawn)
             status = season = ""
         return HudInfo(s.sun_meter, s.water_meter, status, s.time, state.loop.speed, message, s.watering, season,
-                       world.sim.raining(), hint, "" if modeling else self.coach.reminder())
+                       world.sim.raining(), hint, "" if modeling else self.coach.reminder(), tree.height / METRE)
 
     def dark_sky(self) -> bool:
         """True when the sky drawn now is a night's (at fast speeds the scene leans toward noon, so a

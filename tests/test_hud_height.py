@@ -1,0 +1,34 @@
+"""The HUD shows the cared-for tree's height: the top of its wood, the definition the postcard and the export
+share (engine.geometry.tree.tree_height)."""
+
+from __future__ import annotations
+
+import pygame
+import pytest
+
+from arbor.engine.base.units import METRE
+from arbor.engine.life.keep.away import tree_height
+from arbor.game.render.ui import HudInfo, draw_hud
+from arbor.game.screens.game import Game, GameConfig
+from arbor.game.strings import text
+from tests.conftest import FakeClock
+
+
+def test_the_hud_shows_the_height_the_postcard_and_export_use(gl_ctx, tmp_path):
+    clock = FakeClock()
+    game = Game(gl_ctx, (640, 400), GameConfig(saves=tmp_path, seed=4), clock=clock,
+                wall_clock=lambda: 1.7e9 + clock.t)
+    for _ in range(40):
+        game.world.step(0.5)
+    game.world.tree.light_scene(game.world.clocks())  # a light reading: the tree measures its wood's top
+    shown = game.hud_info().height_m
+    assert shown > 0 and shown == pytest.approx(tree_height(game.world) / METRE, rel=0.02)
+    assert text("hud.tall", metres=shown).endswith(" m tall")
+    pygame.font.init()
+    font = pygame.font.Font(None, 24)
+    pictures = []
+    for height in (0.0, shown):
+        surface = pygame.Surface((640, 400), pygame.SRCALPHA)
+        draw_hud(surface, font, HudInfo(0.5, 0.5, "", 600.0, 1.0, height_m=height))
+        pictures.append(pygame.image.tobytes(surface, "RGBA"))
+    assert pictures[0] != pictures[1]  # the line with the height is drawn
