@@ -1,7 +1,9 @@
 """The whole-array text writer and reader: exact on big, repetitive trees, and never fooled by keys."""
 
 import numpy as np
+import pytest
 
+from arbor.engine.base.errors import LSysError
 from arbor.engine.lsystem import text
 from arbor.engine.lsystem.lstring import LString, parse_lstring
 
@@ -50,3 +52,22 @@ def test_a_key_collision_never_gives_a_wrong_number(monkeypatch):
 def test_long_numbers_are_read_too():
     digits = "0." + "1" * 60
     assert parse_lstring(f"F({digits},2)").params.tolist() == [float(digits), 2.0]
+
+
+def test_text_is_written_and_read_in_parts_exactly_as_whole(monkeypatch):
+    """Parts of a few modules (writer) and a few bytes (reader) give the text and the L-string that one
+    part gives, line breaks included; a malformed module in a later part still sends the text to the
+    careful reader, which names it."""
+    ls = _repetitive(3_000, 50, 3)
+    whole = {wrap: ls.to_text(wrap) for wrap in (0, 37)}
+    monkeypatch.setattr(text, "CHUNK", 7)
+    monkeypatch.setattr(text, "READ_CHUNK", 64)
+    for wrap, written in whole.items():
+        assert ls.to_text(wrap) == written
+        parts = text.parse_arrays(written, 255)
+        assert parts is not None and LString.from_arrays(*parts).equals(ls)
+    at = whole[0].rfind(")", 0, len(whole[0]) - 200) + 1  # between two modules, in the last part
+    broken = whole[0][:at] + "F(1,,2)" + whole[0][at:]
+    assert text.parse_arrays(broken, 255) is None
+    with pytest.raises(LSysError, match=f"1:{at + 5}: expected a number"):
+        parse_lstring(broken)

@@ -1,8 +1,8 @@
 """L-string text written and read with whole-array operations (no Python object per module).
 
 The text is ABOP-style, ``F(5)[+(25.7)F(2.5)]``. Trees repeat their numbers (constants, angles,
-birth times), so both ways work on the distinct numbers: each is formatted or parsed once, and the
-rest is gathering bytes. Equal values are grouped with a small hash table probed by numpy, not by sorting.
+birth times), so both ways work on the distinct numbers: each is formatted once (and parsed once in
+each part of the text read), and the rest is gathering bytes. Equal values are grouped with a small hash table probed by numpy, not by sorting.
 """
 
 from __future__ import annotations
@@ -85,25 +85,57 @@ def lstring_text(sym: np.ndarray, nparams: np.ndarray, offsets: np.ndarray, para
                  wrap: int = 0) -> str:
     """The text of an L-string given as arrays (see ``LString.to_text``): gathered from a small
     source of pieces (``"F("``, ``"25.7,"``, ...), one index run per piece; a module's last
-    parameter's ',' then becomes ')'."""
+    parameter's ',' then becomes ')'. Written CHUNK modules at a time into one buffer, so the memory
+    beside the text stays the same whatever the tree's size."""
     n, total = len(sym), len(params)
     texts, ids = number_texts(params)
     text_len = np.fromiter(map(len, texts), np.int64, len(texts)) + 1
     blob = ",".join(texts).encode("ascii") + b","
-    source = np.frombuffer(blob + _HEADS, np.uint8)
-    has = nparams > 0
-    head, param = offsets + np.arange(n), np.arange(total) + np.repeat(np.arange(n), nparams) + 1
-    start, length = np.empty(n + total, np.int64), np.empty(n + total, np.int64)
-    start[head], length[head] = len(blob) + 2 * sym.astype(np.int64), 1 + has
-    start[param], length[param] = (np.cumsum(text_len) - text_len)[ids], text_len[ids]
-    out = source[_gather_runs(start, length)]
-    at = np.cumsum(length) - length
-    last = param[offsets[has] + nparams[has].astype(np.int64) - 1]
-    out[at[last] + length[last] - 1] = CLOSE
-    if wrap > 0 and n:
-        at = at[head]
-        out = np.insert(out, at[np.flatnonzero(np.diff(at // wrap))], ord("\n"))
-    return out.tobytes().decode("latin-1")  # symbols are ASCII when they came from text
+    pieces = _Pieces(np.frombuffer(blob + _HEADS, np.uint8), len(blob), np.cumsum(text_len) - text_len, text_len)
+    size = n + int(np.count_nonzero(nparams)) + int(np.bincount(ids, minlength=len(texts)) @ text_len)
+    out = np.empty(size + (size // wrap + 1 if wrap > 0 else 0), np.uint8)
+    used = plain = 0  # bytes written, and the same without line breaks
+    for lo in range(0, n, CHUNK):
+        hi = min(n, lo + CHUNK)
+        p_lo, p_hi = int(offsets[lo]), (int(offsets[hi]) if hi < n else total)
+        part, heads = pieces.text(sym[lo:hi], nparams[lo:hi], offsets[lo:hi] - p_lo, ids[p_lo:p_hi])
+        if wrap > 0:  # a break before head i when the next head starts in another run of wrap characters
+            starts = plain + heads
+            if hi < n:
+                starts = np.append(starts, plain + len(part))
+            breaks = heads[np.flatnonzero(np.diff(starts // wrap))]
+            plain += len(part)
+            part = np.insert(part, breaks, ord("\n"))
+        out[used:used + len(part)] = part
+        used += len(part)
+    return str(memoryview(out)[:used], "latin-1")  # symbols are ASCII when they came from text
+
+
+CHUNK = 1 << 14  # modules written a pass
+READ_CHUNK = 1 << 20  # bytes read a pass, at most
+
+
+class _Pieces:
+    """The source of a text's pieces: every distinct number's text and a ',' (``at``, ``length``), then
+    every symbol followed by '(' (from ``heads``)."""
+
+    def __init__(self, source: np.ndarray, heads: int, at: np.ndarray, length: np.ndarray) -> None:
+        self.source, self.heads, self.at, self.length = source, heads, at, length
+
+    def text(self, sym: np.ndarray, nparams: np.ndarray, offsets: np.ndarray,
+             ids: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """The text of these modules (``ids``: their parameters' number texts) and where each starts."""
+        n, total = len(sym), len(ids)
+        has = nparams > 0
+        head, param = offsets + np.arange(n), np.arange(total) + np.repeat(np.arange(n), nparams) + 1
+        start, length = np.empty(n + total, np.int64), np.empty(n + total, np.int64)
+        start[head], length[head] = self.heads + 2 * sym.astype(np.int64), 1 + has
+        start[param], length[param] = self.at[ids], self.length[ids]
+        out = self.source[_gather_runs(start, length)]
+        at = np.cumsum(length) - length
+        last = param[offsets[has] + nparams[has].astype(np.int64) - 1]
+        out[at[last] + length[last] - 1] = CLOSE
+        return out, at[head]
 
 
 def _gather_runs(start: np.ndarray, length: np.ndarray) -> np.ndarray:
@@ -124,11 +156,31 @@ def parse_arrays(text: str, max_params: int) -> tuple[np.ndarray, np.ndarray, np
     unusual (then the careful reader decides and names the error).
 
     Well-formed: ASCII; parentheses never nested, each right after a module symbol; between them
-    only numbers and single commas, no blanks; outside them only symbols and blanks."""
+    only numbers and single commas, no blanks; outside them only symbols and blanks. Read in parts
+    of READ_CHUNK bytes (a sixteenth of a shorter text), each ending just after a ')' (so outside any
+    parentheses): a part is well-formed on its own exactly when its place in the whole text is, and
+    the memory beside the text and the result stays a small share of them."""
     try:
         data = text.encode("ascii")
     except UnicodeEncodeError:
         return None
+    parts, start = [], 0
+    chunk = min(READ_CHUNK, max(len(data) // 16, 1 << 16))  # a sixteenth of the text, up to READ_CHUNK
+    while start < len(data) or not parts:
+        end = data.find(b")", start + chunk) + 1 or len(data)
+        part = _parse_part(data[start:end] if start or end < len(data) else data, max_params)
+        if part is None:
+            return None
+        parts.append(part)
+        start = end
+    if len(parts) == 1:
+        return parts[0]
+    sym, counts, values = (np.concatenate([p[k] for p in parts]) for k in range(3))
+    return sym, counts, values
+
+
+def _parse_part(data: bytes, max_params: int) -> tuple[np.ndarray, np.ndarray, np.ndarray] | None:
+    """parse_arrays on one part of the text."""
     raw, cls = np.frombuffer(data, np.uint8), np.frombuffer(data.translate(_CLASS_BYTES), np.uint8)
     if not cls.all():
         return None  # a control character
