@@ -3,6 +3,7 @@ real line and column of the offending key; the docs' table and the figures' unit
 
 from __future__ import annotations
 
+import re
 from pathlib import Path
 
 import pytest
@@ -16,6 +17,7 @@ from arbor.engine.life.rules.rules import (
     RATES,
     TIMES,
     Rules,
+    clamp_orbit,
     file_overrides,
     load_rules,
     overrides_markdown,
@@ -183,3 +185,19 @@ def test_sweep_figures_label_rule_axes_with_the_rules_unit():
     assert axis_label(Factor("Drain", "water.drain_rate", (0.001, 0.01))) == "Drain (meter per s)"
     assert axis_label(Factor("Sun orbit height", "orbit_height", (0.0, 1.0))) == "Sun orbit height (orbit radii)"
     assert axis_label(Factor("Species", "species", ("a.lsys",))) == "Species"
+
+
+def test_the_sun_sliders_are_clamped_in_one_place():
+    """clamp_orbit keeps the orbit height and the sun's speed within their slider ranges; no other code
+    clamps them by hand (a slider, a loaded save and a save being written all call it)."""
+    sun = Rules().sun
+    assert clamp_orbit(sun, sun.orbit_height_max + 1, sun.speed_min / 2) == (sun.orbit_height_max, sun.speed_min)
+    assert clamp_orbit(sun, sun.orbit_height_min - 1, sun.speed_max * 2) == (sun.orbit_height_min, sun.speed_max)
+    assert clamp_orbit(sun, sun.orbit_height, sun.speed) == (sun.orbit_height, sun.speed)
+    by_hand = re.compile(r"min\(max\(.*\b(orbit_height|speed)_(min|max)\b")
+    pending = {"engine/life/plant/sim.py"}  # its two slider setters: being rewritten (plant science) meanwhile
+    paths = [p for top in ("engine", "game") for p in sorted((ROOT / top).rglob("*.py"))
+             if str(p.relative_to(ROOT)) not in pending and p.name != "rules.py"]
+    found = [f"{path.relative_to(ROOT)}:{n}" for path in paths
+             for n, line in enumerate(path.read_text(encoding="utf-8").splitlines(), 1) if by_hand.search(line)]
+    assert found == [], f"the sun's sliders clamped by hand (call clamp_orbit): {found}"

@@ -56,6 +56,7 @@ from arbor.engine.life.plant.growth import GrowingTree
 from arbor.engine.life.plant.journal import Journal
 from arbor.engine.life.plant.roots import Roots
 from arbor.engine.life.plant.sim import Rules, Simulation
+from arbor.engine.life.rules.rules import clamp_orbit
 from arbor.engine.life.world.garden import MAX_ROCKS, MAX_SEEDS, Garden, Seed
 from arbor.engine.life.world.world import Parts, World
 from arbor.engine.lsystem.lstring import LString, parse_lstring
@@ -209,8 +210,7 @@ def _fitted_sim(world: World) -> dict:
         sim[name] = fitted(sim[name], CYCLE_FIELDS)
     sun = world.rules.sun
     sim["sun_angle"] %= 2 * math.pi
-    sim["orbit_height"] = min(max(sim["orbit_height"], sun.orbit_height_min), sun.orbit_height_max)
-    sim["sun_speed"] = min(max(sim["sun_speed"], sun.speed_min), sun.speed_max)
+    sim["orbit_height"], sim["sun_speed"] = clamp_orbit(sun, sim["orbit_height"], sim["sun_speed"])
     return sim
 
 
@@ -427,8 +427,7 @@ def _load_tree(data: dict, where: Where, rules: Rules, budget_slack: float) -> W
     seed = value(data, "seed", *TREE_FIELDS["seed"], where)
     state = sim_state(table(data, "sim", where), where)
     state.sun_angle %= 2 * math.pi
-    state.orbit_height = min(max(state.orbit_height, rules.sun.orbit_height_min), rules.sun.orbit_height_max)
-    state.sun_speed = min(max(state.sun_speed, rules.sun.speed_min), rules.sun.speed_max)
+    state.orbit_height, state.sun_speed = clamp_orbit(rules.sun, state.orbit_height, state.sun_speed)
     saved_genome = {k: v for k, v in table(data, "genome", where, required=False).items()  # (older saves: none)
                     if isinstance(v, int | float) and not isinstance(v, bool) and abs(v) <= BIG}  # (10**25: no float)
     traits = genome.checked(system, saved_genome) if "genome" in data else {}

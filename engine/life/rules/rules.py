@@ -190,3 +190,10 @@ def write_rules_doc(doc: str | Path, rules_file: str | Path, schema: tuple[Rule,
         head, _, rest = text.partition(start)
         text = head + start + table + end + rest.partition(end)[2]
     doc.write_text(text, encoding="utf-8")
+
+
+def clamp_orbit(sun: SunRules, orbit_height: float, speed: float) -> tuple[float, float]:
+    """The sun's two sliders (its orbit's height and its angular speed) kept within the rules' slider ranges
+    (the one place they are clamped: a slider, a loaded save, a save being written)."""
+    return (min(max(orbit_height, sun.orbit_height_min), sun.orbit_height_max),
+            min(max(speed, sun.speed_min), sun.speed_max))
