@@ -86,11 +86,12 @@ def _in_metres(mesh, factor: float):
 
 def _cmd_render(args: argparse.Namespace) -> int:
     from arbor.engine.geometry.tree import tree_height
-    from arbor.game.commands.trees import check_render_memory, scene_metres, tree_geometry
+    from arbor.game.commands.trees import check_render_memory, render_modules, scene_metres, tree_geometry
     from arbor.game.render.renderer import render_image, save_png
 
     check_render_memory(args.size, 0, args.lod)  # the picture alone, before any derivation
-    geometry, ls = tree_geometry(_source(args), args.lod, check=lambda n: check_render_memory(args.size, n, args.lod))
+    geometry, ls = tree_geometry(_source(args), args.lod, check=lambda n: check_render_memory(args.size, n, args.lod),
+                                 most=render_modules(args.size, args.lod))  # (derives no more than it can draw)
     scale = ""
     if args.scale_bar is None:
         pixels = render_image(geometry.mesh, args.size, yaw=args.yaw, pitch=args.pitch)

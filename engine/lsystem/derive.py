@@ -9,6 +9,7 @@ only the highest-priority rewrites are applied (the rest of the tree waits), and
 
 from __future__ import annotations
 
+import time
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -82,7 +83,9 @@ class Deriver:
     seed: int | None = None
     budget: int | None = None
     priority: str = "order"
+    seconds: float | None = None  # a time budget for :meth:`derive` (None: none; the game's steps are small)
     rng: np.random.Generator = field(init=False)
+    out_of_time: bool = field(init=False, default=False)  # derive() stopped at the time budget
 
     def __post_init__(self) -> None:
         if self.priority not in PRIORITIES:
@@ -151,13 +154,27 @@ class Deriver:
         :attr:`StepReport.only_copied`, the last report), so a huge step count costs no more than the
         steps that grow; ``len(reports)`` says how many steps were taken."""
         current = self.system.axiom if ls is None else ls
-        reports = []
+        reports, started, last = [], time.perf_counter(), 0.0
+        self.out_of_time = False
         for _ in range(self.system.iterations if steps is None else steps):
+            if self._next_step_too_late(started, last, reports):
+                self.out_of_time = True
+                break
+            begun = time.perf_counter()
             current, report = self.step(current, extern)
+            last = time.perf_counter() - begun
             reports.append(report)
             if report.only_copied:
                 break
         return current, reports
+
+    def _next_step_too_late(self, started: float, last: float, reports: list[StepReport]) -> bool:
+        """Whether the next step would end past the time budget (``seconds``): the last step's time,
+        grown as the string grew in it, added to the time already spent (a step is never cut halfway)."""
+        if self.seconds is None or not reports:
+            return False
+        growth = max(reports[-1].modules_out / max(reports[-1].modules_in, 1), 1.0)
+        return time.perf_counter() - started + last * growth > self.seconds
 
     def _match_all(self, ls: LString, only: np.ndarray | None = None) -> list[_Match]:
         n = len(ls)

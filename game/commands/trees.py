@@ -13,7 +13,7 @@ from arbor.engine.base.errors import LSysError
 from arbor.engine.geometry.mesh import LOD_LEVELS, merge_trees, tree_mesh
 from arbor.engine.geometry.tree import TreeGeometry, build_geometry
 from arbor.engine.life.keep.save import read_garden
-from arbor.engine.lsystem.derive import Deriver
+from arbor.engine.lsystem.derive import DEFAULT_BUDGET, MAX_BUDGET, Deriver
 from arbor.engine.lsystem.lstring import LString
 from arbor.engine.lsystem.lsys import LSystem
 from arbor.game.errors import UserError
@@ -65,17 +65,49 @@ def load_source(source: TreeSource) -> LSystem:
     return load_grown(source.path, source.species, source.seed or 0)
 
 
-def derive_source(source: TreeSource):
-    """Grow an .lsys source: (system, L-string); says on stderr when the module budget held growth back."""
+DERIVE_SECONDS = 30.0  # a command's derivation stops before a step that would end later than this
+DERIVE_MEMORY = 1024**3  # bytes a command's derivation may use at most (its module budget is cut to fit)
+DERIVE_MODULE_BYTES = 110  # a module's peak share while rewriting (measured: 72 B plain, 104-105 B with
+# parameters at 4M modules; 20M modules with one parameter peaked at 2.08 GB)
+
+
+def derive_budget(system: LSystem, source: TreeSource, most: int | None = None) -> tuple[int, str]:
+    """The module budget a command derives ``source`` with, estimated before any work: the asked-for
+    one (--budget, the file's budget:, else the default, at most MAX_BUDGET), cut to what DERIVE_MEMORY
+    holds and to ``most`` (what the caller can afford: a render's mesh); and a line saying why when cut."""
+    asked = source.budget if source.budget is not None else system.budget if system.budget is not None \
+        else DEFAULT_BUDGET
+    asked = min(int(asked), MAX_BUDGET)
+    budget, why = asked, ""
+    if asked * DERIVE_MODULE_BYTES > DERIVE_MEMORY:
+        budget = DERIVE_MEMORY // DERIVE_MODULE_BYTES
+        why = (f"module budget {asked:,} would need about {asked * DERIVE_MODULE_BYTES / 1024**3:.1f} GB to "
+               f"derive, over the limit of {DERIVE_MEMORY / 1024**3:.0f} GB: growing to {budget:,} modules at most")
+    if most is not None and most < budget:
+        budget = max(int(most), 1)
+        why = f"growing to {budget:,} modules at most (what the picture's memory limit holds at this --lod)"
+    return budget, why
+
+
+def derive_source(source: TreeSource, most: int | None = None):
+    """Grow an .lsys source: (system, L-string), bounded in memory (:func:`derive_budget`, estimated before
+    the work starts) and time (DERIVE_SECONDS); says on stderr, in one line each, when a bound held growth
+    back."""
     system = load_source(source)
     if system.externs:
         names = ", ".join(system.externs)
         raise LSysError(f"this L-system needs values from the game at every step (#extern {names}); "
                         "grow it in the game and render its save (.arbor) instead", str(source.path))
-    deriver = Deriver(system, seed=source.seed, budget=source.budget)
+    budget, why = derive_budget(system, source, most)
+    if why:
+        print(why, file=sys.stderr)
+    deriver = Deriver(system, seed=source.seed, budget=budget, seconds=DERIVE_SECONDS)
     asked = system.iterations if source.steps is None else source.steps
     result, reports = deriver.derive(steps=asked)
-    if reports and reports[-1].only_copied and len(reports) < asked:
+    if deriver.out_of_time:
+        print(f"time budget {DERIVE_SECONDS:.0f} s reached at step {len(reports)} of {asked:,}: derivation stopped "
+              f"there ({len(result):,} modules; ask for fewer --steps)", file=sys.stderr)
+    elif reports and reports[-1].only_copied and len(reports) < asked:
         print(f"module budget {deriver.budget:,} full at step {len(reports)} of {asked:,}: derivation stopped "
               f"there ({len(result):,} modules; every further step would only copy them)", file=sys.stderr)
     elif any(r.budget_hit for r in reports):
@@ -88,6 +120,13 @@ RENDER_MEMORY = 2 * 1024**3  # bytes a headless render may use at most (the pict
 RENDER_BASE = 300 * 1024**2  # the process, numba and the GL context before any picture or tree
 PIXEL_BYTES = 48  # a pixel: 4x multisampled colour and depth, the resolved copy, the read-back and the PNG
 MODULE_BYTES = (3600, 700, 300, 200)  # a module's share of the mesh at LOD 0..3 (measured on abop_2_8_tree)
+
+
+def render_modules(size: tuple[int, int], lod: int) -> int:
+    """The most modules a tree rendered at LOD ``lod`` into ``size`` pixels may have within RENDER_MEMORY
+    (so a render derives no further than it could draw: it derived for 204 s to 1.93 GB, then refused)."""
+    room = RENDER_MEMORY - RENDER_BASE - size[0] * size[1] * PIXEL_BYTES
+    return max(room // MODULE_BYTES[min(lod, len(MODULE_BYTES) - 1)], 1)
 
 
 def render_memory(size: tuple[int, int], modules: int, lod: int) -> int:
@@ -108,10 +147,11 @@ def check_render_memory(size: tuple[int, int], modules: int, lod: int) -> None:
 
 
 def tree_geometry(source: TreeSource, lod: int, roots: bool = False,
-                  check: Callable[[int], None] | None = None) -> tuple[TreeGeometry, LString]:
+                  check: Callable[[int], None] | None = None, most: int | None = None) -> tuple[TreeGeometry, LString]:
     """The geometry of the asked-for tree at LOD ``lod``: exactly as it stands in a save (with its
-    roots below the ground when ``roots``: exports carry them), or derived. ``check`` is called with
-    the tree's module count before the geometry is built (a budget that may refuse it)."""
+    roots below the ground when ``roots``: exports carry them), or derived (to at most ``most`` modules).
+    ``check`` is called with the tree's module count before the geometry is built (a budget that may
+    refuse it)."""
     if is_save(source.path):
         if source.steps is not None or source.budget is not None:
             raise LSysError("--steps and --budget grow an .lsys source; a save holds a grown tree", str(source.path))
@@ -127,7 +167,7 @@ def tree_geometry(source: TreeSource, lod: int, roots: bool = False,
             below = tree_mesh(world.roots.turtle(), LOD_LEVELS[min(lod, len(LOD_LEVELS) - 1)])
             geometry.mesh = merge_trees([geometry.mesh, below], [np.zeros(3), np.zeros(3)])
         return geometry, world.tree.lstring
-    system, ls = derive_source(source)
+    system, ls = derive_source(source, most)
     if check is not None:
         check(len(ls))
     return build_geometry(ls, system, lod=lod), ls
