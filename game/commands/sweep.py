@@ -121,7 +121,9 @@ def summary_csv(sweep: Sweep, finals: dict) -> str:
 
 
 def _series(sweep: Sweep, rows: list[dict]) -> dict:
-    """levels -> (times, {response: seeds x samples}) from the tidy rows."""
+    """levels -> (times, {response: seeds x samples}) from the tidy rows. A run that stopped early is filled
+    to the longest run's samples: a dead tree with its last values (it stays as it died), a run stopped at a
+    crossing with NaN (no longer followed)."""
     by_run: dict[str, list[dict]] = {}
     for row in rows:
         by_run.setdefault(row["run"], []).append(row)
@@ -131,10 +133,16 @@ def _series(sweep: Sweep, rows: list[dict]) -> dict:
         groups.setdefault(levels, []).append(run_rows)
     series = {}
     for levels, members in groups.items():
-        n = min(len(m) for m in members)
-        times = np.array([float(r["time_s"]) for r in members[0][:n]])
-        series[levels] = (times, {resp: np.array([[float(r[resp]) for r in m[:n]] for m in members])
-                                  for resp in sweep.responses})
+        longest = max(members, key=len)
+        times = np.array([float(r["time_s"]) for r in longest])
+        values = {resp: np.full((len(members), len(times)), np.nan) for resp in sweep.responses}
+        for k, member in enumerate(members):
+            for resp in sweep.responses:
+                column = [float(r[resp]) for r in member]
+                values[resp][k, :len(column)] = column
+                if member[-1].get("stop") == "died":
+                    values[resp][k, len(column):] = column[-1]
+        series[levels] = (times, values)
     return series
 
 

@@ -18,7 +18,7 @@ from pathlib import Path
 
 from arbor.engine.base.errors import LSysError
 from arbor.engine.base.files import atomic_write
-from arbor.engine.life.experiment.sweep import Outcome, Run, Sweep, Task, cell, execute
+from arbor.engine.life.experiment.sweep import STOP_COLUMNS, Outcome, Run, Sweep, Task, cell, execute
 from arbor.game.errors import UserError
 
 
@@ -38,8 +38,10 @@ class RunStore:
 
     @property
     def columns(self) -> list[str]:
-        """The tidy table's columns: run, seed, one per factor, time, the responses."""
-        return ["run", "seed", *(f.name for f in self.sweep.factors), "time_s", *self.sweep.responses]
+        """The tidy table's columns: run, seed, one per factor, time, the responses (and, for a sweep with a
+        [stop] table, why and when the run stopped)."""
+        stops = list(STOP_COLUMNS) if self.sweep.stop is not None else []
+        return ["run", "seed", *(f.name for f in self.sweep.factors), "time_s", *self.sweep.responses, *stops]
 
     def done(self) -> set[str]:
         """Names of the runs already finished."""
@@ -51,9 +53,10 @@ class RunStore:
         buf = io.StringIO()
         writer = csv.writer(buf, lineterminator="\n")
         writer.writerow(self.columns)
+        stops = [outcome.stop, cell(outcome.stop_time)] if self.sweep.stop is not None else []
         for row in outcome.rows:
             writer.writerow([run.name, run.seed, *(cell(v) for v in run.levels), cell(row["time_s"]),
-                             *(cell(row[r]) for r in self.sweep.responses)])
+                             *(cell(row[r]) for r in self.sweep.responses), *stops])
         if outcome.tree is not None:
             write_atomic(self.trees_dir / run.tree_name(self.sweep), outcome.tree)
         write_atomic(self.runs_dir / f"{run.name}.csv", buf.getvalue())

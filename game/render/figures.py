@@ -4,6 +4,7 @@ Large type and thick lines for a projector."""
 
 from __future__ import annotations
 
+import warnings
 from pathlib import Path
 
 import matplotlib
@@ -109,8 +110,12 @@ def time_series(sweep, series: dict, path: Path, day_seconds: float = 125.66) ->
         for color, (levels, (times, values)) in zip(colors, series.items(), strict=True):
             v = values[response]
             days = times / day_seconds
-            ax.fill_between(days, *np.percentile(v, [10, 90], axis=0), color=color, alpha=0.15, linewidth=0)
-            ax.plot(days, v.mean(axis=0), color=color, label=", ".join(_text(x) for x in levels))
+            with np.errstate(all="ignore"), warnings.catch_warnings():  # (runs stopped early: NaN, skipped)
+                warnings.simplefilter("ignore", RuntimeWarning)
+                low, high = np.nanpercentile(v, [10, 90], axis=0)
+                mean = np.nanmean(v, axis=0)
+            ax.fill_between(days, low, high, color=color, alpha=0.15, linewidth=0)
+            ax.plot(days, mean, color=color, label=", ".join(_text(x) for x in levels))
         _limits(ax, response)
         ax.set_title(TITLES.get(response, response))
         ax.set_xlabel(f"time (game days of {day_seconds:.0f} s)")

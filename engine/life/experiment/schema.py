@@ -105,12 +105,21 @@ EXPERIMENT = {
                    "m", 0.0, 50.0, above=True),
     "tree": Key("tables", "one [[tree]] table per tree"),
 }
+STOP = {
+    "dies": Key("flag", "true: a run stops when its tree dies (the rest is not simulated)"),
+    "response": Key("text", "a run stops when this response (docs/columns.md) crosses 'above' or 'below'"),
+    "above": Key("number", "stop when the response reaches this or more (checked at each sample)",
+                 "the response's unit"),
+    "below": Key("number", "stop when the response falls to this or less (checked at each sample)",
+                 "the response's unit"),
+}
 SWEEP = {
     **COMMON,
     "seeds": Key("any", "how many seeds (1..N) or a list of seeds"),
     "responses": Key("list", "what to record (docs/columns.md lists them)"),
     "base": Key("table", "what every run shares: like a lab [[tree]] without a name"),
     "factor": Key("tables", "one [[factor]] table per factor (1 or 2)"),
+    "stop": Key("table", "when a run stops early: { dies = true } and/or { response = \"height\", above = 2.5 }"),
 }
 FACTOR = {
     "name": Key("text", "the factor's name in the tables and on the figures' axes"),

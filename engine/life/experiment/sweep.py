@@ -38,6 +38,31 @@ class Factor:
     levels: tuple
 
 
+@dataclass(frozen=True)
+class Stop:
+    """When a run ends before the sweep's duration: its tree dies (``dies``), or a response crosses a value
+    (``response`` reaches ``above`` or more, or falls to ``below`` or less, checked at each sample)."""
+
+    dies: bool = False
+    response: str | None = None
+    above: float | None = None
+    below: float | None = None
+
+    def crossed(self, values: dict[str, list[float]]) -> str | None:
+        """Why to stop after the last sample of ``values`` (a lab series' values), or None to go on."""
+        if self.response is None:
+            return None
+        value = values[self.response][-1]
+        if self.above is not None and value >= self.above:
+            return f"{self.response} >= {self.above:g}"
+        if self.below is not None and value <= self.below:
+            return f"{self.response} <= {self.below:g}"
+        return None
+
+
+STOP_COLUMNS = ("stop", "stop_time_s")  # in the tidy table when a sweep has a [stop] table
+
+
 @dataclass
 class Sweep:
     """A whole sweep (see module docstring)."""
@@ -54,6 +79,7 @@ class Sweep:
     seasons: bool = True
     file: str = "<sweep>"
     source: str = ""  # the file's text: finished runs are reused only by the very same sweep
+    stop: Stop | None = None  # (None: every run goes the whole duration)
 
 
 @dataclass(frozen=True)
@@ -91,11 +117,14 @@ class Task:
 
 @dataclass
 class Outcome:
-    """What a run sends back: sampled rows and, for kept runs, the final tree as save text."""
+    """What a run sends back: sampled rows, why and when it stopped ("end": at the sweep's duration;
+    "died"; "height >= 2.5") and, for kept runs, the final tree as save text."""
 
     run: Run
     rows: list[dict[str, float]] = field(default_factory=list)
     tree: str | None = None
+    stop: str = "end"
+    stop_time: float = 0.0
 
 
 def runs(sweep: Sweep) -> list[Run]:
@@ -120,12 +149,31 @@ def execute(task: Task) -> Outcome:
     experiment = Experiment(sweep.title, run.seed, sweep.duration, sweep.sample_every, [regime],
                             Path(species), pace=sweep.pace, seasons=sweep.seasons)
     lab = Lab(experiment, task.rules, system)
-    lab.run()
-    if lab.series[0].time[-1] < sweep.duration - 1e-6:
-        lab.sample()  # every run ends with a sample at the full duration: the dose-response reads it
+    why = grow(lab, sweep.duration, sweep.stop)
     series, world = lab.series[0], lab.worlds[0]
     rows = [{"time_s": t, **{m: series.values[m][i] for m in sweep.responses}} for i, t in enumerate(series.time)]
-    return Outcome(run, rows, save_text(world, species) if task.keep_tree else None)
+    return Outcome(run, rows, save_text(world, species) if task.keep_tree else None, why, series.time[-1])
+
+
+def grow(lab: Lab, duration: float, stop: Stop | None = None) -> str:
+    """Step a one-tree ``lab`` to ``duration`` or until ``stop`` says so; the last sample is taken when it
+    stops (at the full duration, the step its tree died, or the sample that crossed the value; the first
+    sample, at time 0, is never a crossing). Returns why it stopped: "end", "died" or the crossing
+    ("height >= 2.5")."""
+    series = lab.series[0]
+    while stop is not None and lab.time < duration - 1e-9:
+        samples = len(series.time)
+        lab.step()
+        why = stop.crossed(series.values) if len(series.time) > samples and series.time[-1] > 0 else None
+        if why:
+            return why
+        if stop.dies and not lab.worlds[0].sim.state.alive:
+            lab.sample()
+            return "died"
+    lab.run(duration)
+    if series.time[-1] < duration - 1e-6:
+        lab.sample()  # every run ends with a sample at the full duration: the dose-response reads it
+    return (stop.crossed(series.values) if stop is not None else None) or "end"
 
 
 def _set_regime(regime: Regime, key: str, value: float) -> None:

@@ -37,6 +37,7 @@ from arbor.engine.life.experiment.sweep import (
     REGIME_KEYS,
     RESPONSES,
     Factor,
+    Stop,
     Sweep,
 )
 from arbor.engine.life.rules.rules import Rules, set_rule
@@ -69,7 +70,8 @@ def load_sweep(path: str | Path, lsystem_dir: Path) -> Sweep:
     sweep = Sweep(title=str(get("title", path.stem)), factors=factors,
                   seeds=_seeds(reader, data.get("seeds", 10)), duration=duration, sample_every=every,
                   responses=_responses(reader, get("responses", list(RESPONSES))), base=base, species=species,
-                  pace=pace_value(reader, data), seasons=get("seasons", True), file=file, source=source)
+                  pace=pace_value(reader, data), seasons=get("seasons", True), file=file, source=source,
+                  stop=_stop(reader, get("stop", {})) if "stop" in data else None)
     total = len(sweep.seeds) * math.prod(len(f.levels) for f in sweep.factors)
     if total > MAX_RUNS:
         raise reader.fail(f"{total} runs is more than {MAX_RUNS}: use fewer levels or seeds", ("seeds",))
@@ -144,6 +146,26 @@ def _species_file(reader: Reader, name, lsystem_dir: Path, path: tuple) -> str:
     if not (lsystem_dir / name).is_file():
         raise reader.fail(f"no species {name!r} in assets/lsystems", path)
     return name
+
+
+def _stop(reader: Reader, table: dict) -> Stop:
+    """The [stop] table: ``dies = true`` and/or a ``response`` with ``above`` or ``below``."""
+    reader.table(table, schema.STOP, ("stop",), "[stop]")
+    get = lambda key: reader.value(table, key, schema.STOP[key], ("stop",), None) if key in table else None  # noqa: E731
+    stop = Stop(bool(get("dies")), get("response"), get("above"), get("below"))
+    if stop.response is not None:
+        reader.known(stop.response, list(RESPONSES), "response", ("stop", "response"),
+                     f"choose from {', '.join(RESPONSES)}; docs/columns.md")
+        if (stop.above is None) == (stop.below is None):
+            raise reader.fail(f"[stop] response {stop.response!r} needs 'above' or 'below' (one of them): the value "
+                              "that stops a run", ("stop", "response"))
+    elif stop.above is not None or stop.below is not None:
+        raise reader.fail("[stop] needs a 'response' for 'above' or 'below' to stop at, e.g. response = \"height\"",
+                          ("stop", "above" if stop.above is not None else "below"))
+    if not stop.dies and stop.response is None:
+        raise reader.fail("[stop] stops nothing: give dies = true and/or a response with 'above' or 'below'",
+                          ("stop",))
+    return stop
 
 
 def _seeds(reader: Reader, value) -> list[int]:
