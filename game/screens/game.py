@@ -36,7 +36,7 @@ from arbor.game.screens.care import CareActions
 from arbor.game.screens.coach import Coach
 from arbor.game.screens.config import GameConfig, PlayerSettings
 from arbor.game.screens.family import FamilyScreen
-from arbor.game.screens.game_hud import GameHud
+from arbor.game.screens.game_hud import GameHud, HudParts
 from arbor.game.screens.game_input import GameInput
 from arbor.game.screens.game_view import GameView
 from arbor.game.screens.modeler import ModelingMode
@@ -101,10 +101,10 @@ class Game:
         self.sharing = Sharing(state, self.config.saves, self.rules, self.config.lsystem.name, self.renderer.ctx)
         self.care.handlers.update(self.sharing.handlers())  # (Settings -> Share, Garden -> Import)
         self.picker = Picker(state, self.view.views, size, self.care)
-        self.hud = GameHud(state, self.rules, size, menu=self.menu, overlay=self.overlay, renderer=self.renderer,
-                           views=self.view.views, fonts=(self.font, self.small_font), modeling=self.modeling,
-                           family=self.family, coach=self.coach, hooks=self.overlay_hooks,
-                           scene_sun=self.view.scene_sun)
+        self.hud = GameHud(state, self.rules, size, HudParts(
+            menu=self.menu, overlay=self.overlay, renderer=self.renderer, views=self.view.views,
+            fonts=(self.font, self.small_font), modeling=self.modeling, family=self.family, coach=self.coach,
+            hooks=self.overlay_hooks, scene_sun=self.view.scene_sun))
         self.hud.title = self.title
         self.input = GameInput(state, size, self.camera, menu=self.menu, gestures=self.gestures,
                                modeling=self.modeling, care=self.care, picker=self.picker, family=self.family,

@@ -6,6 +6,7 @@ of the garden's hints and reminders (there a drag draws and a tap opens the tool
 from __future__ import annotations
 
 from collections.abc import Callable
+from dataclasses import dataclass
 
 import numpy as np
 import pygame
@@ -29,20 +30,34 @@ NEEDS_ICON = {"thirsty": "can", "wilting": "sun", "starving": "sun", "needs_ligh
 BADGE = 30  # pixels: a garden marker's size
 
 
+@dataclass
+class HudParts:
+    """What the HUD draws with, beside the game's state and rules: the game's parts it shows and the
+    services it paints through."""
+
+    menu: Menu
+    overlay: Overlay
+    renderer: GardenRenderer
+    views: dict
+    fonts: tuple[pygame.font.Font, pygame.font.Font]
+    modeling: ModelingMode
+    family: FamilyScreen
+    coach: Coach
+    hooks: list[Callable[[pygame.Surface], None]]
+    scene_sun: Callable[[], np.ndarray]
+
+
 class GameHud:
     """Paints the overlay surface (see module docstring)."""
 
-    def __init__(self, state: GameState, rules: Rules, size: tuple[int, int], *, menu: Menu, overlay: Overlay,
-                 renderer: GardenRenderer, views: dict, fonts: tuple[pygame.font.Font, pygame.font.Font],
-                 modeling: ModelingMode, family: FamilyScreen, coach: Coach,
-                 hooks: list[Callable[[pygame.Surface], None]], scene_sun: Callable[[], np.ndarray]) -> None:
+    def __init__(self, state: GameState, rules: Rules, size: tuple[int, int], parts: HudParts) -> None:
         self.state, self.rules, self.size = state, rules, size
-        self.scene_sun = scene_sun  # the sun the scene is lit by (see GameView.scene_sun)
-        self.menu, self.overlay, self.renderer = menu, overlay, renderer
-        self.views = views  # the view's records of the trees (world id -> key, records, ...)
-        self.font, self.small_font = fonts
-        self.modeling, self.family, self.coach = modeling, family, coach
-        self.hooks = hooks  # extra overlay layers (kiosk attract text, PIN pad)
+        self.scene_sun = parts.scene_sun  # the sun the scene is lit by (see GameView.scene_sun)
+        self.menu, self.overlay, self.renderer = parts.menu, parts.overlay, parts.renderer
+        self.views = parts.views  # the view's records of the trees (world id -> key, records, ...)
+        self.font, self.small_font = parts.fonts
+        self.modeling, self.family, self.coach = parts.modeling, parts.family, parts.coach
+        self.hooks = parts.hooks  # extra overlay layers (kiosk attract text, PIN pad)
         self.surface = pygame.Surface(size, pygame.SRCALPHA)
         self._key: tuple | None = None
         self.marker_boxes: list[pygame.Rect] = []  # the garden markers last painted (none overlaps another)
