@@ -4,7 +4,8 @@ The whole garden is one file (``autosave.arbor``), written atomically. A save th
 renamed to ``*.broken`` (never deleted) and a new tree is planted; time the player was away is lived
 by the garden on load, in a bounded number of steps; a clock that went backwards (or cannot be read)
 counts as no time away. Saves from before gardens were one file (``garden-*.arbor`` beside the
-autosave) are read once and folded into the autosave.
+autosave) are read once and folded into the autosave; those beyond the garden's size are moved, unread,
+into ``older-trees/`` beside it (and the player is told), never deleted.
 """
 
 from __future__ import annotations
@@ -30,6 +31,8 @@ from arbor.game.screens.state import GameState
 from arbor.game.strings import text
 from arbor.game.watchdog import reading
 
+LEGACY_FOLDER = "older-trees"  # beside the autosave: older garden-*.arbor files the garden had no room for
+
 
 class SaveKeeper:
     """Loads, saves and autosaves one game's garden."""
@@ -41,6 +44,7 @@ class SaveKeeper:
         self.last_autosave = state.clock()
         self.last_summary: AwaySummary | None = None
         self.fresh = False  # True when start() found no garden to resume: a new player
+        self.folded: list[Path] = []  # older garden-*.arbor files read into the garden (removed once saved)
 
     @property
     def autosave_path(self) -> Path:
@@ -76,6 +80,7 @@ class SaveKeeper:
                 seconds = away_seconds(self.wall_clock(), saved.saved_at, self.rules.away.cap_days)
                 summary = live_away(garden, seconds, watered=self.away())
         except Exception as err:  # a save that breaks loading (a bug it finds) must never break the start
+            self.folded = []  # (their trees are not in the garden now: their files stay)
             self._set_aside(path, err.message if isinstance(err, LSysError) else f"{type(err).__name__}: {err}")
             return None
         if saved.dropped:
@@ -89,15 +94,35 @@ class SaveKeeper:
         """Trees from garden-*.arbor files of older versions (one tree each), when loading the autosave."""
         if path != self.autosave_path:
             return []
-        out = []
-        for legacy in sorted(path.parent.glob("garden-*.arbor"))[: MAX_GARDEN - have]:
+        out, files = [], sorted(path.parent.glob("garden-*.arbor"))
+        for legacy in files[: MAX_GARDEN - have]:
             try:
                 world = read_garden(legacy, self.rules).world
             except LSysError as err:  # one bad neighbour does not lose the garden: keep it aside
                 self._set_aside(legacy, err.message)
                 continue
             out.append(world)
+            self.folded.append(legacy)
+        self._keep_apart(files[max(MAX_GARDEN - have, 0):], path.parent / LEGACY_FOLDER)
         return out
+
+    def _keep_apart(self, files: list[Path], folder: Path) -> None:
+        """Move older trees' files that do not fit in the garden into ``folder`` (never delete them: they
+        were not read into the garden) and say so in one line."""
+        if not files:
+            return
+        kept = 0
+        try:
+            folder.mkdir(exist_ok=True)
+            for legacy in files:
+                target = folder / legacy.name
+                if not (target.exists() or target.is_symlink()):
+                    os.rename(legacy, target)
+                    kept += 1
+        except OSError as exc:
+            self.state.say(text("messages.legacy_not_moved", count=len(files), error=exc.strerror or str(exc)), 12)
+            return
+        self.state.say(text("messages.legacy_kept", count=kept, folder=folder.name, most=MAX_GARDEN), 12)
 
     def _set_aside(self, path: Path, error: str) -> None:
         """Keep an unreadable save under a name of its own (``*.broken``, ``*.2.broken``, ...) and say so
@@ -117,9 +142,10 @@ class SaveKeeper:
             if path == self.autosave_path:  # the last 5 autosaves are kept (engine/life/keep/generations.py)
                 rotate(path)
             write_garden(SavedGarden.of(garden, self.config.lsystem.name, self.wall_clock()), path)
-            if path == self.autosave_path:
-                for legacy in path.parent.glob("garden-*.arbor"):
-                    legacy.unlink()
+            if path == self.autosave_path:  # the older files now in the autosave (only those: never one unread)
+                for legacy in self.folded:
+                    legacy.unlink(missing_ok=True)
+                self.folded = []
         except OSError as exc:
             self.state.say(text("messages.save_failed", error=exc.strerror), 6)
             return False
