@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
+from dataclasses import dataclass
 
 from arbor.engine.life.keep.generations import generations
 from arbor.engine.life.rules.rules import Rules
@@ -36,14 +37,29 @@ def pressed(handler: Callable[[], None]) -> Handler:
     return lambda value: handler() if value else None
 
 
+@dataclass
+class CareParts:
+    """The game's parts a player's actions reach, beside its state and rules: the menu and the modeler they
+    come from, the saves, the family tree, the coach, the species' L-system, the wall clock and the sound."""
+
+    menu: Menu
+    modeling: ModelingMode
+    keeper: SaveKeeper
+    family: FamilyScreen
+    coach: Coach
+    system: LSystem
+    wall_clock: Callable[[], float]
+    sound: PlayerSettings | None = None
+
+
 class CareActions:
     """Turns player actions (action, value) into changes of the garden, the loop and the modeler."""
 
-    def __init__(self, state: GameState, menu: Menu, modeling: ModelingMode, keeper: SaveKeeper,
-                 family: FamilyScreen, coach: Coach, rules: Rules, system: LSystem,
-                 wall_clock: Callable[[], float], sound: PlayerSettings | None = None) -> None:
-        self.state, self.menu, self.modeling, self.keeper, self.sound = state, menu, modeling, keeper, sound
-        self.family, self.coach, self.rules, self.system, self.wall_clock = family, coach, rules, system, wall_clock
+    def __init__(self, state: GameState, rules: Rules, parts: CareParts) -> None:
+        modeling, family, sound = parts.modeling, parts.family, parts.sound
+        self.state, self.rules, self.menu, self.modeling, self.family = state, rules, parts.menu, modeling, family
+        self.keeper, self.coach, self.system, self.sound = parts.keeper, parts.coach, parts.system, sound
+        self.wall_clock = parts.wall_clock
         self.crossing = None  # the mother of a cross, while the player picks the father
         self.replant_asked, self.replant_at = None, 0.0  # the tree a first Replant press asked about, and when
         self.restored = 0  # the autosave generation Restore brought back last (0: none)

@@ -32,7 +32,7 @@ from arbor.game.render.camera import OrbitCamera
 from arbor.game.render.garden import GardenRenderer
 from arbor.game.render.renderer import Overlay
 from arbor.game.render.ui import HudInfo, Menu
-from arbor.game.screens.care import CareActions
+from arbor.game.screens.care import CareActions, CareParts
 from arbor.game.screens.coach import Coach
 from arbor.game.screens.config import GameConfig, PlayerSettings
 from arbor.game.screens.family import FamilyScreen
@@ -96,8 +96,8 @@ class Game:
         self.coach = Coach(state, self.view.views)
         self.menu.journal_source = self.coach.journal_lines
         self.family = FamilyScreen(state, self.menu, size)
-        self.care = CareActions(state, self.menu, self.modeling, self.keeper, self.family, self.coach, self.rules,
-                                self.system, self.wall_clock, self.sound)
+        self.care = CareActions(state, self.rules, CareParts(self.menu, self.modeling, self.keeper, self.family,
+                                                             self.coach, self.system, self.wall_clock, self.sound))
         self.sharing = Sharing(state, self.config.saves, self.rules, self.config.lsystem.name, self.renderer.ctx)
         self.care.handlers.update(self.sharing.handlers())  # (Settings -> Share, Garden -> Import)
         self.picker = Picker(state, self.view.views, size, self.care)
