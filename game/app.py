@@ -227,14 +227,20 @@ def lock_saves(folder: Path) -> FolderLock:
                         "close that one first, or start this one with --saves ANOTHER_FOLDER") from None
 
 
+KIOSK_LOG_BYTES = 1_000_000  # a kiosk.log file at most; then it is rotated
+KIOSK_LOG_FILES = 3  # rotated kiosk logs kept (kiosk.log.1 .. .3): at most 4 MB of log in all
+
+
 def _kiosk_log(path: Path) -> None:
-    """The kiosk logs to saves/kiosk/kiosk.log; a folder that cannot be written (read-only, full) logs to
-    stderr instead, so the kiosk still starts."""
+    """The kiosk logs to saves/kiosk/kiosk.log, rotated (at most KIOSK_LOG_FILES + 1 files of KIOSK_LOG_BYTES);
+    a folder that cannot be written (read-only, full) logs to stderr instead, so the kiosk still starts."""
     import logging
+    from logging.handlers import RotatingFileHandler
 
     form = "%(asctime)s %(name)s %(levelname)s %(message)s"
-    try:
-        logging.basicConfig(filename=path, level=logging.INFO, format=form)
+    try:  # (bounded: KIOSK_LOG_BYTES a file, the last KIOSK_LOG_FILES kept as kiosk.log.1 ...)
+        handler = RotatingFileHandler(path, maxBytes=KIOSK_LOG_BYTES, backupCount=KIOSK_LOG_FILES)
+        logging.basicConfig(handlers=[handler], level=logging.INFO, format=form)
     except OSError as exc:
         logging.basicConfig(level=logging.INFO, format=form)
         logging.getLogger("arbor.kiosk").error("cannot write %s (%s): logging here instead", path, exc.strerror)

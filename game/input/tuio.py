@@ -12,6 +12,7 @@ import logging
 import math
 import socket
 import struct
+import time
 
 from pythonosc.osc_message import OscMessage
 from pythonosc.osc_packet import OscPacket, ParseError
@@ -27,6 +28,29 @@ BUNDLE = b"#bundle\0"
 log = logging.getLogger("arbor.tuio")
 
 
+LOG_EVERY = 60.0  # seconds: one log line per kind of bad input at most this often (a flood made 18.6 KB/s)
+
+
+class LogLimit:
+    """One log line per kind of bad input per LOG_EVERY seconds (the count since the last line said), so a
+    flood of hostile datagrams cannot fill the disk with the kiosk's log."""
+
+    def __init__(self, logger: logging.Logger, clock=time.monotonic) -> None:
+        self.logger, self.clock = logger, clock
+        self.last: dict[str, tuple[float, int]] = {}  # kind -> (when said, the total then)
+
+    def warn(self, kind: str, total: int) -> bool:
+        """Log ``kind`` (``total`` so far) unless it was logged less than LOG_EVERY seconds ago; True if logged."""
+        now = self.clock()
+        said = self.last.get(kind)
+        if said is not None and now - said[0] < LOG_EVERY:
+            return False
+        since = total - (said[1] if said else 0)
+        self.logger.warning("%s: %d since the last line, %d in all (said at most once a minute)", kind, since, total)
+        self.last[kind] = (now, total)
+        return True
+
+
 class TuioParser:
     """TUIO 2Dcur session state: turns OSC messages into down/move/up pointer events."""
 
@@ -35,6 +59,7 @@ class TuioParser:
         self.source = source
         self.down: dict[int, tuple[float, float]] = {}
         self.bad_packets = 0
+        self.log_limit = LogLimit(log)
 
     def packet(self, data: bytes, now: float) -> list[InputEvent]:
         """Events for one UDP datagram (a bundle or a message)."""
@@ -44,6 +69,7 @@ class TuioParser:
             packet = OscPacket(data)
         except (ParseError, ValueError, IndexError, TypeError, OverflowError, struct.error, RecursionError):
             self.bad_packets += 1
+            self.log_limit.warn("dropped malformed TUIO packets", self.bad_packets)
             return [InputEvent(DEVICE, now, self.source, text="ignoring a malformed TUIO packet")] \
                 if self.bad_packets == 1 else []
         out = []
@@ -75,7 +101,7 @@ class TuioParser:
 
     def _bad(self, now: float) -> list[InputEvent]:
         self.bad_packets += 1
-        log.warning("dropped a TUIO message with bad arguments (%d so far)", self.bad_packets)
+        self.log_limit.warn("dropped TUIO messages with bad arguments", self.bad_packets)
         return [InputEvent(DEVICE, now, self.source, text="ignoring a malformed TUIO message")] \
             if self.bad_packets == 1 else []
 
