@@ -7,7 +7,7 @@ import trimesh
 
 from arbor.engine.geometry.turtle import TurtleConfig, interpret
 from arbor.engine.lsystem.lstring import parse_lstring
-from arbor.engine.modeling.crown import grow_crown, grow_into_lobes
+from arbor.engine.modeling.crown import LobeGrowth, grow_crown, grow_into_lobes
 from arbor.engine.modeling.lobes import lobe_from_loops, lobe_from_outline
 from arbor.engine.modeling.modeler import Modeler
 from arbor.engine.modeling.skeleton import Skeleton, skeleton_text
@@ -109,7 +109,7 @@ def test_growth_respects_the_node_budget():
     lobes = crown()
     attractors = lobes[0].sample_inside(1500, np.random.default_rng(0))
     trunk = np.array([[0.0, 0.0, 0.0], [0.0, 3.5, 0.0]])
-    skeleton = grow_into_lobes(Skeleton.from_trunk(trunk), lobes, attractors, max_nodes=200)
+    skeleton = grow_into_lobes(Skeleton.from_trunk(trunk), lobes, attractors, LobeGrowth(max_nodes=200))
     assert len(skeleton.parent) == 200
 
 
@@ -117,7 +117,7 @@ def test_skeleton_becomes_an_lstring_with_the_same_branch_points():
     lobes = crown()
     attractors = lobes[0].sample_inside(600, np.random.default_rng(2))
     trunk = np.array([[0.0, 0.0, 0.0], [0.0, 3.5, 0.0]])
-    skeleton = grow_into_lobes(Skeleton.from_trunk(trunk), lobes, attractors, max_nodes=400)
+    skeleton = grow_into_lobes(Skeleton.from_trunk(trunk), lobes, attractors, LobeGrowth(max_nodes=400))
     result = interpret(parse_lstring(skeleton_text(skeleton)), TurtleConfig(width=0.05))
     ends = result.segments.end
     assert len(ends) == len(skeleton.parent) - 1
@@ -129,7 +129,7 @@ def test_growth_stops_cleanly_when_no_branch_may_grow():
     lobes = crown()
     attractors = lobes[0].sample_inside(200, np.random.default_rng(3))
     trunk = np.array([[0.0, 0.0, 0.0], [0.0, 3.5, 0.0]])
-    skeleton = grow_into_lobes(Skeleton.from_trunk(trunk), lobes, attractors, max_nodes=2)
+    skeleton = grow_into_lobes(Skeleton.from_trunk(trunk), lobes, attractors, LobeGrowth(max_nodes=2))
     assert len(skeleton.parent) == 2
     far = np.array([[0.0, 0.0, 0.0], [0.0, 30.0, 0.0]])  # tip far outside: only attractors it cannot reach
     assert len(grow_into_lobes(Skeleton.from_trunk(far), lobes, np.zeros((0, 3))).parent) == 2

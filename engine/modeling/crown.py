@@ -14,8 +14,9 @@ The grown skeleton is written as modules by engine/modeling/skeleton.py.
 
 from __future__ import annotations
 
+from dataclasses import dataclass, replace
+
 import numpy as np
-from scipy.spatial import cKDTree
 
 from arbor.engine.geometry.turtle import INITIAL_FRAME, unit
 from arbor.engine.lsystem import brackets
@@ -31,28 +32,47 @@ OUT_REACH = 1.5  # steps: wood outside the lobes farther than this from them doe
 SURFACE_SHARE = 0.75  # a piece grows this share of its node's distance to the lobe surface (at most a step)
 
 
+def _kdtree(points: np.ndarray, **options):
+    """scipy's cKDTree of ``points`` (scipy imported here on first use, not when the game starts)."""
+    from scipy.spatial import cKDTree
+
+    return cKDTree(points, **options)
+
+
 def _nearest(points: np.ndarray, targets: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Index of and distance to the nearest target for every point (a k-d tree: O(n log m), not n x m)."""
     if len(targets) == 0 or len(points) == 0:
         return np.zeros(len(points), np.int64), np.full(len(points), np.inf)
-    dist, idx = cKDTree(targets, balanced_tree=False, compact_nodes=False).query(points)
+    dist, idx = _kdtree(targets, balanced_tree=False, compact_nodes=False).query(points)
     return idx.astype(np.int64), dist
 
 
-def grow_into_lobes(skeleton: Skeleton, lobes: list[Lobe], attractors: np.ndarray, t_deg: float = 40.0,
-                    step: float = 0.6, kill: float = 0.3, stop: float = 0.15, iterations: int = 30,
-                    max_nodes: int = 8000, labels: np.ndarray | None = None,
-                    rng: np.random.Generator | None = None) -> Skeleton:
-    """Seed 004's growth (see module docstring), bounded by ``max_nodes``. A branch that would leave
-    the lobes once inside them is not grown, so the crown keeps the drawn silhouette. ``labels`` says
-    which lobe each attractor belongs to: when the budget binds, the pieces of a step are shared among
+@dataclass(frozen=True)
+class LobeGrowth:
+    """How :func:`grow_into_lobes` grows (Zhang et al. section 5; lengths in scene units)."""
+
+    t_deg: float = 40.0  # a node's cluster of attractors is split into pieces t degrees across (see above)
+    step: float = 0.6  # longest branch piece
+    kill: float = 0.3  # an attractor a new node comes this close to is used up
+    stop: float = 0.15  # nodes inside a lobe this close to its surface stop
+    iterations: int = 30  # growth steps at most
+    max_nodes: int = 8000  # the skeleton's nodes at most (its budget)
+
+
+def grow_into_lobes(skeleton: Skeleton, lobes: list[Lobe], attractors: np.ndarray, how: LobeGrowth = LobeGrowth(),
+                    labels: np.ndarray | None = None, rng: np.random.Generator | None = None) -> Skeleton:
+    """Seed 004's growth (see module docstring) as ``how`` says, bounded by its ``max_nodes``. A branch that
+    would leave the lobes once inside them is not grown, so the crown keeps the drawn silhouette. ``labels``
+    says which lobe each attractor belongs to: when the budget binds, the pieces of a step are shared among
     the lobes in proportion to their unfilled volume (see _fair)."""
+    t_deg, step, kill, stop, iterations, max_nodes = (how.t_deg, how.step, how.kill, how.stop, how.iterations,
+                                                      how.max_nodes)
     remaining = np.asarray(attractors, float)
     labels = np.zeros(len(remaining), np.int64) if labels is None else np.asarray(labels, np.int64)
     rng = np.random.default_rng(0) if rng is None else rng
     count0 = np.maximum(np.bincount(labels, minlength=len(lobes)), 1)
     volume = np.array([max(lobe.volume, 1e-12) for lobe in lobes])
-    surface = cKDTree(np.concatenate([lobe.vertices for lobe in lobes]))
+    surface = _kdtree(np.concatenate([lobe.vertices for lobe in lobes]))
     crossings = Crossings(lobes)
     inside = crossings.inside(skeleton.position) >= 0
     # wood far outside every lobe does not sprout (a drawn branch running past a crown grew a comb of
@@ -202,7 +222,7 @@ def grow_crown(modeler: Modeler, lobes: list[Lobe], rng: np.random.Generator, pe
     step = step_fraction * float(np.mean([np.ptp(lobe.vertices, axis=0).max() for lobe in lobes]))
     size = step / step_fraction
     kill = step / 2 if reach_fraction is None else reach_fraction * size
-    sizes = {"step": step, "kill": kill, "stop": step / 4, "labels": labels, "rng": rng}
+    how = LobeGrowth(step=step, kill=kill, stop=step / 4)
     segs = modeler.segments() if len(modeler.lstring) else None
     if segs is None or len(segs) == 0:  # nothing drawn yet: a trunk from the base into the lowest lobe
         lowest = min(lobes, key=lambda lobe: lobe.vertices[:, 1].min())
@@ -210,7 +230,8 @@ def grow_crown(modeler: Modeler, lobes: list[Lobe], rng: np.random.Generator, pe
         entry[1] = lowest.vertices[:, 1].min() + 0.2 * np.ptp(lowest.vertices[:, 1])
         pieces = max(1, int(np.ceil(np.linalg.norm(entry) / step)))
         start = _bridged(Skeleton.from_trunk(np.linspace(np.zeros(3), entry, pieces + 1)), lobes, step)
-        grown = grow_into_lobes(start, lobes, attractors, max_nodes=max(max_nodes, len(start.parent)), **sizes)
+        grown = grow_into_lobes(start, lobes, attractors, replace(how, max_nodes=max(max_nodes, len(start.parent))),
+                                labels, rng)
         crown = skeleton_lstrings(grown, np.array([0]), INITIAL_FRAME[None], tip=_tip(tip))[0]
         kept = modeler.lstring  # modules that draw nothing yet (a new sapling's apex) stay
         modeler.commit(concat(_OPEN, crown, _CLOSE, kept) if len(kept) else crown)
@@ -218,7 +239,7 @@ def grow_crown(modeler: Modeler, lobes: list[Lobe], rng: np.random.Generator, pe
     m = len(segs)
     start = _bridged(Skeleton(segs.end.copy(), segs.parent.copy(), segs.frame[:, :, 0].copy(), np.ones(m, bool)),
                      lobes, step)
-    grown = grow_into_lobes(start, lobes, attractors, max_nodes=m + max_nodes, **sizes)
+    grown = grow_into_lobes(start, lobes, attractors, replace(how, max_nodes=m + max_nodes), labels, rng)
     if len(grown.parent) == m:
         return 0
     modeler.commit(_graft(modeler.lstring, segs, grown, tip))
@@ -232,7 +253,7 @@ def _bridged(skeleton: Skeleton, lobes: list[Lobe], step: float) -> Skeleton:
     the wood is filled from its own entry, not starved by the crown next to it)."""
     for lobe in lobes:
         pos = skeleton.position
-        gap, near = cKDTree(lobe.vertices).query(pos)
+        gap, near = _kdtree(lobe.vertices).query(pos)
         if lobe.contains(pos).any() or gap.min() <= step:
             continue
         node = int(np.argmin(gap))
