@@ -1,10 +1,13 @@
 """The carbon budget under the game: sugar from the light the leaves catch, limited by water, spent on upkeep
 and growth; a tree that cannot pay its upkeep, or stands bare in summer, starves and dies."""
 
+import math
+
 import numpy as np
 import pytest
 
-from arbor.engine.life.plant.carbon import CarbonBudget, canopy, stomata
+from arbor.engine.life.plant.carbon import CarbonBudget, canopy, full_ppfd, stomata
+from arbor.engine.life.plant.photosynthesis import real_seconds
 from arbor.engine.life.rules.rules import Rules, load_rules
 from arbor.engine.life.world.actions import Action
 from arbor.engine.life.world.world import World
@@ -34,18 +37,35 @@ def lived(system, days: float, orbit: float | None = None, below: float = 0.55, 
     return world
 
 
-def test_sugar_follows_the_light_on_the_leaves_and_closes_with_the_stomata():
+def nrh(ppfd: float, amax: float, phi: float, theta: float) -> float:
+    """The non-rectangular hyperbola, written out here (Thornley 1976): the smaller root of
+    theta A² - (phi I + Amax) A + phi I Amax = 0."""
+    b = phi * ppfd + amax
+    return (b - math.sqrt(b * b - 4 * theta * phi * ppfd * amax)) / (2 * theta)
+
+
+def test_sugar_follows_each_leaf_s_light_response_and_closes_smoothly_with_the_soil():
     rules = Rules()
-    shaded, lit = CarbonBudget(pool=1.0), CarbonBudget(pool=1.0)
     area = np.full(10, 100.0)  # ten leaves of 1 m² (100 scene units² each)
-    shaded.live(rules, 10.0, 1.0, 1.0, 1.0, canopy(area, np.full(10, 0.2), np.zeros(0), np.zeros(0)))
-    lit.live(rules, 10.0, 1.0, 1.0, 1.0, canopy(area, np.full(10, 0.8), np.zeros(0), np.zeros(0)))
-    assert lit.fixed == pytest.approx(4 * shaded.fixed) and lit.fixed == pytest.approx(rules.carbon.assimilation * 80)
+    fixed = {}
+    for light in (0.005, 0.01, 0.2, 0.8):
+        budget = CarbonBudget(pool=1.0)
+        budget.live(rules, 10.0, 1.0, 1.0, 1.0, canopy(area, np.full(10, light), np.zeros(0), np.zeros(0)))
+        fixed[light] = budget.fixed
+    c, ppfd = rules.carbon, full_ppfd(rules)
+    expected = nrh(0.8 * ppfd, c.amax, c.quantum_efficiency, c.curvature) * 30.03e-6 * real_seconds(rules) * 10 * 10
+    assert fixed[0.8] == pytest.approx(expected, rel=1e-6)
+    assert fixed[0.01] == pytest.approx(2 * fixed[0.005], rel=0.03)  # dim light: in proportion (slope phi)
+    assert fixed[0.8] < 2 * fixed[0.2]  # bright light: it saturates toward Amax
+    lit = canopy(area, np.full(10, 0.8), np.zeros(0), np.zeros(0))
     dry = CarbonBudget(pool=1.0)
-    dry.live(rules, 10.0, 1.0, stomata(0.75, drowned=False), 1.0, canopy(area, np.full(10, 0.8), np.zeros(0),
-                                                                         np.zeros(0)))
-    assert dry.fixed == pytest.approx(0.25 * lit.fixed)
-    assert stomata(0.0, drowned=True) == 0.0 and stomata(0.0, drowned=False) == 1.0
+    dry.live(rules, 10.0, 1.0, stomata(0.1, False, rules), 1.0, lit)
+    assert dry.fixed == pytest.approx(stomata(0.1, False, rules) * fixed[0.8])
+    opened = [stomata(w, False, rules) for w in np.linspace(0.0, 1.0, 101)]
+    assert opened[0] == 0.0 and opened[-1] == pytest.approx(1.0) and np.all(np.diff(opened) > 0)
+    assert np.max(np.abs(np.diff(opened, 2))) < 0.01  # no threshold: the slope changes gradually
+    assert 0.3 < stomata(0.1, False, rules) < 0.5 < 0.9 < stomata(0.5, False, rules)
+    assert stomata(0.9, drowned=True, rules=rules) == 0.0
 
 
 def test_leaves_and_sapwood_cost_upkeep_by_day_and_by_night():
@@ -54,7 +74,8 @@ def test_leaves_and_sapwood_cost_upkeep_by_day_and_by_night():
     leaves = np.full(4, 100.0)  # 4 m² of leaves in the dark; 5 internodes of 0.02 units² x 10 units of sapwood
     small.live(rules, 1.0, 1.0, 1.0, 1.0, canopy(leaves, np.zeros(4), np.full(5, 0.02), np.full(5, 10.0)))
     big.live(rules, 1.0, 1.0, 1.0, 1.0, canopy(leaves, np.zeros(4), np.full(5, 0.08), np.full(5, 10.0)))
-    upkeep = rules.carbon.leaf_respiration * 4.0 + rules.carbon.wood_respiration * 5 * 0.02 * 10 / 1000
+    dark = rules.carbon.dark_share * rules.carbon.amax * 30.03e-6 * real_seconds(rules)  # g per m² per s
+    upkeep = dark * 4.0 + rules.carbon.wood_respiration * 5 * 0.02 * 10 / 1000
     assert small.respired == pytest.approx(upkeep) and big.respired > small.respired
     night = small.pool
     small.live(rules, 10.0, 0.0, 0.0, 1.0)  # night: the last canopy respires on, nothing is fixed

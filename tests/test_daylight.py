@@ -30,12 +30,13 @@ def test_the_remembered_daylight_follows_the_light_caught_over_a_day_and_sets_th
     sim.rules.seasons.enabled = False
     g = sim.rules.growth
     assert sim.state.daylight == g.daylight_full and sim.light_growth() == 1.0  # a sapling starts at the norm
-    for _ in range(round(DAY)):  # a day at a steady 0.3
-        sim.remember_light(0.3, 1.0)
-    assert 0.3 - 0.4 * (0.3 - g.daylight_full) < sim.state.daylight < 0.3  # most of the way in a day
+    steady = g.daylight_full + 0.1
+    for _ in range(round(DAY)):  # a day at a steady light above the norm
+        sim.remember_light(steady, 1.0)
+    assert steady - 0.4 * (steady - g.daylight_full) < sim.state.daylight < steady  # most of the way in a day
     sim.state.sun_cycle.rate = sim.state.water_cycle.rate = 1.0
-    for daylight, growth in ((0.1, 0.5), (0.2, 1.0), (0.25, 1.25), (0.9, g.daylight_most)):
-        sim.state.daylight = daylight
+    for share, growth in ((0.5, 0.5), (1.0, 1.0), (1.25, 1.25), (0.99 / g.daylight_full, g.daylight_most)):
+        sim.state.daylight = share * g.daylight_full
         assert sim.light_growth() == pytest.approx(growth)
         assert sim.growth_speeds()[0] == pytest.approx(g.length_rate * growth)
 

@@ -78,7 +78,7 @@ def test_lesson_water_rare_drinks_leave_the_meter_low(tmp_path):
 
 
 def test_lesson_competition_the_middle_tree_is_shaded(tmp_path):
-    path = shortened("lesson_competition.toml", tmp_path, 16 * 125.66667)  # (crowns meet from about day 11)
+    path = shortened("lesson_competition.toml", tmp_path, 20 * 125.66667)  # (crowns meet from about day 14)
     out = tmp_path / "competition"
     as_written("lesson_competition.toml", path, out)
     rows = list(csv.DictReader(io.StringIO((out / "results.csv").read_text(encoding="utf-8"))))

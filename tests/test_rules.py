@@ -133,7 +133,7 @@ def test_the_schema_is_what_the_rules_and_paces_use():
                      "water.drown_time",
                      "health.death_time", "light.interval", "carbon.reserve_time", "carbon.keep_time",
                      "carbon.starve_time")
-    assert "water.fill_rate" not in RATES and len(RATES) == 17  # the watering can is held for seconds at any pace
+    assert "water.fill_rate" not in RATES and len(RATES) == 15  # the watering can is held for seconds at any pace
 
 
 LAB = """duration = 60

@@ -9,6 +9,7 @@ swings within a day is not caught at one phase of its swing.
 from __future__ import annotations
 
 import math
+from collections import deque
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -42,6 +43,10 @@ class Meters:
     lit: float = 0.0  # the leaves' mean light x the sun's strength x s since the last sample
     shine: float = 0.0  # the sun's strength x s since the last sample
     died: float = math.nan  # game day of death
+    # the light caught in each step of the last game day (turns of the sun, m² x s): light_day sums it
+    day: deque = field(default_factory=deque)
+    day_light: float = 0.0  # m² of full-sun-lit leaf x s over the steps in ``day``
+    day_turns: float = 0.0  # turns of the sun the steps in ``day`` span (1 once a whole day has passed)
 
     def add(self, world: World, dt: float) -> None:
         """Book one step of ``dt`` seconds of ``world``."""
@@ -52,11 +57,31 @@ class Meters:
             self.high[key] = max(self.high[key], value)
         self.seconds += dt
         shine = world.sim.sunshine()
-        self.light += world.carbon.leaf_area * world.tree.mean_light * shine * dt
+        caught = world.carbon.leaf_area * world.tree.mean_light * shine * dt
+        self.light += caught
+        self._remember_day(s.sun_turns, caught, s.sun_speed * dt / (2 * math.pi))
         self.lit += (world.tree.mean_light if world.carbon.leaf_area > 0 else 0.0) * shine * dt
         self.shine += shine * dt
         if not s.alive and math.isnan(self.died):
             self.died = s.sun_turns
+
+    def _remember_day(self, turns: float, caught: float, step: float) -> None:
+        """Keep the light caught over the last turn of the sun (a sliding game day of ``step``-turn steps)."""
+        self.day.append((turns, caught, step))
+        self.day_light += caught
+        self.day_turns += step
+        while self.day and self.day[0][0] <= turns - 1.0:
+            _, light, old = self.day.popleft()
+            self.day_light -= light
+            self.day_turns -= old
+
+    def light_day(self, world: World) -> float:
+        """The light caught over the last game day (m² of full-sun-lit leaf x game hours): a daily total
+        whatever the sampling; before a whole day has passed, the part so far scaled up to a day."""
+        if not self.day_turns > 0:
+            return 0.0
+        day_seconds = 2 * math.pi / world.sim.state.sun_speed
+        return self.day_light / day_seconds * 24.0 / min(self.day_turns, 1.0)
 
     def reset(self) -> None:
         """Start the next interval (the day of death is kept)."""
@@ -97,7 +122,7 @@ def measure(world: World, meters: Meters | None = None) -> dict[str, float]:
             "biomass": biomass(world, segs), "leaf_area": budget.leaf_area,
             "lai": budget.leaf_area / max(math.pi * (width / 2) ** 2, 0.01),
             "light_share": meters.lit / meters.shine if meters.shine > 0 else world.tree.mean_light,
-            "light_day": meters.light / meters.seconds * 24.0 if meters.seconds > 0 else 0.0,
+            "light_day": meters.light_day(world),
             "net_carbon": budget.fixed - budget.respired, "pool": budget.pool, "root_shoot": root_shoot(budget),
             "pruned": float(sum(v for _, kind, v in world.journal.entries if kind == "pruned"))}
 

@@ -1,11 +1,13 @@
 """The tree's carbon budget: what its leaves fix from the light they really catch, what living tissue
 costs to keep, and what is left to build with.
 
-A light-use-efficiency canopy model in the manner of the functional-structural plant models (LIGNUM by
-Perttunen et al.; GreenLab by de Reffye and Hu): every leaf fixes sugar in proportion to the light that
-reaches it (engine/life/plant/light.py), times the sun's strength and how far its stomata are open
-(they close in drought and when the roots drown). Leaves and living wood respire: the leaves in
-proportion to their area, the wood in proportion to its sapwood, which by the pipe model (Shinozaki et
+A canopy model in the manner of the functional-structural plant models (LIGNUM by Perttunen et al.;
+GreenLab by de Reffye and Hu): every leaf fixes sugar by its species' light response (a non-rectangular
+hyperbola, engine/life/plant/photosynthesis.py) to the photons that reach it (the sun's PAR at its
+elevation, engine/life/plant/solar.py, times the leaf's light from the shadow grid, engine/life/plant/light.py),
+times how far its stomata are open (they close smoothly as the soil dries, and shut when the roots drown).
+Leaves and living wood respire: the leaves by their species' dark respiration per m², the wood in
+proportion to its sapwood, which by the pipe model (Shinozaki et
 al.) is the conducting cross-section that carries the leaves above it. What is left goes into a pool,
 spent by priority (Lacointe's "sink priority": leaves and shoots first, then girth, then roots),
 except ``keep_time`` of upkeep kept for the nights; the pool holds at most ``reserve_time`` of the tree's
@@ -14,17 +16,21 @@ balance is negative for ``starve_time`` starves the tree: it wilts, and a tree t
 dies, so a leafless tree cannot live on.
 
 Units: sugar in grams (g), leaf area in m², wood in m³ (scene units through METRE), time in game
-seconds; the rules (assets/rules.toml [carbon]) give the rates at the demo pace.
+seconds; a leaf's rates are real (µmol per m² per s), made the game's by the declared time scale
+(photosynthesis.real_seconds); the rules' [carbon] table gives the rest at the demo pace.
 """
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
 
 from arbor.engine.base.units import METRE
 from arbor.engine.life.form.interpret import APEX, BLOSSOM, CLUSTER_AREA, FRUIT, INTERNODE, LEAF, LEAF_ASPECT
+from arbor.engine.life.plant import photosynthesis, solar
+from arbor.engine.life.plant.photosynthesis import LeafTraits
 from arbor.engine.life.rules.rules import Rules
 from arbor.engine.lsystem.lstring import LString
 
@@ -39,6 +45,8 @@ class Canopy:
     leaf_area: float  # m² of leaves on the tree
     lit_area: float  # m² of leaf x the light that reaches it (0..1): what photosynthesis works with
     sapwood: float  # m³ of conducting wood (pipe area x length over every grown internode)
+    leaf_areas: np.ndarray | None = None  # m² of each leaf (None: the light on them is lit_area's alone)
+    leaf_lights: np.ndarray | None = None  # the light reaching each leaf (0..1)
 
 
 @dataclass
@@ -57,6 +65,9 @@ class CarbonBudget:
     leaf_area: float = 0.0  # m² at the last reading
     sapwood: float = 0.0  # m³ at the last reading
     fill_at_next_reading: bool = False  # a tree from before the carbon budget: its pool starts full
+    # (not saved, set again at every reading: plain class attributes, not fields)
+    leaf_cost = 0.0  # g per m² of leaf per s: its leaves' dark respiration (0: the rules' default leaf)
+    full_rate = 0.0  # g per m² per s a fully lit, open leaf of its species fixes under the zenith sun
 
     @classmethod
     def for_seedling(cls, rules: Rules) -> CarbonBudget:
@@ -69,16 +80,17 @@ class CarbonBudget:
 
     def upkeep_rate(self, rules: Rules, activity: float = 1.0) -> float:
         """Maintenance respiration (g per s) of the leaves and sapwood last measured, at ``activity`` (0..1)."""
-        c = rules.carbon
-        return (c.leaf_respiration * self.leaf_area + c.wood_respiration * self.sapwood) * activity
+        leaf = self.leaf_cost or float(photosynthesis.grams(photosynthesis.leaf_traits({}, rules).dark, rules))
+        return (leaf * self.leaf_area + rules.carbon.wood_respiration * self.sapwood) * activity
 
     def live(self, rules: Rules, seconds: float, shine: float, stomata: float, activity: float,
-             canopy: Canopy | None = None, bare_starves: bool = False) -> float:
+             canopy: Canopy | None = None, bare_starves: bool = False, traits: LeafTraits | None = None) -> float:
         """Book ``seconds`` of photosynthesis and respiration; returns the net sugar (g, may be negative).
 
         ``canopy`` is this reading's measurement (None at night: the last one respires on); ``shine``
-        the sun's strength 0..1; ``stomata`` how open the leaves are 0..1; ``activity`` how awake the tree
-        is (1 in the growing season, the dormant share in winter rest). The tree starves while its upkeep
+        the sun's strength 0..1 (its PAR against the zenith sun's); ``stomata`` how open the leaves are 0..1;
+        ``activity`` how awake the tree is (1 in the growing season, the dormant share in winter rest);
+        ``traits`` the species' leaves (None: the rules' default leaf). The tree starves while its upkeep
         goes unpaid, and, when ``bare_starves`` (a season in which it should be in leaf), while it has no
         leaves at all to earn with."""
         if not seconds > 0:
@@ -87,8 +99,11 @@ class CarbonBudget:
             self.leaf_area, self.sapwood = canopy.leaf_area, canopy.sapwood
             if self.fill_at_next_reading:
                 self.pool, self.fill_at_next_reading = self.capacity(rules), False
-        lit = canopy.lit_area if canopy is not None else 0.0
-        gross = rules.carbon.assimilation * lit * max(shine, 0.0) * min(max(stomata, 0.0), 1.0)
+        traits = traits or photosynthesis.leaf_traits({}, rules)
+        full = float(photosynthesis.gross(full_ppfd(rules), traits))
+        self.leaf_cost = float(photosynthesis.grams(traits.dark, rules))
+        self.full_rate = float(photosynthesis.grams(full, rules))
+        gross = assimilation(canopy, shine, traits, rules) * min(max(stomata, 0.0), 1.0)
         upkeep = self.upkeep_rate(rules, activity)
         self.last_fixed_rate, self.last_upkeep_rate = gross, upkeep
         net = (gross - upkeep) * seconds
@@ -99,6 +114,12 @@ class CarbonBudget:
         self.starving = self.starving + seconds if starving else max(self.starving - seconds, 0.0)
         self.pool = min(max(pool, 0.0), max(self.capacity(rules), self.pool))  # (a seed may hold more)
         return net
+
+    def caught(self) -> float:
+        """The light the leaves fixed sugar with at the last reading: 0..1 of what fully lit, open leaves of the
+        same area fix under the zenith sun (0 with no leaves)."""
+        full = self.full_rate * self.leaf_area
+        return min(self.last_fixed_rate / full, 1.0) if full > 0 else 0.0
 
     def spare(self, rules: Rules) -> float:
         """Sugar that may be spent on growth: the pool above what is kept for upkeep (``keep_time`` of it)."""
@@ -122,17 +143,42 @@ class CarbonBudget:
         self.built += grams
 
 
-def stomata(drought: float, drowned: bool) -> float:
-    """How far the leaves' stomata are open (0..1): they close as drought deepens, and shut when the
-    roots are drowned (waterlogged roots take up nothing)."""
-    return 0.0 if drowned else min(max(1.0 - drought, 0.0), 1.0)
+def full_ppfd(rules: Rules) -> float:
+    """The photon flux (µmol per m² per s) of the sun's strength 1: PAR under a clear sky's zenith sun."""
+    return solar.full_par(rules.sun) * rules.sun.par_photons
+
+
+def assimilation(canopy: Canopy | None, shine: float, traits: LeafTraits, rules: Rules) -> float:
+    """Gross sugar (g per game s) the leaves of ``canopy`` fix with open stomata at the sun's strength ``shine``:
+    each leaf by the light response to its own photons, summed over its area."""
+    if canopy is None or not shine > 0:
+        return 0.0
+    if canopy.leaf_areas is None:  # (no leaves' lights: the mean light over the whole area)
+        areas = np.array([canopy.leaf_area])
+        lights = np.array([canopy.lit_area / canopy.leaf_area if canopy.leaf_area > 0 else 0.0])
+    else:
+        areas, lights = canopy.leaf_areas, canopy.leaf_lights
+    umol = photosynthesis.gross(full_ppfd(rules) * shine * np.clip(lights, 0.0, 1.0), traits)
+    return float(photosynthesis.grams(float((areas * umol).sum()), rules))
+
+
+def stomata(water: float, drowned: bool, rules: Rules) -> float:
+    """How far the leaves' stomata are open (0..1): they close smoothly as the water meter (the soil's water)
+    falls, ``(1 - exp(-water / s)) / (1 - exp(-1 / s))`` with s the rule water.stomata_scale (no threshold),
+    and shut when the roots are drowned (waterlogged roots take up nothing)."""
+    if drowned:
+        return 0.0
+    s = rules.water.stomata_scale
+    return min(max((1.0 - math.exp(-max(water, 0.0) / s)) / (1.0 - math.exp(-1.0 / s)), 0.0), 1.0)
 
 
 def canopy(leaf_area: np.ndarray, leaf_light: np.ndarray, pipe_area: np.ndarray, seg_length: np.ndarray) -> Canopy:
     """The budget's view of one light reading: leaf areas (scene units²) with their light, and the
     grown internodes' pipe areas (units²) and lengths (units)."""
-    return Canopy(float(leaf_area.sum()) * AREA, float((leaf_area * np.clip(leaf_light, 0.0, 1.0)).sum()) * AREA,
-                  float((pipe_area * seg_length).sum()) * VOLUME)
+    areas = np.asarray(leaf_area, float) * AREA
+    lights = np.clip(np.asarray(leaf_light, float), 0.0, 1.0)
+    return Canopy(float(areas.sum()), float((areas * lights).sum()), float((pipe_area * seg_length).sum()) * VOLUME,
+                  areas, lights)
 
 
 @dataclass
@@ -149,17 +195,18 @@ class Economy:
     wood_density: float = 5e5  # g per m³
     in_leaf: bool = True  # a season in which the tree should have leaves (a bare tree then starves)
     daylight: float = 1.0  # the remembered daylight against daylight_full (Simulation.light_growth): what light earns
+    traits: LeafTraits | None = None  # the species' leaves (None: the rules' default leaf)
 
     def book(self, measured: Canopy) -> float:
         """Photosynthesis and upkeep since the last reading, for the canopy measured now; the net (g)."""
         return self.budget.live(self.rules, self.seconds, self.shine, self.stomata, self.activity, measured,
-                                self.in_leaf)
+                                self.in_leaf, self.traits)
 
     def rest(self, leaf_area: float) -> float:
         """A reading at night: nothing is fixed, upkeep goes on for ``leaf_area`` scene units² of leaves
         (counted from the string: no light reading is taken at night) and the sapwood last measured."""
         dark = Canopy(leaf_area * AREA, 0.0, self.budget.sapwood)
-        return self.budget.live(self.rules, self.seconds, 0.0, 0.0, self.activity, dark, self.in_leaf)
+        return self.budget.live(self.rules, self.seconds, 0.0, 0.0, self.activity, dark, self.in_leaf, self.traits)
 
     def wood_share(self, volume: float) -> float:
         """The share (0..1) of ``volume`` scene units³ of new wood the pool pays for now (and takes)."""

@@ -17,7 +17,7 @@ from dataclasses import asdict, dataclass, field
 
 import numpy as np
 
-from arbor.engine.life.plant import seasons
+from arbor.engine.life.plant import seasons, solar
 from arbor.engine.life.plant.seasons import Season, raining, season_at
 from arbor.engine.life.rules.rules import GrowthRules, Rules, load_rules
 from arbor.engine.life.rules.schema import find_rule
@@ -123,9 +123,20 @@ class Simulation:
         offset = seasons.sun_offset(self.state.sun_turns, self.rules)
         return self.state.orbit_height + offset + math.sin(self.state.sun_angle)
 
+    def sun_elevation(self) -> float:
+        """The sun's elevation above the horizon (radians; negative at night): that of the drawn sun's
+        direction, so the orbit's sliders (its height: the day length; its side: the noon elevation) set it."""
+        s = self.state
+        return math.atan2(self.sun_height(), math.hypot(math.cos(s.sun_angle), self.rules.sun.side))
+
     def sunshine(self) -> float:
-        """How strongly the sun shines on the tree, 0 (night) to 1 (high noon)."""
-        return min(max(self.sun_height(), 0.0), 1.0)
+        """How strongly the sun shines on the tree, 0 (night) to 1 (a clear sky's zenith sun): clear-sky PAR
+        at the sun's elevation against the zenith's (engine/life/plant/solar.py), less the rules' shade."""
+        return solar.strength(self.sun_elevation(), self.rules.sun) if self.sun_height() > 0 else 0.0
+
+    def par(self) -> float:
+        """The sun's PAR on a horizontal surface now (W/m²), shade removed."""
+        return self.sunshine() * solar.full_par(self.rules.sun)
 
     def sun_direction(self) -> np.ndarray:
         """Unit vector from the tree towards the sun (for lighting, shadows and drawing the sun)."""

@@ -67,7 +67,7 @@ SCHEMA: tuple[Rule, ...] = (
          "length clock at the light daylight_full (new internodes)", "rate"),
     Rule("growth.daylight_memory", 125.66667, 1.0, 1e7, "s", "how long the tree remembers the light its leaves "
          "fixed sugar with: its length clock runs on that memory (so through the night too)", "time"),
-    Rule("growth.daylight_full", 0.2, 0.01, 1.0, "share of a fully lit leaf's sugar",
+    Rule("growth.daylight_full", 0.35, 0.01, 1.0, "share of a fully lit leaf's sugar",
          "remembered light at which the length clock runs at length_rate (it runs in proportion to it) ..."),
     Rule("growth.daylight_most", 2.0, 1.0, 10.0, "x length_rate", "... up to this much faster in more light"),
     Rule("growth.girth_rate", 0.1, 0.0, 100.0, "girth time per s", "girth clock at full water growth (thickening)",
@@ -141,9 +141,6 @@ SCHEMA: tuple[Rule, ...] = (
     Rule("roots.drain_relief", 0.35, 0.0, 0.9, "share (0..1)", "a full root system drains the water meter this much "
          "more slowly"),
     Rule("roots.full_length", 150.0, 1.0, 1e5, "scene units", "roots that count as a full root system"),
-    Rule("carbon.assimilation", 4.0, 0.0, 100.0, "g per m² of leaf per s", "sugar a leaf fixes in full sun with "
-         "open stomata (in proportion to the light that reaches it)", "rate"),
-    Rule("carbon.leaf_respiration", 0.08, 0.0, 100.0, "g per m² of leaf per s", "upkeep of the leaves", "rate"),
     Rule("carbon.wood_respiration", 200.0, 0.0, 1e6, "g per m³ of sapwood per s", "upkeep of the living wood "
          "(the pipe model's conducting cross-section times its length)", "rate"),
     Rule("carbon.dormant", 0.05, 0.0, 1.0, "share (0..1)", "upkeep in winter rest, as a share of summer's"),
@@ -184,6 +181,23 @@ SCHEMA: tuple[Rule, ...] = (
          "game days) stands for this span of a real tree's life, so a game day stands for real_year / year_days "
          "real days of its growing year (13 at the defaults, at every pace: the pace sets only how long a game day "
          "lasts to the player); rates are reported in real units over this scale"),
+    # A leaf's light response and dark respiration (engine/life/plant/photosynthesis.py); issue 43.
+    Rule("carbon.amax", 12.0, 1.0, 60.0, "µmol CO2 per m² of leaf per s", "light-saturated gross assimilation of "
+         "a leaf (a species' .lsys AMAX replaces it)", source="Wullschleger 1993, Biochemical limitations to carbon "
+         "assimilation in C3 plants (broadleaf trees 5-25)"),
+    Rule("carbon.quantum_efficiency", 0.05, 0.01, 0.125, "mol CO2 per mol of photons", "a leaf's quantum "
+         "efficiency: the light response's slope in dim light (a species' .lsys QE replaces it)",
+         source="Ehleringer & Björkman 1977, Quantum yields for CO2 uptake in C3 and C4 plants (0.05 at 30 °C)"),
+    Rule("carbon.curvature", 0.7, 0.0, 0.99, "0..1", "curvature theta of the non-rectangular hyperbola (0: a "
+         "rectangular hyperbola, 1: a sharp corner at Amax)", source="Thornley 1976, Mathematical Models in Plant "
+         "Physiology; Ögren & Evans 1993 (0.7-0.9)"),
+    Rule("carbon.dark_share", 0.07, 0.01, 0.3, "share of Amax", "a leaf's dark respiration, as a share of its Amax "
+         "(a species' .lsys RDS replaces it)", source="Reich et al. 1998, Relationships of leaf dark respiration to "
+         "leaf nitrogen, specific leaf area and leaf life-span (about 0.05-0.1)"),
+    Rule("water.stomata_scale", 0.2, 0.01, 1.0, METER, "the stomata close smoothly as the water meter falls, "
+         "open (1 - exp(-meter / this)) / (1 - exp(-1 / this)): at a meter of this much 64 %, at half of it 40 %",
+         source="the exponential soil-water response of Jarvis 1976, The interpretation of the variations in leaf "
+         "water potential and stomatal conductance found in canopies in the field"),
 )
 
 
