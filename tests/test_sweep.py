@@ -143,7 +143,7 @@ def test_ctrl_c_keeps_finished_runs_and_the_rerun_finishes(tmp_path):
     output, _ = proc.communicate(timeout=60)
     kept = {p.name: p.read_bytes() for p in (out / "runs").glob("run*.csv")}
     assert proc.returncode == 130, output
-    assert "Traceback" not in output and "run the same command again" in output
+    assert "Traceback" not in output and "run the same command to resume" in output
     assert 1 <= len(kept) < 6
     for text in kept.values():  # every kept run is whole: its header and its five samples
         assert text.count(b"\n") == 6

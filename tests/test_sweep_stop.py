@@ -77,8 +77,8 @@ def test_a_run_stops_at_the_sample_a_response_crosses_its_value(tmp_path):
 
 @pytest.mark.parametrize("table, line, col, words", [
     ("[stop]\ndie = true", 17, 1, "unknown key 'die' in [stop] (did you mean 'dies'?)"),
-    ("[stop]\ndies = 1", 17, 1, "'dies' must be true or false"),
-    ('[stop]\nresponse = "hieght"\nabove = 2', 17, 1, "unknown response 'hieght' (did you mean 'height'?)"),
+    ("[stop]\ndies = 1", 17, 8, "'dies' must be true or false"),
+    ('[stop]\nresponse = "hieght"\nabove = 2', 17, 12, "unknown response 'hieght' (did you mean 'height'?)"),
     ('[stop]\nresponse = "height"', 17, 1, "needs 'above' or 'below'"),
     ('[stop]\nresponse = "height"\nabove = 2\nbelow = 1', 17, 1, "needs 'above' or 'below' (one of them)"),
     ("[stop]\nabove = 2", 17, 1, "[stop] needs a 'response'"),

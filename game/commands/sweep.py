@@ -31,13 +31,27 @@ MAX_WORKERS = 256
 KEEP = ("all", "first", "none")
 
 
+RESUME = "run the same command to resume"  # what a stopped sweep says (the runs kept are not run again)
+
+
 def run_sweep(path: Path, out: Path, workers: int | None = None, scheduler: str | None = None,
               plots: bool = True, echo: Callable[[str], None] = report.say, keep: str = "first") -> int:
     """Run what is not done yet of the sweep in ``path`` into ``out``; write tables and figures when every
     run is done. ``keep`` says which final trees are saved (all, each level's first seed, none). Returns
-    the exit status (0 done, 1 some runs failed, 130 stopped by Ctrl-C)."""
+    the exit status (0 done, 1 some runs failed, 130 stopped by Ctrl-C: at any moment, it says how to
+    resume)."""
     if keep not in KEEP:
         raise ValueError(f"keep must be one of {KEEP}")
+    try:
+        return _run(path, out, workers, scheduler, plots, echo, keep)
+    except KeyboardInterrupt:  # (before the runs, or while the tables and figures are written)
+        done = len(list((out / "runs").glob("run*.csv"))) if (out / "runs").is_dir() else 0
+        echo(f"stopped: {done} finished run(s) kept in {out / 'runs'}; {RESUME}")
+        return 130
+
+
+def _run(path: Path, out: Path, workers: int | None, scheduler: str | None, plots: bool,
+         echo: Callable[[str], None], keep: str) -> int:
     sweep = load_sweep(path, ASSETS / "lsystems")
     store = RunStore(out, sweep)
     everything = runs(sweep)
@@ -64,8 +78,8 @@ def run_sweep(path: Path, out: Path, workers: int | None = None, scheduler: str 
     finally:
         bar.close()
     if stopped:
-        echo(f"stopped: {len(store.done())} of {len(everything)} runs kept in {out / 'runs'}; "
-             "run the same command again to finish the rest")
+        echo(f"stopped: {len(store.done())} of {len(everything)} runs kept in {out / 'runs'}; {RESUME} (the "
+             "runs kept are not run again)")
         return 130
     for run, error in failed:
         echo(f"{run.name} (seed {run.seed}, levels {run.levels}) failed: {error.strip().splitlines()[-1]}")

@@ -37,7 +37,7 @@ from arbor.game.render.layer import MIN_SCALE, Pictures, Step, screen_rect
 from arbor.game.render.renderer import _gl, _load_texture
 from arbor.game.render.shadows import SHADOW_SIZE, ShadowMaps
 from arbor.game.render.species import CLUSTERS, GAME_TREE, SpeciesLook
-from arbor.game.render.stage import Stage
+from arbor.game.render.stage import Scene, Stage
 
 LOD_PIXELS = (520, 260, 120)  # on-screen height (px) above which a tree gets level 0, 1, 2 (else 3)
 TWIG_PIXELS = (0.0, 0.1, 0.2, 0.35)  # per level: grown segments of a smaller radius (px) are left out
@@ -66,18 +66,6 @@ class Placed:
     offset: np.ndarray
     version: int = 0  # changes when the tree changed enough to need new shadows (FALLING: casts none)
     look: SpeciesLook = GAME_TREE  # its species' bark tint and leaf cards (game/render/species.py)
-
-
-@dataclass
-class _Scene:
-    """What a layered picture of the trees was drawn for (the frame that shows it shows this)."""
-
-    camera: OrbitCamera
-    vp: np.ndarray
-    sun: np.ndarray
-    light: np.ndarray
-    boxes: list
-    radius: float
 
 
 class GardenRenderer:
@@ -195,19 +183,19 @@ class GardenRenderer:
                 self.shadow_waited = 0
             for step in steps:
                 step()
-            self.stage.draw(target, size, vp, camera, sun, light, boxes, self._scene_bounds()[1], spread=stream,
-                            wait=bool(steps))
+            self.stage.draw(target, size, Scene(camera, vp, sun, light, boxes, self._scene_bounds()[1]),
+                            spread=stream, wait=bool(steps))
             self.ctx.enable(moderngl.DEPTH_TEST)
             self._trees_step(details, uniforms, WHOLE)[0]()
         else:
-            self._render_layered(target, size, _Scene(camera, vp, sun, light, boxes, self._scene_bounds()[1]),
+            self._render_layered(target, size, Scene(camera, vp, sun, light, boxes, self._scene_bounds()[1]),
                                  details, uniforms, scale)
         if smooth:
             self.post.smooth(fbo, size, screen_rect(camera, size, boxes, margin=0.15))
         elif target is not fbo:
             self.ctx.copy_framebuffer(fbo, target)
 
-    def _render_layered(self, target: moderngl.Framebuffer, size: tuple[int, int], scene: _Scene,
+    def _render_layered(self, target: moderngl.Framebuffer, size: tuple[int, int], scene: Scene,
                         details: list[Detail], uniforms: dict, scale: float) -> None:
         """The trees as a layer's picture (drawn over frames while the camera holds still, see
         layer.Pictures) over the backdrop, all as they were when the picture shown was begun."""
@@ -217,11 +205,9 @@ class GardenRenderer:
         views = (len(self.placed), tuple(id(p.buffers.view) for p in self.placed if p.version >= 0))
         self.pictures.draw(size, scale, scene.vp, corners, views,
                            lambda whole: self._picture_steps(scene, details, uniforms, size, whole), scene)
-        shown = self.pictures.shown.scene
-        self.stage.layered(target, size, shown.vp, shown.camera, shown.sun, shown.light, shown.boxes, shown.radius,
-                           self.pictures)
+        self.stage.layered(target, size, self.pictures.shown.scene, self.pictures)
 
-    def _picture_steps(self, scene: _Scene, details: list[Detail], uniforms: dict, size: tuple[int, int],
+    def _picture_steps(self, scene: Scene, details: list[Detail], uniforms: dict, size: tuple[int, int],
                        whole: bool) -> list[Step]:
         """What a picture of the trees takes, frame by frame (see layer.Pictures): the shadow map when it
         is due, then shares of the leaves, then the rest and the wood, and a frame for showing it (the

@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
+from dataclasses import dataclass
 
 import moderngl
 import numpy as np
@@ -18,6 +19,19 @@ from arbor.game.render.layer import Pictures, screen_rect
 from arbor.game.render.renderer import _gl
 from arbor.game.render.shadows import ShadowMaps
 from arbor.game.render.sky_look import LookKey, sky_look
+
+
+@dataclass
+class Scene:
+    """What a frame (or a layered picture of the trees) is drawn for: the camera and its view-projection,
+    the sun and the light's direction, the trees' bounding boxes and the radius of the scene."""
+
+    camera: OrbitCamera
+    vp: np.ndarray
+    sun: np.ndarray
+    light: np.ndarray
+    boxes: list
+    radius: float
 
 
 class Stage:
@@ -69,8 +83,7 @@ class Stage:
             self._msaa = (size, self.ctx.framebuffer(color_attachments=[color], depth_attachment=depth))
         return self._msaa[1]
 
-    def draw(self, target: moderngl.Framebuffer, size: tuple[int, int], vp: np.ndarray, camera: OrbitCamera,
-             sun: np.ndarray, light: np.ndarray, boxes: list, radius: float, spread: bool = False,
+    def draw(self, target: moderngl.Framebuffer, size: tuple[int, int], scene: Scene, spread: bool = False,
              wait: bool = False) -> None:
         """Sky, ground and the trees' shadows on it into ``target``, its depth cleared for the trees.
 
@@ -81,29 +94,28 @@ class Stage:
         depth-only clear."""
         ctx = self.ctx
         if self.samples <= 1:
-            self._keep(size, vp, camera, sun, light, boxes, radius, spread, wait)
+            self._keep(size, scene, spread, wait)
             ctx.copy_framebuffer(target, self.kept.frame)
             _clear_depth(target)
             return
         target.use()
         ctx.viewport = (0, 0, *size)
         ctx.disable(moderngl.DEPTH_TEST | moderngl.CULL_FACE)
-        parts = self._parts(size, vp, camera, sun, light, boxes, radius)
+        parts = self._parts(size, scene)
         parts.sky(None)
         parts.ground(None)
         _clear_depth(target)
         parts.shadows(target)
 
-    def _keep(self, size: tuple[int, int], vp: np.ndarray, camera: OrbitCamera, sun: np.ndarray,
-              light: np.ndarray, boxes: list, radius: float, spread: bool, wait: bool) -> None:
+    def _keep(self, size: tuple[int, int], scene: Scene, spread: bool, wait: bool) -> None:
         """Bring the kept backdrop (software GL) up to date: a part of it (``spread``, the camera holding
         still; none when the frame must ``wait``), else all of it."""
-        looks = self._state(size, vp, camera, sun, radius)
-        shadows = (self.shadows.version, self.backdrop.soft, len(boxes))
+        looks = self._state(size, scene.vp, scene.camera, scene.sun, scene.radius)
+        shadows = (self.shadows.version, self.backdrop.soft, len(scene.boxes))
         kept = self.kept
         if kept.current(looks, shadows):
             return
-        parts = self._parts(size, vp, camera, sun, light, boxes, radius)
+        parts = self._parts(size, scene)
         if spread and kept.shown is not None and kept.shown.view == looks.view and kept.ground is not None:
             if not wait:
                 kept.step(looks, shadows, parts)
@@ -119,11 +131,12 @@ class Stage:
         """Draw the backdrop in full next time (as a fresh game would)."""
         self.kept.ground = self.kept.shown = None
 
-    def _parts(self, size: tuple[int, int], vp: np.ndarray, camera: OrbitCamera, sun: np.ndarray,
-               light: np.ndarray, boxes: list, radius: float) -> Parts:
+    def _parts(self, size: tuple[int, int], scene: Scene) -> Parts:
         """Drawing the backdrop's parts for this camera and sun (see kept.Parts); each tells the look it
         drew (sky_look.LookKey), the sky again only where it changed when drawn over the ground."""
         ctx, backdrop, looks, now, rects = self.ctx, self.backdrop, self.looks, dict(self._now), self._rects
+        vp, camera, sun, radius = scene.vp, scene.camera, scene.sun, scene.radius
+        light, boxes = scene.light, scene.boxes
 
         def part(name: str, draw: Callable[[], None]) -> Callable[[str | None], None]:
             def run(depth: str | None) -> None:
@@ -162,14 +175,13 @@ class Stage:
         sky = part("sky", lambda: backdrop.draw_sky(vp, camera.eye, camera.distance * 20.0, sun))
         return Parts(sky, part("ground", ground), part("cover", cover) if cover is not None else None, shadows)
 
-    def layered(self, target: moderngl.Framebuffer, size: tuple[int, int], vp: np.ndarray, camera: OrbitCamera,
-                sun: np.ndarray, light: np.ndarray, boxes: list, radius: float, pictures: Pictures) -> None:
+    def layered(self, target: moderngl.Framebuffer, size: tuple[int, int], scene: Scene, pictures: Pictures) -> None:
         """Backdrop and the front picture of the trees laid over it, into ``target``, as they were when
         that picture was begun (camera, sun, shadows): kept as a picture of its own and copied until the
         next picture is shown or the backdrop changed (the layer's composite is a full-screen pass). The
         backdrop follows a part a frame what the camera did not change (see :meth:`draw`)."""
-        rect = screen_rect(camera, size, boxes, margin=0.15)
-        self._keep(size, vp, camera, sun, light, boxes, radius, spread=True, wait=False)
+        rect = screen_rect(scene.camera, size, scene.boxes, margin=0.15)
+        self._keep(size, scene, spread=True, wait=False)
         key = (self.kept.shown, self.kept.shadows, pictures.version, rect)
         self._scene = self._picture(self._scene, size)
         if key != self._scene_key:  # (keys hold the size: a new picture never matches an old key)

@@ -17,12 +17,12 @@ from __future__ import annotations
 
 import copy
 import csv
+import difflib
 import hashlib
 import math
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 
-from arbor.engine.base.config import read_toml
 from arbor.engine.base.errors import ExperimentError
 from arbor.engine.base.units import METRE
 from arbor.engine.life.experiment import schema
@@ -110,7 +110,7 @@ def load_experiment(path: str | Path, lsystem_dir: Path) -> Experiment:
     """Read and check an experiment file against the schema (engine/life/experiment/schema.py): every
     problem is one ExperimentError naming the file, the key's line and column, and the fix."""
     file = str(path)
-    text, data = read_toml(path, ExperimentError)
+    text, data = schema.read_file(path, ExperimentError)
     reader = Reader(file, text, ExperimentError)
     reader.table(data, schema.EXPERIMENT, (), "the experiment")
     trees = reader.value(data, "tree", schema.EXPERIMENT["tree"], (), [])
@@ -120,12 +120,13 @@ def load_experiment(path: str | Path, lsystem_dir: Path) -> Experiment:
     names = [r.name for r in regimes]
     for i, name in enumerate(names):
         if name in names[:i]:
-            raise reader.fail(f"two trees are named {name!r}: give each tree its own name", ("tree", i, "name"))
+            raise reader.fail(f"two trees are named {name!r}: give each tree its own name", ("tree", i, "name"),
+                              value=True)
     stems = [save_stem(name) for name in names]
     for i, stem in enumerate(stems):
         if stem in stems[:i]:
             raise reader.fail(f"trees {names[stems.index(stem)]!r} and {names[i]!r} would both be saved as "
-                              f"{stem}.arbor: give each tree a name of its own", ("tree", i, "name"))
+                              f"{stem}.arbor: give each tree a name of its own", ("tree", i, "name"), value=True)
     spacing = reader.value(data, "spacing", schema.EXPERIMENT["spacing"], (), 0.0) or None
     if spacing is not None:
         check_shared_sun(reader, regimes, trees)
@@ -133,7 +134,7 @@ def load_experiment(path: str | Path, lsystem_dir: Path) -> Experiment:
     return Experiment(
         title=str(get("title", path.stem)), seed=get("seed", 0), duration=reader.value(
             data, "duration", schema.EXPERIMENT["duration"], ()), sample_every=get("sample_every", 30.0),
-        regimes=regimes, lsystem=lsystem_dir / species_name(reader, data, "lab"), file=file,
+        regimes=regimes, lsystem=lsystem_dir / species_name(reader, data, "lab", lsystem_dir), file=file,
         pace=pace_value(reader, data), seasons=get("seasons", True), spacing=spacing, notes=reader.notes)
 
 
@@ -143,8 +144,9 @@ def save_stem(name: str) -> str:
     return "".join(c if c.isalnum() else "_" for c in name).strip("_").lower() or "tree"
 
 
-def species_name(reader: Reader, data: dict, kind: str) -> str:
-    """The species file name (key ``species``; a lab's old ``lsystem`` is read with a note), checked."""
+def species_name(reader: Reader, data: dict, kind: str, lsystem_dir: Path | None = None) -> str:
+    """The species file name (key ``species``; a lab's old ``lsystem`` is read with a note), checked (and,
+    given ``lsystem_dir``, a file there)."""
     key = "species"
     if kind == "lab" and "lsystem" in data:
         if "species" in data:
@@ -154,15 +156,29 @@ def species_name(reader: Reader, data: dict, kind: str) -> str:
                             "'lsystem' is now called 'species' (read as species)")
     name = reader.value(data, key, schema.COMMON["species"], (), "game_tree.lsys")
     if not name.endswith(".lsys") or "/" in name or "\\" in name or name.startswith("."):
-        raise reader.fail(f"'{key}' must be a file name in assets/lsystems, e.g. \"game_poplar.lsys\"", (key,))
+        raise reader.fail(f"'{key}' must be a file name in assets/lsystems, e.g. \"game_poplar.lsys\"", (key,),
+                          value=True)
+    if lsystem_dir is not None:
+        check_species(reader, name, lsystem_dir, (key,))
     return name
+
+
+def check_species(reader: Reader, name: str, lsystem_dir: Path, path: tuple, item: int | None = None) -> None:
+    """``name`` is an .lsys file in ``lsystem_dir``; else an error at the value naming the ones there are."""
+    if (lsystem_dir / name).is_file():
+        return
+    there = sorted(p.name for p in lsystem_dir.glob("*.lsys"))
+    close = difflib.get_close_matches(name, there, n=1, cutoff=0.75)
+    fix = f"did you mean {close[0]!r}? " if close else ""
+    raise reader.fail(f"no species {name!r} in assets/lsystems ({fix}the species are: {', '.join(there)})", path,
+                      value=True, item=item)
 
 
 def pace_value(reader: Reader, data: dict) -> str:
     """The pace a file asks for (default demo)."""
     pace = reader.value(data, "pace", schema.COMMON["pace"], (), "demo")
     if not pace.isidentifier():
-        raise reader.fail("'pace' must be the name of a pace in rules.toml (demo or home)", ("pace",))
+        raise reader.fail("'pace' must be the name of a pace in rules.toml (demo or home)", ("pace",), value=True)
     return pace
 
 
@@ -192,10 +208,10 @@ def parse_watering(reader: Reader, water, path: tuple) -> Watering:
         raise reader.fail("give 'below' (keep the meter up) or 'every' (a timetable), not both", (*path, "every"))
     if watering.below is not None and not watering.below < watering.until:
         raise reader.fail(f"'below' ({watering.below:g}) must be under 'until' ({watering.until:g}): watering "
-                          "starts below one and stops at the other", (*path, "below"))
+                          "starts below one and stops at the other", (*path, "below"), value=True)
     if watering.every is not None and watering.seconds >= watering.every:
         raise reader.fail(f"'seconds' ({watering.seconds:g}) must be shorter than 'every' ({watering.every:g})",
-                          (*path, "seconds"))
+                          (*path, "seconds"), value=True)
     return watering
 
 
@@ -217,13 +233,13 @@ def parse_regime(reader: Reader, t, path: tuple, keys: dict, factors: tuple[str,
     reader.table(t, keys, path, f"[[{path[0]}]] #{path[1] + 1}" if len(path) > 1 else f"[{path[0]}]")
     name = reader.value(t, "name", schema.TREE["name"], path) if "name" in keys else "base"
     if not name.strip():
-        raise reader.fail("a tree's 'name' must not be empty", (*path, "name"))
+        raise reader.fail("a tree's 'name' must not be empty", (*path, "name"), value=True)
     watering = parse_watering(reader, t.get("watering", "never"), (*path, "watering"))
     rules = reader.value(t, "rules", schema.TREE["rules"], path, {})
     probe = Rules()
     for key, value in rules.items():  # a known rule, within its range
         reader.rule(key, (*path, "rules", key))
-        set_rule(probe, key, value, reader.file, reader.error, at=reader.locator.find((*path, "rules", key)))
+        set_rule(probe, key, value, reader.file, reader.error, at=reader.locator.value((*path, "rules", key)))
     sun = {key: reader.value(t, key, schema.SUN[key], path, 0.0) if key in t else None for key in schema.SUN}
     if sun["orbit_height"] is not None and sun["day_length"] is not None:
         raise reader.fail("give 'orbit_height' or 'day_length', not both (the day length sets the orbit's height)",
@@ -256,13 +272,14 @@ def check_place(reader: Reader, sun: dict, path: tuple, given: list[str], rules:
         check_noon(reader, sun["latitude"], sun["day_of_year"], (*path, "latitude"))
 
 
-def check_noon(reader: Reader, latitude: float, day_of_year: float, path: tuple) -> None:
-    """The noon sun at this place and date stands at least schema.LOWEST_SUN degrees high."""
+def check_noon(reader: Reader, latitude: float, day_of_year: float, path: tuple, item: int | None = None) -> None:
+    """The noon sun at this place and date stands at least schema.LOWEST_SUN degrees high (an error at the
+    value of ``path``, its ``item``-th element for a list of levels)."""
     _, noon = schema.latitude_sun(latitude, day_of_year)
     if noon < schema.LOWEST_SUN:
         raise reader.fail(f"at latitude {latitude:g} on day {day_of_year:g} the noon sun stands {noon:.1f} degrees "
                           f"high, below Arbor's lowest ({schema.LOWEST_SUN:g}): choose a date nearer midsummer or a "
-                          "latitude nearer the equator", path)
+                          "latitude nearer the equator", path, value=True, item=item)
 
 
 def sun_of(regime: Regime) -> tuple[float | None, float | None]:

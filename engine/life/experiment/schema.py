@@ -16,8 +16,10 @@ import difflib
 import math
 import re
 from dataclasses import dataclass
+from pathlib import Path
 
 from arbor.engine.base.errors import LSysError
+from arbor.engine.base.reader import TOML_LIMIT, loads_toml, read_user_text
 from arbor.engine.life.rules.schema import SCHEMA as RULE_SCHEMA
 
 _HEADER = re.compile(r"\s*(\[\[?)\s*([^\]]*?)\s*\]\]?\s*(#.*)?$")
@@ -185,6 +187,52 @@ class Locator:
         return where
 
 
+    def value(self, path: tuple, item: int | None = None) -> tuple[int, int]:
+        """1-based (line, column) of the value of the key at ``path`` (where a wrong value is to be fixed,
+        not its key), of its ``item``-th element when it is a list; the key's place when the value is not
+        found after it."""
+        line, col = self.find(path)
+        keys = [k for k in path if isinstance(k, str)]
+        if not keys or line > len(self.lines):
+            return line, col
+        text = self.lines[line - 1]
+        match = re.compile(rf"\s*([\"']?){re.escape(keys[-1])}\1\s*=[ \t]*").match(text, col - 1)
+        if match is None or match.end() >= len(text):
+            return line, col
+        start = match.end()
+        if item is not None and text[start] == "[":
+            found = _element(text, start, item)
+            if found is not None:
+                return line, found + 1
+        return line, start + 1
+
+
+def _element(text: str, start: int, item: int) -> int | None:
+    """The index in ``text`` where element ``item`` of the list opening at ``start`` begins (the list on one
+    line; strings and nested lists skipped), or None."""
+    depth, index, quote = 0, 0, ""
+    for k in range(start, len(text)):
+        c = text[k]
+        if quote:
+            quote = "" if c == quote and text[k - 1] != "\\" else quote
+            continue
+        if depth == 1 and index == item and not c.isspace() and c not in ",]#":
+            return k
+        if c in "\"'":
+            quote = c
+        elif c in "[{":
+            depth += 1
+        elif c in "]}":
+            depth -= 1
+            if depth == 0:
+                return None
+        elif c == "," and depth == 1:
+            index += 1
+        elif c == "#":
+            return None
+    return None
+
+
 def _inline(lines: list[str], number: int, end: int, col: int, key: str) -> tuple[int, int] | None:
     """The position of ``key`` inside an inline table starting at line ``number``, column ``col``."""
     pattern = re.compile(rf"([{{,.\s])([\"']?){re.escape(key)}\2\s*=")
@@ -202,9 +250,11 @@ class Reader:
         self.file, self.error, self.locator = file, error, Locator(text)
         self.notes: list[str] = []
 
-    def fail(self, message: str, path: tuple) -> LSysError:
-        """The error for ``message`` at the key ``path``."""
-        return self.error(message, self.file, *self.locator.find(path))
+    def fail(self, message: str, path: tuple, value: bool = False, item: int | None = None) -> LSysError:
+        """The error for ``message`` at the key ``path`` (with ``value``: at its value, the ``item``-th
+        element of a list value, where the fix is to be typed)."""
+        where = self.locator.value(path, item) if value or item is not None else self.locator.find(path)
+        return self.error(message, self.file, *where)
 
     def table(self, data, keys: dict[str, Key], path: tuple, what: str) -> dict:
         """``data`` as a table whose every key is one of ``keys`` (an unknown key: the nearest known one)."""
@@ -217,19 +267,22 @@ class Reader:
                 raise self.fail(f"unknown key {key!r} in {what} ({fix})", (*path, key))
         return data
 
-    def known(self, name: str, known: list[str], what: str, path: tuple, otherwise: str) -> None:
-        """``name`` is one of ``known``; else an error at ``path`` with the nearest one as the fix
-        (``otherwise`` when none is near)."""
+    def known(self, name: str, known: list[str], what: str, path: tuple, otherwise: str,
+              item: int | None = None, value: bool = True) -> None:
+        """``name`` is one of ``known``; else an error at the value of ``path`` (its ``item``-th element; at the
+        key itself when not ``value``: a name given as a key) with the nearest one as the fix (``otherwise``
+        when none is near)."""
         if name in known:
             return
         close = difflib.get_close_matches(name, known, n=1, cutoff=0.75)  # (not a near miss: no guess)
-        raise self.fail(f"unknown {what} {name!r} ({f'did you mean {close[0]!r}?' if close else otherwise})", path)
+        raise self.fail(f"unknown {what} {name!r} ({f'did you mean {close[0]!r}?' if close else otherwise})", path,
+                        value=value, item=item)
 
-    def rule(self, key: str, path: tuple, also: tuple[str, ...] = (), what: str = "rule") -> None:
-        """``key`` is a rule of rules.toml ("section.name") or one of ``also``; else an error at ``path``
-        with the nearest known key as the fix."""
+    def rule(self, key: str, path: tuple, also: tuple[str, ...] = (), what: str = "rule", value: bool = False) -> None:
+        """``key`` is a rule of rules.toml ("section.name") or one of ``also``; else an error at ``path`` (its
+        value with ``value``: a rule named as a value) with the nearest known key as the fix."""
         otherwise = f"use {', '.join(also)} or a rule of docs/rules.md" if also else "docs/rules.md lists every rule"
-        self.known(key, [*also, *(r.key for r in RULE_SCHEMA)], what, path, otherwise)
+        self.known(key, [*also, *(r.key for r in RULE_SCHEMA)], what, path, otherwise, value=value)
 
     def value(self, data: dict, key: str, spec: Key, path: tuple, default=None):
         """``data[key]`` checked against ``spec`` (``default`` when missing; missing and no default: an error)."""
@@ -239,28 +292,71 @@ class Reader:
             return default
         return self.check(data[key], key, spec, (*path, key))
 
-    def check(self, value, key: str, spec: Key, path: tuple):
-        """One value against its key's type and range."""
+    def check(self, value, key: str, spec: Key, path: tuple, item: int | None = None):
+        """One value (the ``item``-th element of a list) against its key's type and range; an error points
+        at the value."""
         if spec.kind in ("number", "whole"):
-            return self._number(value, key, spec, path)
+            return self._number(value, key, spec, path, item)
         kinds = {"text": str, "flag": bool, "table": dict, "tables": list, "list": list}
         want = kinds.get(spec.kind)
         if want is not None and not isinstance(value, want):
             words = {"text": "a text in quotes", "flag": "true or false", "table": "a table",
                      "tables": f"[[{key}]] tables", "list": "a list [...]"}
-            raise self.fail(f"{key!r} must be {words[spec.kind]}", path)
+            raise self.fail(f"{key!r} must be {words[spec.kind]}", path, value=True, item=item)
         return value
 
-    def _number(self, value, key: str, spec: Key, path: tuple) -> float | int:
+    def _number(self, value, key: str, spec: Key, path: tuple, item: int | None) -> float | int:
         if isinstance(value, bool) or not isinstance(value, int | float) or not math.isfinite(value):
             unit = f" ({spec.unit})" if spec.unit else ""
-            raise self.fail(f"{key!r} must be a number{unit}, not {value!r}", path)
+            raise self.fail(f"{key!r} must be a number{unit}, not {value!r}", path, value=True, item=item)
         if spec.kind == "whole" and isinstance(value, float):  # (2.0 too: a seed is written whole)
-            raise self.fail(f"{key!r} must be a whole number, not {value!r}", path)
+            raise self.fail(f"{key!r} must be a whole number, not {value!r}", path, value=True, item=item)
         low, high = spec.low, spec.high
         if (low is not None and (value <= low if spec.above else value < low)) or (high is not None and value > high):
-            raise self.fail(f"{key!r} must be {spec.describe()} (it is {_num(value)})", path)
+            raise self.fail(f"{key!r} must be {spec.describe()} (it is {_num(value)})", path, value=True, item=item)
         return int(value) if spec.kind == "whole" else float(value)
+
+
+def read_file(path: str | Path, error: type[LSysError]) -> tuple[str, dict]:
+    """The text and data of a teacher's TOML file (the one reader for users' files: a regular file, size,
+    nesting and work bounded); a text whose closing quote is missing is named at its opening quote (the TOML
+    reader says only "Illegal character '\\n'" at the line's end)."""
+    text = read_user_text(path, TOML_LIMIT, error)
+    try:
+        return text, loads_toml(text, str(path), error)
+    except LSysError as err:
+        lines = text.splitlines()
+        last = len(lines) if "end of document" in err.message else err.line  # (an open 'literal' reads to the end)
+        for number, line in enumerate(lines[:last], 1):
+            if '"""' in line or "'''" in line:  # a multi-line string: its lines are not one-line texts
+                break
+            opened = unclosed_quote(line)
+            if opened is not None:
+                quote, col = opened
+                raise error(f"the text opened with {quote} at column {col} is not closed: end it with {quote} on "
+                            "the same line", err.file, number, col) from None
+        raise
+
+
+def unclosed_quote(line: str) -> tuple[str, int] | None:
+    """(the quote, its 1-based column) of a string ``line`` opens and does not close, or None (a comment
+    ends the scan; a line with a multi-line string's triple quote is left to the TOML reader)."""
+    if '"""' in line or "'''" in line:
+        return None
+    quote, start, k = "", 0, 0
+    while k < len(line):
+        c = line[k]
+        if quote:
+            if c == "\\" and quote == '"':
+                k += 1
+            elif c == quote:
+                quote = ""
+        elif c in "\"'":
+            quote, start = c, k
+        elif c == "#":
+            return None
+        k += 1
+    return (quote, start + 1) if quote else None
 
 
 def day_length_height(hours: float) -> float:

@@ -24,10 +24,9 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
-from arbor.engine.base.config import read_toml
 from arbor.engine.base.errors import SweepError
 from arbor.engine.life.experiment import schema
-from arbor.engine.life.experiment.lab import check_noon, pace_value, parse_regime, species_name
+from arbor.engine.life.experiment.lab import check_noon, check_species, pace_value, parse_regime, species_name
 from arbor.engine.life.experiment.schema import Reader
 from arbor.engine.life.experiment.sweep import (
     MAX_FACTORS,
@@ -36,9 +35,11 @@ from arbor.engine.life.experiment.sweep import (
     MAX_SEEDS,
     REGIME_KEYS,
     RESPONSES,
+    STOP_COLUMNS,
     Factor,
     Stop,
     Sweep,
+    cell,
 )
 from arbor.engine.life.rules.rules import Rules, set_rule
 
@@ -49,7 +50,7 @@ def load_sweep(path: str | Path, lsystem_dir: Path) -> Sweep:
     """Read and check a sweep file against the schema (engine/life/experiment/schema.py); species must be
     .lsys files in ``lsystem_dir``. Every problem is one SweepError naming the key's line and column."""
     file = str(path)
-    source, data = read_toml(path, SweepError)
+    source, data = schema.read_file(path, SweepError)
     reader = Reader(file, source, SweepError)
     reader.table(data, schema.SWEEP, (), "the sweep")
     get = lambda key, default=None: reader.value(data, key, schema.SWEEP[key], (), default)  # noqa: E731
@@ -85,10 +86,15 @@ def _factors(reader: Reader, data: dict, lsystem_dir: Path) -> list[Factor]:
     factors = [_factor(reader, t, ("factor", i), lsystem_dir) for i, t in enumerate(tables)]
     for i, f in enumerate(factors):
         if f.key in [g.key for g in factors[:i]]:
-            raise reader.fail("two factors vary the same thing", ("factor", i, "key"))
-        if f.name in [g.name for g in factors[:i]] or f.name in {"run", "seed", "time_s", "response", *RESPONSES}:
-            raise reader.fail("each factor needs its own name (not run, seed, time_s, response or a response's)",
-                              ("factor", i, "name"))
+            raise reader.fail(f"two factors vary {f.key!r}: vary it in one [[factor]] (give it every level)",
+                              ("factor", i, "key"), value=True)
+        where = ("factor", i, "name") if "name" in tables[i] else ("factor", i, "key")
+        if f.name in [g.name for g in factors[:i]]:
+            raise reader.fail(f"two factors are named {f.name!r}: give each factor a name of its own", where,
+                              value=True)
+        if f.name in {"run", "seed", "time_s", "response", *STOP_COLUMNS, *RESPONSES}:
+            raise reader.fail(f"a factor cannot be named {f.name!r}: that is a column of the tables already (run, "
+                              "seed, time_s, response, stop or a response's)", where, value=True)
     return factors
 
 
@@ -98,19 +104,20 @@ def _factor(reader: Reader, t, path: tuple, lsystem_dir: Path) -> Factor:
     levels = reader.value(t, "levels", schema.FACTOR["levels"], path)
     where = (*path, "levels")
     if not 1 <= len(levels) <= MAX_LEVELS:
-        raise reader.fail(f"'levels' must be a list of 1 to {MAX_LEVELS} values", where)
+        raise reader.fail(f"'levels' must be a list of 1 to {MAX_LEVELS} values", where, value=True)
     if key == "species":
-        levels = [_species_file(reader, v, lsystem_dir, where) for v in levels]
+        levels = [_species_file(reader, v, lsystem_dir, where, k) for k, v in enumerate(levels)]
     elif key in REGIME_KEYS:
-        levels = [reader.check(v, "levels", schema.FACTOR_KEYS[key], where) for v in levels]
+        levels = [reader.check(v, "levels", schema.FACTOR_KEYS[key], where, k) for k, v in enumerate(levels)]
     else:
-        reader.rule(key, (*path, "key"), also=(*REGIME_KEYS, "species"), what="factor key")
-        levels = [reader.check(v, "levels", schema.Key("number", "a level"), where) for v in levels]
+        reader.rule(key, (*path, "key"), also=(*REGIME_KEYS, "species"), what="factor key", value=True)
+        levels = [reader.check(v, "levels", schema.Key("number", "a level"), where, k) for k, v in enumerate(levels)]
         probe = Rules()
-        for level in levels:  # a known rule, every level in its range
-            set_rule(probe, key, level, reader.file, SweepError, at=reader.locator.find((*path, "key")))
-    if len(set(levels)) != len(levels):
-        raise reader.fail("'levels' must not repeat a value", where)
+        for k, level in enumerate(levels):  # a known rule, every level in its range
+            set_rule(probe, key, level, reader.file, SweepError, at=reader.locator.value(where, k))
+    for k, level in enumerate(levels):
+        if level in levels[:k]:
+            raise reader.fail(f"'levels' must not repeat a value ({cell(level)} is there twice)", where, item=k)
     return Factor(str(t.get("name", key)), key, tuple(levels))
 
 
@@ -130,21 +137,20 @@ def _check_place(reader: Reader, base, factors: list[Factor]) -> None:
             raise reader.fail(f"a factor {key!r} needs {other!r}: give it in [base] or vary it too",
                               ("factor", i, "key"))
     levels = {key: [getattr(base, key)] for key in ("latitude", "day_of_year")}
-    where = ("base", "latitude")
+    where, varied = ("base", "latitude"), ""
     for i, f in enumerate(factors):
         if f.key in levels:
-            levels[f.key], where = list(f.levels), ("factor", i, "levels")
-    for latitude in levels["latitude"]:
-        for day in levels["day_of_year"]:
-            check_noon(reader, latitude, day, where)
+            levels[f.key], where, varied = list(f.levels), ("factor", i, "levels"), f.key
+    for a, latitude in enumerate(levels["latitude"]):
+        for b, day in enumerate(levels["day_of_year"]):
+            check_noon(reader, latitude, day, where, {"latitude": a, "day_of_year": b}.get(varied))
 
 
-def _species_file(reader: Reader, name, lsystem_dir: Path, path: tuple) -> str:
+def _species_file(reader: Reader, name, lsystem_dir: Path, path: tuple, item: int | None = None) -> str:
     if not isinstance(name, str) or not name.endswith(".lsys") or "/" in name or "\\" in name or name.startswith("."):
         raise reader.fail("a species is the file name of an .lsys in assets/lsystems, e.g. \"game_poplar.lsys\"",
-                          path)
-    if not (lsystem_dir / name).is_file():
-        raise reader.fail(f"no species {name!r} in assets/lsystems", path)
+                          path, value=True, item=item)
+    check_species(reader, name, lsystem_dir, path, item)
     return name
 
 
@@ -172,20 +178,23 @@ def _seeds(reader: Reader, value) -> list[int]:
     seed = schema.Key("whole", "a seed", "", 0, schema.SEED_MAX)
     if isinstance(value, int) and not isinstance(value, bool):
         if not 1 <= value <= MAX_SEEDS:
-            raise reader.fail(f"'seeds' must be 1 to {MAX_SEEDS} (how many) or a list of seeds", ("seeds",))
+            raise reader.fail(f"'seeds' must be 1 to {MAX_SEEDS} (how many) or a list of seeds", ("seeds",),
+                              value=True)
         return list(range(1, value + 1))
     if not isinstance(value, list) or not 1 <= len(value) <= MAX_SEEDS:
-        raise reader.fail(f"'seeds' must be a count or a list of 1 to {MAX_SEEDS} whole numbers from 0", ("seeds",))
-    seeds = [reader.check(s, "seeds", seed, ("seeds",)) for s in value]
-    if len(set(seeds)) != len(seeds):
-        raise reader.fail("'seeds' must not repeat a seed", ("seeds",))
+        raise reader.fail(f"'seeds' must be a count or a list of 1 to {MAX_SEEDS} whole numbers from 0", ("seeds",),
+                          value=True)
+    seeds = [reader.check(s, "seeds", seed, ("seeds",), k) for k, s in enumerate(value)]
+    for k, s in enumerate(seeds):
+        if s in seeds[:k]:
+            raise reader.fail(f"'seeds' must not repeat a seed ({s} is there twice)", ("seeds",), item=k)
     return seeds
 
 
 def _responses(reader: Reader, value: list) -> tuple[str, ...]:
-    for v in value:
+    for k, v in enumerate(value):
         reader.known(v, list(RESPONSES), "response", ("responses",),
-                     f"choose from {', '.join(RESPONSES)}; docs/columns.md")
+                     f"choose from {', '.join(RESPONSES)}; docs/columns.md", item=k)
     if not value:
         raise reader.fail("'responses' must name at least one response", ("responses",))
     return tuple(dict.fromkeys(value))
