@@ -171,3 +171,20 @@ def test_import_waits_for_no_game_it_is_refused_while_one_holds_the_garden(card,
 def test_card_bytes_put_the_save_before_the_picture_data(saved):
     data = card_bytes(_png(), read_garden(saved))
     assert data.index(b"iTXt") < data.index(b"IDAT")
+
+
+def test_a_card_is_checked_to_its_last_chunk_and_its_errors_name_no_line(saved, tmp_path):
+    """Issue 45: damage after the save chunk (a bad IEND CRC, no IHDR) was accepted, and card errors
+    carried a meaningless ':1:1:'."""
+    good = card_bytes(_png(), read_garden(saved))
+    bad_end = good[:-4] + bytes(4)  # IEND's CRC zeroed
+    no_header = card_module.SIGNATURE + good[len(card_module.SIGNATURE) + 25:]  # IHDR (25 bytes) taken out
+    for name, data, says in [("end.png", bad_end, "a damaged PNG chunk 'IEND'"),
+                             ("head.png", no_header, "does not start with its header chunk")]:
+        path = tmp_path / name
+        path.write_bytes(data)
+        with pytest.raises(SaveError) as info:
+            read_card(path)
+        assert says in str(info.value) and str(info.value).startswith(f"{path}: ") and ":1:1:" not in str(info.value)
+    (tmp_path / "ok.png").write_bytes(good)
+    assert read_card(tmp_path / "ok.png").worlds

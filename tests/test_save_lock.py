@@ -95,13 +95,15 @@ def test_the_watchdog_restart_takes_over_the_lock_of_the_child_it_killed(tmp_pat
 @pytest.mark.skipif(shutil.which("xvfb-run") is None, reason="needs xvfb-run (CI installs it)")
 def test_two_real_games_on_one_folder(tmp_path):
     saves = tmp_path / "saves"
-    env = dict(os.environ, SDL_VIDEODRIVER="x11", SDL_AUDIODRIVER="dummy", ARBOR_HEARTBEAT=str(tmp_path / "beat"))
+    env = dict(os.environ, SDL_VIDEODRIVER="x11", SDL_AUDIODRIVER="dummy", ARBOR_HEARTBEAT=str(tmp_path / "beat"),
+               ARBOR_TIMING="1")
+    err = tmp_path / "stderr"
     first = subprocess.Popen(["xvfb-run", "-a", sys.executable, "-m", "arbor.game.cli", "--saves", str(saves)],
-                             env=env, cwd=ROOT, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+                             env=env, cwd=ROOT, stdout=subprocess.DEVNULL, stderr=err.open("wb"))
     try:
         deadline = time.monotonic() + 150
-        while not (tmp_path / "beat").exists():  # the first game is playing
-            assert first.poll() is None and time.monotonic() < deadline, first.stderr.read().decode()[-2000:]
+        while b"arbor-timing garden" not in err.read_bytes():  # the first game is playing (its first frame)
+            assert first.poll() is None and time.monotonic() < deadline, err.read_text()[-2000:]
             time.sleep(0.2)
         pid = int((saves / LOCK_NAME).read_text())
         second = _arbor("--saves", str(saves))

@@ -8,7 +8,8 @@ class LSysError(Exception):
     the kinds below (every caller that reports a bad file catches this one).
 
     Carries the file name, 1-based line and column so a player who shared a broken file can be told
-    exactly where it is broken. ``str()`` gives ``file:line:col: message``.
+    exactly where it is broken. ``str()`` gives ``file:line:col: message``; a file that has no lines (a
+    picture: the message says the byte) gives line 0 and ``file: message``.
     """
 
     def __init__(self, message: str, file: str = "<string>", line: int = 1, col: int = 1) -> None:
@@ -16,7 +17,7 @@ class LSysError(Exception):
         self.file = file
         self.line = line
         self.col = col
-        super().__init__(f"{file}:{line}:{col}: {message}")
+        super().__init__(f"{file}:{line}:{col}: {message}" if line > 0 else f"{file}: {message}")
 
 
 class RulesError(LSysError):

@@ -4,12 +4,13 @@ setting bad files aside under names of their own, and a folder lock (one writer 
 from __future__ import annotations
 
 import errno
+import glob
 import os
 from pathlib import Path
 
 from arbor.engine.base.reader import read_regular
 
-__all__ = ["FolderBusyError", "FolderLock", "atomic_write", "read_regular", "set_aside"]
+__all__ = ["FolderBusyError", "FolderLock", "atomic_write", "read_regular", "remove_stale_temp_files", "set_aside"]
 
 
 def atomic_write(path: str | Path, data: bytes) -> None:
@@ -19,6 +20,7 @@ def atomic_write(path: str | Path, data: bytes) -> None:
     """
     path = Path(path)
     tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
+    remove_stale_temp_files(path.parent, glob.escape(path.name), own=False)  # (writes a kill -9 cut short)
     if not path.parent.is_dir():  # say so by the folder's name, not the temp file's (an error a user reads)
         raise FileNotFoundError(errno.ENOENT, f"no such folder (to write {path.name} in)", str(path.parent))
     try:
@@ -38,6 +40,28 @@ def atomic_write(path: str | Path, data: bytes) -> None:
         os.fsync(dir_fd)
     finally:
         os.close(dir_fd)
+
+
+def remove_stale_temp_files(folder: Path, name: str = "*", own: bool = True) -> int:
+    """Delete the temp files (``.NAME.PID.tmp``, NAME matching the glob ``name``) that a write cut short
+    left behind: a killed process's (a dead pid), and (``own``) our own from an earlier failed write.
+    Returns how many; never raises (a folder that cannot be listed or written keeps them)."""
+    removed = 0
+    try:
+        candidates = list(Path(folder).glob(f".{name}.*.tmp"))
+    except OSError:
+        return 0
+    for tmp in candidates:
+        parts = tmp.name.rsplit(".", 2)
+        pid = int(parts[1]) if len(parts) == 3 and parts[1].isdigit() else None
+        if pid is not None and ((pid != os.getpid() and _pid_alive(pid)) or (pid == os.getpid() and not own)):
+            continue  # (a live process may be writing it now)
+        try:
+            tmp.unlink()
+            removed += 1
+        except OSError:
+            pass
+    return removed
 
 
 def _new_file(tmp: Path) -> int:

@@ -16,7 +16,7 @@ from collections.abc import Callable
 from pathlib import Path
 
 from arbor.engine.base.errors import LSysError
-from arbor.engine.base.files import atomic_write, set_aside
+from arbor.engine.base.files import atomic_write, remove_stale_temp_files, set_aside
 from arbor.engine.life.keep.away import AwaySummary, away_seconds, live_away
 from arbor.engine.life.keep.generations import rotate
 from arbor.engine.life.keep.save import SavedGarden, garden_text, read_garden, write_garden
@@ -193,36 +193,6 @@ def _free_name(path: Path) -> Path:
     while path.with_name(f"{path.stem}{'' if n == 1 else f'-{n}'}{path.suffix}").exists():
         n += 1
     return path.with_name(f"{path.stem}{'' if n == 1 else f'-{n}'}{path.suffix}")
-
-
-def remove_stale_temp_files(folder: Path) -> int:
-    """Delete temp files that a killed save left behind (``.NAME.PID.tmp`` of a process that is gone)."""
-    removed = 0
-    try:
-        candidates = list(folder.glob(".*.tmp"))
-    except OSError:
-        return 0
-    for tmp in candidates:
-        parts = tmp.name.rsplit(".", 2)
-        pid = int(parts[1]) if len(parts) == 3 and parts[1].isdigit() else None
-        if pid is not None and pid != os.getpid() and _alive(pid):
-            continue
-        try:
-            tmp.unlink()
-            removed += 1
-        except OSError:
-            pass
-    return removed
-
-
-def _alive(pid: int) -> bool:
-    try:
-        os.kill(pid, 0)
-    except ProcessLookupError:
-        return False
-    except OSError:
-        return True
-    return True
 
 
 def away_message(summary: AwaySummary) -> str:

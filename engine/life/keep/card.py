@@ -44,13 +44,16 @@ def card_save_bytes(path: str | Path) -> bytes:
     try:
         raw = read_regular(path, MAX_CARD_BYTES)
     except OSError as exc:
-        raise SaveError(f"cannot read: {exc.strerror}", str(path)) from None
+        raise _error(f"cannot read: {exc.strerror}", str(path)) from None
     if len(raw) > MAX_CARD_BYTES:
-        raise SaveError(f"too large for a card (more than {MAX_CARD_BYTES:,} bytes)", str(path))
-    for kind, data in _chunks(raw, str(path)):
+        raise _error(f"too large for a card (more than {MAX_CARD_BYTES:,} bytes)", str(path))
+    chunks = list(_chunks(raw, str(path)))  # every chunk to IEND, each length and CRC checked
+    if chunks[0][0] != b"IHDR":
+        raise _error("not a PNG picture (it does not start with its header chunk, IHDR)", str(path))
+    for kind, data in chunks:
         if kind == b"iTXt" and data.startswith(KEYWORD + b"\x00"):
             return _itxt_text(data[len(KEYWORD) + 1:], str(path))
-    raise SaveError("this picture carries no Arbor save (was it re-saved by a program that drops PNG text "
+    raise _error("this picture carries no Arbor save (was it re-saved by a program that drops PNG text "
                     "chunks? share the card file itself)", str(path))
 
 
@@ -72,6 +75,12 @@ def plant_card(garden: Garden, shared: SavedGarden) -> World:
     return garden.adopt(world)
 
 
+def _error(message: str, label: str) -> SaveError:
+    """A SaveError about the card ``label`` as a picture: no line and column (it has none; the message
+    names the byte where it can)."""
+    return SaveError(message, label, 0, 0)
+
+
 def _chunk(kind: bytes, data: bytes) -> bytes:
     """One PNG chunk: length, type, data, CRC of type and data."""
     return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data))
@@ -80,34 +89,34 @@ def _chunk(kind: bytes, data: bytes) -> bytes:
 def _chunks(raw: bytes, label: str):
     """(type, data) of each chunk of the PNG ``raw``, up to IEND; lengths and CRCs checked."""
     if not raw.startswith(SIGNATURE):
-        raise SaveError("not a PNG picture", label)
+        raise _error("not a PNG picture", label)
     at = len(SIGNATURE)
     for _ in range(MAX_CHUNKS):
         if at + 12 > len(raw):
-            raise SaveError("a PNG cut short (no end chunk)", label)
+            raise _error("a PNG cut short (no end chunk)", label)
         (length,), kind = struct.unpack(">I", raw[at:at + 4]), raw[at + 4:at + 8]
         end = at + 12 + length
         if end > len(raw):
-            raise SaveError(f"a PNG chunk longer than the file (byte {at})", label)
+            raise _error(f"a PNG chunk longer than the file (byte {at})", label)
         data = raw[at + 8:end - 4]
         if struct.unpack(">I", raw[end - 4:end])[0] != zlib.crc32(kind + data):
-            raise SaveError(f"a damaged PNG chunk {kind.decode('latin-1')!r} (byte {at})", label)
+            raise _error(f"a damaged PNG chunk {kind.decode('latin-1')!r} (byte {at})", label)
         yield kind, data
         if kind == b"IEND":
             return
         at = end
-    raise SaveError(f"more than {MAX_CHUNKS:,} PNG chunks", label)
+    raise _error(f"more than {MAX_CHUNKS:,} PNG chunks", label)
 
 
 def _itxt_text(rest: bytes, label: str) -> bytes:
     """The text of an iTXt chunk's body after its keyword: flag, method, language, translated keyword,
     then the (compressed) text, inflated to at most MAX_BYTES."""
     if len(rest) < 2:
-        raise SaveError("a damaged Arbor save chunk", label)
+        raise _error("a damaged Arbor save chunk", label)
     compressed, method = rest[0], rest[1]
     parts = rest[2:].split(b"\x00", 2)
     if len(parts) != 3 or compressed not in (0, 1) or method != 0:
-        raise SaveError("a damaged Arbor save chunk", label)
+        raise _error("a damaged Arbor save chunk", label)
     body = parts[2]
     if not compressed:
         return body
@@ -115,7 +124,7 @@ def _itxt_text(rest: bytes, label: str) -> bytes:
     try:
         text = inflater.decompress(body, MAX_BYTES + 1)
     except zlib.error:
-        raise SaveError("the Arbor save chunk does not inflate (damaged)", label) from None
+        raise _error("the Arbor save chunk does not inflate (damaged)", label) from None
     if len(text) > MAX_BYTES or inflater.unconsumed_tail:
-        raise SaveError(f"the save inside is too large (more than {MAX_BYTES:,} bytes)", label)
+        raise _error(f"the save inside is too large (more than {MAX_BYTES:,} bytes)", label)
     return text
