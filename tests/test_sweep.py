@@ -172,7 +172,7 @@ def test_a_folder_of_another_sweep_is_refused(sweep_file, pooled, tmp_path):
     (("\"alive\"]", "\"beauty\"]"), "unknown response 'beauty'"),
     (("sample_every = 50", "sample_every = 0.01"), "more than 2000 samples"),
     (("key = \"orbit_height\"", "key = \"species\""), "a species is the file name"),
-    (("name = \"Drain\"", "name = \"Sun orbit height\""), "its own name"),
+    (("name = \"Drain\"", "name = \"Sun orbit height\""), "two factors are named 'Sun orbit height'"),
 ])
 def test_bad_sweep_files_name_the_problem(tmp_path, change, message):
     path = tmp_path / "bad.toml"
