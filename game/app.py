@@ -129,7 +129,8 @@ def _main_loop(ctx, size: tuple[int, int], poll, frame, on_first_frame=None,
 
 
 def _screen_frame(screen, fbo):
-    """A frame function for anything with handle_input(), update() and draw()."""
+    """A frame function for anything with handle_input(), update() and draw() (a game, a viewer, a screen
+    stack)."""
     def frame(events, seconds: float) -> bool:
         keep = True
         for event in events:
@@ -291,12 +292,13 @@ def run_lab_window(experiment: Path) -> int:
     from arbor.game.first_start import timing
     from arbor.game.input.events import InputHub
     from arbor.game.screens.lab import LabScreen
+    from arbor.game.screens.stack import ScreenStack
 
     lab = new_lab(experiment)
     ctx = open_window(WINDOW, f"Arbor lab - {lab.experiment.title}")
     with StopSignals() as signals:  # (from the window on: a signal while the screen is built ends it too)
-        screen = LabScreen(ctx, WINDOW, lab)
-        _main_loop(ctx, WINDOW, InputHub(WINDOW).poll, _screen_frame(screen, ctx.screen),
+        screens = ScreenStack(LabScreen(ctx, WINDOW, lab))
+        _main_loop(ctx, WINDOW, InputHub(WINDOW).poll, _screen_frame(screens, ctx.screen),
                    on_first_frame=lambda: timing("garden"), signals=signals)
     pygame.quit()
     return 0

@@ -15,6 +15,7 @@ from arbor.engine.life.rules.rules import load_rules
 from arbor.engine.life.world.actions import Action
 from arbor.engine.life.world.world import World
 from arbor.engine.lsystem.lsys import load_lsystem
+from arbor.game.input.events import DOWN, UP, InputEvent
 from arbor.game.screens.game import Game, GameConfig
 from tests.conftest import FakeClock
 from tests.test_game import tap
@@ -95,8 +96,8 @@ def test_first_run_hints_go_one_by_one_as_the_player_finds_things(gl_ctx, tmp_pa
     tap(game, 600, 200)
     assert game.menu.visible and "watering can" in game.hud_info().hint
     water = game.menu.widget("water")
-    game.input._pointer("down", 1, *water.rect.center, 1.0)
-    game.input._pointer("up", 1, *water.rect.center, 1.1)
+    game.handle_input(InputEvent(DOWN, 1.0, "touch:1", 1, *water.rect.center))  # (the open menu's press)
+    game.handle_input(InputEvent(UP, 1.1, "touch:1", 1, *water.rect.center))
     assert "Drag to walk around" in game.hud_info().hint
     tap(game, 600, 200)  # close the menu
     game.control.turn(35.0)
@@ -257,7 +258,7 @@ def test_crossing_two_trees_by_menu_and_tap_and_the_family_screen(gl_ctx, tmp_pa
     assert len(game.garden.worlds) == 3 and game.world.lineage.parents == (mother.lineage.id, father.lineage.id)
     assert "seedling is planted" in game.hud_info().message
     game.act(Action.FAMILY, 1.0)
-    assert game.family.visible and not game.menu.visible
+    assert game.family.up and not game.menu.visible
     game.draw(fbo)
     boxes = {lin.id: box for box, lin in game.family.boxes}
     assert set(boxes) == {w.lineage.id for w in game.garden.worlds}
@@ -267,7 +268,7 @@ def test_crossing_two_trees_by_menu_and_tap_and_the_family_screen(gl_ctx, tmp_pa
     thumb = img[box.top:box.bottom, box.left:box.right]
     assert (thumb[:, :, 1] > thumb[:, :, 0] + 30).sum() > 30  # a sketch of the tree, with its leaves
     tap(game, *boxes[father.lineage.id].center)
-    assert not game.family.visible and game.world is father
+    assert not game.family.up and game.world is father
 
 
 def test_the_cut_away_view_shows_the_roots_in_the_soil(gl_ctx, tmp_path, fruiting):

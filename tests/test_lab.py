@@ -85,18 +85,22 @@ def test_bad_experiments_are_clear_errors(tmp_path, text, words):
 
 def test_lab_screen_draws_trees_side_by_side_and_exports(gl_ctx, tmp_path):
     import numpy as np
+    import pygame
 
     from arbor.game.commands.lab import new_lab
-    from arbor.game.input.events import DOWN, InputEvent
+    from arbor.game.input.events import DOWN, KEY_DOWN, InputEvent
     from arbor.game.screens.lab import LabScreen
+    from arbor.game.screens.stack import ScreenStack
 
     lab = new_lab(short(EXPERIMENTS / "drought_vs_watered.toml", tmp_path, 900))
     size = (1280, 720)
     screen = LabScreen(gl_ctx, size, lab, results=tmp_path / "results")
+    screens = ScreenStack(screen)  # (as the lab's window runs it)
     for name, speed in (("100x", 100.0), ("Pause", 0.0), ("10x", 10.0)):
         rect = screen.buttons[name]
-        screen.handle_input(InputEvent(DOWN, 0.0, "touch:1", 0, *rect.center))
+        assert screens.handle_input(InputEvent(DOWN, 0.0, "touch:1", 0, *rect.center))
         assert screen.loop.speed == speed
+    assert not screens.handle_input(InputEvent(KEY_DOWN, 0.0, "keyboard", key=pygame.K_ESCAPE))
     screen.loop.speed = 100.0
     for _ in range(200):
         screen.update(1 / 60)

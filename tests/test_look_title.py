@@ -42,7 +42,7 @@ def test_the_title_shows_over_the_garden_and_a_tap_takes_it_down_and_nothing_els
     assert np.abs(titled[:100] - plain[:100]).max() <= 2 and np.abs(titled[-100:] - plain[-100:]).max() <= 2
     assert game.handle_input(InputEvent(DOWN, 1.0, "touch:1", 1, 640, 360))
     assert game.handle_input(InputEvent(UP, 1.1, "touch:1", 1, 640, 360))
-    assert not game.title.shown and not game.menu.visible  # that tap was the title's only
+    assert not game.title.up and not game.menu.visible  # that tap was the title's only
     after = frame(game, fbo)
     assert (after[band].min(axis=2) > 235).mean() < 0.01
     game.handle_input(InputEvent(DOWN, 2.0, "touch:1", 1, 640, 360))
@@ -54,7 +54,7 @@ def test_any_key_takes_the_title_down_even_escape_and_closing_the_window_still_q
     game = new_game(gl_ctx, tmp_path)
     assert game.handle_input(InputEvent(KEY_DOWN, 1.0, "keyboard", key=pygame.K_ESCAPE))
     assert game.handle_input(InputEvent(KEY_UP, 1.1, "keyboard", key=pygame.K_ESCAPE))
-    assert not game.title.shown
+    assert not game.title.up
     other = new_game(gl_ctx, tmp_path / "b")
     assert not other.handle_input(InputEvent(QUIT, 1.0, "window"))
 
@@ -65,12 +65,12 @@ def test_the_kiosks_attract_loop_is_the_title(gl_ctx, tmp_path, fbo):
     kiosk = Kiosk(lambda: new_game(gl_ctx, folder, clock, title=False), KioskConfig(attract_after=10.0), folder,
                   clock)
     surface = pygame.Surface(SIZE, pygame.SRCALPHA)
-    kiosk._draw_extra(surface)
+    kiosk.draw_attract(surface)
     assert pygame.mask.from_surface(surface).count() == 0  # a visitor's game: no title
     clock.t += 11.0
     kiosk.update(1 / 60)
     assert kiosk.attract is not None
-    kiosk._draw_extra(surface)
+    kiosk.draw_attract(surface)
     assert pygame.mask.from_surface(surface, 100).count() > 0.1 * SIZE[0] * SIZE[1] / 4  # the band and words
     assert kiosk.title.prompt == "Touch the screen to grow your own tree!"
     kiosk.handle_input(InputEvent(DOWN, clock.t, "touch:1", 1, 640, 360))

@@ -9,6 +9,7 @@ state, the tree's age and messages (budget reached, saved, load problems).
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -77,6 +78,7 @@ class Menu:
         self.presses = 0  # widgets pressed so far (the click sound follows it: game/audio)
         self.journal_lines: list[str] = []
         self.journal_source = None  # () -> the journal page's lines, asked each time the page opens
+        self.on_toggle: Callable[[bool], None] | None = None  # told when it opens (True) and closes (False)
         names = {name for rows in PAGES.values() for row in rows for name in row}
         page_of = {name: page for page, rows in PAGES.items() for row in rows for name in row if name != "back"}
         self.widgets = [
@@ -130,11 +132,15 @@ class Menu:
             for c, name in enumerate(names):
                 self.widget(name).rect = pygame.Rect(left + PAD + c * (width + PAD),
                                                      top + PAD + extra + r * (ROW_H + PAD), width, ROW_H)
-        self.visible = True
+        opened, self.visible = not self.visible, True
+        if opened and self.on_toggle is not None:
+            self.on_toggle(True)
 
     def hide(self) -> list[tuple[Action, float]]:
         """Close the menu; releases a held button (returns the actions that causes)."""
-        self.visible = False
+        closed, self.visible = self.visible, False
+        if closed and self.on_toggle is not None:
+            self.on_toggle(False)
         return self.release()
 
     def hit(self, x: float, y: float) -> Widget | None:

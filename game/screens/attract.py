@@ -66,7 +66,7 @@ class AttractShow:
         for e in self.player.poll(now):
             game.handle_input(e)
         over = self.player.start != start  # the recording came round: one run is over
-        if over or game.modeling.active or game.family.visible:  # (the show is the garden, not the tools)
+        if over or game.modeling.active or game.family.up:  # (the show is the garden, not the tools)
             self.tidy(game)
         kept.put_back(game)
         if over:
@@ -80,9 +80,9 @@ class AttractShow:
         game.gestures.cancel_all()
         if game.modeling.active:
             game.modeling.toggle()
-        game.family.visible = False
-        if game.menu.visible:
-            game.tap(0, 0)  # (closes the menu as a tap outside it does, letting go of a held button)
+        game.family.close()
+        for action in game.menu.hide():  # (as a tap outside it does, letting go of a held button)
+            game.act(*action)
 
 
 def demo_events(size: tuple[int, int] = (1280, 720)) -> list[InputEvent]:

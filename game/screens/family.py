@@ -1,17 +1,21 @@
 """The family-tree screen: the garden's trees and their known ancestors, one row per generation, each
 with a thumbnail (a side-view sketch of the tree as it stands; a sapling icon for ancestors no longer
-in the garden), parents joined to children; a tap on a tree of the garden cares for it."""
+in the garden), parents joined to children; a tap on a tree of the garden cares for it. It is a screen of
+the game's stack (game/screens/stack.py): up from Garden -> Family until the next tap, which it takes."""
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from typing import TYPE_CHECKING
 
 import numpy as np
 import pygame
 
 from arbor.engine.life.lineage.lineage import Lineage
+from arbor.game.input.events import InputEvent
 from arbor.game.render.icons import draw_icon
 from arbor.game.render.ui import Menu
+from arbor.game.screens.stack import TAP, Canvas, Screen, ScreenStack
 from arbor.game.screens.state import GameState
 from arbor.game.strings import text
 
@@ -50,18 +54,19 @@ def sketch(world: World, size: int = THUMB) -> pygame.Surface:
     return surface
 
 
-class FamilyScreen:
+class FamilyScreen(Screen):
     """Layout, drawing and taps of the family tree (see module docstring)."""
 
-    def __init__(self, state: GameState, menu: Menu, size: tuple[int, int]) -> None:
-        self.state, self.menu, self.size = state, menu, size
-        self.visible = False
+    def __init__(self, state: GameState, menu: Menu, size: tuple[int, int], screens: ScreenStack,
+                 fonts: tuple[pygame.font.Font, pygame.font.Font]) -> None:
+        self.state, self.menu, self.size, self.stack, self.fonts = state, menu, size, screens, fonts
+        self.on_choose: Callable[[int], None] | None = None  # told the index of a tree of the garden tapped
         self.boxes: list[tuple[pygame.Rect, Lineage]] = []
         self._thumbs: dict[tuple, pygame.Surface] = {}
 
     def open(self) -> None:
         """Show the screen (the menu closes)."""
-        self.visible = True
+        super().open()
         self.menu.hide()
 
     def members(self) -> list[Lineage]:
@@ -90,10 +95,18 @@ class FamilyScreen:
                 box.center = (int(gap * (k + 1)), 80 + r * row_h + thumb // 2)
                 self.boxes.append((box, member))
 
-    def draw(self, surface: pygame.Surface, font: pygame.font.Font, small: pygame.font.Font) -> None:
+    def handle(self, e: InputEvent) -> InputEvent | None:
+        """A tap closes the screen (on a tree of the garden: that tree is cared for); the rest goes down."""
+        if e.kind != TAP:
+            return e
+        index = self.tap(e.x, e.y)
+        if index is not None and self.on_choose is not None:
+            self.on_choose(index)
+        return None
+
+    def draw(self, canvas: Canvas) -> None:
         """The screen over the scene."""
-        if not self.visible:
-            return
+        surface, (font, small) = canvas.surface, self.fonts
         self.layout()
         panel = pygame.Surface(surface.get_size(), pygame.SRCALPHA)
         panel.fill(PANEL)
@@ -133,7 +146,7 @@ class FamilyScreen:
 
     def tap(self, x: float, y: float) -> int | None:
         """Any tap closes the screen; a tap on a tree of the garden returns its index (to care for it)."""
-        self.visible = False
+        self.close()
         hit = next((lin for box, lin in self.boxes if box.collidepoint(x, y)), None)
         if hit is None:
             return None

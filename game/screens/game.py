@@ -1,8 +1,11 @@
 """The tamagotchi game: a garden of growing trees, a fixed-step loop, input, menu/HUD, renderer and saves.
 
 `Game` wires the parts together and owns no window: the app gives it input events and a framebuffer,
-so tests drive the real game headless (SDL dummy video for events, an EGL context for pixels). The jobs
-live in their own classes: :class:`~game.screens.game_input.GameInput` (routing),
+so tests drive the real game headless (SDL dummy video for events, an EGL context for pixels). Its
+:class:`~game.screens.stack.ScreenStack` says which screen takes input and what is drawn over what (the
+garden at the bottom; the modeler, the menu, the family tree and the title pushed over it while they
+are up; the kiosk adds its own). The jobs live in their own classes: :class:`~game.screens.game_input.GameInput`
+(the garden's input: camera gestures, taps, keys),
 :class:`~game.screens.care.CareActions` (what menu actions do), :class:`~game.screens.saves.SaveKeeper`
 (load/save/autosave), :class:`~game.screens.game_view.GameView` (the 3D scene),
 :class:`~game.screens.game_hud.GameHud` (the 2D layer), :class:`~game.screens.coach.Coach` (hints,
@@ -39,10 +42,13 @@ from arbor.game.screens.family import FamilyScreen
 from arbor.game.screens.game_hud import GameHud, HudParts
 from arbor.game.screens.game_input import GameInput
 from arbor.game.screens.game_view import GameView
+from arbor.game.screens.menu_screen import MenuScreen
 from arbor.game.screens.modeler import ModelingMode
+from arbor.game.screens.modeler_screen import ModelerScreen
 from arbor.game.screens.picking import Picker
 from arbor.game.screens.saves import SaveKeeper
 from arbor.game.screens.sharing import Sharing
+from arbor.game.screens.stack import ScreenStack
 from arbor.game.screens.state import GameState
 from arbor.game.screens.title import TitleScreen
 
@@ -71,8 +77,8 @@ class Game:
         self.font = pygame.font.Font(None, 32)
         self.small_font = pygame.font.Font(None, 24)
         self.translator = PygameTranslator(size)
-        self.overlay_hooks: list = []  # extra overlay layers (kiosk attract text, PIN pad)
-        self.title = TitleScreen(size, shown=self.config.title)
+        self.screens = ScreenStack()  # (the garden at the bottom, then whatever is up over it)
+        self.title = TitleScreen(size)
         self.state = state = GameState(self.loop, self.control, clock, self.rules)
         state.sprouts = self.config.sprout
         self.keeper = SaveKeeper(state, self.config, self.rules, self.system, wall_clock,
@@ -86,6 +92,8 @@ class Game:
         if self.sound.problem:
             self.say(self.sound.problem, 8)
         self.care.sync_sliders()
+        if self.config.title:
+            self.screens.push(self.title)
 
     def _parts(self) -> None:
         """The game's parts, each given the state and the services it uses."""
@@ -95,20 +103,25 @@ class Game:
         self.view = GameView(state, self.renderer, self.modeling, self.rules, size)
         self.coach = Coach(state, self.view.views)
         self.menu.journal_source = self.coach.journal_lines
-        self.family = FamilyScreen(state, self.menu, size)
+        self.family = FamilyScreen(state, self.menu, size, self.screens, (self.font, self.small_font))
         self.care = CareActions(state, self.rules, CareParts(self.menu, self.modeling, self.keeper, self.family,
                                                              self.coach, self.system, self.wall_clock, self.sound))
         self.sharing = Sharing(state, self.config.saves, self.rules, self.config.lsystem.name, self.renderer.ctx)
         self.care.handlers.update(self.sharing.handlers())  # (Settings -> Share, Garden -> Import)
         self.picker = Picker(state, self.view.views, size, self.care)
         self.hud = GameHud(state, self.rules, size, HudParts(
-            menu=self.menu, overlay=self.overlay, renderer=self.renderer, views=self.view.views,
-            fonts=(self.font, self.small_font), modeling=self.modeling, family=self.family, coach=self.coach,
-            hooks=self.overlay_hooks, scene_sun=self.view.scene_sun))
-        self.hud.title = self.title
-        self.input = GameInput(state, size, self.camera, menu=self.menu, gestures=self.gestures,
-                               modeling=self.modeling, care=self.care, picker=self.picker, family=self.family,
-                               coach=self.coach)
+            screens=self.screens, overlay=self.overlay, renderer=self.renderer, views=self.view.views,
+            fonts=(self.font, self.small_font), modeling=self.modeling, coach=self.coach,
+            scene_sun=self.view.scene_sun))
+        self.input = GameInput(state, size, self.camera, screens=self.screens, menu=self.menu,
+                               gestures=self.gestures, care=self.care, picker=self.picker)
+        self.screens.push(self.input)  # the garden: the bottom of the stack
+        self.family.on_choose = self.care.care_for
+        self.menu_screen = MenuScreen(self.menu, self.screens, gestures=self.gestures, care=self.care,
+                                      font=self.font)
+        self.modeling.screen = ModelerScreen(self.modeling, self.screens, state=state, menu=self.menu,
+                                             gestures=self.gestures, care=self.care, camera=self.camera,
+                                             tap=self.input.tap, fonts=(self.font, self.small_font))
 
     @property
     def garden(self):
@@ -154,10 +167,10 @@ class Game:
         return keep
 
     def handle_input(self, e: InputEvent) -> bool:
-        """Handle one device-independent input event; returns False when the game should quit."""
-        if self.title.handle(e):  # (the title screen's press does nothing else)
-            return True
-        return self.input.handle(e)
+        """Handle one device-independent input event (the screens take it top first); returns False when
+        the game should quit (a quit no screen took)."""
+        self.input.note_device(e)
+        return self.screens.handle_input(e)
 
     def tap(self, x: float, y: float) -> None:
         """Open the menu at (x, y), or close it when it is open."""

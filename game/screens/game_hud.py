@@ -1,7 +1,9 @@
-"""The game's 2D layer over the scene: meters, status, season, hints, reminders, garden markers, rain,
-menu, cursor, tool outlines and (in the modeler) its tool bar. It is repainted (and uploaded) only when
-what it shows changes. In the modeler the hint line says what a drag does with the tool in use, in place
-of the garden's hints and reminders (there a drag draws and a tap opens the tools)."""
+"""The game's 2D layer over the scene: meters, status, season, hints, reminders, garden markers, rain and
+the cursor, then the screens of the game's stack over them (game/screens/stack.py: the modeler's outlines
+and tool bar, the menu, the family tree, the kiosk's layers; the title stands in for all of it), then the
+message. It is repainted (and uploaded) only when what it shows changes. In the modeler the hint line says
+what a drag does with the tool in use, in place of the garden's hints and reminders (there a drag draws
+and a tap opens the tools)."""
 
 from __future__ import annotations
 
@@ -18,10 +20,10 @@ from arbor.game.render.camera import OrbitCamera, project_points
 from arbor.game.render.garden import GardenRenderer
 from arbor.game.render.icons import draw_icon
 from arbor.game.render.renderer import Overlay
-from arbor.game.render.ui import HudInfo, Menu, draw_hud, draw_rain, draw_rain_cloud, draw_toast
+from arbor.game.render.ui import HudInfo, draw_hud, draw_rain, draw_rain_cloud, draw_toast
 from arbor.game.screens.coach import Coach
-from arbor.game.screens.family import FamilyScreen
 from arbor.game.screens.modeler import ModelingMode
+from arbor.game.screens.stack import Canvas, ScreenStack
 from arbor.game.screens.state import GameState
 from arbor.game.strings import duration, text
 
@@ -35,15 +37,13 @@ class HudParts:
     """What the HUD draws with, beside the game's state and rules: the game's parts it shows and the
     services it paints through."""
 
-    menu: Menu
+    screens: ScreenStack
     overlay: Overlay
     renderer: GardenRenderer
     views: dict
     fonts: tuple[pygame.font.Font, pygame.font.Font]
     modeling: ModelingMode
-    family: FamilyScreen
     coach: Coach
-    hooks: list[Callable[[pygame.Surface], None]]
     scene_sun: Callable[[], np.ndarray]
 
 
@@ -53,15 +53,13 @@ class GameHud:
     def __init__(self, state: GameState, rules: Rules, size: tuple[int, int], parts: HudParts) -> None:
         self.state, self.rules, self.size = state, rules, size
         self.scene_sun = parts.scene_sun  # the sun the scene is lit by (see GameView.scene_sun)
-        self.menu, self.overlay, self.renderer = parts.menu, parts.overlay, parts.renderer
+        self.screens, self.overlay, self.renderer = parts.screens, parts.overlay, parts.renderer
         self.views = parts.views  # the view's records of the trees (world id -> key, records, ...)
         self.font, self.small_font = parts.fonts
-        self.modeling, self.family, self.coach = parts.modeling, parts.family, parts.coach
-        self.hooks = parts.hooks  # extra overlay layers (kiosk attract text, PIN pad)
+        self.modeling, self.coach = parts.modeling, parts.coach
         self.surface = pygame.Surface(size, pygame.SRCALPHA)
         self._key: tuple | None = None
         self.marker_boxes: list[pygame.Rect] = []  # the garden markers last painted (none overlaps another)
-        self.title = None  # the title screen (game/screens/title.py): while it is up it stands in for the HUD
 
     def draw(self, camera: OrbitCamera) -> None:
         """Repaint the overlay if anything on it changed, and composite it over the frame."""
@@ -79,18 +77,15 @@ class GameHud:
         changes it too), and 4 times a second while rain or the watering cloud animate."""
         state = self.state
         info = self.hud_info()
-        menu = self.menu
-        widgets = tuple((w.value, w.pressed, w.label) for w in menu.widgets) if menu.visible else ()
         modeling = self.modeling
         moving = modeling.active or state.cursor3d is not None or len(state.garden.worlds) > 1
         view = (round(camera.yaw, 2), round(camera.pitch, 2), round(camera.distance, 3), len(modeling.points),
                 id(modeling.preview)) if moving else ()
         return (round(info.sun * 200), round(info.water * 200), info.status, int(info.age_seconds // 60),
                 info.speed, info.message, info.watering, info.season, info.raining, info.hint, info.reminder,
-                menu.visible, menu.page, widgets, view, state.cursor3d, len(self.hooks),
-                tuple(w.status() for w in state.garden.worlds), state.garden.current, self.family.visible,
+                view, state.cursor3d, tuple(w.status() for w in state.garden.worlds), state.garden.current,
                 int(state.clock() * 4) if info.raining or info.watering else 0,  # (rain and cloud animate)
-                self.title is not None and self.title.shown, modeling.bar.key())
+                self.screens.key())
 
     def hud_info(self) -> HudInfo:
         """What the HUD shows now."""
@@ -123,10 +118,12 @@ class GameHud:
         return pygame.image.tobytes(self.surface, "RGBA", True)
 
     def paint(self, camera: OrbitCamera) -> None:
-        """Draw the whole overlay into the surface."""
+        """Draw the whole overlay into the surface: the HUD, the screens of the stack over it, the message
+        (a screen that covers the HUD, the title, is drawn alone)."""
         self.surface.fill((0, 0, 0, 0))
-        if self.title is not None and self.title.shown:
-            self.title.paint(self.surface)
+        canvas = Canvas(self.surface, camera, lambda points: self.project_many(camera, points))
+        if self.screens.covered():
+            self.screens.draw(canvas)
             return
         info = self.hud_info()
         if info.raining:
@@ -137,14 +134,7 @@ class GameHud:
         draw_hud(self.surface, self.font, info)
         if self.state.cursor3d is not None:
             self._draw_cursor3d(camera)
-        project = lambda points: self.project_many(camera, points)  # noqa: E731
-        self.modeling.draw_outline(self.surface, project)
-        self.modeling.draw_symbols(self.surface, camera, self.small_font, project)
-        self.modeling.bar.draw(self.surface, self.font)
-        self.menu.draw(self.surface, self.font)
-        self.family.draw(self.surface, self.font, self.small_font)
-        for hook in self.hooks:
-            hook(self.surface)
+        self.screens.draw(canvas)
         draw_toast(self.surface, self.font, info.message)
 
     def project(self, camera: OrbitCamera, point) -> tuple[float, float] | None:

@@ -31,6 +31,7 @@ from arbor.game.paths import ASSETS
 from arbor.game.screens.attract import AttractShow
 from arbor.game.screens.config import check_volume
 from arbor.game.screens.saves import VisitorSaves
+from arbor.game.screens.stack import Canvas, Screen
 from arbor.game.screens.title import TitleScreen
 from arbor.game.strings import set_language, text
 from arbor.game.watchdog import reading
@@ -110,12 +111,14 @@ class PinLock:
         self.misses, self.until = 0, float("-inf")
 
 
-class PinPad:
-    """A big on-screen keypad; returns True from :meth:`tap` when the right PIN was entered."""
+class PinPad(Screen):
+    """A big on-screen keypad; returns True from :meth:`tap` when the right PIN was entered. On the game's
+    screen stack it takes every press and calls ``on_right`` for the right PIN; Cancel takes it down."""
 
-    def __init__(self, size: tuple[int, int], pin: str, lock: PinLock | None = None, clock=time.monotonic) -> None:
+    def __init__(self, size: tuple[int, int], pin: str, lock: PinLock | None = None, clock=time.monotonic,
+                 font: pygame.font.Font | None = None, on_right=None) -> None:
         self.pin, self.entered, self.wrong = pin, "", False
-        self.lock, self.clock = lock or PinLock(), clock
+        self.lock, self.clock, self.font, self.on_right = lock or PinLock(), clock, font, on_right
         keys = ["1", "2", "3", "4", "5", "6", "7", "8", "9", "cancel", "0", "ok"]
         left = size[0] // 2 - (3 * PAD_BUTTON + 20) // 2
         top = size[1] // 2 - (4 * PAD_BUTTON + 30) // 2 + 30
@@ -144,8 +147,23 @@ class PinPad:
             self.wrong = False
         return False
 
-    def draw(self, surface: pygame.Surface, font: pygame.font.Font) -> None:
+    def handle(self, e: InputEvent) -> InputEvent | None:
+        """Every press, move and release is the pad's (a right PIN calls ``on_right``); the rest goes down."""
+        if e.kind not in (DOWN, MOVE, UP):
+            return e
+        if e.kind == DOWN and self.tap(e.x, e.y) and self.on_right is not None:
+            self.on_right()
+        if self.closed:
+            self.close()
+        return None
+
+    def key(self) -> tuple:
+        """The digits entered, a wrong PIN, the seconds still locked."""
+        return len(self.entered), self.wrong, int(self.lock.locked_for(self.clock()))
+
+    def draw(self, canvas: Canvas) -> None:
         """The keypad over a dimmed screen."""
+        surface, font = canvas.surface, self.font
         dim = pygame.Surface(surface.get_size(), pygame.SRCALPHA)
         dim.fill((0, 0, 0, 170))
         surface.blit(dim, (0, 0))
@@ -175,7 +193,6 @@ class Kiosk:
         self._kiosk_volume()
         self.last_touch = clock()
         self.corner_down: float | None = None
-        self.pin_pad: PinPad | None = None
         self.attract: AttractShow | None = None
         self.attract_runs = 0  # attract runs played to their end (of every show)
         self.quit_requested = False
@@ -184,28 +201,26 @@ class Kiosk:
         self.visitors = VisitorSaves(saves)
         self.pin_lock = PinLock()  # kept across pad openings: closing the pad does not reset the delay
         self.title: TitleScreen | None = None  # drawn over the attract loop
-        self.game.overlay_hooks.append(self._draw_extra)
+        self.screen = KioskScreen(self)
+        self.game.screens.push(self.screen)
+
+    @property
+    def pin_pad(self) -> PinPad | None:
+        """The staff's PIN pad, while it is up on the game's screen stack."""
+        return next((s for s in self.game.screens if isinstance(s, PinPad)), None)
 
     # ----- input ---------------------------------------------------------------------------------
     def handle_input(self, e: InputEvent) -> bool:
-        """Visitor input (keys and quit are ignored); returns False only after the staff PIN."""
-        if e.kind in (QUIT, KEY_DOWN, KEY_UP):
-            return True
+        """Visitor input, through the game's screens (the kiosk's own on top: keys and quit do nothing);
+        returns False only after the staff PIN."""
         if e.kind in (DOWN, MOVE, UP):
             self._touched(e)
-            if self.pin_pad is not None:
-                if e.kind == DOWN and self.pin_pad.tap(e.x, e.y):
-                    self.quit_requested = True
-                    return False
-                if self.pin_pad.closed:
-                    self.pin_pad = None
-                return True
-            if e.kind == DOWN and e.x < CORNER and e.y < CORNER:
-                self.corner_down = self.clock()
-            elif e.kind == UP:
-                self.corner_down = None
         self.game.handle_input(e)
-        return True
+        return not self.quit_requested
+
+    def staff_quit(self) -> None:
+        """The right PIN on the pad: the kiosk ends."""
+        self.quit_requested = True
 
     def _touched(self, e: InputEvent) -> None:
         self.last_touch = self.clock()
@@ -254,7 +269,7 @@ class Kiosk:
         self.game = self.make_game()
         self.game.set_speed(self.config.speed)
         self._kiosk_volume()
-        self.game.overlay_hooks.append(self._draw_extra)
+        self.game.screens.push(self.screen)
         self.game.say(text("messages.recovered"), 6)
 
     def update(self, real_seconds: float) -> None:
@@ -263,7 +278,8 @@ class Kiosk:
         idle = now - self.last_touch
         if self.corner_down is not None and now - self.corner_down >= self.config.admin_hold:
             self.corner_down = None
-            self.pin_pad = PinPad(self.game.size, self.config.pin, self.pin_lock, self.clock)
+            self.game.screens.push(PinPad(self.game.size, self.config.pin, self.pin_lock, self.clock,
+                                          self.game.font, self.staff_quit))
         if idle >= self.config.care_after and not self.game.state.autopilot:
             self.start_autopilot()
         if idle >= self.config.reset_after and not self.visitor_saved:
@@ -312,10 +328,36 @@ class Kiosk:
         self.game.sound.use(self.config.volume)
         self.game.care.sync_sliders()
 
-    def _draw_extra(self, surface: pygame.Surface) -> None:
-        if self.attract is not None:  # the attract loop is the title screen, the garden playing behind it
+    def draw_attract(self, surface: pygame.Surface) -> None:
+        """While the attract loop plays, the title over the garden playing behind it."""
+        if self.attract is not None:
             if self.title is None or self.title.size != surface.get_size():
                 self.title = TitleScreen(surface.get_size(), prompt=text("kiosk.attract"))
             self.title.paint(surface)
-        if self.pin_pad is not None:
-            self.pin_pad.draw(surface, self.game.font)
+
+
+class KioskScreen(Screen):
+    """The kiosk's screen, over the game's: keys and window-close do nothing (only the staff PIN quits), a
+    press held in the top-left corner is watched (it brings up the PIN pad, pushed over this), and the
+    attract loop's title is drawn."""
+
+    def __init__(self, kiosk: Kiosk) -> None:
+        self.kiosk = kiosk
+
+    def handle(self, e: InputEvent) -> InputEvent | None:
+        """Keys and quit stop here; presses go on down, the corner's watched."""
+        if e.kind in (QUIT, KEY_DOWN, KEY_UP):
+            return None
+        if e.kind == DOWN and e.x < CORNER and e.y < CORNER:
+            self.kiosk.corner_down = self.kiosk.clock()
+        elif e.kind == UP:
+            self.kiosk.corner_down = None
+        return e
+
+    def draw(self, canvas: Canvas) -> None:
+        """The attract loop's title (see :meth:`Kiosk.draw_attract`)."""
+        self.kiosk.draw_attract(canvas.surface)
+
+    def key(self) -> tuple:
+        """Whether the attract loop plays."""
+        return (self.kiosk.attract is not None,)

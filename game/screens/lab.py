@@ -1,7 +1,8 @@
 """The lab screen: 2-4 trees side by side, grown in lock-step, with live charts underneath.
 
 Large touch buttons choose the speed (pause, 1x, 10x, 100x) and export the run (CSV, a PNG of the
-screen and of the charts, and a save of every tree) into results/<experiment>-<time>/.
+screen and of the charts, and a save of every tree) into results/<experiment>-<time>/. The lab's window
+runs it as the one screen of a screen stack (game/screens/stack.py, game/app.py).
 """
 
 from __future__ import annotations
@@ -22,6 +23,7 @@ from arbor.game.render.camera import OrbitCamera
 from arbor.game.render.charts import COLORS, draw_charts
 from arbor.game.render.figures import lab_charts
 from arbor.game.render.renderer import Overlay, TreeRenderer, save_png
+from arbor.game.screens.stack import Screen
 
 SCENE_FRACTION = 0.55
 BUTTON_H = 56
@@ -35,7 +37,7 @@ def tree_state(world, meters) -> str:
     return f"alive, wilt {s.wilt:.2f}, {world.tree.height / METRE:.2f} m"
 
 
-class LabScreen:
+class LabScreen(Screen):
     """Draws and drives a :class:`Lab` in a window (or headless, in tests)."""
 
     def __init__(self, ctx: moderngl.Context, size: tuple[int, int], lab: Lab, results: Path = Path("results"),
@@ -59,10 +61,12 @@ class LabScreen:
         return {name: pygame.Rect(self.size[0] - (len(labels) - i) * (w + 10), y, w, BUTTON_H)
                 for i, name in enumerate(labels)}
 
-    def handle_input(self, e: InputEvent) -> bool:
-        """Taps on the buttons, keys 0-3 and E; returns False to quit."""
-        if e.kind == QUIT or (e.kind == KEY_DOWN and e.key == pygame.K_ESCAPE):
-            return False
+    def handle(self, e: InputEvent) -> InputEvent | None:
+        """Taps on the buttons, keys 0-3 and E; a quit (the window's close, or Esc) is left over."""
+        if e.kind == QUIT:
+            return e
+        if e.kind == KEY_DOWN and e.key == pygame.K_ESCAPE:
+            return InputEvent(QUIT, e.t, e.device)
         if e.kind == DOWN and e.dims == 2:
             for name, rect in self.buttons.items():
                 if rect.collidepoint(e.x, e.y):
@@ -71,7 +75,7 @@ class LabScreen:
             self.loop.speed = SPEEDS[e.key - pygame.K_0]
         elif e.kind == KEY_DOWN and e.key == pygame.K_e:
             self.press("Export")
-        return True
+        return None
 
     def press(self, name: str) -> None:
         """A button: a speed, or export."""

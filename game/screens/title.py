@@ -2,9 +2,9 @@
 sway, the clouds drift), shown when the game window opens after the first start's preparing screen
 (game/first_start.py), until any key or touch; the kiosk shows it over its attract loop.
 
-It owns no window and no scene: :meth:`TitleScreen.handle` takes the game's input events first (the
-press that dismisses it does nothing else), :meth:`TitleScreen.paint`
-draws it into the HUD's overlay surface in place of the HUD.
+It owns no window and no scene: it is the top of the game's screen stack (game/screens/stack.py) while it
+is up, so :meth:`TitleScreen.handle` takes the game's input events first (the press that dismisses it does
+nothing else), and it covers the HUD: :meth:`TitleScreen.paint` draws it into the overlay in its place.
 """
 
 from __future__ import annotations
@@ -12,6 +12,7 @@ from __future__ import annotations
 import pygame
 
 from arbor.game.input.events import DOWN, KEY_DOWN, KEY_UP, MOVE, UP, InputEvent
+from arbor.game.screens.stack import Canvas, Screen
 from arbor.game.strings import text
 
 INK = (250, 248, 238)
@@ -20,24 +21,28 @@ BAND = (12, 26, 14)  # the shade behind the words (darkest at the band's middle)
 NAME_SIZE, LINE_SIZE = 0.2, 0.045  # the name's and the lines' font size, as shares of the window's height
 
 
-class TitleScreen:
-    """Whether the title is up, what takes it down, and its picture (see module docstring)."""
+class TitleScreen(Screen):
+    """What takes the title down, and its picture (see module docstring)."""
 
-    def __init__(self, size: tuple[int, int], shown: bool = True, prompt: str | None = None) -> None:
-        self.size, self.shown = size, shown
+    covers = True  # (in place of the HUD)
+
+    def __init__(self, size: tuple[int, int], prompt: str | None = None) -> None:
+        self.size = size
         self.prompt = prompt or text("title.prompt")
         height = size[1]
         self.fonts = (pygame.font.Font(None, max(int(height * NAME_SIZE), 24)),
                       pygame.font.Font(None, max(int(height * LINE_SIZE), 14)))
 
-    def handle(self, e: InputEvent) -> bool:
-        """True when ``e`` was the title's: while it is up every press, key and move is, and a press or a
-        key takes it down (its release alone is no tap: the game's gestures see nothing of that press)."""
-        if not self.shown:
-            return False
+    def handle(self, e: InputEvent) -> InputEvent | None:
+        """Every press, key and move is the title's, and a press or a key takes it down (its release alone
+        is no tap: the game's gestures see nothing of that press); the rest (a quit) goes down."""
         if e.kind in (DOWN, KEY_DOWN):
-            self.shown = False
-        return e.kind in (DOWN, MOVE, UP, KEY_DOWN, KEY_UP)
+            self.close()
+        return None if e.kind in (DOWN, MOVE, UP, KEY_DOWN, KEY_UP) else e
+
+    def draw(self, canvas: Canvas) -> None:
+        """The title over the garden (see :meth:`paint`)."""
+        self.paint(canvas.surface)
 
     def paint(self, surface: pygame.Surface) -> None:
         """The name, the tagline and the prompt on a soft band of shade across the middle of ``surface``."""
