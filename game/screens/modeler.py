@@ -29,6 +29,7 @@ from arbor.game.paths import ASSETS
 from arbor.game.render.camera import OrbitCamera, unproject_to_plane
 from arbor.game.render.garden import GardenRenderer
 from arbor.game.render.ui import ToolBar, draw_joint
+from arbor.game.screens.stack import Screen
 from arbor.game.screens.state import GameState
 from arbor.game.strings import text
 from arbor.game.tools.choice import ToolChoice
@@ -71,7 +72,7 @@ class ModelingMode(ToolChoice):
     def __init__(self, state: GameState, renderer: GardenRenderer, size: tuple[int, int],
                  camera: Callable[[], OrbitCamera]) -> None:
         self.state, self.renderer, self.size, self.camera = state, renderer, size, camera
-        self.active = False
+        self.screen: Screen | None = None  # its screen on the game's stack (game/screens/modeler_screen.py)
         self.points: list[np.ndarray] = []
         self.times: list[float] = []
         self.preview: LString | None = None
@@ -103,17 +104,22 @@ class ModelingMode(ToolChoice):
         """The tree's segments as drawn now (the modeler's view of the geometry; see World.drawn_segments)."""
         return self.state.world.drawn_segments(ls)
 
+    @property
+    def active(self) -> bool:
+        """Whether the modeler is open: its screen is up on the game's screen stack."""
+        return self.screen is not None and self.screen.up
+
     def toggle(self) -> None:
         """Enter the modeler with the draw tool (pausing the simulation) or leave it, clearing what the
         tools drew."""
         if self.active:
-            self.active = False
+            self.screen.close()
             self.reset_tools()
             self.state.loop.speed = self.resume_speed
             self.state.control.distance = self.garden_zoom
             self.state.say(text("messages.modeler_off"))
             return
-        self.active = True
+        self.screen.open()
         self.resume_speed = self.state.loop.speed or 1.0
         self.state.loop.speed = 0.0
         self.garden_zoom = self.state.control.distance
