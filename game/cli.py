@@ -25,9 +25,12 @@ def _source(args: argparse.Namespace):
 
 def _cmd_derive(args: argparse.Namespace) -> int:
     from arbor.game.commands.trees import derive_source
+    from arbor.game.progress import Progress
 
-    _, result = derive_source(_source(args))
-    print(result.to_text())
+    with Progress("derive", 1.0, unit="s") as bar:
+        _, result = derive_source(_source(args), progress=bar)
+        text = result.to_text()
+    print(text)
     return 0
 
 
@@ -87,24 +90,30 @@ def _in_metres(mesh, factor: float):
 def _cmd_render(args: argparse.Namespace) -> int:
     from arbor.engine.geometry.tree import tree_height
     from arbor.game.commands.trees import check_render_memory, render_modules, scene_metres, tree_geometry
+    from arbor.game.progress import PER_TRIANGLE, TRIANGLES_PER_MODULE, Progress
     from arbor.game.render.renderer import render_image, save_png
 
     check_render_memory(args.size, 0, args.lod)  # the picture alone, before any derivation
-    geometry, ls = tree_geometry(_source(args), args.lod, check=lambda n: check_render_memory(args.size, n, args.lod),
-                                 most=render_modules(args.size, args.lod))  # (derives no more than it can draw)
-    scale = ""
-    if args.scale_bar is None:
-        pixels = render_image(geometry.mesh, args.size, yaw=args.yaw, pitch=args.pitch)
-    else:
-        from arbor.game.render.scale_bar import frame_for, render_to_scale
+    drawing = PER_TRIANGLE["png"] * TRIANGLES_PER_MODULE
+    with Progress(f"render {args.out.name}", 1.0, unit="s") as bar:
+        geometry, ls = tree_geometry(_source(args), args.lod,
+                                     check=lambda n: check_render_memory(args.size, n, args.lod),
+                                     most=render_modules(args.size, args.lod),  # (derives no more than it can draw)
+                                     progress=bar, after=lambda modules: modules * drawing)
+        with bar.timed("rendering", geometry.mesh.n_triangles * PER_TRIANGLE["png"]):
+            scale = ""
+            if args.scale_bar is None:
+                pixels = render_image(geometry.mesh, args.size, yaw=args.yaw, pitch=args.pitch)
+            else:
+                from arbor.game.render.scale_bar import frame_for, render_to_scale
 
-        metres = scene_metres(_source(args))  # the source's unit: the bar measures real metres
-        height = tree_height(geometry) * metres
-        frame = args.scale_bar or frame_for(height)
-        mesh = _in_metres(geometry.mesh, metres * METRE)
-        pixels = render_to_scale(mesh, args.size, frame, yaw=args.yaw, pitch=args.pitch)
-        scale = f", {height:.2f} m tall (top of the wood) in a frame {frame:g} m high (metre bar at the left)"
-    save_png(pixels, args.out)
+                metres = scene_metres(_source(args))  # the source's unit: the bar measures real metres
+                height = tree_height(geometry) * metres
+                frame = args.scale_bar or frame_for(height)
+                mesh = _in_metres(geometry.mesh, metres * METRE)
+                pixels = render_to_scale(mesh, args.size, frame, yaw=args.yaw, pitch=args.pitch)
+                scale = f", {height:.2f} m tall (top of the wood) in a frame {frame:g} m high (metre bar at the left)"
+            save_png(pixels, args.out)
     say(f"{args.out}: {len(ls):,} modules, {len(geometry.turtle.segments):,} segments, "
         f"{geometry.mesh.n_triangles:,} triangles{scale}")
     return 0
@@ -114,18 +123,22 @@ def _cmd_export(args: argparse.Namespace) -> int:
     from arbor.engine.geometry.export import export_tree
     from arbor.engine.geometry.tree import tree_height
     from arbor.game.commands.trees import scene_metres, size_warning, tree_geometry
+    from arbor.game.progress import PER_TRIANGLE, TRIANGLES_PER_MODULE, Progress
 
     fmt = (args.format or args.out.suffix.lstrip(".")).lower()
     if fmt not in ("glb", "obj"):
         raise UserError(f"cannot export as {fmt or 'a file without a suffix'!r}: use --out NAME.glb or NAME.obj "
                         "(or --format glb|obj)")
     args.format = fmt
-    geometry, _ = tree_geometry(_source(args), args.lod, roots=True)
-    height = tree_height(geometry)
-    if args.height is not None and height <= 0:
-        raise UserError("--height needs a tree with some height: this one has none (more --steps?)")
-    metres = args.height / height if args.height is not None else args.scale or scene_metres(_source(args))
-    files = export_tree(geometry.mesh, args.out, ASSETS / "textures", args.format, metres, height=height)
+    with Progress(f"export {args.out.name}", 1.0, unit="s") as bar:
+        geometry, _ = tree_geometry(_source(args), args.lod, roots=True, progress=bar,
+                                    after=lambda modules: modules * TRIANGLES_PER_MODULE * PER_TRIANGLE[fmt])
+        height = tree_height(geometry)
+        if args.height is not None and height <= 0:
+            raise UserError("--height needs a tree with some height: this one has none (more --steps?)")
+        metres = args.height / height if args.height is not None else args.scale or scene_metres(_source(args))
+        with bar.timed(f"writing {fmt.upper()}", geometry.mesh.n_triangles * PER_TRIANGLE[fmt]):
+            files = export_tree(geometry.mesh, args.out, ASSETS / "textures", args.format, metres, height=height)
     warning = size_warning(height * metres)
     if warning:
         print(warning, file=sys.stderr)

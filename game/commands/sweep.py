@@ -24,7 +24,7 @@ from arbor.engine.life.experiment.sweep_file import load_sweep
 from arbor.engine.life.keep.save import read_garden
 from arbor.engine.life.rules.rules import load_rules
 from arbor.game import report
-from arbor.game.commands.sweep_runs import RunStore, outcomes, progress_bar, write_atomic
+from arbor.game.commands.sweep_runs import RunStore, calibrate, outcomes, progress_bar, write_atomic
 from arbor.game.paths import ASSETS
 
 MAX_WORKERS = 256
@@ -61,7 +61,12 @@ def _run(path: Path, out: Path, workers: int | None, scheduler: str | None, plot
     where = f"the Dask scheduler at {scheduler}" if scheduler else f"{workers} worker process(es)"
     echo(f"{sweep.title}: {len(everything)} runs, {len(everything) - len(todo)} already done, on {where}")
     tasks = _tasks(sweep, todo, keep)
-    bar = progress_bar(len(everything), len(everything) - len(todo), sweep.title, shown=report.level == report.NORMAL)
+    shown = report.level == report.NORMAL
+    estimate = None  # seconds for the whole sweep, calibrated on the first run (a cluster: its size unknown)
+    if shown and tasks and not scheduler:
+        parallel = min(workers, len(tasks))
+        estimate = calibrate(tasks[0]) * math.ceil(len(tasks) / parallel)
+    bar = progress_bar(len(everything), len(everything) - len(todo), sweep.title, shown=shown, estimate=estimate)
     failed, stopped = [], False
     try:
         with contextlib.closing(outcomes(tasks, workers, scheduler)) as finished:

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import sys
+import time
 from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
@@ -10,7 +11,7 @@ from pathlib import Path
 import numpy as np
 
 from arbor.engine.base.errors import LSysError
-from arbor.engine.geometry.mesh import LOD_LEVELS, merge_trees, tree_mesh
+from arbor.engine.geometry.mesh import lod_level, merge_trees, tree_mesh
 from arbor.engine.geometry.tree import TreeGeometry, build_geometry
 from arbor.engine.life.keep.save import read_garden
 from arbor.engine.lsystem.derive import DEFAULT_BUDGET, MAX_BUDGET, Deriver
@@ -89,10 +90,37 @@ def derive_budget(system: LSystem, source: TreeSource, most: int | None = None) 
     return budget, why
 
 
-def derive_source(source: TreeSource, most: int | None = None):
+def _watched(step, progress, asked: int, budget: int, after: Callable[[int], float]):
+    """``step`` (a Deriver's) reporting to ``progress`` after each step: seconds so far, and an estimate of
+    the whole: the steps left at the last step's time grown as the string grows (at most to ``budget``
+    modules and DERIVE_SECONDS), then ``after(modules)``, the stages that follow (meshing, writing)."""
+    started, taken = time.perf_counter(), [0]
+
+    def watched(ls, *args, **kwargs):
+        begun = time.perf_counter()
+        result, report = step(ls, *args, **kwargs)
+        taken[0] += 1
+        last, now = time.perf_counter() - begun, time.perf_counter() - started
+        growth = max(report.modules_out / max(report.modules_in, 1), 1.0)
+        modules, left = float(report.modules_out), 0.0
+        for _ in range(asked - taken[0]):
+            if modules >= budget:
+                break
+            modules, last = min(modules * growth, budget), last * growth
+            left += last
+        left = min(left, max(DERIVE_SECONDS - now, 0.0))
+        progress.to(now, f"deriving: step {taken[0]} of {asked:,}", total=now + left + after(int(modules)))
+        return result, report
+
+    return watched
+
+
+def derive_source(source: TreeSource, most: int | None = None, progress=None,
+                  after: Callable[[int], float] = lambda modules: 0.0):
     """Grow an .lsys source: (system, L-string), bounded in memory (:func:`derive_budget`, estimated before
     the work starts) and time (DERIVE_SECONDS); says on stderr, in one line each, when a bound held growth
-    back."""
+    back. ``progress`` (game/progress.Progress) hears of each step, ``after`` estimates the seconds the
+    caller's later stages take for the modules grown."""
     system = load_source(source)
     if system.externs:
         names = ", ".join(system.externs)
@@ -103,6 +131,8 @@ def derive_source(source: TreeSource, most: int | None = None):
         print(why, file=sys.stderr)
     deriver = Deriver(system, seed=source.seed, budget=budget, seconds=DERIVE_SECONDS)
     asked = system.iterations if source.steps is None else source.steps
+    if progress is not None:
+        deriver.step = _watched(deriver.step, progress, asked, deriver.budget, after)
     result, reports = deriver.derive(steps=asked)
     if deriver.out_of_time:
         print(f"time budget {DERIVE_SECONDS:.0f} s reached at step {len(reports)} of {asked:,}: derivation stopped "
@@ -146,12 +176,27 @@ def check_render_memory(size: tuple[int, int], modules: int, lod: int) -> None:
                         "ask for a smaller --size, fewer --steps or a higher --lod")
 
 
+def _meshing(progress, modules: int):
+    """The meshing stage of ``progress`` (its measured seconds a module), or nothing without one."""
+    from contextlib import nullcontext
+
+    from arbor.game.progress import MESH_PER_MODULE
+
+    if progress is None:
+        return nullcontext()
+    return progress.timed(f"meshing {modules:,} modules", modules * MESH_PER_MODULE)
+
+
 def tree_geometry(source: TreeSource, lod: int, roots: bool = False,
-                  check: Callable[[int], None] | None = None, most: int | None = None) -> tuple[TreeGeometry, LString]:
+                  check: Callable[[int], None] | None = None, most: int | None = None, progress=None,
+                  after: Callable[[int], float] = lambda modules: 0.0) -> tuple[TreeGeometry, LString]:
     """The geometry of the asked-for tree at LOD ``lod``: exactly as it stands in a save (with its
     roots below the ground when ``roots``: exports carry them), or derived (to at most ``most`` modules).
     ``check`` is called with the tree's module count before the geometry is built (a budget that may
-    refuse it)."""
+    refuse it). ``progress`` hears of the derivation and the meshing; ``after(modules)`` estimates the
+    seconds of the caller's stages after them."""
+    from arbor.game.progress import MESH_PER_MODULE
+
     if is_save(source.path):
         if source.steps is not None or source.budget is not None:
             raise LSysError("--steps and --budget grow an .lsys source; a save holds a grown tree", str(source.path))
@@ -160,14 +205,19 @@ def tree_geometry(source: TreeSource, lod: int, roots: bool = False,
             raise LSysError(f"--tree {source.tree}: this save holds {len(worlds)} tree(s), numbered from 0",
                             str(source.path))
         world = worlds[source.tree]
+        modules = len(world.tree.lstring)
         if check is not None:
-            check(len(world.tree.lstring))
-        geometry = world.tree.geometry(world.clocks(), lod)
-        if roots:
-            below = tree_mesh(world.roots.turtle(), LOD_LEVELS[min(lod, len(LOD_LEVELS) - 1)])
-            geometry.mesh = merge_trees([geometry.mesh, below], [np.zeros(3), np.zeros(3)])
+            check(modules)
+        if progress is not None:
+            progress.to(0.0, total=modules * MESH_PER_MODULE + after(modules))
+        with _meshing(progress, modules):
+            geometry = world.tree.geometry(world.clocks(), lod)
+            if roots:
+                below = tree_mesh(world.roots.turtle(), lod_level(lod))
+                geometry.mesh = merge_trees([geometry.mesh, below], [np.zeros(3), np.zeros(3)])
         return geometry, world.tree.lstring
-    system, ls = derive_source(source, most)
+    system, ls = derive_source(source, most, progress, lambda modules: modules * MESH_PER_MODULE + after(modules))
     if check is not None:
         check(len(ls))
-    return build_geometry(ls, system, lod=lod), ls
+    with _meshing(progress, len(ls)):
+        return build_geometry(ls, system, lod=lod), ls

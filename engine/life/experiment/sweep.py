@@ -137,6 +137,16 @@ def runs(sweep: Sweep) -> list[Run]:
 def execute(task: Task) -> Outcome:
     """Grow one run's tree headless and sample its responses (the worker's function)."""
     sweep, run = task.sweep, task.run
+    lab, species = lab_for(task)
+    why = grow(lab, sweep.duration, sweep.stop)
+    series, world = lab.series[0], lab.worlds[0]
+    rows = [{"time_s": t, **{m: series.values[m][i] for m in sweep.responses}} for i, t in enumerate(series.time)]
+    return Outcome(run, rows, save_text(world, species) if task.keep_tree else None, why, series.time[-1])
+
+
+def lab_for(task: Task) -> tuple[Lab, str]:
+    """The one-tree lab of a run, at time 0, and its species (the file name of its .lsys source)."""
+    sweep, run = task.sweep, task.run
     regime, species = copy.deepcopy(sweep.base), sweep.species  # (the lab copies the rules itself)
     for factor, level in zip(sweep.factors, run.levels, strict=True):
         if factor.key == "species":
@@ -148,11 +158,7 @@ def execute(task: Task) -> Outcome:
     system = parse_lsystem(task.sources[species], species)
     experiment = Experiment(sweep.title, run.seed, sweep.duration, sweep.sample_every, [regime],
                             Path(species), pace=sweep.pace, seasons=sweep.seasons)
-    lab = Lab(experiment, task.rules, system)
-    why = grow(lab, sweep.duration, sweep.stop)
-    series, world = lab.series[0], lab.worlds[0]
-    rows = [{"time_s": t, **{m: series.values[m][i] for m in sweep.responses}} for i, t in enumerate(series.time)]
-    return Outcome(run, rows, save_text(world, species) if task.keep_tree else None, why, series.time[-1])
+    return Lab(experiment, task.rules, system), species
 
 
 def grow(lab: Lab, duration: float, stop: Stop | None = None) -> str:
