@@ -64,8 +64,11 @@ def _run(path: Path, out: Path, workers: int | None, scheduler: str | None, plot
     shown = report.level == report.NORMAL
     estimate = None  # seconds for the whole sweep, calibrated on the first run (a cluster: its size unknown)
     if shown and tasks and not scheduler:
-        parallel = min(workers, len(tasks))
-        estimate = calibrate(tasks[0]) * math.ceil(len(tasks) / parallel)
+        try:
+            estimate = calibrate(tasks[0]) * math.ceil(len(tasks) / min(workers, len(tasks)))
+        except KeyboardInterrupt:  # Ctrl-C before any run started: nothing to keep
+            echo("stopped before any run started; run the same command again to start it")
+            return 130
     bar = progress_bar(len(everything), len(everything) - len(todo), sweep.title, shown=shown, estimate=estimate)
     failed, stopped = [], False
     try:
