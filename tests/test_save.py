@@ -10,7 +10,7 @@ import pytest
 
 from arbor.engine.life.keep.save import SavedGarden, SaveError, read_garden, save_text, write_garden
 from arbor.engine.life.rules.rules import load_rules
-from arbor.engine.life.world.actions import Action
+from arbor.engine.life.world.commands import Water
 from arbor.engine.life.world.world import World
 from arbor.engine.lsystem.lsys import load_lsystem
 
