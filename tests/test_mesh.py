@@ -2,7 +2,7 @@ import numpy as np
 import pytest
 import trimesh
 
-from arbor.engine.geometry.mesh import LOD_LEVELS, leaf_mesh, tree_mesh, wood_mesh
+from arbor.engine.geometry.mesh import LOD_LEVELS, leaf_mesh, lod_level, tree_mesh, wood_mesh
 from arbor.engine.geometry.turtle import TurtleConfig, interpret
 from arbor.engine.lsystem.derive import derive
 from arbor.engine.lsystem.lstring import parse_lstring
@@ -62,6 +62,36 @@ def test_leaf_quads():
     mesh = leaf_mesh(result.leaves)
     assert mesh.n_triangles == 4 and len(mesh.positions) == 8
     assert np.linalg.norm(mesh.positions[2] - mesh.positions[1]) == pytest.approx(2.0)
+
+
+def test_a_level_number_becomes_a_mesh_level_in_one_place(lsys_dir):
+    """lod_level clamps to the levels there are; build_geometry and grow_geometry mesh at it; no other code
+    indexes LOD_LEVELS (issue 42: the LOD choice was made in two places)."""
+    import ast
+    from pathlib import Path
+
+    from arbor.engine.geometry.tree import build_geometry
+    from arbor.engine.life.rules.rules import Rules
+    from arbor.engine.life.world.world import World
+
+    last = len(LOD_LEVELS) - 1
+    assert [lod_level(k) for k in (-2, 0, 1, last, last + 5)] == [LOD_LEVELS[0], LOD_LEVELS[0], LOD_LEVELS[1],
+                                                                 LOD_LEVELS[last], LOD_LEVELS[last]]
+    system = load_lsystem(lsys_dir / "abop_2_8_tree.lsys")
+    ls = derive(system, 4)
+    clamped = [build_geometry(ls, system, lod=k).mesh.n_triangles for k in (last, last + 3, 0, -1)]
+    assert clamped[0] == clamped[1] < clamped[2] == clamped[3]
+    world = World(load_lsystem(lsys_dir / "game_tree.lsys"), Rules(), seed=1)  # (grow_geometry)
+    grown = [world.tree.geometry(world.clocks(), lod=k).mesh.n_triangles for k in (last + 3, last, 0)]
+    assert grown[0] == grown[1] < grown[2]
+    root = Path(__file__).resolve().parent.parent
+    for path in [*(root / "engine").rglob("*.py"), *(root / "game").rglob("*.py")]:
+        if path.name == "mesh.py" and path.parent.name == "geometry":
+            continue
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            if isinstance(node, ast.Subscript) and "LOD_LEVELS" in (getattr(node.value, "id", ""),
+                                                                     getattr(node.value, "attr", "")):
+                raise AssertionError(f"{path.relative_to(root)}:{node.lineno} picks a LOD level: use lod_level")
 
 
 def test_lod_levels_reduce_triangles_and_keep_silhouette(lsys_dir):

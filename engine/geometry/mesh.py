@@ -72,6 +72,12 @@ LOD_LEVELS = (
 )
 
 
+def lod_level(lod: int) -> LodLevel:
+    """The mesh level for LOD ``lod`` (0 the finest), clamped to the levels there are: the one place a level
+    number becomes a :class:`LodLevel` (build_geometry, grow_geometry, a save's roots)."""
+    return LOD_LEVELS[max(0, min(int(lod), len(LOD_LEVELS) - 1))]
+
+
 def _normalize(v: np.ndarray) -> np.ndarray:
     n = np.sqrt(np.einsum("...i,...i->...", v, v))[..., None]
     return v / np.where(n > 1e-12, n, 1.0)

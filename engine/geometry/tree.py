@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from arbor.engine.geometry.mesh import LOD_LEVELS, LodLevel, TreeMesh, tree_mesh
+from arbor.engine.geometry.mesh import TreeMesh, lod_level, tree_mesh
 from arbor.engine.geometry.turtle import TurtleConfig, TurtleResult, interpret
 from arbor.engine.lsystem.lstring import LString
 from arbor.engine.lsystem.lsys import LSystem
@@ -27,6 +27,5 @@ def tree_height(geometry: TreeGeometry) -> float:
 
 def build_geometry(ls: LString, system: LSystem, lod: int = 0, **turtle_overrides) -> TreeGeometry:
     """Interpret ``ls`` with the defaults of ``system`` and mesh it at LOD level ``lod``."""
-    level: LodLevel = LOD_LEVELS[max(0, min(lod, len(LOD_LEVELS) - 1))]
     turtle = interpret(ls, TurtleConfig.from_system(system, **turtle_overrides))
-    return TreeGeometry(turtle, tree_mesh(turtle, level))
+    return TreeGeometry(turtle, tree_mesh(turtle, lod_level(lod)))

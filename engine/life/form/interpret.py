@@ -16,7 +16,7 @@ import numpy as np
 
 from arbor.engine.base.assets import assets_dir
 from arbor.engine.base.errors import LSysError
-from arbor.engine.geometry.mesh import LOD_LEVELS, tree_mesh
+from arbor.engine.geometry.mesh import lod_level, tree_mesh
 from arbor.engine.geometry.tree import TreeGeometry
 from arbor.engine.geometry.turtle import (
     Leaves,
@@ -245,5 +245,4 @@ def grown_turtle(ls: LString, clocks: Clocks, const: dict[str, float]) -> Turtle
 def grow_geometry(ls: LString, clocks: Clocks, const: dict[str, float], lod: int = 0) -> TreeGeometry:
     """Turtle and meshes of the growing tree, with continuous radii (see module docstring)."""
     turtle = grown_turtle(ls, clocks, const)
-    level = LOD_LEVELS[max(0, min(lod, len(LOD_LEVELS) - 1))]
-    return TreeGeometry(turtle, tree_mesh(turtle, level))
+    return TreeGeometry(turtle, tree_mesh(turtle, lod_level(lod)))
