@@ -285,7 +285,7 @@ EPILOG = """examples:
   arbor card saves/autosave.arbor --out tree.png && arbor import tree.png --saves other/
 
 Every command exits 0 when done, 1 on a failure at run time (one line on stderr says what to fix) and 2 on
-bad arguments. Documentation: README.md and docs/ (https://github.com/arbor-trees/arbor)."""
+bad arguments. Documentation: README.md and docs/ (docs/troubleshooting.md when something goes wrong)."""
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -302,7 +302,8 @@ def build_parser() -> argparse.ArgumentParser:
     render.add_argument("--yaw", type=float, default=30.0)
     render.add_argument("--pitch", type=float, default=12.0)
     render.add_argument("--lod", type=_bounded(0, MAX_LOD, "--lod"), default=0, help="level of detail 0-3")
-    render.add_argument("--out", type=Path, default=Path("tree.png"))
+    render.add_argument("--out", type=Path, default=Path("tree.png"), metavar="FILE.png",
+                        help="the picture to write (default tree.png)")
     render.add_argument("--scale-bar", type=_metres("--scale-bar"), nargs="?", const=0.0, default=None,
                         metavar="METRES", help="frame METRES high round the trunk (the same for every tree "
                         "rendered so: one shared scale; default: the tree's height rounded up to a whole metre) "
@@ -312,7 +313,8 @@ def build_parser() -> argparse.ArgumentParser:
     _add_growth_args(export, saves=True)
     export.add_argument("--format", choices=("glb", "obj"), default=None, help="default: from --out's suffix")
     export.add_argument("--lod", type=_bounded(0, MAX_LOD, "--lod"), default=0, help="level of detail 0-3")
-    export.add_argument("--out", type=Path, default=Path("tree.glb"))
+    export.add_argument("--out", type=Path, default=Path("tree.glb"), metavar="FILE",
+                        help="NAME.glb, or NAME.obj (with NAME.mtl and NAME_bark.png ... beside it; default tree.glb)")
     size = export.add_mutually_exclusive_group()
     size.add_argument("--height", type=_metres("--height"), default=None, metavar="METRES",
                       help="scale the tree to this height in metres, the top of its wood (for sources of any unit)")
@@ -344,7 +346,8 @@ def build_parser() -> argparse.ArgumentParser:
     land.add_argument("--seed", type=_bounded(0, 2**63 - 1, "--seed"), default=0)
     land.add_argument("--lod", type=_bounded(0, MAX_LOD, "--lod"), default=None,
                       help="force one level 0-3 (default: by distance)")
-    land.add_argument("--out", type=Path, default=Path("landscape.png"))
+    land.add_argument("--out", type=Path, default=Path("landscape.png"), metavar="FILE.png",
+                      help="the picture to write (default landscape.png)")
     land.add_argument("--glb", type=Path, default=None, help="also export the trees as one GLB (shared meshes)")
     land.add_argument("--presets", default="abop_2_8_tree:4,abop_2_6_monopodial:7,broadleaf,weeping",
                       help="comma-separated: LSYS_NAME[:STEPS] or a species from assets/presets")
@@ -356,7 +359,8 @@ def build_parser() -> argparse.ArgumentParser:
                        help="the same parents and seed give the same child")
     breed.add_argument("--tree-a", type=_bounded(0, 5, "--tree-a"), default=None, help="tree of a (default: cared-for)")
     breed.add_argument("--tree-b", type=_bounded(0, 5, "--tree-b"), default=None, help="tree of b (default: cared-for)")
-    breed.add_argument("--out", type=Path, default=Path("child.arbor"))
+    breed.add_argument("--out", type=Path, default=Path("child.arbor"), metavar="FILE.arbor",
+                       help="the child's save to write (default child.arbor)")
     breed.set_defaults(run=_cmd_breed)
     lineage = sub.add_parser("lineage", help="print the family tree of a save's trees")
     lineage.add_argument("save", type=Path)
@@ -367,7 +371,8 @@ def build_parser() -> argparse.ArgumentParser:
     card = sub.add_parser("card", help="share a tree as a postcard PNG that carries its save (arbor import reads it)")
     card.add_argument("save", type=Path, help="the save (.arbor) the tree is in")
     card.add_argument("--tree", type=_bounded(0, 5, "--tree"), default=None, help="which tree (default: cared-for)")
-    card.add_argument("--out", type=Path, default=Path("tree.png"))
+    card.add_argument("--out", type=Path, default=Path("tree.png"), metavar="FILE.png",
+                      help="the postcard to write (default tree.png)")
     card.set_defaults(run=_cmd_card)
     imp = sub.add_parser("import", help="plant the tree of a postcard PNG (arbor card) in your garden")
     imp.add_argument("card", type=Path, help="the postcard (.png)")
