@@ -432,8 +432,7 @@ def _load_tree(data: dict, where: Where, rules: Rules, budget_slack: float) -> W
                     if isinstance(v, int | float) and not isinstance(v, bool) and abs(v) <= BIG}  # (10**25: no float)
     traits = genome.checked(system, saved_genome) if "genome" in data else {}
     growth = table(data, "growth", where)
-    tree = _restore_growth(GrowingTree(genome.expressed(system, traits), seed=seed), system, growth, where,
-                           budget_slack)
+    tree = _restore_growth(genome.expressed(system, traits), seed, growth, where, budget_slack)
     rng = np.random.Generator(np.random.PCG64(seed))
     restore_rng(rng, text_value(growth, "rng_world", where, 4096), "rng_world", where)
     saved = data.get("lineage")
@@ -452,8 +451,8 @@ def _load_tree(data: dict, where: Where, rules: Rules, budget_slack: float) -> W
     return World(system, rules, seed=seed, position=position, parts=parts)
 
 
-def _restore_growth(tree: GrowingTree, system, growth: dict, where: Where, budget_slack: float) -> GrowingTree:
-    """``tree`` (new, of the saved genome) with its saved L-string, clocks, light and generator."""
+def _restore_growth(system, seed: int, growth: dict, where: Where, budget_slack: float) -> GrowingTree:
+    """The saved tree of ``system`` (its species with its genome): its L-string, clocks, light and generator."""
     limit = int((system.budget or 10**6) * 2 * budget_slack)
     modules = value(growth, "modules", "int", 0, 2**31, where)
     lstring_text = text_value(growth, "lstring", where, 64 * max(limit, 1))
@@ -474,13 +473,14 @@ def _restore_growth(tree: GrowingTree, system, growth: dict, where: Where, budge
     if not 0.5 < float(np.linalg.norm(direction)) < 2.0:
         raise where.error("'light_dir' must be a direction (a vector of length 1)", "light_dir")
     sensed = "last_sense_length" in growth or "last_sense_girth" in growth
-    tree.restore(lstring, last_rewrite_T=value(growth, "last_rewrite_T", *GROWTH_FIELDS["last_rewrite_T"], where),
-                 light_dir=_direction(direction),
-                 mean_light=value(growth, "mean_light", *GROWTH_FIELDS["mean_light"], where, default=1.0),
-                 shed_total=value(growth, "shed_total", *GROWTH_FIELDS["shed_total"], where, default=0),
-                 sensed=(value(growth, "last_sense_length", *GROWTH_FIELDS["last_sense_length"], where),
-                         value(growth, "last_sense_girth", *GROWTH_FIELDS["last_sense_girth"], where))
-                 if sensed else None)
+    tree = GrowingTree(system, seed=seed, lstring=lstring, light_dir=_direction(direction),
+                       last_rewrite_T=value(growth, "last_rewrite_T", *GROWTH_FIELDS["last_rewrite_T"], where),
+                       mean_light=value(growth, "mean_light", *GROWTH_FIELDS["mean_light"], where, default=1.0),
+                       shed_total=value(growth, "shed_total", *GROWTH_FIELDS["shed_total"], where, default=0),
+                       last_sense_length=value(growth, "last_sense_length", *GROWTH_FIELDS["last_sense_length"],
+                                               where) if sensed else None,
+                       last_sense_girth=value(growth, "last_sense_girth", *GROWTH_FIELDS["last_sense_girth"],
+                                              where) if sensed else None)
     restore_rng(tree.deriver.rng, text_value(growth, "rng_tree", where, 4096), "rng_tree", where)
     return tree
 

@@ -137,15 +137,6 @@ class GrowingTree:
             self.lstring = self.system.axiom
         self.geometry_constants = interpretation_constants(self.system.constants)
 
-    def restore(self, lstring: LString, last_rewrite_T: float, light_dir: np.ndarray, mean_light: float,  # noqa: N803
-                shed_total: int, sensed: tuple[float, float] | None) -> None:
-        """Take a saved tree's L-string and clocks (a new tree being loaded; ``sensed``: the length and
-        girth times of its last light reading, None when the save has none)."""
-        self.lstring, self.last_rewrite_T, self.light_dir = lstring, last_rewrite_T, light_dir
-        self.mean_light, self.shed_total = mean_light, shed_total
-        if sensed is not None:
-            self.last_sense_length, self.last_sense_girth = sensed
-
     @property
     def budget_hit(self) -> bool:
         """True when the last rewrite was held back by the module budget."""
