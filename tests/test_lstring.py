@@ -6,7 +6,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from arbor.engine.base.errors import LSysError
-from arbor.engine.lsystem.lstring import LString, parse_lstring
+from arbor.engine.lsystem.lstring import LString, parse_lstring, replace_modules
 
 SYMBOLS = "FfAB+-&^/\\|$[]!'%XL"
 floats = st.floats(allow_nan=True, allow_infinity=True, width=64)
@@ -90,3 +90,18 @@ def test_the_array_reader_agrees_with_the_careful_reader_on_mangled_text():
             accepted += 1
             assert fast.equals(slow), text
     assert accepted > 1000  # most texts still take the fast road
+
+
+def test_replace_modules_keeps_the_others_and_sets_the_chosen():
+    """Modules picked get their symbol and values (counts change); every other module keeps its own."""
+    rng = np.random.default_rng(4)
+    counts = rng.integers(0, 5, 500)
+    ls = LString.from_arrays(rng.choice(np.frombuffer(b"FAI+[]", np.uint8), 500), counts,
+                             rng.normal(size=int(counts.sum())))
+    idx = np.sort(rng.choice(500, 120, replace=False))
+    values = rng.normal(size=(120, 2))
+    out = replace_modules(ls, idx, ord("X"), values)
+    picked = dict(zip(idx.tolist(), values.tolist(), strict=True))
+    for i in range(500):
+        expected = ("X", tuple(picked[i])) if i in picked else ls.module(i)
+        assert out.module(i) == expected

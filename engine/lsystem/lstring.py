@@ -144,10 +144,8 @@ def replace_modules(ls: LString, idx: np.ndarray, symbol: int | np.ndarray, valu
     nparams[idx] = values.shape[1]
     out = LString.from_arrays(sym, nparams, np.empty(int(nparams.sum(dtype=np.int64))))
     keep = np.ones(len(ls), dtype=bool)
-    keep[idx] = False
-    kept = np.flatnonzero(keep)
-    counts = ls.nparams[kept]
-    out.params[ragged_arange(out.offsets[kept], counts)] = ls.params[ragged_arange(ls.offsets[kept], counts)]
+    keep[idx] = False  # the other modules' parameters, in order, by a byte mask per parameter each side
+    out.params[np.repeat(keep, nparams)] = ls.params[np.repeat(keep, ls.nparams)]
     if values.shape[1]:
         out.params[out.offsets[idx][:, None] + np.arange(values.shape[1])] = values
     return out
