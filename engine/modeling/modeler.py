@@ -24,7 +24,6 @@ from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 
 import numpy as np
-from scipy.signal import savgol_filter
 
 from arbor.engine.geometry.turtle import INITIAL_FRAME, Segments, TurtleConfig, interpret, unit
 from arbor.engine.lsystem import brackets
@@ -160,6 +159,8 @@ def smoothed(points: np.ndarray, window: float = SMOOTH_WINDOW, order: int = 3) 
     fitted over ``window`` of the stroke's points around each point), which keeps the drawn bends (a
     cubic follows them) while tremor, which would read as curvature, averages out; the ends stay where
     they were drawn (the start is where the stroke joins the tree)."""
+    from scipy.signal import savgol_filter  # here, not at start: importing scipy.signal costs ~1 s of CPU
+
     n = len(points)
     width = max(order + 2, int(window * n)) | 1
     if n <= width:

@@ -11,9 +11,10 @@ chosen with the menu's option button, to the modules inside only (one undoable s
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 import pygame
-from scipy.spatial import ConvexHull, QhullError
 
 from arbor.engine.geometry.turtle import TurtleConfig, module_positions
 from arbor.engine.life.form.interpret import render_view
@@ -24,6 +25,9 @@ from arbor.game.render.camera import OrbitCamera, project_ball, project_points
 from arbor.game.render.ui import draw_polyline
 from arbor.game.strings import text
 from arbor.game.tools.symbols import draw_symbols
+
+if TYPE_CHECKING:
+    from scipy.spatial import ConvexHull
 
 CONTOUR_PIXELS = 80.0  # a drag at least this tall, and twice as tall as wide, is a contour
 GROUPS = {"grow": "grown", "prune": "pruned_region"}  # edits with their own message
@@ -117,6 +121,8 @@ class RegionTool:
 
     def _seen(self, camera: OrbitCamera) -> ConvexHull | None:
         """The convex hull of the supertoroid's projected surface points (window pixels)."""
+        from scipy.spatial import ConvexHull, QhullError  # here, not when the game starts
+
         pixels = project_points(camera, self.mode.size, self._outline().reshape(-1, 3))
         pixels = pixels[np.isfinite(pixels).all(axis=1)]
         try:
