@@ -16,8 +16,6 @@ NOT_YET = {  # "path:Class.function" -> its parameters today, the most it may ke
     "engine/life/plant/growth.py:GrowingTree.sense": 10,  # the plant science is being rewritten around it
     "engine/modeling/crown_fill.py:grow_within": 9,  # its one caller is engine/life/world/commands.py
     "game/render/sky_look.py:sky_look": 9,  # a view object for vp, eye, size, fov_y: still to do
-    "game/screens/modeler_screen.py:ModelerScreen.__init__": 9,  # the screen stack is being written ...
-    "game/screens/game_input.py:GameInput.__init__": 10,  # ... and takes this one to 8
 }
 
 

@@ -119,9 +119,8 @@ class Game:
         self.family.on_choose = self.care.care_for
         self.menu_screen = MenuScreen(self.menu, self.screens, gestures=self.gestures, care=self.care,
                                       font=self.font)
-        self.modeling.screen = ModelerScreen(self.modeling, self.screens, state=state, menu=self.menu,
-                                             gestures=self.gestures, care=self.care, camera=self.camera,
-                                             tap=self.input.tap, fonts=(self.font, self.small_font))
+        self.modeling.screen = ModelerScreen(self.modeling, self.screens, menu=self.menu, gestures=self.gestures,
+                                             care=self.care, tap=self.input.tap, fonts=(self.font, self.small_font))
 
     @property
     def garden(self):

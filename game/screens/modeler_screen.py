@@ -12,13 +12,11 @@ import pygame
 
 from arbor.game.input.events import DOWN, MOVE, UP, InputEvent
 from arbor.game.input.gestures import Gestures
-from arbor.game.render.camera import OrbitCamera
 from arbor.game.render.ui import Menu
 from arbor.game.screens.care import CareActions
 from arbor.game.screens.game_input import pointer_id
 from arbor.game.screens.modeler import ModelingMode
 from arbor.game.screens.stack import TAP, Canvas, Screen, ScreenStack
-from arbor.game.screens.state import GameState
 from arbor.game.strings import text
 
 TAP_SECONDS, TAP_PIXELS = 0.3, 12
@@ -29,11 +27,12 @@ TRACKER = -3  # the stroke pointer of a 3D tracker's button
 class ModelerScreen(Screen):
     """The modeler on the stack (see module docstring); ``tap`` sends a tap down the whole stack."""
 
-    def __init__(self, modeling: ModelingMode, screens: ScreenStack, *, state: GameState, menu: Menu,
-                 gestures: Gestures, care: CareActions, camera: Callable[[], OrbitCamera],
-                 tap: Callable[[float, float], None], fonts: tuple[pygame.font.Font, pygame.font.Font]) -> None:
-        self.modeling, self.stack, self.state, self.menu = modeling, screens, state, menu
-        self.gestures, self.care, self.camera, self.tap, self.fonts = gestures, care, camera, tap, fonts
+    def __init__(self, modeling: ModelingMode, screens: ScreenStack, *, menu: Menu, gestures: Gestures,
+                 care: CareActions, tap: Callable[[float, float], None],
+                 fonts: tuple[pygame.font.Font, pygame.font.Font]) -> None:
+        self.modeling, self.stack, self.menu, self.gestures, self.care = modeling, screens, menu, gestures, care
+        self.state, self.camera = modeling.state, modeling.camera  # (the game's, as the modeler has them)
+        self.tap, self.fonts = tap, fonts
         self.bar_pointers: set[int] = set()  # pointers pressing the tool bar
         self.stroke_pointer: int | None = None
         self.stroke_start: tuple[float, float, float] = (0.0, 0.0, 0.0)
