@@ -9,11 +9,12 @@ import pytest
 from arbor.engine.life.plant.carbon import CarbonBudget, canopy, full_ppfd, stomata
 from arbor.engine.life.plant.photosynthesis import real_seconds
 from arbor.engine.life.rules.rules import Rules, load_rules
+from arbor.engine.life.rules.schema import find_rule
 from arbor.engine.life.world.actions import Action
 from arbor.engine.life.world.world import World
 from arbor.engine.lsystem.lsys import load_lsystem
 
-DAY = 2 * np.pi / 0.05  # seconds of a simulated day at the default sun speed
+DAY = 2 * np.pi / find_rule("sun.speed").default  # seconds of a simulated day at the default sun speed
 
 
 @pytest.fixture(scope="module")

@@ -11,13 +11,14 @@ from arbor.engine.life.plant.carbon import CarbonBudget, Economy
 from arbor.engine.life.plant.growth import GrowingTree
 from arbor.engine.life.plant.sim import SimState, Simulation
 from arbor.engine.life.rules.rules import Rules, load_rules
+from arbor.engine.life.rules.schema import find_rule
 from arbor.engine.life.world.actions import Action
 from arbor.engine.life.world.world import World
 from arbor.engine.lsystem.derive import Deriver
 from arbor.engine.lsystem.lstring import parse_lstring
 from arbor.engine.lsystem.lsys import load_lsystem
 
-DAY = 2 * np.pi / 0.05  # seconds of a simulated day at the default sun speed
+DAY = 2 * np.pi / find_rule("sun.speed").default  # seconds of a simulated day at the default sun speed
 
 
 @pytest.fixture(scope="module")

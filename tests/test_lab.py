@@ -6,6 +6,7 @@ import pytest
 from arbor.engine.base.errors import LSysError
 from arbor.engine.life.experiment.lab import Lab, load_experiment
 from arbor.engine.life.rules.rules import load_rules
+from arbor.engine.life.rules.schema import find_rule
 from arbor.game.commands.lab import run_headless
 from tests.conftest import ROOT
 
@@ -208,7 +209,8 @@ def test_meters_and_wilt_are_sampled_as_mean_min_and_max_since_the_last_sample(t
     """A 240 s watering timetable swings the water meter within a day: a sample once a day gives the
     mean, lowest and highest of every step since the sample before it, not one instant of the swing."""
     path = tmp_path / "swing.toml"
-    path.write_text('title = "Swing"\nseed = 2\nduration = 760\nsample_every = 125.66667\nseasons = false\n\n'
+    day = 2 * np.pi / find_rule("sun.speed").default  # s: a day of the sun at the default sun speed
+    path.write_text(f'title = "Swing"\nseed = 2\nduration = 760\nsample_every = {day!r}\nseasons = false\n\n'
                     '[[tree]]\nname = "Timetable"\nwatering = { every = 240, seconds = 5 }\n', encoding="utf-8")
     lab = Lab(load_experiment(path, LSYS), load_rules(ROOT / "assets" / "rules.toml", pace="demo"))
     steps: list = []  # each step's meters after it, with None where a sample was taken (before the step)

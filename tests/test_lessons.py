@@ -13,7 +13,10 @@ import numpy as np
 
 from arbor.engine.life.experiment.lab import Lab, load_experiment
 from arbor.engine.life.rules.rules import load_rules
+from arbor.engine.life.rules.schema import find_rule
 from arbor.game.paths import ASSETS
+
+DAY = 2 * np.pi / find_rule("sun.speed").default  # s: a day of the sun at the default sun speed
 
 ROOT = Path(__file__).resolve().parent.parent
 GUIDE = (ROOT / "docs" / "teaching.md").read_text(encoding="utf-8")
@@ -58,7 +61,7 @@ def test_the_guide_names_its_three_lesson_files_and_commands():
 
 
 def test_lesson_light_longer_days_catch_more_light(tmp_path):
-    path = shortened("lesson_light.toml", tmp_path, 4 * 125.66667, seeds=2)
+    path = shortened("lesson_light.toml", tmp_path, 4 * DAY, seeds=2)
     out = tmp_path / "light"
     as_written("lesson_light.toml", path, out, "--workers", "1")  # with the figures the guide says to open
     light = finals(out, "Day length", "light_day")
@@ -68,7 +71,7 @@ def test_lesson_light_longer_days_catch_more_light(tmp_path):
 
 
 def test_lesson_water_rare_drinks_leave_the_meter_low(tmp_path):
-    path = shortened("lesson_water.toml", tmp_path, 5 * 125.66667, seeds=2)
+    path = shortened("lesson_water.toml", tmp_path, 5 * DAY, seeds=2)
     out = tmp_path / "water"
     as_written("lesson_water.toml", path, out, "--workers", "1", "--no-plots")
     low = finals(out, "Time between drinks", "water_min")
@@ -78,7 +81,7 @@ def test_lesson_water_rare_drinks_leave_the_meter_low(tmp_path):
 
 
 def test_lesson_competition_the_middle_tree_is_shaded(tmp_path):
-    path = shortened("lesson_competition.toml", tmp_path, 20 * 125.66667)  # (crowns meet from about day 14)
+    path = shortened("lesson_competition.toml", tmp_path, 20 * DAY)  # (crowns meet from about day 14)
     out = tmp_path / "competition"
     as_written("lesson_competition.toml", path, out)
     rows = list(csv.DictReader(io.StringIO((out / "results.csv").read_text(encoding="utf-8"))))
@@ -98,7 +101,7 @@ def test_lesson_competition_the_middle_tree_is_shaded(tmp_path):
 
 
 def test_lesson_pruning_a_raised_crown_builds_less_and_roots_take_a_larger_share(tmp_path):
-    path = shortened("lesson_pruning.toml", tmp_path, 9 * 125.66667, seeds=1)
+    path = shortened("lesson_pruning.toml", tmp_path, 9 * DAY, seeds=1)
     out = tmp_path / "pruning"
     as_written("lesson_pruning.toml", path, out, "--workers", "1", "--no-plots", "--keep", "none")
     biomass = finals(out, "Lowest branches cut", "biomass")

@@ -16,10 +16,11 @@ from arbor.engine.life.experiment.measure import measure
 from arbor.engine.life.keep.save import read_garden, save_text
 from arbor.engine.life.plant.carbon import AREA
 from arbor.engine.life.rules.rules import load_rules
+from arbor.engine.life.rules.schema import find_rule
 from arbor.engine.life.world.commands import Prune
 from arbor.game.paths import ASSETS
 
-DAY = 125.66667
+DAY = 2 * math.pi / find_rule("sun.speed").default  # s: a day of the sun at the default sun speed
 LAB = f"""title = "Pruning"
 seed = 4
 duration = {10 * DAY:.0f}

@@ -11,6 +11,7 @@ from arbor.engine.life.keep.away import away_seconds, live_away, tree_height
 from arbor.engine.life.keep.save import SavedGarden, read_garden, write_garden
 from arbor.engine.life.plant import seasons
 from arbor.engine.life.rules.rules import load_rules
+from arbor.engine.life.rules.schema import find_rule
 from arbor.engine.life.world.actions import Action
 from arbor.engine.life.world.garden import Garden
 from arbor.engine.life.world.world import World
@@ -47,7 +48,8 @@ def year():
 
 def test_paces_scale_times_and_rates_but_keep_the_rules_shape():
     demo, home = load_rules(RULES, pace="demo"), load_rules(RULES, pace="home")
-    assert demo.growth.hold_time == 20.0 and demo.growth.deadline == 40.0  # the tamagotchi thesis's numbers
+    assert (demo.growth.hold_time, demo.growth.deadline) == (find_rule("growth.hold_time").default,
+                                                             find_rule("growth.deadline").default)  # as declared
     k = home.time_scale
     assert 500 < k < 1000
     assert home.growth.hold_time == pytest.approx(20.0 * k) and home.growth.deadline == pytest.approx(40.0 * k)

@@ -7,11 +7,13 @@ from arbor.engine.base.errors import LSysError
 from arbor.engine.life.keep.save_check import sim_state
 from arbor.engine.life.plant.sim import GrowthCycle, Simulation
 from arbor.engine.life.rules.rules import GrowthRules, Rules, load_rules
+from arbor.engine.life.rules.schema import find_rule
 
 
 def test_rules_file_loads_and_is_strict(tmp_path):
     rules = load_rules("assets/rules.toml", pace="demo")
-    assert rules.growth.hold_time == 20.0 and rules.growth.deadline == 40.0  # the tamagotchi thesis's numbers
+    assert (rules.growth.hold_time, rules.growth.deadline) == (find_rule("growth.hold_time").default,
+                                                               find_rule("growth.deadline").default)  # as declared
     bad = tmp_path / "rules.toml"
     bad.write_text("[growth]\nhold_tme = 3\n")
     with pytest.raises(LSysError, match="hold_tme"):
