@@ -1,6 +1,8 @@
-"""Fuzz campaign: hostile saves, .lsys sources and TUIO packets through the real load paths.
+"""Fuzz campaign: hostile saves, .lsys sources, TUIO packets and every other file a user can hand us
+through the real load paths.
 
-Run: python -m benchmarks.fuzz [SAVES] [LSYS] [OSC] [--seed N] [--keep DIR]   (defaults 10000 10000 2000)
+Run: python -m benchmarks.fuzz [SAVES] [LSYS] [OSC] [FILES] [--seed N] [--keep DIR]
+(defaults 10000 10000 2000 10000; FILES: benchmarks/fuzz_files.py, each stopped at FILE_HANG_SECONDS)
 Every case goes through what the game does with such input (a save: load, then geometry and a little
 catch-up, then the game's own save of it, which must load back to the same bytes; an .lsys: parse,
 derive under the budget, geometry; a packet: the TUIO parser). A case
@@ -216,6 +218,7 @@ class HangError(Exception):
 
 
 HANG_SECONDS = 60.0  # a case is stopped here and counted as a hang
+FILE_HANG_SECONDS = 10.0  # a file case (fuzz_files) is a hang past this: issue 45's bound
 SLOW_SECONDS = 5.0  # a case slower than this is counted (and kept with --keep): the issue's bound on a start
 
 
@@ -223,17 +226,47 @@ def _alarm(signum, frame):
     raise HangError()
 
 
-def campaign(n_saves: int, n_lsys: int, n_osc: int, seed: int = 0, keep: Path | None = None) -> int:
+def _file_maker(rng: random.Random, base_save: str, folder: Path):
+    """The file cases' maker and runner (benchmarks/fuzz_files.py): (make(), run(case))."""
+    import io
+
+    from PIL import Image
+
+    from arbor.engine.life.keep.card import card_bytes
+    from benchmarks import fuzz_files
+
+    (folder / "card-base.arbor").write_text(base_save, encoding="utf-8")
+    png = io.BytesIO()
+    Image.new("RGB", (16, 16), (40, 90, 40)).save(png, "PNG")
+    card = card_bytes(png.getvalue(), read_garden(folder / "card-base.arbor", _rules()))
+    bases, read, cases = fuzz_files.samples(), fuzz_files.readers(), folder / "files"
+    cases.mkdir()
+
+    def make():
+        if rng.randrange(fuzz_files.DERIVE_EVERY) == 0:
+            return fuzz_files.heavy_case(rng)
+        return fuzz_files.make_case(rng, bases, base_save, card, mutate_text)
+
+    def run(case):
+        return fuzz_files.try_heavy(case) if case[0] == "derive" else fuzz_files.try_file(case, cases, read)
+    return make, run
+
+
+def campaign(n_saves: int, n_lsys: int, n_osc: int, n_files: int = 0, seed: int = 0,
+             keep: Path | None = None) -> int:
     """Run the whole campaign; prints the figures and returns the number of uncaught exceptions, hangs
     and failed round trips. ``keep``: a folder where every failing case is written (to replay it)."""
     from arbor.game.input.tuio import TuioParser
 
     rng = random.Random(seed)
-    failures, slow, slowest, outcomes = [], 0, [], {"loaded": 0, "refused": 0, "round trip": 0, "hang": 0}
+    failures, slow, slowest = [], 0, []
+    outcomes = {"loaded": 0, "refused": 0, "round trip": 0, "hang": 0, "read": 0, "derived": 0, "file refused": 0}
     base_save, sources, parser = sample_garden_text(), sample_sources(), TuioParser((1280, 720))
     signal.signal(signal.SIGALRM, _alarm)
     with TemporaryDirectory() as tmp:
-        cases = [("save", n_saves), ("lsys", n_lsys), ("osc", n_osc)]
+        cases = [("save", n_saves), ("lsys", n_lsys), ("osc", n_osc), ("file", n_files)]
+        make_file, run_file = _file_maker(rng, base_save, Path(tmp)) if n_files else (None, None)
+        file_slow, file_peak = 0, 0.0
         start = time.perf_counter()
         for kind, count in cases:
             for _ in range(count):
@@ -241,13 +274,16 @@ def campaign(n_saves: int, n_lsys: int, n_osc: int, seed: int = 0, keep: Path | 
                     case, run = mutate_text(base_save, rng), lambda c: try_save(c, Path(tmp))
                 elif kind == "lsys":
                     case, run = mutate_text(rng.choice(sources), rng), try_source
+                elif kind == "file":
+                    case, run = make_file(), run_file
                 else:
                     case, run = random_packet(rng), lambda c: try_packet(parser, c)
                 t0 = time.perf_counter()
-                signal.setitimer(signal.ITIMER_REAL, HANG_SECONDS)
+                signal.setitimer(signal.ITIMER_REAL, FILE_HANG_SECONDS if kind == "file" else HANG_SECONDS)
                 try:
                     result = run(case)
                     signal.setitimer(signal.ITIMER_REAL, 0)
+                    result = "file refused" if kind == "file" and result == "refused" else result
                     if result in outcomes:
                         outcomes[result] += 1
                 except Exception as exc:
@@ -258,13 +294,21 @@ def campaign(n_saves: int, n_lsys: int, n_osc: int, seed: int = 0, keep: Path | 
                     if keep is not None:
                         _keep(keep, kind, len(failures), case)
                 took = time.perf_counter() - t0
+                if kind == "file":
+                    file_slow += took > FILE_HANG_SECONDS
+                    file_peak = max(file_peak, took)
                 if took > SLOW_SECONDS:
                     slow += 1
                     slowest.append((took, kind, case))
                     if keep is not None:
                         _keep(keep, f"slow-{kind}", slow, case)
     peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
-    print(f"cases: {n_saves:,} saves, {n_lsys:,} .lsys, {n_osc:,} OSC packets in {time.perf_counter() - start:.0f} s")
+    print(f"cases: {n_saves:,} saves, {n_lsys:,} .lsys, {n_osc:,} OSC packets, {n_files:,} other files in "
+          f"{time.perf_counter() - start:.0f} s")
+    if n_files:
+        print(f"files: {outcomes['read']:,} read, {outcomes['file refused']:,} refused with their own error, "
+              f"{outcomes['derived']:,} heavy derivations ended in their budgets; "
+              f"slowest file case {file_peak:.1f} s, over {FILE_HANG_SECONDS:g} s: {file_slow}")
     print(f"saves: {outcomes['loaded']:,} loaded and round-tripped, {outcomes['refused']:,} refused with one line, "
           f"{outcomes['round trip']} failed their own round trip")
     print(f"uncaught: {len(failures)} (hangs over {HANG_SECONDS:g} s: {outcomes['hang']}); slower than "
@@ -272,12 +316,14 @@ def campaign(n_saves: int, n_lsys: int, n_osc: int, seed: int = 0, keep: Path | 
     for took, kind, case in sorted(slowest, key=lambda s: -s[0])[:5]:
         print(f"slow {kind} case: {took:.1f} s ({len(case):,} characters)")
     for kind, text, case in failures[:5]:
-        print(f"--- {kind}: {case[:300]!r}\n{text}")
+        print(f"--- {kind}: {(case[:2] if isinstance(case, tuple) else case[:300])!r}\n{text}")
     return len(failures)
 
 
 def _keep(folder: Path, kind: str, number: int, case) -> None:
     folder.mkdir(parents=True, exist_ok=True)
+    if isinstance(case, tuple):  # a file case: (kind, how, bytes) or a heavy derivation
+        kind, case = f"{kind}-{case[0]}-{case[1]}", case[-1] if isinstance(case[-1], bytes) else repr(case)
     data = case if isinstance(case, bytes) else case.encode("utf-8", "surrogatepass")
     (folder / f"{kind}-{number:04d}.{'arbor' if kind == 'save' else kind}").write_bytes(data)
 
@@ -287,7 +333,7 @@ def main() -> None:
     argv = sys.argv[1:]
     options = {argv[i]: argv[i + 1] for i in range(len(argv) - 1) if argv[i] in ("--seed", "--keep")}
     args = [a for i, a in enumerate(argv) if not a.startswith("--") and (i == 0 or argv[i - 1] not in options)]
-    counts = [int(a) for a in args[:3]] + [10_000, 10_000, 2_000][len(args[:3]):]
+    counts = [int(a) for a in args[:4]] + [10_000, 10_000, 2_000, 10_000][len(args[:4]):]
     keep = Path(options["--keep"]) if "--keep" in options else None
     sys.exit(1 if campaign(*counts, seed=int(options.get("--seed", 0)), keep=keep) else 0)
 

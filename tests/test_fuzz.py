@@ -116,3 +116,33 @@ def test_whatever_the_game_saves_it_loads(system, tmp_path, values, trees, posit
         assert b.tree.lstring.equals(a.tree.lstring) and b.position == a.position
     write_garden(SavedGarden(back, current), path)  # and what was loaded saves again
     read_garden(path, rules)
+
+
+def test_every_kind_of_user_file_reads_or_says_why(tmp_path):
+    """Issue 45's classes, a short run: settings, kiosk, experiment, sweep, devices, species, recording,
+    save, card and .lsys files, mutated, nested deep or not plain files, each read or refused in its
+    own error within FILE_HANG_SECONDS (`python -m benchmarks.fuzz 0 0 0 10000` runs 10,000)."""
+    import signal
+    import time
+
+    from benchmarks.fuzz import FILE_HANG_SECONDS, _alarm, _file_maker
+
+    rng = random.Random(45)
+    make, run = _file_maker(rng, sample_garden_text(1), tmp_path)
+    old = signal.signal(signal.SIGALRM, _alarm)
+    try:
+        outcomes = []
+        for _ in range(150):
+            case = make()
+            if case[0] == "derive":
+                continue  # (the heavy derivations are the benchmark's: seconds each)
+            started = time.perf_counter()
+            signal.setitimer(signal.ITIMER_REAL, FILE_HANG_SECONDS)
+            with np.errstate(all="ignore"):
+                outcomes.append(run(case))
+            signal.setitimer(signal.ITIMER_REAL, 0)
+            assert time.perf_counter() - started < FILE_HANG_SECONDS
+    finally:
+        signal.setitimer(signal.ITIMER_REAL, 0)
+        signal.signal(signal.SIGALRM, old)
+    assert "read" in outcomes and "refused" in outcomes
