@@ -128,7 +128,7 @@ def write_outputs(sweep: Sweep, store: RunStore, everything: list, plots: bool =
 
         files += figures.dose_response(sweep, finals, out / "dose_response", day_seconds(sweep))
         files += figures.time_series(sweep, _series(sweep, rows), out / "time_series", day_seconds(sweep))
-        files += _thumbnails(sweep, store, everything, echo)
+        files += _thumbnails(sweep, store, everything, echo, rows)
     return files
 
 
@@ -168,20 +168,42 @@ def _series(sweep: Sweep, rows: list[dict]) -> dict:
     return series
 
 
-def _thumbnails(sweep: Sweep, store: RunStore, everything: list, echo: Callable[[str], None]) -> list[Path]:
-    """Render the kept final trees alike (one shared scale with a metre bar, so sizes compare) into a grid."""
+MAX_SEED_GRID = 240  # trees in the grid of every seed (above: the grid is left out, with a line saying so)
+
+
+def death_note(rows: list[dict], day_seconds: float) -> str:
+    """The words under a dead tree's thumbnail, from its run's tidy rows: the day it died (a [stop] table's
+    dies = true), else the first sample that found it dead (when 'alive' is recorded), else "dead"."""
+    if rows and rows[-1].get("stop") == "died":
+        return f"died on day {float(rows[-1]['stop_time_s']) / day_seconds:.1f}"
+    dead = [r for r in rows if "alive" in r and float(r["alive"]) == 0]
+    return f"dead by day {float(dead[0]['time_s']) / day_seconds:.1f}" if dead else "dead"
+
+
+def _thumbnails(sweep: Sweep, store: RunStore, everything: list, echo: Callable[[str], None],
+                rows: list[dict]) -> list[Path]:
+    """Render the kept final trees alike (one shared scale with a metre bar, so sizes compare): each level's
+    first seed in a grid (thumbnails), and, when more seeds were kept (--keep all), every seed (seeds); a dead
+    tree is marked with the day it died."""
     from arbor.engine.base.units import METRE
     from arbor.game.render import figures
     from arbor.game.render.renderer import headless_context
     from arbor.game.render.scale_bar import frame_for, render_to_scale
 
-    kept = {r.levels: store.trees_dir / r.tree_name(sweep) for r in everything if r.seed == sweep.seeds[0]}
+    kept = {(r.levels, r.seed): r for r in everything if (store.trees_dir / r.tree_name(sweep)).is_file()}
+    if len(kept) > MAX_SEED_GRID:
+        echo(f"the grid of every seed's tree is left out: {len(kept)} trees kept, more than {MAX_SEED_GRID}")
+        kept = {key: r for key, r in kept.items() if r.seed == sweep.seeds[0]}
     rules = load_rules(ASSETS / "rules.toml", sweep.pace)
-    meshes = {}
-    for levels, path in kept.items():
-        if path.is_file():
-            world = read_garden(path, rules).world
-            meshes[levels] = world.tree.geometry(world.clocks())
+    by_run: dict[str, list[dict]] = {}
+    for row in rows:
+        by_run.setdefault(row["run"], []).append(row)
+    meshes, notes = {}, {}
+    for key, run in kept.items():
+        world = read_garden(store.trees_dir / run.tree_name(sweep), rules).world
+        meshes[key] = world.tree.geometry(world.clocks())
+        if not world.sim.state.alive:
+            notes[key] = death_note(by_run.get(run.name, []), day_seconds(sweep))
     if not meshes:
         echo("thumbnails skipped: no kept trees (--keep none)")
         return []
@@ -195,4 +217,10 @@ def _thumbnails(sweep: Sweep, store: RunStore, everything: list, echo: Callable[
         images = {k: render_to_scale(g.mesh, (300, 360), frame, pitch=8.0, ctx=ctx) for k, g in meshes.items()}
     finally:
         ctx.release()
-    return figures.thumbnails(sweep, images, store.out / "thumbnails")
+    first = sweep.seeds[0]
+    dead = {levels: note for (levels, seed), note in notes.items() if seed == first}
+    files = figures.thumbnails(sweep, {levels: img for (levels, seed), img in images.items() if seed == first},
+                               store.out / "thumbnails", dead)
+    if any(seed != first for _, seed in images):
+        files += figures.seed_grid(sweep, images, store.out / "seeds", notes)
+    return files

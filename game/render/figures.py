@@ -4,6 +4,7 @@ Large type and thick lines for a projector."""
 
 from __future__ import annotations
 
+import textwrap
 import warnings
 from pathlib import Path
 
@@ -12,6 +13,7 @@ import matplotlib
 matplotlib.use("Agg")  # files only: never a window, never a display
 
 import matplotlib.pyplot as plt
+import matplotlib.ticker
 import numpy as np
 
 from arbor.engine.life.experiment.measure import UNITS
@@ -64,41 +66,120 @@ def _positions(levels: tuple) -> tuple[np.ndarray, list[str] | None]:
     return np.arange(len(levels), dtype=float), [str(v).removesuffix(".lsys") for v in levels]
 
 
+TITLE_WIDTH = 28  # characters a line of a panel's title holds (a 5.2-inch panel at 15 pt bold: about 34)
+LABEL_WIDTH = 34  # ... of an axis label at 13 pt
+
+
+def _title(ax, text: str) -> None:
+    """A panel's title, wrapped so that it never reaches over its neighbours'."""
+    ax.set_title(textwrap.fill(text, TITLE_WIDTH))
+
+
+def _labels(ax, x: str, y: str) -> None:
+    """A panel's axis labels, wrapped to the panel."""
+    ax.set_xlabel(textwrap.fill(x, LABEL_WIDTH))
+    ax.set_ylabel(textwrap.fill(y, LABEL_WIDTH - 6))
+
+
 def dose_response(sweep, finals: dict, path: Path, day_seconds: float = 125.66) -> list[Path]:
-    """Each response at the end of the runs against the first factor's levels: the mean over seeds, a
-    10-90 % band and every run as a dot; one line per level of the second factor (the title gives the
+    """Each response at the end of the runs against a factor's levels (a sweep whose levels are all one: the
+    distribution over seeds instead, :func:`distribution`); see :func:`dose_figure`."""
+    if all(len(f.levels) == 1 for f in sweep.factors):
+        return save_both(distribution_figure(sweep, finals, day_seconds), path)
+    return save_both(dose_figure(sweep, finals, day_seconds), path)
+
+
+def _axes_of(sweep) -> tuple[int, int | None]:
+    """Which factor runs across the x axis (the first with more than one level) and which gives the lines."""
+    across = next(i for i, f in enumerate(sweep.factors) if len(f.levels) > 1)
+    lines = next((i for i in range(len(sweep.factors)) if i != across), None)
+    return across, lines
+
+
+def dose_figure(sweep, finals: dict, day_seconds: float = 125.66):
+    """Each response at the end of the runs against the levels of the first factor with more than one: the
+    mean over seeds (a line), the spread over seeds (a 10-90 % bar at each level and every run as a dot,
+    the dots of each line set a little apart), one line per level of the other factor (the title gives the
     runs' length in game days of ``day_seconds``)."""
-    first = sweep.factors[0]
-    second = sweep.factors[1].levels if len(sweep.factors) > 1 else (None,)
+    across, lines = _axes_of(sweep)
+    first = sweep.factors[across]
+    second = sweep.factors[lines].levels if lines is not None else (None,)
     x, labels = _positions(first.levels)
+    step = float(np.min(np.diff(np.sort(x)))) if len(x) > 1 else 1.0
     colors = plt.cm.viridis(np.linspace(0.05, 0.85, len(second)))
     fig, axes = _grid(len(sweep.responses))
     for ax, response in zip(axes, sweep.responses, strict=True):
-        for color, other in zip(colors, second, strict=True):
+        for k, (color, other) in enumerate(zip(colors, second, strict=True)):
+            shift = (k - (len(second) - 1) / 2) * step * 0.06  # (the lines' dots side by side, not on one another)
             stats = []
             for xi, level in zip(x, first.levels, strict=True):
-                key = (level,) if other is None else (level, other)
-                values = finals.get(key, {}).get(response, np.zeros(0))
+                key = [None] * len(sweep.factors)
+                key[across] = level
+                if lines is not None:
+                    key[lines] = other
+                values = finals.get(tuple(key), {}).get(response, np.zeros(0))
                 if len(values):
-                    ax.scatter(np.full(len(values), xi), values, s=9, color=color, alpha=0.35, linewidths=0)
-                    stats.append((xi, values.mean(), *np.percentile(values, [10, 90])))
+                    ax.scatter(np.full(len(values), xi + shift), values, s=14, color=color, alpha=0.55,
+                               linewidths=0, zorder=3)
+                    stats.append((xi + shift, values.mean(), *np.percentile(values, [10, 90])))
             if stats:
                 sx, mean, low, high = np.array(stats).T
-                ax.fill_between(sx, low, high, color=color, alpha=0.2, linewidth=0)
-                label = None if other is None else f"{sweep.factors[1].name} = {_text(other)}"
+                ax.fill_between(sx, low, high, color=color, alpha=0.12, linewidth=0)
+                ax.vlines(sx, low, high, color=color, linewidth=2, alpha=0.8)
+                label = None if other is None else f"{sweep.factors[lines].name} = {_text(other)}"
                 ax.plot(sx, mean, "-o", color=color, label=label, markersize=5)
         _limits(ax, response)
-        ax.set_title(TITLES.get(response, response))
-        ax.set_xlabel(axis_label(first))
-        ax.set_ylabel(y_label(response))
+        _title(ax, TITLES.get(response, response))
+        _labels(ax, axis_label(first), y_label(response))
         if labels:
             ax.set_xticks(x, labels)
         ax.grid(alpha=0.3)
     if len(second) > 1:
         axes[0].legend(fontsize=10, frameon=False)
-    fig.suptitle(f"{sweep.title}: after {_duration(sweep.duration, day_seconds)}, {len(sweep.seeds)} seeds per level "
-                 "(line: mean; band: 10-90 %)", fontsize=16)
-    return save_both(fig, path)
+    fixed = [f"{f.name} = {_text(f.levels[0])}" for i, f in enumerate(sweep.factors)
+             if i != across and len(f.levels) == 1]
+    fig.suptitle(textwrap.fill(f"{sweep.title}: after {_duration(sweep.duration, day_seconds)}, "
+                               f"{len(sweep.seeds)} seeds per level{''.join(', ' + f for f in fixed)} "
+                               "(line: mean; bar and band: 10-90 %; dots: every run)", 110), fontsize=16)
+    return fig
+
+
+def distribution_figure(sweep, finals: dict, day_seconds: float = 125.66):
+    """A sweep of one level (every factor at one value): each response's final values over the seeds as a
+    histogram with every run as a dot beneath it (a strip), the mean as a line and the 10-90 % range shaded."""
+    values = next(iter(finals.values())) if finals else {}
+    fig, axes = _grid(len(sweep.responses))
+    for ax, response in zip(axes, sweep.responses, strict=True):
+        v = np.asarray(values.get(response, np.zeros(0)), dtype=float)
+        if len(v):
+            low, high = np.percentile(v, [10, 90])
+            span = float(np.ptp(v))
+            if span > 0:
+                counts, _, _ = ax.hist(v, bins=min(12, max(3, len(v) // 2)), range=(v.min() - span * 0.05,
+                                       v.max() + span * 0.05), color="#5b8c3a", alpha=0.75, edgecolor="white")
+            else:  # every run alike: one bar, the axis wide enough to show it is one value
+                width = max(abs(float(v[0])) * 0.1, 0.1)
+                counts, _, _ = ax.hist(v, bins=1, range=(v[0] - width / 2, v[0] + width / 2), color="#5b8c3a",
+                                       alpha=0.75, edgecolor="white")
+                ax.set_xlim(v[0] - 3 * width, v[0] + 3 * width)
+            top = max(float(counts.max()), 1.0)
+            ax.axvspan(low, high, color="0.5", alpha=0.12, linewidth=0)
+            ax.axvline(float(v.mean()), color="#c0392b", linewidth=2.5, label=f"mean {v.mean():.3g}")
+            jitter = np.random.default_rng(0).uniform(-0.06, 0.06, len(v)) * top
+            ax.scatter(v, -0.15 * top + jitter, s=16, color="#1d4e89", alpha=0.7, linewidths=0, clip_on=False)
+            ax.set_ylim(-0.25 * top, top * 1.15)
+            ax.yaxis.set_major_locator(matplotlib.ticker.MaxNLocator(integer=True))
+            ax.set_yticks([t for t in ax.get_yticks() if 0 <= t <= top * 1.15])
+            ax.spines["left"].set_bounds(0, top * 1.15)
+            ax.legend(fontsize=10, frameon=False, loc="upper right")
+        _title(ax, TITLES.get(response, response))
+        _labels(ax, y_label(response) or response, "runs (count)")
+        ax.grid(alpha=0.3)
+    setting = ", ".join(f"{f.name} = {_text(f.levels[0])}" for f in sweep.factors)
+    fig.suptitle(textwrap.fill(f"{sweep.title}: {setting}; final values of {len(sweep.seeds)} seeds after "
+                               f"{_duration(sweep.duration, day_seconds)} (bars: histogram; dots: every run; "
+                               "line: mean; shade: 10-90 %)", 110), fontsize=16)
+    return fig
 
 
 def time_series(sweep, series: dict, path: Path, day_seconds: float = 125.66) -> list[Path]:
@@ -117,34 +198,89 @@ def time_series(sweep, series: dict, path: Path, day_seconds: float = 125.66) ->
             ax.fill_between(days, low, high, color=color, alpha=0.15, linewidth=0)
             ax.plot(days, mean, color=color, label=", ".join(_text(x) for x in levels))
         _limits(ax, response)
-        ax.set_title(TITLES.get(response, response))
-        ax.set_xlabel(f"time (game days of {day_seconds:.0f} s)")
-        ax.set_ylabel(y_label(response))
+        _title(ax, TITLES.get(response, response))
+        _labels(ax, f"time (game days of {day_seconds:.0f} s)", y_label(response))
         ax.grid(alpha=0.3)
     axes[0].legend(fontsize=9, frameon=False, title=" x ".join(f.name for f in sweep.factors), title_fontsize=9)
     fig.suptitle(f"{sweep.title}: mean over {len(sweep.seeds)} seeds (band: 10-90 %)", fontsize=16)
     return save_both(fig, path)
 
 
-def thumbnails(sweep, images: dict, path: Path) -> list[Path]:
+DEAD = "#c0392b"  # the colour of a dead tree's mark
+
+
+def _mark_dead(ax, note: str) -> None:
+    """A dead tree's thumbnail: a red cross over the picture's corner and ``note`` (the day of death) below."""
+    ax.text(0.96, 0.95, "\u2020", transform=ax.transAxes, ha="right", va="top", fontsize=26, color=DEAD,
+            fontweight="bold")
+    for side in ax.spines.values():
+        side.set_visible(True)
+        side.set_color(DEAD)
+        side.set_linewidth(3)
+    ax.set_xlabel(note, color=DEAD, fontsize=11, fontweight="bold")
+
+
+def _picture(ax, image, note: str | None) -> None:
+    """One thumbnail: the picture without ticks, marked when the tree is dead (``note``: the day of death)."""
+    ax.set_xticks([])
+    ax.set_yticks([])
+    for side in ax.spines.values():
+        side.set_visible(False)
+    if image is not None:
+        ax.imshow(image)
+    if note:
+        _mark_dead(ax, note)
+
+
+def thumbnails(sweep, images: dict, path: Path, dead: dict | None = None) -> list[Path]:
     """The final tree of each combination of levels (its first seed), in a grid: first factor across,
-    second factor down. ``images`` maps levels -> RGB array."""
+    second factor down. ``images`` maps levels -> RGB array; ``dead`` maps the levels of a tree that died
+    to the words under it ("died on day 3.2"): it gets a red cross and frame."""
+    dead = dead or {}
     across = sweep.factors[0].levels
     down = sweep.factors[1].levels if len(sweep.factors) > 1 else (None,)
-    fig, axes = plt.subplots(len(down), len(across), figsize=(2.6 * len(across), 3.2 * len(down)), squeeze=False,
+    fig, axes = plt.subplots(len(down), len(across), figsize=(2.6 * len(across), 3.4 * len(down)), squeeze=False,
                              layout="constrained")
     for r, other in enumerate(down):
         for c, level in enumerate(across):
             ax = axes[r][c]
-            ax.axis("off")
             key = (level,) if other is None else (level, other)
-            if key in images:
-                ax.imshow(images[key])
+            _picture(ax, images.get(key), dead.get(key))
             title = _text(level)
             if other is not None and c == 0:
                 title = f"{sweep.factors[1].name} = {_text(other)}\n{title}"
             ax.set_title(title, fontsize=11, fontweight="normal")
-    fig.suptitle(f"{sweep.title}: final trees (seed {sweep.seeds[0]}); across: {sweep.factors[0].name}", fontsize=13)
+    fig.suptitle(textwrap.fill(f"{sweep.title}: final trees (seed {sweep.seeds[0]}); across: {sweep.factors[0].name}"
+                               + ("; \u2020 dead" if dead else ""), 90), fontsize=13)
+    return save_both(fig, path)
+
+
+SEED_COLUMNS = 10  # thumbnails in a row of the seeds' grid
+
+
+def seed_grid(sweep, images: dict, path: Path, dead: dict | None = None) -> list[Path]:
+    """Every seed's final tree at one scale, a block of rows per combination of levels (for lessons on
+    variation: the same conditions, different seeds). ``images`` maps (levels, seed) -> RGB array; ``dead``
+    maps (levels, seed) of a tree that died to the words under it."""
+    dead = dead or {}
+    combos = list(dict.fromkeys(levels for levels, _ in images))
+    seeds = [s for s in sweep.seeds if any((levels, s) in images for levels in combos)]
+    cols = min(len(seeds), SEED_COLUMNS)
+    per = -(-len(seeds) // cols)  # rows per combination
+    fig, axes = plt.subplots(per * len(combos), cols, figsize=(1.9 * cols, 2.6 * per * len(combos)), squeeze=False,
+                             layout="constrained")
+    for b, levels in enumerate(combos):
+        for k, seed in enumerate(seeds):
+            ax = axes[b * per + k // cols][k % cols]
+            _picture(ax, images.get((levels, seed)), dead.get((levels, seed)))
+            ax.set_title(f"seed {seed}", fontsize=10, fontweight="normal")
+            if k == 0:
+                ax.set_ylabel(textwrap.fill(", ".join(f"{f.name} = {_text(v)}" for f, v in
+                                                      zip(sweep.factors, levels, strict=True)), 22), fontsize=10)
+        for k in range(len(seeds), per * cols):
+            axes[b * per + k // cols][k % cols].axis("off")
+    fig.suptitle(textwrap.fill(f"{sweep.title}: every seed's final tree, one scale (metre bar at the left)"
+                               + ("; \u2020 dead" if dead else ""), 90), fontsize=13)
     return save_both(fig, path)
 
 
@@ -163,9 +299,8 @@ def lab_charts(series: list, path: Path, title: str = "", colors=((230, 90, 60),
             if dead:
                 ax.plot(s.day[dead[0]], s.values[metric][dead[0]], "x", color=color, markersize=14, mew=3)
         _limits(ax, metric)
-        ax.set_title(TITLES.get(metric, metric))
-        ax.set_xlabel("time (game days)")
-        ax.set_ylabel(y_label(metric))
+        _title(ax, TITLES.get(metric, metric))
+        _labels(ax, "time (game days)", y_label(metric))
         ax.grid(alpha=0.3)
     axes[0].legend(fontsize=10, frameon=False)
     if title:
