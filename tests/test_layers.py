@@ -19,7 +19,8 @@ ENGINE = {"engine.base": 0, "engine.lsystem": 1, "engine.geometry": 2, "engine.f
           # engine/life by job, in ranks of their own (4.0 .. 4.5)
           "engine.life.rules": 4.0, "engine.life.form": 4.1, "engine.life.lineage": 4.1, "engine.life.plant": 4.2,
           "engine.life.world": 4.3, "engine.life.keep": 4.4, "engine.life.experiment": 4.5}
-GAME = {"game.paths": 0, "game.errors": 0, "game.signals": 0, "game.report": 0, "game.strings": 1, "game.loop": 1,
+GAME = {"game.paths": 0, "game.errors": 0, "game.signals": 0, "game.report": 0,
+        "game.progress": 0.5, "game.strings": 1, "game.loop": 1,  # (progress: report below, first_start above)
         "game.first_start": 1, "game.watchdog": 1, "game.render": 2, "game.audio": 2, "game.input": 2,
         "game.tools": 3, "game.screens": 4, "game.commands": 4, "game.app": 5, "game.cli": 6}
 GUI = ("pygame", "moderngl", "glcontext", "OpenGL")
