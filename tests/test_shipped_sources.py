@@ -34,8 +34,8 @@ def test_a_shipped_source_renders_exports_and_views(source, tmp_path, capsys, gl
         return
     assert main(["render", str(source), "--lod", "2", "--size", "96x72", "--out", str(png)]) == 0
     assert main(["export", str(source), "--lod", "2", "--out", str(glb)]) == 0
-    err = capsys.readouterr().err
-    assert err == "", err  # no refusal, no budget held back, no size warning: a likely size in metres
+    err = [line for line in capsys.readouterr().err.splitlines() if "% done" not in line]  # (progress, when slow)
+    assert err == [], err  # no refusal, no budget held back, no size warning: a likely size in metres
     assert png.stat().st_size > 500 and glb.stat().st_size > 1000
     from arbor.game.screens.viewer import Viewer
 
