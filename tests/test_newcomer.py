@@ -132,3 +132,25 @@ def test_the_first_start_notice_is_true(tmp_path, capsys, monkeypatch, gl_ctx):
     assert warmed == [1] and capsys.readouterr().err == ""
     assert main(["export", str(source), "--out", str(tmp_path / "g.glb")]) == 0
     assert warmed == [1, 1] and first_start.FIRST_START in capsys.readouterr().err
+
+
+def test_the_title_screens_bar_moves_by_measured_work_not_by_kernel_count(monkeypatch):
+    """The first start's bar follows the stages' measured compile seconds: after a stage weighing a tenth, it
+    stands near a tenth (times the 0.9 kept for the imports after), and it moves with the clock inside a
+    long stage instead of sitting still."""
+    import threading
+    import time
+
+    from arbor.game import first_start
+
+    release = threading.Event()
+    monkeypatch.setattr(first_start, "STAGES", (("short", lambda: None, 1.0),
+                                                ("long", lambda: release.wait(5), 9.0)))
+    warm = first_start.Warmup()
+    time.sleep(0.3)
+    early = warm.progress
+    time.sleep(0.6)
+    later = warm.progress
+    release.set()
+    warm.result()
+    assert 0.09 <= early < later < 0.9 and warm.progress == 1.0
