@@ -15,7 +15,6 @@ MOST = 8
 NOT_YET = {  # "path:Class.function" -> its parameters today, the most it may keep
     "engine/life/plant/growth.py:GrowingTree.sense": 10,  # the plant science is being rewritten around it
     "engine/modeling/crown_fill.py:grow_within": 9,  # its one caller is engine/life/world/commands.py
-    "game/render/sky_look.py:sky_look": 9,  # a view object for vp, eye, size, fov_y: still to do
 }
 
 

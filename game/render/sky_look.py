@@ -16,21 +16,23 @@ import math
 import numpy as np
 
 from arbor.game.render.backdrop import MOON, ground_color, sky_colors
+from arbor.game.render.camera import OrbitCamera
 
 LEVEL = 1.0  # a picture is stale once a colour it shows changed by this many 8-bit levels
 DISC_PIXELS = 3.0  # ... or the sun's or the moon's disc moved this many pixels
 GLOW = (1.0, 0.85, 0.55)  # the sun's glow in the dome (dome.vert's u_glow by day)
 
 
-def sky_look(dirs: np.ndarray, sectors: int, vp: np.ndarray, eye: np.ndarray, sun: np.ndarray,
-             size: tuple[int, int], ground: tuple[float, float, float], fov_y: float,
+def sky_look(dirs: np.ndarray, sectors: int, camera: OrbitCamera, vp: np.ndarray, sun: np.ndarray,
+             size: tuple[int, int], ground: tuple[float, float, float],
              drift: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """What the backdrop shows under ``sun`` through the view-projection ``vp`` (camera at ``eye``),
+    """What the backdrop shows under ``sun`` through ``camera``'s view-projection ``vp``,
     in 8-bit levels: the sky (its colour at each of the dome's unit directions ``dirs``, rings of
     ``sectors``, NaN where out of view; the clouds' and the stars' light and the clouds' ``drift``;
     where the sun's and the moon's discs are, in steps of DISC_PIXELS, and the sun's colour, NaN when
     out of view), the pixels each of the sky's values colours (x0, y0, x1, y1 from the bottom left; NaN:
     all of the sky) and the ground (its colour and the horizon's it fades into)."""
+    eye, fov_y = np.asarray(camera.eye, float), camera.fov_y
     zenith, horizon, day = sky_colors(sun)
     zenith, horizon, sun = np.array(zenith), np.array(horizon), np.asarray(sun, float)
     t = np.clip(dirs[:, 1], 0.0, 1.0) ** 0.6

@@ -60,8 +60,8 @@ class Stage:
         backdrop = self.backdrop
         inputs = (_gl(vp), tuple(camera.eye), tuple(sun), size, backdrop.ground_kind, camera.fov_y, backdrop.drift)
         if inputs != self._inputs:  # (1-2 ms of numpy: the sun moves at a fixed step, a frame in six at 1x)
-            self._inputs, self._sky = inputs, sky_look(backdrop.dome_dirs, backdrop.dome_sectors, vp, camera.eye,
-                                                        sun, size, *inputs[4:])
+            self._inputs, self._sky = inputs, sky_look(backdrop.dome_dirs, backdrop.dome_sectors, camera, vp, sun,
+                                                        size, backdrop.ground_kind, backdrop.drift)
         sky, rects, ground = self._sky
         shade = np.array([0.45 / (0.45 + 0.55 * max(float(sun[1]), 0.0)) * 255.0 * 0.5])  # (shade.frag, ~0.5)
         self._now = {"sky": sky, "ground": ground, "cover": self.cover_look, "shade": shade}
