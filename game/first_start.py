@@ -233,6 +233,8 @@ class TitleScreen:
     """Arbor's title, a line of what is happening and a progress bar, drawn with pygame and shown as one
     texture (no game renderer needed: it is up before the game's modules are imported)."""
 
+    _backdrop = None  # the sky, the meadow and the name: drawn on the first frame, then copied
+
     def __init__(self, ctx, size: tuple[int, int]) -> None:
         from array import array
 
@@ -252,13 +254,15 @@ class TitleScreen:
         import pygame
 
         w, h = self.size
-        surf = pygame.Surface(self.size)
-        for y in range(0, h, 4):  # a soft dawn sky over a meadow strip
-            t = y / h
-            colour = (38 + 90 * t, 62 + 100 * t, 92 + 70 * t) if t < 0.78 else (70, 112, 58)
-            surf.fill([int(c) for c in colour], (0, y, w, 4))
-        name = self.title.render("Arbor", True, (246, 240, 222))
-        surf.blit(name, name.get_rect(center=(w // 2, int(h * 0.36))))
+        if self._backdrop is None:  # drawn once: a soft dawn sky over a meadow strip, and the name
+            self._backdrop = pygame.Surface(self.size)
+            for y in range(0, h, 4):
+                t = y / h
+                colour = (38 + 90 * t, 62 + 100 * t, 92 + 70 * t) if t < 0.78 else (70, 112, 58)
+                self._backdrop.fill([int(c) for c in colour], (0, y, w, 4))
+            name = self.title.render("Arbor", True, (246, 240, 222))
+            self._backdrop.blit(name, name.get_rect(center=(w // 2, int(h * 0.36))))
+        surf = self._backdrop.copy()
         text = self.small.render(line, True, (236, 232, 214))
         surf.blit(text, text.get_rect(center=(w // 2, int(h * 0.55))))
         bar = pygame.Rect(w // 4, int(h * 0.62), w // 2, max(8, h // 48))
@@ -279,6 +283,9 @@ class TitleScreen:
         self.vao.render(mode=self.ctx.TRIANGLE_STRIP)
 
 
+REDRAWS = 5  # title screen frames a second at most (a warm start's CPU went to redrawing it at 30)
+
+
 def show_until_ready(ctx, size: tuple[int, int], extra=None, beat=None, stop=None) -> bool:
     """Show the title screen while the kernels warm up on a thread (and ``extra`` runs after them);
     False when the player closed the window meanwhile, or ``stop()`` became true (a stop signal).
@@ -289,17 +296,21 @@ def show_until_ready(ctx, size: tuple[int, int], extra=None, beat=None, stop=Non
     screen, clock = TitleScreen(ctx, size), pygame.time.Clock()
     warm = Warmup(extra)
     line = FIRST_START + "..." if warm.cold else "waking the garden..."
-    first = True
+    first, shown, shown_at = True, None, 0.0
     while not warm.done:
         if any(e.type == pygame.QUIT for e in pygame.event.get()) or (stop is not None and stop()):
             return False
+        now = time.perf_counter()
         if beat is not None:
-            beat(time.perf_counter())
-        screen.draw(warm.progress, line)
-        pygame.display.flip()
-        if first:
-            timing("first-frame")
-            first = False
+            beat(now)
+        step = round(100 * warm.progress)  # redrawn when the bar moves a step, at most REDRAWS a second: a
+        if step != shown and now - shown_at >= 1 / REDRAWS:  # redraw and flip cost ~25 ms of CPU each
+            screen.draw(warm.progress, line)
+            pygame.display.flip()
+            shown, shown_at = step, now
+            if first:
+                timing("first-frame")
+                first = False
         clock.tick(30)
     warm.result()
     screen.draw(1.0, "planting the garden...")
