@@ -115,3 +115,40 @@ def test_two_real_games_on_one_folder(tmp_path):
         if first.poll() is None:
             first.kill()
     assert (saves / "autosave.arbor").exists()
+
+
+def test_a_lock_given_up_leaves_no_file_and_a_failed_start_none_either(tmp_path):
+    """release() removes the lock file (holding it while it does); a start that found no display, which
+    ends before the game could release it, removes it at exit; only a killed holder's file stays behind."""
+    lock = FolderLock(tmp_path).acquire()
+    assert (tmp_path / LOCK_NAME).is_file()
+    lock.release()
+    assert not (tmp_path / LOCK_NAME).exists()
+    again = FolderLock(tmp_path).acquire()  # taken again at once: the next one makes a new file
+    assert again.held
+    again.release()
+    env = {k: v for k, v in os.environ.items() if k not in ("DISPLAY", "WAYLAND_DISPLAY", "SDL_VIDEODRIVER")}
+    saves = tmp_path / "saves"
+    run = subprocess.run([sys.executable, "-m", "arbor.game.cli", "--saves", str(saves)], env=env, cwd=ROOT,
+                         capture_output=True, text=True, timeout=120)
+    assert run.returncode == 1 and "no display" in run.stderr
+    assert saves.is_dir() and not (saves / LOCK_NAME).exists()
+
+
+def test_a_lock_file_removed_between_open_and_lock_is_not_trusted(tmp_path, monkeypatch):
+    """A holder releasing (removing its file) just after we opened it: we hold the new file, not the old."""
+    import fcntl
+
+    real, calls = fcntl.flock, []
+
+    def flock(fd, how):
+        if not calls:  # the first time: the file we opened is removed and another made, as a release does
+            (tmp_path / LOCK_NAME).unlink()
+            (tmp_path / LOCK_NAME).write_text("")
+        calls.append(fd)
+        return real(fd, how)
+
+    monkeypatch.setattr(fcntl, "flock", flock)
+    lock = FolderLock(tmp_path).acquire()
+    assert len(calls) == 2 and os.fstat(lock.fd).st_ino == os.stat(tmp_path / LOCK_NAME).st_ino
+    lock.release()

@@ -3,6 +3,8 @@ setting bad files aside under names of their own, and a folder lock (one writer 
 
 from __future__ import annotations
 
+import atexit
+import contextlib
 import errno
 import glob
 import os
@@ -126,6 +128,21 @@ class FolderLock:
 
     def acquire(self) -> FolderLock:
         """Take the lock and write our pid into it; raises :class:`FolderBusyError` naming the live holder."""
+        for _ in range(8):  # (a holder releasing meanwhile removes the file we opened: open the new one)
+            fd = self._try_acquire()
+            if fd is None:
+                return self  # a folder nothing can be written to: no lock needed
+            if _is_file_at(fd, self.folder / LOCK_NAME):
+                os.ftruncate(fd, 0)
+                os.pwrite(fd, f"{os.getpid()}\n".encode("ascii"), 0)
+                self.fd = fd
+                atexit.register(self.release)  # a start that fails (no display) leaves no lock file behind
+                return self
+            os.close(fd)
+        raise FolderBusyError(self.folder, 0)
+
+    def _try_acquire(self) -> int | None:
+        """Open the lock file and lock it: its descriptor, None for a folder that cannot be written."""
         import fcntl
 
         path = self.folder / LOCK_NAME
@@ -134,7 +151,7 @@ class FolderLock:
             fd = os.open(path, os.O_RDWR | os.O_CREAT | getattr(os, "O_NOFOLLOW", 0), 0o644)
         except OSError as exc:
             if exc.errno in (errno.EROFS, errno.EACCES, errno.EPERM, errno.ENOENT):
-                return self  # a folder nothing can be written to: no lock needed
+                return None
             raise
         try:
             fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
@@ -150,16 +167,28 @@ class FolderLock:
             if pid and pid != os.getpid() and _pid_alive(pid):
                 os.close(fd)
                 raise FolderBusyError(self.folder, pid) from None
-        os.ftruncate(fd, 0)
-        os.pwrite(fd, f"{os.getpid()}\n".encode("ascii"), 0)
-        self.fd = fd
-        return self
+        return fd
 
     def release(self) -> None:
-        """Give the lock up (the file stays: the next holder rewrites it)."""
+        """Give the lock up and remove its file (while still holding it: a process that opened the file
+        meanwhile finds it gone once it holds it, and opens the next). A holder that died leaves the file;
+        the next holder takes it over."""
         if self.fd is not None:
+            path = self.folder / LOCK_NAME
+            if _is_file_at(self.fd, path):
+                with contextlib.suppress(OSError):
+                    path.unlink()
             os.close(self.fd)
             self.fd = None
+
+
+def _is_file_at(fd: int, path: Path) -> bool:
+    """Whether ``path`` still names the file open as ``fd`` (not removed nor replaced since it was opened)."""
+    try:
+        here, there = os.fstat(fd), os.stat(path, follow_symlinks=False)
+    except OSError:
+        return False
+    return (here.st_dev, here.st_ino) == (there.st_dev, there.st_ino)
 
 
 def _pid_in(fd: int) -> int:
