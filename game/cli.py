@@ -171,6 +171,17 @@ def _cmd_sweep(args: argparse.Namespace) -> int:
     return run_sweep(args.sweep, args.out, args.workers, args.scheduler, plots=not args.no_plots, keep=args.keep)
 
 
+def _cmd_compare(args: argparse.Namespace) -> int:
+    from arbor.game.commands.compare import compare
+    from arbor.game.errors import need_lab_extra
+
+    if not args.no_plots:
+        need_lab_extra("arbor compare's figure (--no-plots writes the table without it)")
+    for path in compare(args.folders, args.out, plots=not args.no_plots):
+        say(str(path))
+    return 0
+
+
 def _cmd_landscape(args: argparse.Namespace) -> int:
     from arbor.game.commands.landscape import parse_presets, render_landscape
 
@@ -339,6 +350,13 @@ def build_parser() -> argparse.ArgumentParser:
                        help="final trees saved in DIR/trees, named by level and seed: every seed, each level's "
                             "first seed (default) or none; docs/columns.md documents the CSV columns")
     sweep.set_defaults(run=_cmd_sweep)
+    comp = sub.add_parser("compare", help="educators: merge several students' sweep folders into one table and "
+                          "figure (they must have run the same sweep file; seeds may differ)")
+    comp.add_argument("folders", type=Path, nargs="+", metavar="DIR", help="arbor sweep --out folders, the first "
+                      "the reference (the teacher's); each folder's name is its student's")
+    comp.add_argument("--out", type=Path, required=True, help="folder for class.csv and the class figure")
+    comp.add_argument("--no-plots", action="store_true", help="the table only")
+    comp.set_defaults(run=_cmd_compare)
     land = sub.add_parser("landscape", help="render a landscape of many trees (instancing, LOD, culling)")
     land.add_argument("trees", type=_bounded(1, MAX_TREES, "the number of trees"),
                       help=f"number of trees, 1-{MAX_TREES:,}")

@@ -206,6 +206,76 @@ def time_series(sweep, series: dict, path: Path, day_seconds: float = 125.66) ->
     return save_both(fig, path)
 
 
+def class_figure(sweep, finals: dict, day_seconds: float = 125.66):
+    """A class's sweeps in one figure (arbor compare): each response at the end of the runs, every student's
+    runs as dots in the student's colour (set a little apart), and the class's mean over every run with its
+    10-90 % bar in black (one black line per level of a second factor). ``finals`` maps a student's name to
+    their final values ({levels: {response: values over seeds}}). A sweep of one level: the students
+    across, each one's runs as a strip."""
+    names = list(finals)
+    palette = plt.cm.tab10.colors if len(names) <= 10 else plt.cm.tab20.colors
+    colors = [palette[n % len(palette)] for n in range(len(names))]
+    one = all(len(f.levels) == 1 for f in sweep.factors)
+    across, lines = (None, None) if one else _axes_of(sweep)
+    x_levels = ("",) if one else sweep.factors[across].levels
+    others = (None,) if lines is None or one else sweep.factors[lines].levels
+    x, labels = (np.zeros(1), None) if one else _positions(x_levels)
+    step = float(np.min(np.diff(np.sort(x)))) if len(x) > 1 else 1.0
+    fig, axes = _grid(len(sweep.responses))
+
+    def key(level, other) -> tuple:
+        if one:
+            return tuple(f.levels[0] for f in sweep.factors)
+        k = [None] * len(sweep.factors)
+        k[across] = level
+        if lines is not None:
+            k[lines] = other
+        return tuple(k)
+
+    for ax, response in zip(axes, sweep.responses, strict=True):
+        for m, other in enumerate(others):
+            pooled = []
+            for xi, level in zip(x, x_levels, strict=True):
+                everyone = []
+                for n, (name, color) in enumerate(zip(names, colors, strict=True)):
+                    values = finals[name].get(key(level, other), {}).get(response, np.zeros(0))
+                    place = n if one else xi + (n - (len(names) - 1) / 2) * step * 0.3 / max(len(names), 1)
+                    ax.scatter(np.full(len(values), place), values, s=16, color=color, alpha=0.75, linewidths=0,
+                               label=name if (m, xi, response) == (0, x[0], sweep.responses[0]) else None, zorder=3)
+                    everyone.extend(values)
+                if everyone:
+                    v = np.asarray(everyone, dtype=float)
+                    pooled.append((xi, v.mean(), *np.percentile(v, [10, 90])))
+            if pooled:
+                px, mean, low, high = np.array(pooled).T
+                if one:
+                    ax.axhline(mean[0], color="black", linewidth=2, label="class mean" if response ==
+                               sweep.responses[0] else None)
+                    ax.axhspan(low[0], high[0], color="0.5", alpha=0.12, linewidth=0)
+                else:
+                    style = ("-", "--", ":", "-.")[m % 4]
+                    tag = "class mean" if other is None else f"class mean, {sweep.factors[lines].name} = {_text(other)}"
+                    ax.vlines(px, low, high, color="black", linewidth=2, alpha=0.6)
+                    ax.plot(px, mean, style, marker="o", color="black", markersize=5,
+                            label=tag if response == sweep.responses[0] else None)
+        _limits(ax, response)
+        _title(ax, TITLES.get(response, response))
+        if one:
+            ax.set_xticks(np.arange(len(names)), names, rotation=45 if len(names) > 4 else 0, ha="right"
+                          if len(names) > 4 else "center")
+            _labels(ax, "student", y_label(response))
+        else:
+            _labels(ax, axis_label(sweep.factors[across]), y_label(response))
+            if labels:
+                ax.set_xticks(x, labels)
+        ax.grid(alpha=0.3)
+    axes[0].legend(fontsize=9, frameon=False, ncols=2 if len(names) > 6 else 1)
+    fig.suptitle(textwrap.fill(f"{sweep.title}: {len(names)} students' runs after "
+                               f"{_duration(sweep.duration, day_seconds)} (dots: each student's runs; black: the "
+                               "class's mean and 10-90 %)", 110), fontsize=16)
+    return fig
+
+
 DEAD = "#c0392b"  # the colour of a dead tree's mark
 
 
