@@ -406,6 +406,7 @@ def build_parser() -> argparse.ArgumentParser:
 
 COMPILING = ("render", "export", "landscape", "lab", "sweep", "view", "card", "import")  # use numba kernels
 EXIT_OK, EXIT_FAILED, EXIT_USAGE = 0, 1, 2  # argparse exits with EXIT_USAGE for bad arguments
+EXIT_INTERRUPTED = 130  # Ctrl-C (SIGINT) before a window or a command handled it: 128 + 2, as shells report it
 
 
 def _version() -> str:
@@ -497,7 +498,8 @@ def main(argv: list[str] | None = None) -> int:
     """Entry point of the `arbor` console script: user errors end in one line naming what to fix.
 
     Exit status: 0 done, 1 a failure at run time (bad or missing file, no memory, broken pipe), 2 a usage
-    error (bad arguments; argparse's own status); the kiosk's staff quit is 3 (game/watchdog.py)."""
+    error (bad arguments; argparse's own status); the kiosk's staff quit is 3 (game/watchdog.py); 130 Ctrl-C
+    before the work's own stop handling was up."""
     argv = sys.argv[1:] if argv is None else argv
     if argv[:1] == ["watchdog"]:  # everything after it belongs to the watched app
         if argv[1:] in (["-h"], ["--help"]):
@@ -531,6 +533,9 @@ def main(argv: list[str] | None = None) -> int:
         return status
     except BrokenPipeError:
         return _quiet_broken_pipe()
+    except KeyboardInterrupt:  # Ctrl-C before a window's own signal handling is up: one line, no traceback
+        print("arbor: stopped (Ctrl-C)", file=sys.stderr)
+        return EXIT_INTERRUPTED
     except (LSysError, OSError, UserError, MemoryError) as err:
         print(_failure(err), file=sys.stderr)
         return EXIT_FAILED

@@ -110,3 +110,17 @@ def test_stop_signals_only_set_a_flag_and_are_put_back():
         time.sleep(0.05)
         assert signals.received == signal.SIGTERM
     assert signal.getsignal(signal.SIGTERM) is before
+
+
+def test_ctrl_c_before_the_window_is_one_line_not_a_traceback(monkeypatch, capsys):
+    """Issue 45: SIGINT in the first second of the lab or the viewer (before the window's own handling)
+    ended in a KeyboardInterrupt traceback."""
+    from arbor.game import cli
+
+    def interrupted(args):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(cli, "check_files", interrupted)
+    assert cli.main(["view", str(ROOT / "assets" / "lsystems" / "context_plant.lsys")]) == cli.EXIT_INTERRUPTED
+    err = capsys.readouterr().err
+    assert err == "arbor: stopped (Ctrl-C)\n"
