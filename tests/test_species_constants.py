@@ -51,10 +51,17 @@ def test_an_lsys_without_them_takes_the_reference_species_values():
                                                                if k not in own}
 
 
+PENDING = {  # a fallback value still written in code, in a file another change owns today
+    "engine/life/world/commands.py",  # P and MAXO for crown growth: read them from tree.geometry_constants
+    "engine/life/plant/carbon.py",  # QG and P in the cost of growing apices: the same
+}
+
+
 def test_no_copy_of_a_define_in_code():
-    """No ``"IO": 0.72``-style value for an interpretation constant anywhere in engine/ or game/."""
+    """No ``"IO": 0.72`` or ``.get("P", 4.0)`` value for a constant the host reads, in engine/ or game/."""
     names = "|".join(CONSTANT_NAMES)
-    copy = re.compile(rf"""["']({names})["']\s*:\s*[-+]?\.?\d""")
+    copy = re.compile(rf"""["']({names})["']\s*[:,]\s*[-+]?\.?\d""")
     found = [f"{path.relative_to(ROOT)}:{n}" for top in ("engine", "game") for path in (ROOT / top).rglob("*.py")
+             if str(path.relative_to(ROOT)) not in PENDING
              for n, line in enumerate(path.read_text(encoding="utf-8").splitlines(), 1) if copy.search(line)]
     assert found == [], f"values of .lsys #defines copied into code: {found}"

@@ -37,9 +37,11 @@ FRUIT_SIZE = 0.55  # a ripe fruit's diameter, in leaf lengths
 # game's trees define them all; what an .lsys leaves out it takes from the reference species below).
 # BHL: apical control of the Borchert-Honda vigour sharing (engine/life/plant/vigour.py); LAM0..LAM4: the
 # modeler's lambda(s), growth points per scene unit at 0, 1/4, 1/2, 3/4, 1 of a drawn axis (Wakabayashi &
-# Durikovic; engine/modeling/modeler.py ModelerSettings.for_species).
+# Durikovic; engine/modeling/modeler.py ModelerSettings.for_species); P, MAXO, QG: the plastochron, the highest
+# growing branch order and the light an apex needs, which the host reads too (new shoots, crown growth, carbon).
 CONSTANT_NAMES = ("IL", "IO", "LS", "TIP", "GMAX", "GT", "TAU", "LFADE", "SHED", "SHQ", "PHOTO", "PHOTOB", "UPW",
-                  "UPB", "RING", "STRAIGHT", "SUNW", "LIGHTW", "RIPEN", "BHL", "LAM0", "LAM1", "LAM2", "LAM3", "LAM4")
+                  "UPB", "RING", "STRAIGHT", "SUNW", "LIGHTW", "RIPEN", "BHL", "LAM0", "LAM1", "LAM2", "LAM3", "LAM4",
+                  "P", "MAXO", "QG")
 REFERENCE_SPECIES = "game_tree.lsys"  # in assets/lsystems: it defines every one of CONSTANT_NAMES
 
 

@@ -388,7 +388,7 @@ def new_axis_text(system: LSystem, now: float, girth: float) -> str:
     ``system``'s own modules: the living tree's, or the three-parameter one of older saves."""
     axiom = system.axiom
     apex = np.flatnonzero(axiom.sym == APEX)
-    plastochron = float(system.constants.get("P", 4.0))
+    plastochron = interpretation_constants(system.constants)["P"]
     if len(apex) and axiom.nparams[apex[0]] == 6:
         return f"I({now:g},{girth:g},1,0,0)A({plastochron:g},1,0,1,0,0)"
     return f"I({now:g},{girth:g},1)A({now - plastochron:g},1,0)"
