@@ -146,3 +146,17 @@ def test_a_good_file_reads_as_before(tmp_path):
     path.write_text('a = [[1, 2], {b = "]"}]  # ]]\n[t]\nc = 1\n')
     text, data = read_user_toml(path)
     assert data == {"a": [[1, 2], {"b": "]"}], "t": {"c": 1}} and text.startswith("a = ")
+
+
+def test_a_fifo_planted_in_a_sweeps_out_folder_is_refused_not_waited_on(tmp_path):
+    """The --out folder is the user's: a run's CSV that is a FIFO is refused in one line (reading it back
+    for the table blocked)."""
+    from types import SimpleNamespace
+
+    from arbor.game.commands.sweep_runs import RunStore
+
+    sweep = SimpleNamespace(source="title = 'x'\n", file="sweep.toml", factors=[], responses=[], stop=None)
+    store = RunStore(tmp_path, sweep)
+    os.mkfifo(store.runs_dir / "run0001.csv")
+    with pytest.raises(SweepError, match="not a regular file"):
+        store.table([SimpleNamespace(name="run0001")])

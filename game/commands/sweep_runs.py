@@ -17,10 +17,13 @@ import traceback
 from collections.abc import Iterable, Iterator
 from pathlib import Path
 
-from arbor.engine.base.errors import LSysError
+from arbor.engine.base.errors import LSysError, SweepError
 from arbor.engine.base.files import atomic_write
+from arbor.engine.base.reader import TOML_LIMIT, read_user_text
 from arbor.engine.life.experiment.sweep import STOP_COLUMNS, Outcome, Run, Sweep, Task, cell, execute
 from arbor.game.errors import UserError
+
+RUN_CSV_LIMIT = 64 * 1024 * 1024  # bytes of one run's CSV read back (a run writes at most 2,000 rows)
 
 
 class RunStore:
@@ -30,7 +33,7 @@ class RunStore:
         self.out, self.sweep = out, sweep
         self.runs_dir, self.trees_dir = out / "runs", out / "trees"
         stamp = out / "sweep.toml"
-        if stamp.is_file() and stamp.read_text(encoding="utf-8") != sweep.source:
+        if stamp.is_file() and read_user_text(stamp, TOML_LIMIT, SweepError) != sweep.source:
             raise LSysError(f"{out} holds the runs of another sweep: choose a new --out folder", sweep.file)
         self.runs_dir.mkdir(parents=True, exist_ok=True)
         self.trees_dir.mkdir(exist_ok=True)
@@ -66,7 +69,8 @@ class RunStore:
         """The tidy CSV of every run, in run order (the header once)."""
         parts = [",".join(self.columns) + "\n"]
         for run in runs:
-            text = (self.runs_dir / f"{run.name}.csv").read_text(encoding="utf-8")
+            text = read_user_text(self.runs_dir / f"{run.name}.csv", RUN_CSV_LIMIT, SweepError)  # (the --out
+            # folder is the user's: a FIFO or a link planted there is refused, not waited on)
             parts.append(text.split("\n", 1)[1])
         return "".join(parts)
 
