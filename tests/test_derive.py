@@ -237,24 +237,26 @@ def test_derivation_stops_once_the_budget_is_full():
 
 
 @pytest.mark.parametrize("seed", range(6))
-def test_word_at_a_time_steps_equal_a_module_by_module_rewrite(seed):
-    """The compiled direct step (successors written 8 bytes at a time) against a plain Python rewrite,
-    with successors of 0 to 40 symbols (short and long kernels) and symbols no production rewrites."""
+@pytest.mark.parametrize("repeating", [False, True])
+def test_word_at_a_time_steps_equal_a_module_by_module_rewrite(seed, repeating):
+    """The compiled direct step (successors written 8 bytes at a time; blocks of 8 modules expanded once
+    each while the string repeats them) against a plain Python rewrite, with successors of 0 to 40
+    symbols (short and long words) and symbols no production rewrites."""
     rng = np.random.default_rng(seed)
     alphabet = "ABFX+-&/"
     longest = 16 if seed % 2 else 40
     rules = {c: "".join(rng.choice(list(alphabet), int(rng.integers(0, longest + 1)))) for c in "ABFX"}
     rules["A"] = "A"  # a production that keeps its symbol still counts as a rewrite
-    source = "w: " + "".join(rng.choice(list(alphabet), 50)) + "\n" + "".join(
-        f"p{i}: {k} -> {v}\n" for i, (k, v) in enumerate(rules.items()))
+    source = "w: F\n" + "".join(f"p{i}: {k} -> {v}\n" for i, (k, v) in enumerate(rules.items()))
     deriver = Deriver(parse_lsystem(source), budget=10**6)
     assert deriver._symbols is not None and deriver._symbols.words is not None
-    text = "".join(rng.choice(list(alphabet), 2001))
-    ls = parse_lstring(text)
-    for _ in range(2):
-        ls, report = deriver.step(ls)
+    period = "".join(rng.choice(list(alphabet), 37))  # blocks of 8 repeat every 37 x 8 modules
+    text = (period * 60)[:2001] if repeating else "".join(rng.choice(list(alphabet), 2001))
+    for step in range(2):
+        ls, report = deriver.step(parse_lstring(text))
         expected = "".join(rules.get(c, c) for c in text)
         assert ls.sym.tobytes().decode() == expected
         assert report.rewritten == sum(c in rules for c in text)
+        if step == 0:  # random blocks: the module-at-a-time loop took over
+            assert deriver._symbols.blocks == repeating
         text = expected[:3000]
-        ls = parse_lstring(text)

@@ -90,3 +90,74 @@ def _expand_long(sym: np.ndarray, lengths: np.ndarray, words: np.ndarray, out: n
         fill = total & 7
         acc = out[pos] & ((one << np.uint64(8 * fill)) - one)  # the carried word, read back
     return 8 * pos + fill
+
+
+BLOCK = 8  # modules a block: read as one 64-bit word
+_GOLDEN = np.uint64(0x9E3779B97F4A7C15)
+
+
+@numba.njit(cache=True, nogil=True, inline="always")
+def _append(out, pos, fill, acc, src, start, nbytes):
+    """Write ``nbytes`` bytes held in the words ``src[start:]`` after the ``fill`` bytes pending in
+    ``acc`` at word ``pos`` of ``out``; the new (pos, fill, acc). Bytes past the end are overwritten by
+    the next append (``acc`` keeps only the pending ones)."""
+    one = np.uint64(1)
+    up, down = np.uint64(8 * fill), np.uint64(63 - 8 * fill)
+    carry = acc
+    count = (nbytes + 7) >> 3
+    for w in range(count):
+        x = src[start + w]
+        out[pos + w] = carry | (x << up)
+        carry = (x >> one) >> down
+    out[pos + count] = carry
+    total = fill + nbytes
+    pos += total >> 3
+    fill = total & 7
+    return pos, fill, out[pos] & ((one << np.uint64(8 * fill)) - one)
+
+
+@numba.njit(cache=True, nogil=True)
+def expand_blocks(sym: np.ndarray, lengths: np.ndarray, words: np.ndarray, out: np.ndarray,
+                  most: int) -> int:
+    """As :func:`expand`, a block of BLOCK modules at a time: L-strings repeat their blocks, so each
+    distinct block is expanded once (found again by its 64-bit word in a hash table) and then copied
+    whole words at a time. Returns the bytes written, or -1 when more than ``most`` blocks are distinct
+    (then the module-at-a-time loop is the faster one)."""
+    width = words.shape[1]
+    flat = words.ravel()
+    whole = len(sym) // BLOCK
+    keys = sym[:whole * BLOCK].view(np.uint64)
+    bits = 4
+    while (1 << bits) < 4 * most:
+        bits += 1
+    mask = (1 << bits) - 1
+    slot_key = np.zeros(1 << bits, np.uint64)
+    slot_id = np.full(1 << bits, -1, np.int64)
+    block_at = np.empty(most + 1, np.int64)  # each distinct block's expansion: from word block_at[i]
+    block_len = np.empty(most, np.int64)  # its bytes
+    stride = BLOCK * width + 1
+    expanded = np.empty(most * stride + 1, np.uint64)
+    distinct = 0
+    pos, fill, acc = 0, 0, np.uint64(0)
+    for b in range(whole):
+        key = keys[b]
+        slot = np.int64((key * _GOLDEN) >> np.uint64(64 - bits))
+        while slot_id[slot] >= 0 and slot_key[slot] != key:
+            slot = (slot + 1) & mask
+        block = slot_id[slot]
+        if block < 0:
+            if distinct == most:
+                return -1
+            block, distinct = distinct, distinct + 1
+            slot_key[slot], slot_id[slot] = key, block
+            block_at[block] = block * stride
+            p, f, a = block * stride, 0, np.uint64(0)
+            for i in range(b * BLOCK, b * BLOCK + BLOCK):
+                s = sym[i]
+                p, f, a = _append(expanded, p, f, a, flat, s * width, lengths[s])
+            block_len[block] = 8 * (p - block * stride) + f
+        pos, fill, acc = _append(out, pos, fill, acc, expanded, block_at[block], block_len[block])
+    for i in range(whole * BLOCK, len(sym)):
+        s = sym[i]
+        pos, fill, acc = _append(out, pos, fill, acc, flat, s * width, lengths[s])
+    return 8 * pos + fill

@@ -1,8 +1,9 @@
 """Symbols-only rewriting: when no module has parameters, a derivation step is a few byte passes.
 
 Plain deterministic systems (one unconditional, context-free production per symbol) go faster still: a
-compiled loop (expand_kernel) writes every module's successor a 64-bit word at a time, in one pass
-after one pass that measures the output.
+compiled loop (expand_kernel) writes the successors 64-bit words at a time, in one pass after one that
+measures the output; while the string repeats its blocks of 8 modules (as L-strings do), each distinct
+block is expanded once and then copied whole.
 
 Otherwise every production alternative gets a placeholder byte that can never be a module symbol
 (control codes and bytes above 126). A step marks each rewritten module with its alternative's
@@ -21,6 +22,7 @@ import numpy as np
 from arbor.engine.lsystem.lsys import Alternative, LSystem
 
 PLACEHOLDERS = bytes(range(1, 33)) + bytes(range(127, 256))  # never valid module symbols
+MOST_BLOCKS = 4096  # distinct blocks of modules a direct step expands once each, at most
 
 
 class SymbolRewriter:
@@ -36,6 +38,7 @@ class SymbolRewriter:
             np.frombuffer(self.direct_map, np.uint8) != np.arange(256))
         self.out_lengths = np.where(self.ruled, self.lengths, 1)  # copied symbols write themselves
         self.words = self._words(system) if self.direct_map is not None else None
+        self.blocks = True  # its strings repeat their blocks of modules (see rewrite_direct)
 
     @staticmethod
     def usable(system: LSystem) -> bool:
@@ -83,13 +86,20 @@ class SymbolRewriter:
         return int(total), int(rewritten)
 
     def rewrite_direct(self, sym: np.ndarray, total: int) -> np.ndarray:
-        """One step of a direct system over the whole string, ``total`` modules long (direct_counts)."""
-        from arbor.engine.lsystem.expand_kernel import expand
+        """One step of a direct system over the whole string, ``total`` modules long (direct_counts): a
+        block of modules at a time while the string repeats its blocks (L-strings do), else a module at a
+        time (then for good: a system's strings keep their kind from step to step)."""
+        from arbor.engine.lsystem.expand_kernel import BLOCK, expand, expand_blocks
 
         assert self.words is not None
-        width = self.words.shape[1]
-        out = np.empty(total // 8 + width + 1, np.uint64)
-        written = expand(np.ascontiguousarray(sym, np.uint8), self.out_lengths, self.words, out)
+        sym = np.ascontiguousarray(sym, np.uint8)
+        out = np.empty(total // 8 + BLOCK * self.words.shape[1] + 2, np.uint64)
+        written = -1
+        if self.blocks:
+            written = expand_blocks(sym, self.out_lengths, self.words, out, min(MOST_BLOCKS, len(sym) // 64 + 64))
+            self.blocks = written >= 0
+        if written < 0:
+            written = expand(sym, self.out_lengths, self.words, out)
         assert written == total
         if sys.byteorder == "big":  # the words' values are little-endian
             out.byteswap(inplace=True)
