@@ -37,6 +37,7 @@ class Progress:
         self.done, self.stage = 0.0, ""
         self._bar = None
         self._said = ""  # the last stage given a line when piped
+        self._ended = False  # that line said 100 % done
 
     def __enter__(self) -> Progress:
         return self
@@ -77,6 +78,7 @@ class Progress:
             self._said = stage or self._said
         elif self.stage != self._said:
             self._said = self.stage
+            self._ended = self.done >= self.total
             print(self.line(), file=self.stream, flush=True)
 
     def _tqdm(self):
@@ -114,7 +116,7 @@ class Progress:
     def close(self) -> None:
         """End the bar (a terminal's bar is cleared: the command's own report line follows); piped, a last
         line says the work is done."""
-        if self._said and not self.tty and report.level >= report.NORMAL:
+        if self._said and not self._ended and not self.tty and report.level >= report.NORMAL:
             self.done = self.total
             print(self.line(), file=self.stream, flush=True)
             self._said = ""

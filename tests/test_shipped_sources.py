@@ -24,8 +24,16 @@ def test_the_walk_finds_the_sources():
     assert {"abop_2_8_tree.lsys", "geomatree.lsys", "divisor_tree.lsys", "game_tree.lsys"} <= names
 
 
+@pytest.fixture(scope="module")
+def warm():
+    """The kernels built (kernels changed since the last build would add a first start's lines)."""
+    from arbor.game.first_start import warm_kernels
+
+    warm_kernels()
+
+
 @pytest.mark.parametrize("source", SOURCES, ids=lambda p: p.stem)
-def test_a_shipped_source_renders_exports_and_views(source, tmp_path, capsys, gl_ctx):
+def test_a_shipped_source_renders_exports_and_views(source, tmp_path, capsys, gl_ctx, warm):
     png, glb = tmp_path / "t.png", tmp_path / "t.glb"
     if _needs_the_game(source):
         assert main(["render", str(source), "--out", str(png)]) == 1
