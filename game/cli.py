@@ -122,7 +122,7 @@ def _cmd_render(args: argparse.Namespace) -> int:
 def _cmd_export(args: argparse.Namespace) -> int:
     from arbor.engine.geometry.export import export_tree
     from arbor.engine.geometry.tree import tree_height
-    from arbor.game.commands.trees import scene_metres, size_warning, tree_geometry
+    from arbor.game.commands.trees import render_modules, scene_metres, size_warning, tree_geometry
     from arbor.game.progress import PER_TRIANGLE, TRIANGLES_PER_MODULE, Progress
 
     fmt = (args.format or args.out.suffix.lstrip(".")).lower()
@@ -132,7 +132,8 @@ def _cmd_export(args: argparse.Namespace) -> int:
     args.format = fmt
     with Progress(f"export {args.out.name}", 1.0, unit="s") as bar:
         geometry, _ = tree_geometry(_source(args), args.lod, roots=True, progress=bar,
-                                    after=lambda modules: modules * TRIANGLES_PER_MODULE * PER_TRIANGLE[fmt])
+                                    after=lambda modules: modules * TRIANGLES_PER_MODULE * PER_TRIANGLE[fmt],
+                                    most=render_modules((0, 0), args.lod))  # (no more than its mesh's memory holds)
         height = tree_height(geometry)
         if args.height is not None and height <= 0:
             raise UserError("--height needs a tree with some height: this one has none (more --steps?)")

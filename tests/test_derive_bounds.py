@@ -9,8 +9,15 @@ import time
 from arbor.engine.lsystem.derive import Deriver
 from arbor.engine.lsystem.lsys import load_lsystem, parse_lsystem
 from arbor.game.commands import trees
-from arbor.game.commands.trees import (DERIVE_MEMORY, DERIVE_MODULE_BYTES, TreeSource, derive_budget, derive_source,
-                                       render_memory, render_modules)
+from arbor.game.commands.trees import (
+    DERIVE_MEMORY,
+    DERIVE_MODULE_BYTES,
+    TreeSource,
+    derive_budget,
+    derive_source,
+    render_memory,
+    render_modules,
+)
 from arbor.game.paths import ASSETS
 
 CONTEXT = ASSETS / "lsystems" / "context_plant.lsys"
@@ -19,7 +26,7 @@ CONTEXT = ASSETS / "lsystems" / "context_plant.lsys"
 def test_a_time_budget_stops_derivation_before_a_step_that_would_end_late():
     deriver = Deriver(load_lsystem(CONTEXT), seed=0, seconds=0.5)
     started = time.perf_counter()
-    ls, reports = deriver.derive(steps=1000)
+    _ls, reports = deriver.derive(steps=1000)
     assert time.perf_counter() - started < 3.0 and deriver.out_of_time and len(reports) < 1000
     unbounded = Deriver(load_lsystem(CONTEXT), seed=0)  # (the game's own steps: no time budget)
     assert unbounded.seconds is None and len(unbounded.derive(steps=3)[1]) == 3 and not unbounded.out_of_time
@@ -28,7 +35,7 @@ def test_a_time_budget_stops_derivation_before_a_step_that_would_end_late():
 def test_the_derive_command_says_it_stopped_at_the_time_budget(monkeypatch, capsys):
     monkeypatch.setattr(trees, "DERIVE_SECONDS", 1.0)
     started = time.perf_counter()
-    _, ls = derive_source(TreeSource(CONTEXT, steps=1000))
+    _, _ls = derive_source(TreeSource(CONTEXT, steps=1000))
     err = capsys.readouterr().err
     assert time.perf_counter() - started < 8.0 and "time budget 1 s reached at step" in err
     assert "of 1,000: derivation stopped there" in err and err.count("\n") == 1
@@ -47,4 +54,13 @@ def test_a_render_derives_no_more_than_it_can_draw():
     most = render_modules((1024, 768), 0)
     assert render_memory((1024, 768), most, 0) <= trees.RENDER_MEMORY < render_memory((1024, 768), most + 10, 0)
     budget, why = derive_budget(system, TreeSource(CONTEXT), most)
-    assert budget == most < 2_000_000 and "what the picture's memory limit holds" in why
+    assert budget == most < 2_000_000 and "memory limit of 2 GB holds at this --lod" in why
+
+
+def test_the_cut_budget_is_said_only_when_it_held_growth_back(capsys):
+    small = TreeSource(CONTEXT, steps=3)  # (a few hundred modules: far below any cut)
+    derive_source(small, most=render_modules((1024, 768), 0))
+    assert capsys.readouterr().err == ""
+    derive_source(TreeSource(CONTEXT, steps=40), most=2_000)
+    err = capsys.readouterr().err
+    assert "growing to 2,000 modules at most" in err and "module budget 2,000" in err

@@ -75,7 +75,8 @@ DERIVE_MODULE_BYTES = 110  # a module's peak share while rewriting (measured: 72
 def derive_budget(system: LSystem, source: TreeSource, most: int | None = None) -> tuple[int, str]:
     """The module budget a command derives ``source`` with, estimated before any work: the asked-for
     one (--budget, the file's budget:, else the default, at most MAX_BUDGET), cut to what DERIVE_MEMORY
-    holds and to ``most`` (what the caller can afford: a render's mesh); and a line saying why when cut."""
+    holds and to ``most`` (what the caller can afford: a render's or an export's mesh); and a line saying
+    why when cut (:func:`derive_source` says it when the cut budget held growth back)."""
     asked = source.budget if source.budget is not None else system.budget if system.budget is not None \
         else DEFAULT_BUDGET
     asked = min(int(asked), MAX_BUDGET)
@@ -86,7 +87,8 @@ def derive_budget(system: LSystem, source: TreeSource, most: int | None = None) 
                f"derive, over the limit of {DERIVE_MEMORY / 1024**3:.0f} GB: growing to {budget:,} modules at most")
     if most is not None and most < budget:
         budget = max(int(most), 1)
-        why = f"growing to {budget:,} modules at most (what the picture's memory limit holds at this --lod)"
+        why = (f"growing to {budget:,} modules at most (what a picture's or a mesh's memory limit of "
+               f"{RENDER_MEMORY / 1024**3:.0f} GB holds at this --lod)")
     return budget, why
 
 
@@ -127,13 +129,13 @@ def derive_source(source: TreeSource, most: int | None = None, progress=None,
         raise LSysError(f"this L-system needs values from the game at every step (#extern {names}); "
                         "grow it in the game and render its save (.arbor) instead", str(source.path))
     budget, why = derive_budget(system, source, most)
-    if why:
-        print(why, file=sys.stderr)
     deriver = Deriver(system, seed=source.seed, budget=budget, seconds=DERIVE_SECONDS)
     asked = system.iterations if source.steps is None else source.steps
     if progress is not None:
         deriver.step = _watched(deriver.step, progress, asked, deriver.budget, after)
     result, reports = deriver.derive(steps=asked)
+    if why and any(r.budget_hit for r in reports):  # (said only when the cut budget held growth back)
+        print(why, file=sys.stderr)
     if deriver.out_of_time:
         print(f"time budget {DERIVE_SECONDS:.0f} s reached at step {len(reports)} of {asked:,}: derivation stopped "
               f"there ({len(result):,} modules; ask for fewer --steps)", file=sys.stderr)
@@ -154,7 +156,8 @@ MODULE_BYTES = (3600, 700, 300, 200)  # a module's share of the mesh at LOD 0..3
 
 def render_modules(size: tuple[int, int], lod: int) -> int:
     """The most modules a tree rendered at LOD ``lod`` into ``size`` pixels may have within RENDER_MEMORY
-    (so a render derives no further than it could draw: it derived for 204 s to 1.93 GB, then refused)."""
+    (so a render derives no further than it could draw: it derived for 204 s to 1.93 GB, then refused);
+    ``size`` (0, 0): the mesh alone (an export)."""
     room = RENDER_MEMORY - RENDER_BASE - size[0] * size[1] * PIXEL_BYTES
     return max(room // MODULE_BYTES[min(lod, len(MODULE_BYTES) - 1)], 1)
 
