@@ -123,9 +123,11 @@ def expand_blocks(sym: np.ndarray, lengths: np.ndarray, words: np.ndarray, out: 
     distinct block is expanded once (found again by its 64-bit word in a hash table) and then copied
     whole words at a time. Returns the bytes written, or -1 when more than ``most`` blocks are distinct
     (then the module-at-a-time loop is the faster one)."""
+    whole = len(sym) // BLOCK
+    if whole == 0:  # shorter than a block: nothing to share
+        return expand(sym, lengths, words, out)
     width = words.shape[1]
     flat = words.ravel()
-    whole = len(sym) // BLOCK
     keys = sym[:whole * BLOCK].view(np.uint64)
     bits = 4
     while (1 << bits) < 4 * most:
