@@ -52,7 +52,6 @@ def test_an_lsys_without_them_takes_the_reference_species_values():
 
 
 PENDING = {  # a fallback value still written in code, in a file another change owns today
-    "engine/life/world/commands.py",  # P and MAXO for crown growth: read them from tree.geometry_constants
     "engine/life/plant/carbon.py",  # QG and P in the cost of growing apices: the same
 }
 

@@ -298,8 +298,7 @@ class RegionEdit:
             (new, changed), held = bend_region(ls, render_view(ls, clocks, const), self.region), 0
         else:
             extern = {"T": world.born_visible(), "G": clocks.girth_time, "NOW": now,
-                      "P": float(tree.system.constants.get("P", 4.0)), "IL": const["IL"], "IO": const["IO"],
-                      "MAXO": float(tree.system.constants.get("MAXO", 4.0))}
+                      **{name: const[name] for name in ("P", "IL", "IO", "MAXO")}}
             axis = new_axis_text(tree.system, now, clocks.girth_time) if self.edit == "grow" else None
             new, changed, held = apply_edit(ls, world.module_positions(ls), self.region, self.system, extern,
                                             new_axis=axis, budget=tree.deriver.budget)
