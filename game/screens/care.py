@@ -176,7 +176,7 @@ class CareActions:
         switch()
         self.menu.widget("edit").label = self.modeling.option_label()
         self.sync_sliders()
-        if self.modeling.active and self.menu.visible:  # the next drag draws with the tool, not into the menu
+        if self.modeling.active:  # the next drag draws with the tool, not into the menu
             self.menu.hide()
 
     def _next_edit(self) -> None:
