@@ -13,7 +13,7 @@ NO_DISPLAY = ("no OpenGL 3.3 display ({detail}). Run it on a desktop, or headles
 NO_DISPLAY_FOUND = ("no display found (SDL fell back to its {driver} driver: the window would be invisible). "
                     "Run it on a desktop, or under a virtual display: xvfb-run -a arbor")
 
-LAB_EXTRA = ("{what} needs matplotlib, which a player's install leaves out (82 MB): pip install 'arbor-trees[lab]' "
+LAB_EXTRA = ("{what} needs matplotlib, which a player's install leaves out (86 MB): pip install 'arbor-trees[lab]' "
              "(in a checkout: .venv/bin/pip install -e '.[lab]')")
 
 
