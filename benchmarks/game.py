@@ -1,22 +1,24 @@
-"""Game benchmark: frame times of the real game loop, headless (EGL, Mesa llvmpipe here), 1280x720.
+"""Game benchmark: frame times of the real game loop on the trees players see, headless (EGL, Mesa
+llvmpipe here), 1280x720.
 
-Run: python -m benchmarks.game [--quick]
-One run, three trees: a fresh sapling, a tree grown 25 simulated days by the living model (under its
-12,000-module budget) and a 50,000-segment tree grown by the game's own rules with the budget raised
-(every bud woken, no light limits). Each frame = input + fixed steps + record updates + 3D render +
-HUD, timed to ctx.finish(). The sapling and the 25-day tree are timed in the look as it is and in the old
-look (no edge smoothing, one shadow tap) in alternating blocks of frames, for the ratio. The big tree grows
-at full speed (its clocks advance every frame, a rewrite every physiological time unit); light readings
-are left out for it (the benchmark is about drawing).
-The big tree's crown is drawn at a reduced resolution and over several frames (game/render/layer.py);
-the run says how many pictures it showed. Then the cost per growth step against tree size: a full
-rebuild of the records (what a rewrite costs, on a worker thread for big trees) against the per-frame
-update of the growing parts, and the frame times of two full-rebuild paths for the ratio: the records
-rebuilt every frame, and the game's old path (the whole tree meshed at LOD 0, uploaded and drawn twice).
+Run: python -m benchmarks.game [--quick] [--years DIR]
+The first frames (shaders compiled, textures and the first tree uploaded) are timed apart as the warm-up.
+Then, each at the default zoom and close up (the camera at its nearest), with the level of detail the
+game itself picks: a fresh sapling; a leafy summer tree grown 25 days at the demo pace (its calendar set
+so that day 25 is midsummer: at the demo pace with seasons the 25th day fell in winter, with no leaves);
+the home pace's tree in the summer of its first and third year (the saves `python -m benchmarks.years 3
+DIR` writes, when --years DIR is given); and a 50,000-segment tree grown by the game's own rules with the
+budget raised (every bud woken, no light limits, growing on at its tips). Each frame = input + fixed steps
++ record updates + 3D render + HUD, timed to ctx.finish(): wall time and CPU time (this process, all its
+threads: llvmpipe's too), the load average printed first. Beside every figure: the tree's leaf clusters,
+and the level of detail, segments and leaves the renderer drew. Then a growing tree's cost per frame: a
+full rebuild of its records against the incremental update of the same growth (the parts that grew since
+the last rewrite), per tree size.
 """
 
 from __future__ import annotations
 
+import os
 import sys
 import time
 from pathlib import Path
@@ -29,53 +31,61 @@ FPS = 60
 MATURE = 20.0  # physiological time the big tree rests before the frames (its old parts stop growing)
 
 
-def _frames(game, ctx, fbo, n: int, each=None) -> np.ndarray:
+def _frames(game, ctx, fbo, n: int, each=None) -> tuple[np.ndarray, np.ndarray]:
+    """Wall and CPU milliseconds of ``n`` frames of the game loop (CPU: this process, all its threads)."""
     from arbor.engine.life.world.actions import Action
 
-    times = []
+    wall, cpu = [], []
     for i in range(n):
-        start = time.perf_counter()
+        start, start_cpu = time.perf_counter(), time.process_time()
         if each is not None:
             each(i)
         game.act(Action.WATER, float(game.world.sim.state.water_meter < 0.55))
         game.update(1 / FPS)
         game.draw(fbo)
         ctx.finish()
-        times.append(time.perf_counter() - start)
-    return np.array(times) * 1e3
+        wall.append(time.perf_counter() - start)
+        cpu.append(time.process_time() - start_cpu)
+    return np.array(wall) * 1e3, np.array(cpu) * 1e3
 
 
-def _report(name: str, ms: np.ndarray) -> None:
-    p50, p95, p99 = np.percentile(ms, [50, 95, 99])
-    print(f"{name:<40} frames {len(ms):>4}  p50 {p50:7.1f}  p95 {p95:7.1f}  p99 {p99:7.1f}  max {ms.max():7.1f} ms")
+def _report(name: str, times: tuple[np.ndarray, np.ndarray], note: str = "") -> None:
+    wall, cpu = times
+    p50, p95, p99 = np.percentile(wall, [50, 95, 99])
+    c50, c95 = np.percentile(cpu, [50, 95])
+    print(f"{name:<34} {len(wall):>4} frames  wall p50 {p50:6.1f} p95 {p95:6.1f} p99 {p99:6.1f}  "
+          f"CPU p50 {c50:6.1f} p95 {c95:6.1f} ms  {note}", flush=True)
 
 
-LOOKS = {"new look": (True, 1.0), "old look": (False, 0.0)}  # (edge smoothing, shadow filter texels)
+def _drawn(game) -> str:
+    """The cared-for tree's leaf clusters, and what the renderer drew of it in the last frame."""
+    world = game.world
+    leaves = int(np.count_nonzero(world.tree.lstring.sym == ord("L")))
+    details = game.renderer.last_details
+    if not details:
+        return f"({leaves:,} leaf clusters; nothing drawn)"
+    d = details[0]
+    return (f"({leaves:,} leaf clusters; drawn: LOD {d.lod}, {d.tubes:,} grown segments, {d.leaves:,} grown "
+            f"leaf cards, share {d.leaf_share:.2f}, at {game.renderer.last_scale:.2f} of the resolution)")
 
 
-def _looks(game, ctx, fbo, n: int, each, name: str) -> None:
-    """Frame times of the look as it is against the old look (no edge smoothing, one shadow tap) in the
-    same run: blocks of frames taken in turn, so a machine's changing load falls on both alike."""
-    renderer = game.renderer
-    kept = renderer.fxaa, renderer.soft_shadows
-    times: dict[str, list] = {look: [] for look in LOOKS}
-    block = max(n // 6, 10)
-    for _ in range(max(n // block // len(LOOKS), 1)):
-        for look, (fxaa, soft) in LOOKS.items():
-            renderer.fxaa, renderer.soft_shadows = fxaa and kept[0], soft
-            times[look].append(_frames(game, ctx, fbo, block, each))
-    renderer.fxaa, renderer.soft_shadows = kept
-    p50 = {}
-    for look, parts in times.items():
-        ms = np.concatenate(parts)
-        _report(f"{name}, {look}", ms)
-        p50[look] = float(np.median(ms))
-    print(f"  (new look / old look, p50: {p50['new look'] / p50['old look']:.2f}; edge smoothing "
-          f"{'on' if kept[0] else 'off'} here)")
+ZOOMS = {"default": 1.0, "close": None}  # camera distance factor (close: the game's nearest)
 
 
-def grown_tree(days: float):
-    """A world grown ``days`` simulated days by a careful player (the living model)."""
+def _zooms(game, ctx, fbo, n: int, each, name: str) -> None:
+    """The tree at the default zoom and close up, the level of detail left to the game."""
+    kept = game.control.distance
+    for zoom, factor in ZOOMS.items():
+        game.control.distance = game.control.min_distance if factor is None else factor
+        game.state.remember()
+        times = _frames(game, ctx, fbo, n, each)
+        _report(f"{name}, {zoom} zoom", times, _drawn(game))
+    game.control.distance = kept
+
+
+def grown_tree(days: float, summer: bool = False):
+    """A world grown ``days`` simulated days by a careful player (the living model); with ``summer`` its
+    calendar starts so that the last day is midsummer (full leaves)."""
     from arbor.engine.life.rules.rules import load_rules
     from arbor.engine.life.world.actions import Action
     from arbor.engine.life.world.world import World
@@ -85,6 +95,9 @@ def grown_tree(days: float):
     rules = load_rules(ASSETS / "rules.toml", pace="demo")
     world = World(load_lsystem(ASSETS / "lsystems" / "game_tree.lsys"), rules, seed=3)
     world.sim.state.sun_meter = world.sim.state.water_meter = 0.9
+    if summer and rules.seasons.enabled:  # a year's 0.375 (midsummer) on the last day
+        year = rules.seasons.year_days
+        world.sim.state.sun_turns = ((0.375 - rules.seasons.start) * year - days) % year
     for _ in range(round(days * 2 * np.pi / 0.05 / 0.5)):
         world.apply(Action.WATER, float(world.sim.state.water_meter < 0.6))
         world.step(0.5)
@@ -107,62 +120,61 @@ def big_tree(segments: int):
 
 
 def rebuild_costs(trees) -> None:
-    """Full record build vs per-frame update of the growing parts, per tree size."""
+    """A growing tree's records: a full rebuild against the incremental update of the same growth, per
+    tree size, just after a rewrite (so its newest parts are growing: updating nothing proves nothing)."""
     from arbor.engine.life.form.growth_view import GrowthView
     from arbor.engine.life.form.interpret import Clocks
 
-    print("cost per growth step (records of the whole tree) vs per frame (only what grows):")
+    print("a growing tree's records, per frame: full rebuild vs incremental update of what grows (CPU ms):")
     for tree, t in trees:
-        t += MATURE
-        clocks = Clocks(t, t)
-        start = time.perf_counter()
-        view = GrowthView(tree.lstring, clocks, tree.geometry_constants)
-        build = (time.perf_counter() - start) * 1e3
-        updates = []
-        for k in range(20):
-            start = time.perf_counter()
-            view.update(Clocks(t + 0.001 * (k + 1), t))
-            updates.append(time.perf_counter() - start)
+        t += 0.05  # just after the last rewrite: its new parts grow
+        view = GrowthView(tree.lstring, Clocks(t, t), tree.geometry_constants)
+        builds, updates = [], []
+        for k in range(1, 11):
+            clocks = Clocks(t + 0.002 * k, t)
+            start = time.process_time()
+            GrowthView(tree.lstring, clocks, tree.geometry_constants)
+            builds.append(time.process_time() - start)
+            start = time.process_time()
+            view.update(clocks)
+            updates.append(time.process_time() - start)
         young = len(view.tubes) - view.young_row
-        print(f"  {len(view.tubes):>7,} segments ({young:,} growing): full build {build:7.1f} ms, "
-              f"per-frame update {np.median(updates) * 1e3:6.2f} ms  (ratio {build / (np.median(updates) * 1e3):.0f}x)")
+        build, update = np.median(builds) * 1e3, np.median(updates) * 1e3
+        print(f"  {len(view.tubes):>7,} segments ({young:,} growing): full rebuild {build:7.1f} ms, "
+              f"incremental update {update:6.2f} ms  (ratio {build / max(update, 1e-6):.0f}x)", flush=True)
 
 
-def _old_path(tree, t: float, ctx, fbo, camera, n: int) -> np.ndarray:
-    """Frame times of the path the game had before instanced records (issue 17's baseline): every
-    frame the whole tree through the turtle and the mesher at LOD 0, uploaded, and drawn with a shadow
-    pass and a lit pass by the mesh renderer."""
-    from arbor.engine.life.form.interpret import Clocks
-    from arbor.game.render.renderer import TreeRenderer, sun_direction
+def _home_pace(folder: Path | None) -> list:
+    """The home pace's tree in the summer of its first and third year (benchmarks.years' saves), if any."""
+    from arbor.engine.life.keep.save import read_garden
 
-    renderer = TreeRenderer(ctx)
-    times = []
-    for k in range(n):
-        start = time.perf_counter()
-        renderer.set_tree(tree.geometry(Clocks(t + 0.01 * k, t), lod=0).mesh)
-        renderer.render(fbo, camera, sun_direction(), SIZE)
-        ctx.finish()
-        times.append(time.perf_counter() - start)
-    renderer.release_tree()
-    return np.array(times) * 1e3
+    found = []
+    for year in (1, 3):
+        path = None if folder is None else folder / f"summer_{year}.arbor"
+        if path is not None and path.exists():
+            found.append((f"home pace, year {year} summer", read_garden(path, budget_slack=2.0).worlds[0]))
+        else:
+            print(f"(home pace, year {year}: no summer_{year}.arbor; run python -m benchmarks.years 3 DIR, "
+                  "then --years DIR)")
+    return found
 
 
 def main() -> None:
     """Run every scenario and print the figures."""
     import pygame
 
-    from arbor.engine.life.form.growth_view import GrowthView
-    from arbor.engine.life.form.interpret import Clocks
     from arbor.game.render.renderer import headless_context
     from arbor.game.screens.game import Game, GameConfig
 
     quick = "--quick" in sys.argv
+    years = Path(sys.argv[sys.argv.index("--years") + 1]) if "--years" in sys.argv else None
     pygame.init()
     pygame.display.set_mode((64, 64))
     ctx = headless_context()
     fbo = ctx.framebuffer(color_attachments=[ctx.renderbuffer(SIZE)], depth_attachment=ctx.depth_renderbuffer(SIZE))
-    print(f"GL: {ctx.info['GL_RENDERER']}, {SIZE[0]}x{SIZE[1]}")
-    n = 60 if quick else 300
+    print(f"GL: {ctx.info['GL_RENDERER']}, {SIZE[0]}x{SIZE[1]}; load average "
+          + " ".join(f"{x:.2f}" for x in os.getloadavg()))
+    n = 60 if quick else 240
     with TemporaryDirectory() as saves:
         clock = [1000.0]
         game = Game(ctx, SIZE, GameConfig(saves=Path(saves), seed=5, resume=False), clock=lambda: clock[0])
@@ -170,12 +182,17 @@ def main() -> None:
         def tick(_):
             clock[0] += 1 / FPS
 
-        _looks(game, ctx, fbo, n, tick, "sapling, 1x")
-        game.garden.worlds[0] = grown_tree(6 if quick else 25)
-        _looks(game, ctx, fbo, n, tick, f"tree after {'6' if quick else '25'} days, 1x")
-        game.set_speed(100.0)
-        _report("same tree, 100x", _frames(game, ctx, fbo, n, tick))
-        game.set_speed(1.0)
+        _report("warm-up (first frames: compiles, uploads)", _frames(game, ctx, fbo, 30, tick), _drawn(game))
+        _zooms(game, ctx, fbo, n, tick, "sapling")
+        days = 6 if quick else 25
+        game.garden.worlds[0] = grown_tree(days, summer=True)
+        _frames(game, ctx, fbo, 5, tick)  # (its first upload, apart)
+        _zooms(game, ctx, fbo, n, tick, f"summer tree, {days} days")
+        for name, world in _home_pace(years):
+            game.garden.worlds[0] = world
+            game.state.remember()
+            _frames(game, ctx, fbo, 5, tick)
+            _zooms(game, ctx, fbo, n, tick, name)
         tree, t = big_tree(5_000 if quick else 50_000)
         world = game.world
         world.tree = tree
@@ -186,30 +203,10 @@ def main() -> None:
         game.rules.growth.length_rate = 0.5  # a rewrite every ~2 s of frames: it keeps growing
         game.state.remember()
         game.draw(fbo)
-        while game.view.pending:  # the first build of the big tree (on the worker thread)
+        while game.view.pending:  # the first build of the big tree (on the worker thread), apart
             time.sleep(0.05)
             game.draw(fbo)
-        view = game.view.views[id(world)][1]
-        shown = game.renderer.pictures.version
-        _report(f"{len(view.tubes):,}-segment tree, growing", _frames(game, ctx, fbo, n, tick))
-        shown = game.renderer.pictures.version - shown
-        print(f"  (drawn at {game.renderer.last_scale:.2f} of the resolution, over several frames while the camera "
-              f"holds still: {shown} pictures in {n} frames, one per {n / max(shown, 1):.1f} frames)")
-        detail = game.renderer.last_details[0]
-        print(f"  (level of detail {detail.lod}: {detail.tubes:,} grown segments, {detail.leaves:,} grown leaves "
-              f"(share {detail.leaf_share:.2f}), {detail.vertices(game.renderer.placed[0].buffers):,} vertices; "
-              "rebuilds on the worker thread)")
-        full = []
-        for k in range(8 if quick else 15):
-            start = time.perf_counter()
-            clocks = Clocks(t + 0.01 * k, t)
-            GrowthView(tree.lstring, clocks, tree.geometry_constants)
-            game.draw(fbo)
-            ctx.finish()
-            full.append(time.perf_counter() - start)
-        _report("  same tree, full rebuild every frame", np.array(full) * 1e3)
-        _report("  same tree, old path: LOD 0 mesh, draw", _old_path(tree, t, ctx, fbo, game.camera(),
-                                                                               4 if quick else 8))
+        _zooms(game, ctx, fbo, n, tick, f"{tree.lstring.count('I'):,}-internode tree, growing")
         sizes = [big_tree(s) for s in ((1_000, 3_000) if quick else (1_000, 3_000, 10_000, 25_000, 50_000))]
         rebuild_costs(sizes)
     ctx.release()
