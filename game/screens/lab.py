@@ -1,4 +1,6 @@
-"""The lab screen: 2-4 trees side by side, grown in lock-step, with live charts underneath.
+"""The lab screen: 2-4 trees side by side, grown in lock-step, with live charts underneath; trees that share
+a plot (an experiment with ``spacing``: the competition lesson) stand together in one scene, lit from the
+front (the Light button, or L, shows them under the simulation's own sun), each one's name and state beneath it.
 
 Large touch buttons choose the speed (pause, 1x, 10x, 100x) and export the run (CSV, a PNG of the
 screen and of the charts, and a save of every tree) into results/<experiment>-<time>/. The lab's window
@@ -14,7 +16,6 @@ import moderngl
 import numpy as np
 import pygame
 
-from arbor.engine.base.units import METRE
 from arbor.engine.life.experiment.lab import Lab, save_stem
 from arbor.engine.life.keep.save import SavedGarden, write_garden
 from arbor.game.input.events import DOWN, KEY_DOWN, QUIT, InputEvent
@@ -22,19 +23,12 @@ from arbor.game.loop import SPEEDS, FixedStepLoop
 from arbor.game.render.camera import OrbitCamera
 from arbor.game.render.charts import COLORS, draw_charts
 from arbor.game.render.figures import lab_charts
+from arbor.game.render.plot_scene import PlotScene, tree_state
 from arbor.game.render.renderer import Overlay, TreeRenderer, save_png
 from arbor.game.screens.stack import Screen
 
 SCENE_FRACTION = 0.55
 BUTTON_H = 56
-
-
-def tree_state(world, meters) -> str:
-    """One tree's line under its name: alive with its wilt and height, or the day it died."""
-    s = world.sim.state
-    if not s.alive:
-        return f"dead (day {meters.died:.0f})"
-    return f"alive, wilt {s.wilt:.2f}, {world.tree.height / METRE:.2f} m"
 
 
 class LabScreen(Screen):
@@ -44,7 +38,9 @@ class LabScreen(Screen):
                  clock=time.monotonic) -> None:
         self.ctx, self.size, self.lab, self.results, self.clock = ctx, size, lab, results, clock
         self.loop = FixedStepLoop(dt=lab.experiment.dt, speed=10.0)
-        self.renderers = [TreeRenderer(ctx) for _ in lab.worlds]
+        self.plot = PlotScene(ctx) if lab.experiment.spacing else None  # (trees sharing a plot: one scene)
+        self.renderers = [] if self.plot else [TreeRenderer(ctx) for _ in lab.worlds]
+        self.front_lit = True  # the plot's scene lit from the front (False: the simulation's sun)
         self.overlay = Overlay(ctx, size)
         pygame.font.init()
         self.font = pygame.font.Font(None, 36)
@@ -55,7 +51,7 @@ class LabScreen(Screen):
         self._shown: list[tuple | None] = [None] * len(lab.worlds)  # what each renderer holds
 
     def _layout_buttons(self) -> dict[str, pygame.Rect]:
-        labels = ["Pause", "1x", "10x", "100x", "Export"]
+        labels = ["Pause", "1x", "10x", "100x", "Export", *(["Light"] if self.plot else [])]
         w = 120
         y = int(self.size[1] * SCENE_FRACTION) - BUTTON_H - 10
         return {name: pygame.Rect(self.size[0] - (len(labels) - i) * (w + 10), y, w, BUTTON_H)
@@ -75,6 +71,8 @@ class LabScreen(Screen):
             self.loop.speed = SPEEDS[e.key - pygame.K_0]
         elif e.kind == KEY_DOWN and e.key == pygame.K_e:
             self.press("Export")
+        elif e.kind == KEY_DOWN and e.key == pygame.K_l and self.plot:
+            self.press("Light")
         return None
 
     def press(self, name: str) -> None:
@@ -85,6 +83,9 @@ class LabScreen(Screen):
         elif name == "Export":
             folder = self.export()
             self.message = f"Exported to {folder}"
+        elif name == "Light":
+            self.front_lit = not self.front_lit
+            self.message = "Lit from the front" if self.front_lit else "Lit by the simulation's sun"
 
     def update(self, real_seconds: float) -> None:
         """Advance all trees together (stops at the experiment's duration)."""
@@ -93,10 +94,17 @@ class LabScreen(Screen):
         self.loop.advance(real_seconds, lambda dt: self.lab.step())
 
     def draw(self, fbo: moderngl.Framebuffer) -> None:
-        """Trees side by side on top, charts and buttons below."""
-        n = len(self.renderers)
+        """Trees side by side on top (or the plot's one scene), charts and buttons below."""
         w, h = self.size
         scene_h = int(h * SCENE_FRACTION)
+        if self.plot:
+            fbo.use()
+            fbo.clear(0.92, 0.92, 0.89, 1.0)
+            sun = None if self.front_lit else self.lab.worlds[0].sim.sun_direction()
+            self.plot.render(fbo, self.lab.worlds, (w, scene_h), (0, h - scene_h, w, scene_h), sun)
+            self.overlay.draw(self._overlay(scene_h, w))
+            return
+        n = len(self.renderers)
         tile_w = w // n
         for i, (world, renderer) in enumerate(zip(self.lab.worlds, self.renderers, strict=True)):
             clocks = world.clocks()
@@ -123,7 +131,9 @@ class LabScreen(Screen):
         s.fill((0, 0, 0, 0))
         pygame.draw.rect(s, (235, 235, 228, 255), (0, scene_h, self.size[0], self.size[1] - scene_h))
         draw_charts(s, pygame.Rect(0, scene_h, self.size[0], self.size[1] - scene_h), self.lab.series)
-        for i, regime in enumerate(self.lab.experiment.regimes):
+        if self.plot:
+            self._plot_labels(s, scene_h)
+        for i, regime in enumerate([] if self.plot else self.lab.experiment.regimes):
             label = self.font.render(regime.name, True, (255, 255, 255))
             box = pygame.Rect(i * tile_w + 12, 12, label.get_width() + 24, 44)
             pygame.draw.rect(s, (*COLORS[i % len(COLORS)], 220), box, border_radius=8)
@@ -148,6 +158,27 @@ class LabScreen(Screen):
             pygame.draw.rect(s, (0, 0, 0, 160), msg.get_rect(topleft=(12, 70)).inflate(16, 10))
             s.blit(msg, (12, 70))
         return pygame.image.tobytes(s, "RGBA", True)
+
+    def _plot_labels(self, s: pygame.Surface, scene_h: int) -> None:
+        """Each tree's name (in its charts' colour) and state beneath it in the plot's scene."""
+        bases = self.plot.bases(self.lab.worlds, (self.size[0], scene_h))
+        gap = float(np.min(np.diff(np.sort(bases[:, 0])))) if len(bases) > 1 else float(self.size[0])
+        for i, ((x, y), world, regime) in enumerate(zip(bases, self.lab.worlds, self.lab.experiment.regimes,
+                                                         strict=True)):
+            label = self.font.render(regime.name, True, (255, 255, 255))
+            box = label.get_rect(midtop=(int(x), min(int(y) + 10, scene_h - BUTTON_H - 110))).inflate(24, 12)
+            pygame.draw.rect(s, (*COLORS[i % len(COLORS)], 220), box, border_radius=8)
+            s.blit(label, label.get_rect(center=box.center))
+            state = tree_state(world, self.lab.meters[i])
+            lines = [state] if self.small.size(state)[0] + 24 < gap else state.rsplit(", ", 1)  # (neighbours close)
+            top = box.bottom + 6
+            for line in lines:
+                text = self.small.render(line, True, (255, 255, 255))
+                under = text.get_rect(midtop=(box.centerx, top)).inflate(20, 8)
+                pygame.draw.rect(s, (150, 30, 30, 200) if not world.sim.state.alive else (0, 0, 0, 150), under,
+                                 border_radius=8)
+                s.blit(text, text.get_rect(center=under.center))
+                top = under.bottom + 2
 
     def export(self) -> Path:
         """CSV, a PNG of the screen, the charts (PNG and SVG) and a save of every tree."""
