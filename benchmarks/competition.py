@@ -1,8 +1,8 @@
-"""Competition figure: lesson 3's three trees on one plot (2 m apart) against the same tree alone.
+"""Competition figure: lesson 3's three trees on one plot (1.5 m apart) against the same tree alone.
 
 Run: python -m benchmarks.competition [--days DAYS] [--out docs/lab_competition.png]
 
-Grows assets/experiments/lesson_competition.toml as written (West, Middle, East in a row, 2 m apart,
+Grows assets/experiments/lesson_competition.toml as written (West, Middle, East in a row, 1.5 m apart,
 shading each other) and once more with each tree on a plot of its own (the control: the three are then
 the same tree), prints per tree the light intercepted (share of full sun, m² x h a day at the end, the
 total since planting against the lone tree) and the biomass, and draws the figure (PNG and SVG).
@@ -60,7 +60,8 @@ def main() -> None:
         end = s.values["light_day"][-1]
         print(f"{name:>8}  {share:28.3f}  {end:30.1f} ({100 * (end / last - 1):+5.1f} %)  {total:+27.1f} %  "
               f"{s.values['biomass'][-1]:12.2f}")
-    title = f"{plot.experiment.title}: 2 m apart, {plot.worlds[0].sim.state.sun_turns:.0f} game days, noon sun overhead"
+    days = plot.worlds[0].sim.state.sun_turns
+    title = f"{plot.experiment.title}: {plot.experiment.spacing:g} m apart, {days:.0f} game days, noon sun overhead"
     for path in competition(plot.series, alone, args.out.with_suffix(""), title=title):
         print(path)
     print(f"({time.perf_counter() - start:.0f} s)")

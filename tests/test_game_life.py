@@ -28,11 +28,12 @@ NOW = 1.7e9
 
 @pytest.fixture(scope="module")
 def fruiting():
-    """A tree in its second spring with ripe fruit (demo pace, about 5 s to grow)."""
+    """A tree in its second spring with ripe fruit (demo pace, about 5 s to grow; its fruit set on day 29 and
+    ripen by day 31 under the clear-sky sun)."""
     world = World(load_lsystem(ASSETS / "lsystems" / "game_tree.lsys"), load_rules(ASSETS / "rules.toml", pace="demo"),
                   seed=3)
     world.sim.state.sun_meter = world.sim.state.water_meter = 0.9
-    careful(world, 30.0)
+    careful(world, 31.5)
     return world
 
 

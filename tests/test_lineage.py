@@ -70,9 +70,10 @@ def test_every_cross_grows(parents, seed):
 
 
 def test_a_child_resembles_both_parents(parents):
-    widths = [measure(grow(World(system, rules(), seed=3), 6))["width"] for system in parents]
-    child = measure(grow(World(cross(*parents, 3).system, rules(), seed=3), 6))["width"]
-    assert min(widths) < child < max(widths)
+    # (height: the pioneer poplar's free growth makes it the taller parent by far, 1.67 m against 1.02 at day 6)
+    heights = [measure(grow(World(system, rules(), seed=3), 6))["height"] for system in parents]
+    child = measure(grow(World(cross(*parents, 3).system, rules(), seed=3), 6))["height"]
+    assert min(heights) < child < max(heights)
 
 
 def test_lineage_survives_a_save_and_hostile_entries_are_dropped(parents, tmp_path):

@@ -167,11 +167,11 @@ def test_lit_branches_are_kept(system):
 
 
 def test_form_follows_the_sun(system):
-    """A high sun overhead gives a taller, narrower crown; a low sun on one side (45° at noon, 12-hour days) a
-    lower, wider crown that leans toward it. (A noon sun 30° high in 10-hour days is too weak to build a crown
-    at all: its clear-sky light is a late autumn's, engine/life/plant/solar.py.)"""
+    """A high sun overhead gives a taller, narrower crown; a low sun on one side a
+    lower, wider crown that leans toward it (41° at noon, 13.5-hour days). (A noon sun 30° high in 10-hour days
+    is too weak to build a crown at all: its clear-sky light is a late autumn's, engine/life/plant/solar.py.)"""
     overhead = cared_for(system, 20, orbit=1.0, side=0.0)
-    low = cared_for(system, 20, orbit=0.0, side=1.0)
+    low = cared_for(system, 20, orbit=0.2, side=1.4)
     shapes = []
     for world in (overhead, low):
         turtle = world.tree.geometry(world.clocks()).turtle

@@ -67,7 +67,7 @@ class CarbonBudget:
     fill_at_next_reading: bool = False  # a tree from before the carbon budget: its pool starts full
     # (not saved, set again at every reading: plain class attributes, not fields)
     leaf_cost = 0.0  # g per m² of leaf per s: its leaves' dark respiration (0: the rules' default leaf)
-    full_rate = 0.0  # g per m² per s a fully lit, open leaf of its species fixes under the zenith sun
+    full_rate = 0.0  # g per m² per s a fully lit, open leaf of the rules' reference leaf fixes under the zenith sun
 
     @classmethod
     def for_seedling(cls, rules: Rules) -> CarbonBudget:
@@ -100,9 +100,9 @@ class CarbonBudget:
             if self.fill_at_next_reading:
                 self.pool, self.fill_at_next_reading = self.capacity(rules), False
         traits = traits or photosynthesis.leaf_traits({}, rules)
-        full = float(photosynthesis.gross(full_ppfd(rules), traits))
         self.leaf_cost = float(photosynthesis.grams(traits.dark, rules))
-        self.full_rate = float(photosynthesis.grams(full, rules))
+        reference = photosynthesis.gross(full_ppfd(rules), photosynthesis.leaf_traits({}, rules))
+        self.full_rate = float(photosynthesis.grams(reference, rules))
         gross = assimilation(canopy, shine, traits, rules) * min(max(stomata, 0.0), 1.0)
         upkeep = self.upkeep_rate(rules, activity)
         self.last_fixed_rate, self.last_upkeep_rate = gross, upkeep
@@ -116,8 +116,9 @@ class CarbonBudget:
         return net
 
     def caught(self) -> float:
-        """The light the leaves fixed sugar with at the last reading: 0..1 of what fully lit, open leaves of the
-        same area fix under the zenith sun (0 with no leaves)."""
+        """The sugar the leaves fixed at the last reading per m², against fully lit, open leaves of the rules'
+        reference leaf (carbon.amax) under the zenith sun, at most 1 (0 with no leaves): a species with a higher
+        Amax earns more from the same light."""
         full = self.full_rate * self.leaf_area
         return min(self.last_fixed_rate / full, 1.0) if full > 0 else 0.0
 
@@ -255,3 +256,4 @@ def built_cost(ls: LString, born: float, const: dict[str, float], rules: Rules, 
     wood = const["IL"] * const["IO"] ** order * const["TIP"] ** 2 * VOLUME * density
     leaf = CLUSTER_AREA * LEAF_ASPECT * const["LS"] ** 2 * AREA * rules.carbon.leaf_mass
     return float(wood.sum()) + leaves * leaf + float(flowers + fruit)
+

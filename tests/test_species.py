@@ -1,0 +1,51 @@
+"""The two species differ as real ones do: the pioneer poplar (high Amax and dark respiration, free growth)
+outgrows the shade-tolerant game tree in full sun and loses more in shade (Walters, Kruger & Reich 1993; the
+traits are the species' .lsys AMAX, QE, RDS and P)."""
+
+import numpy as np
+import pytest
+
+from arbor.engine.life.experiment.measure import measure
+from arbor.engine.life.plant.photosynthesis import gross, leaf_traits
+from arbor.engine.life.rules.rules import Rules, load_rules
+from arbor.engine.life.world.actions import Action
+from arbor.engine.life.world.world import World
+from arbor.engine.lsystem.lsys import load_lsystem
+
+DAY = 2 * np.pi / 0.05
+
+
+@pytest.fixture(scope="module")
+def species(lsys_dir):
+    return {name: load_lsystem(lsys_dir / f"{name}.lsys") for name in ("game_tree", "game_poplar")}
+
+
+def grown(system, shade: float, days: float = 7, seed: int = 3) -> float:
+    """Above-ground biomass (kg) after ``days`` of an endless summer, watered, under the default sun with
+    ``shade`` of it removed."""
+    rules = load_rules("assets/rules.toml", pace="demo")
+    rules.seasons.enabled = False
+    rules.sun.shade = shade
+    world = World(system, rules, seed=seed)
+    world.apply(Action.ORBIT_HEIGHT, 0.35)
+    world.sim.state.sun_meter = world.sim.state.water_meter = 0.9
+    for _ in range(round(days * DAY / 0.5)):
+        s = world.sim.state
+        world.apply(Action.WATER, float(s.water_meter < 0.75 if s.watering else s.water_meter < 0.55))
+        world.step(0.5)
+    return measure(world)["biomass"]
+
+
+def test_the_leaves_of_a_pioneer_earn_more_in_sun_and_less_in_deep_shade(species):
+    rules = Rules()
+    tree, poplar = (leaf_traits(species[n].constants, rules) for n in ("game_tree", "game_poplar"))
+    assert gross(2000.0, poplar) - poplar.dark > 1.5 * (gross(2000.0, tree) - tree.dark)  # full sun
+    assert gross(20.0, poplar) - poplar.dark < gross(20.0, tree) - tree.dark  # deep shade: 1 % of full sun
+    assert tree.dark / tree.quantum < poplar.dark / poplar.quantum  # the tolerant leaf's lower compensation point
+
+
+def test_the_poplar_outgrows_the_game_tree_in_sun_and_loses_more_in_shade(species):
+    mass = {(name, shade): grown(species[name], shade) for name in species for shade in (0.0, 0.75)}
+    assert mass["game_poplar", 0.0] > mass["game_tree", 0.0], mass  # the pioneer ahead in full sun
+    keeps = {name: mass[name, 0.75] / mass[name, 0.0] for name in species}
+    assert keeps["game_poplar"] < 0.6 * keeps["game_tree"], (keeps, mass)  # and much further behind in shade
