@@ -257,3 +257,18 @@ def built_cost(ls: LString, born: float, const: dict[str, float], rules: Rules, 
     leaf = CLUSTER_AREA * LEAF_ASPECT * const["LS"] ** 2 * AREA * rules.carbon.leaf_mass
     return float(wood.sum()) + leaves * leaf + float(flowers + fruit)
 
+
+def root_balance(light: float, supply: float, rules: Rules) -> float:
+    """The functional balance's need over supply (Brouwer 1963): the crown's water need, the light its leaves
+    catch against the norm (``light``: Simulation.light_growth), over what each root supplies, the stomata's
+    opening at the soil's water (``supply``); at most ``root_most``."""
+    need = max(light, 0.0)
+    return min(need / max(supply, need / rules.carbon.root_most, 1e-9), rules.carbon.root_most)
+
+
+def root_demand(budget: CarbonBudget, rules: Rules, seconds: float, balance: float) -> float:
+    """Sugar (g) the roots want over ``seconds``: their gap to ``root_shoot`` x ``balance`` x the shoot built so
+    far, closed over ``root_catch_up``."""
+    c = rules.carbon
+    target = c.root_shoot * balance * max(budget.built - budget.roots_built, 0.0)
+    return max(target - budget.roots_built, 0.0) * min(max(seconds, 0.0) / c.root_catch_up, 1.0)

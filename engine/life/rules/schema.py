@@ -156,9 +156,6 @@ SCHEMA: tuple[Rule, ...] = (
     Rule("carbon.blossom_cost", 0.3, 0.0, 1000.0, "g", "what a blossom costs when it opens (blossoms open, and fruit "
          "sets, only as far as the pool pays for the shoots: extern C)"),
     Rule("carbon.fruit_cost", 4.0, 0.0, 1000.0, "g", "what a fruit costs when it sets (about five leaf clusters)"),
-    Rule("carbon.root_cost", 0.02, 0.0, 100.0, "g per s", "what roots growing at full speed cost", "rate"),
-    Rule("carbon.root_drought", 2.0, 0.0, 10.0, "x", "roots grow up to 1 + this times as fast in drought "
-         "(a functional balance: more roots where water is short)"),
     # The sun from solar geometry through a clear sky (engine/life/plant/solar.py); issue 43.
     Rule("sun.solar_constant", 1361.0, 1300.0, 1420.0, "W/m²", "the sun's irradiance at the top of the "
          "atmosphere at the mean Earth-Sun distance", source="Kopp & Lean 2011, A new, lower value of total solar "
@@ -198,6 +195,15 @@ SCHEMA: tuple[Rule, ...] = (
          "open (1 - exp(-meter / this)) / (1 - exp(-1 / this)): at a meter of this much 64 %, at half of it 40 %",
          source="the exponential soil-water response of Jarvis 1976, The interpretation of the variations in leaf "
          "water potential and stomatal conductance found in canopies in the field"),
+    # Allocation to roots by a functional balance (carbon.root_demand); issue 43.
+    Rule("carbon.root_shoot", 0.3, 0.05, 2.0, "g of root per g of shoot", "the root:shoot the functional balance "
+         "aims at with the crown's light at the norm (daylight_full) and a moist soil: more light (the crown's water "
+         "need) raises it, a drier soil (less supply per root) raises it, shade lowers it",
+         source="Brouwer 1963, Functional equilibrium; Poorter et al. 2012, Biomass allocation to leaves, stems and "
+         "roots: meta-analyses of interspecific variation and environmental control (young trees 0.2-0.5)"),
+    Rule("carbon.root_most", 4.0, 1.0, 20.0, "x root_shoot", "the balance's need over supply at most (a dry soil's)"),
+    Rule("carbon.root_catch_up", 125.66667, 1.0, 1e7, "s", "the roots close their gap to the balance's target over "
+         "about this long (a day of the sun), as far as the pool pays", "time"),
 )
 
 

@@ -183,14 +183,15 @@ class World:
                        self.sim.light_growth(), photosynthesis.leaf_traits(self.tree.system.constants, rules))
 
     def settle(self, seconds: float) -> None:
-        """After a reading: the roots get their share of the pool (more in drought: a functional balance)
-        and the simulation hears whether the tree is starving."""
-        rules = self.rules
-        boost = 1.0 + rules.carbon.root_drought * self.sim.drought()
-        demand = rules.carbon.root_cost * boost * seconds
+        """After a reading: the roots get their share of the pool by a functional balance (carbon.root_demand:
+        more in drought and in bright light, less in shade) and the simulation hears whether the tree is starving."""
+        rules, s = self.rules, self.sim.state
+        supply = carbon.stomata(s.water_meter, False, rules)  # (what moist soil gives each root; drowning aside)
+        balance = carbon.root_balance(self.sim.light_growth(), supply, rules)
+        demand = carbon.root_demand(self.carbon, rules, seconds, balance)
         paid = self.carbon.fund(rules, demand)
         self.carbon.roots_built += paid * demand
-        self.sim.root_vigour = paid * boost
+        self.sim.root_vigour = paid * min(balance, 3.0)
         self.sim.starving = self.carbon.starving
         self.sim.remember_light(self.light_caught(), seconds)
 
