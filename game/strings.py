@@ -2,9 +2,11 @@
 
 from __future__ import annotations
 
-import tomllib
+import re
 from pathlib import Path
 
+from arbor.engine.base.errors import SettingsError
+from arbor.engine.base.reader import read_user_toml
 from arbor.game.paths import ASSETS
 
 STRINGS_DIR = ASSETS / "strings"
@@ -12,15 +14,31 @@ _table: dict[str, dict[str, str]] = {}
 _language = ""
 
 
-def set_language(language: str = "en", folder: Path = STRINGS_DIR) -> None:
-    """Load a strings file; keys missing from it fall back to English."""
+LANGUAGE = re.compile(r"[a-z]{2,3}([_-][A-Za-z]{2,4})?")  # a language's file name: en, fr, pt_BR, zh-Hans
+STRINGS_LIMIT = 256 * 1024  # bytes of a strings file (English is about 20 KB)
+
+
+def set_language(language: str = "en", folder: Path = STRINGS_DIR) -> str:
+    """Load a strings file (through the one reader for users' files: a translation is written by hand);
+    keys missing from it fall back to English. Returns '' or one line saying why the language's file
+    could not be used (then the text stays English): a bad translation must not stop a kiosk."""
     global _table, _language
-    base = tomllib.loads((folder / "en.toml").read_text(encoding="utf-8"))
+    _, base = read_user_toml(folder / "en.toml", SettingsError, STRINGS_LIMIT)
+    problem = ""
     if language != "en":
-        override = tomllib.loads((folder / f"{language}.toml").read_text(encoding="utf-8"))
-        for section, values in override.items():
-            base.setdefault(section, {}).update(values)
+        try:
+            if not LANGUAGE.fullmatch(language):
+                raise SettingsError(f"{language!r} is not a language's name (en, fr, pt_BR, ...)", str(folder))
+            _, override = read_user_toml(folder / f"{language}.toml", SettingsError, STRINGS_LIMIT)
+            for section, values in override.items():
+                if not isinstance(values, dict) or not all(isinstance(v, str) for v in values.values()):
+                    raise SettingsError(f"[{section}] must be a table of texts in quotes", f"{folder / language}.toml")
+                base.setdefault(section, {}).update(values)
+        except SettingsError as err:
+            problem, language = f"{err} (the text stays English)", "en"
+            _, base = read_user_toml(folder / "en.toml", SettingsError, STRINGS_LIMIT)
     _table, _language = base, language
+    return problem
 
 
 def text(key: str, **values) -> str:

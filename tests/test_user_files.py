@@ -160,3 +160,25 @@ def test_a_fifo_planted_in_a_sweeps_out_folder_is_refused_not_waited_on(tmp_path
     os.mkfifo(store.runs_dir / "run0001.csv")
     with pytest.raises(SweepError, match="not a regular file"):
         store.table([SimpleNamespace(name="run0001")])
+
+
+def test_a_bad_translation_keeps_the_text_english_in_one_line(tmp_path):
+    """A strings file is written by hand too (assets/strings/<language>.toml, named by kiosk.toml): nested
+    too deeply, not a table of texts, or a name that is a path, it is one line and English stays."""
+    from arbor.game import strings
+
+    folder = tmp_path / "strings"
+    folder.mkdir()
+    (folder / "en.toml").write_text((ASSETS / "strings" / "en.toml").read_text(encoding="utf-8"))
+    (folder / "fr.toml").write_text("[menu]\nreplant = " + "[" * 3000 + "]" * 3000 + "\n")
+    (folder / "de.toml").write_text("[menu]\nreplant = 3\n")
+    try:
+        for language, says in [("fr", "nested too deeply"), ("de", "must be a table of texts"),
+                               ("../../x", "is not a language's name")]:
+            problem = strings.set_language(language, folder)
+            assert says in problem and problem.endswith("(the text stays English)") and "\n" not in problem
+            assert strings.text("menu.save") == "Save"
+        (folder / "fr.toml").write_text('[menu]\nreplant = "Nouvel arbre"\n')
+        assert strings.set_language("fr", folder) == "" and strings.text("menu.replant") == "Nouvel arbre"
+    finally:
+        strings.set_language("en")

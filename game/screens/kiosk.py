@@ -186,9 +186,13 @@ class Kiosk:
     """Wraps a game (built by ``make_game``) for an unattended touchscreen; see module docstring."""
 
     def __init__(self, make_game, config: KioskConfig, saves: Path, clock=time.monotonic) -> None:
-        set_language(config.language)
+        language = set_language(config.language)  # ('' or why the translation could not be used)
+        if language:
+            log.error("%s", language)
         self.make_game, self.config, self.saves, self.clock = make_game, config, saves, clock
         self.game = make_game()
+        if language:
+            self.game.say(language, 12)
         self.game.set_speed(config.speed)
         self._kiosk_volume()
         self.last_touch = clock()
