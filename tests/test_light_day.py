@@ -30,3 +30,20 @@ def test_light_day_does_not_depend_on_the_sampling():
     later = np.array(half)[np.array(days_half) >= 1.5]
     # no zig-zag between a day's window and a night's (it was 30x): sample to sample, the tree's growth alone
     assert np.all(later > 0) and np.all(np.abs(np.diff(np.log(later))) < np.log(3))
+
+
+def test_the_real_units_follow_the_declared_time_scale():
+    from arbor.engine.life.plant import solar
+
+    experiment = Experiment("real units", seed=2, duration=2 * DAY, sample_every=DAY,
+                            regimes=[Regime("watered", watering=Watering(below=0.55, until=0.75))],
+                            lsystem=ROOT / "assets" / "lsystems" / "game_tree.lsys", seasons=False)
+    rules = load_rules(ROOT / "assets" / "rules.toml", pace="demo")
+    lab = Lab(experiment, rules)
+    lab.run()
+    values, day = lab.series[0].values, lab.series[0].day
+    assert values["real_days"][-1] == pytest.approx(day[-1] * 365 / 28)  # a game day: 13 real days
+    full = solar.full_par(rules.sun)
+    assert 500 < full < 510  # W/m² of PAR under a clear sky's zenith sun
+    assert values["par_day"][-1] > 0
+    assert values["par_day"][-1] == pytest.approx(values["light_day"][-1] * 3600 * full * 1e-6)

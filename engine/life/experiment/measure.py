@@ -16,19 +16,20 @@ import numpy as np
 
 from arbor.engine.base.units import METRE
 from arbor.engine.life.form.interpret import grown_turtle
-from arbor.engine.life.plant import carbon
+from arbor.engine.life.plant import carbon, photosynthesis, solar
 from arbor.engine.life.world.world import World
 
 SWUNG = ("sun", "water", "wilt")  # sampled as mean, min and max since the last sample
 METRICS = ("height", "width", "offset", "girth", "modules", "leaves", "density", "shed", "roots",
            *(f"{m}{s}" for m in SWUNG for s in ("", "_min", "_max")), "alive", "day_of_death", "fruit",
-           "biomass", "leaf_area", "lai", "light_share", "light_day", "net_carbon", "pool", "root_shoot", "pruned")
+           "biomass", "leaf_area", "lai", "light_share", "light_day", "net_carbon", "pool", "root_shoot", "pruned",
+           "real_days", "par_day")
 UNITS = {"height": "m", "width": "m", "offset": "m", "girth": "cm", "modules": "count", "leaves": "count",
          "density": "per m³", "shed": "count", "roots": "m", **{f"{m}{s}": "0..1" for m in SWUNG
                                                                for s in ("", "_min", "_max")},
          "alive": "1 or 0", "day_of_death": "game day", "fruit": "count", "biomass": "kg", "leaf_area": "m²",
          "lai": "m² per m²", "light_share": "0..1", "light_day": "m² x h per day", "net_carbon": "g", "pool": "g",
-         "root_shoot": "g per g", "pruned": "count"}
+         "root_shoot": "g per g", "pruned": "count", "real_days": "real days", "par_day": "MJ per day"}
 
 
 @dataclass
@@ -124,7 +125,17 @@ def measure(world: World, meters: Meters | None = None) -> dict[str, float]:
             "light_share": meters.lit / meters.shine if meters.shine > 0 else world.tree.mean_light,
             "light_day": meters.light_day(world),
             "net_carbon": budget.fixed - budget.respired, "pool": budget.pool, "root_shoot": root_shoot(budget),
-            "pruned": float(sum(v for _, kind, v in world.journal.entries if kind == "pruned"))}
+            "pruned": float(sum(v for _, kind, v in world.journal.entries if kind == "pruned")),
+            **real_units(world, meters)}
+
+
+def real_units(world: World, meters: Meters) -> dict[str, float]:
+    """The declared time scale's view (engine/life/rules/schema.py, seasons.real_year): the real days the game
+    days so far stand for, and the PAR the leaves intercepted over the last game day as MJ a real day (a game
+    day is one representative day of the span it stands for: m² x hours of full sun x the full sun's PAR)."""
+    full = solar.full_par(world.rules.sun)  # W/m² of the sun's strength 1
+    return {"real_days": world.sim.state.sun_turns * photosynthesis.real_days(world.rules),
+            "par_day": meters.light_day(world) * 3600.0 * full * 1e-6}
 
 
 def root_shoot(budget: carbon.CarbonBudget) -> float:
