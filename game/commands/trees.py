@@ -151,7 +151,8 @@ def derive_source(source: TreeSource, most: int | None = None, progress=None,
 RENDER_MEMORY = 2 * 1024**3  # bytes a headless render may use at most (the picture and the tree's mesh)
 RENDER_BASE = 300 * 1024**2  # the process, numba and the GL context before any picture or tree
 PIXEL_BYTES = 48  # a pixel: 4x multisampled colour and depth, the resolved copy, the read-back and the PNG
-MODULE_BYTES = (3600, 700, 300, 200)  # a module's share of the mesh at LOD 0..3 (measured on abop_2_8_tree)
+MODULE_BYTES = (4800, 700, 300, 200)  # a module's share of the mesh at LOD 0..3 (measured on abop_2_8_tree; at
+# LOD 0 a parametric A(x) -> A(x+1)F[A(x*2)] tree took 4.3 KB a module: 2.43 GB at 497k modules)
 
 
 def render_modules(size: tuple[int, int], lod: int) -> int:
