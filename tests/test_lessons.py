@@ -66,8 +66,32 @@ def test_lesson_light_longer_days_catch_more_light(tmp_path):
     as_written("lesson_light.toml", path, out, "--workers", "1")  # with the figures the guide says to open
     light = finals(out, "Day length", "light_day")
     assert light["6"] < light["10"] < light["14"] < light["18"]  # the guide: light caught rises with day length
+    assert finals(out, "Day length", "alive")["6"] == 1  # the guide: the 6-hour trees live
     for figure in ("dose_response.png", "time_series.png", "thumbnails.png"):
         assert (out / figure).stat().st_size > 10_000, figure
+
+
+def test_lesson_light_the_short_day_s_sun_gives_the_share_the_guide_says():
+    """The guide: at a 60° noon sun the 6-hour day gets 26 % of the 18-hour day's light (the game's sun, as the
+    lab sets it: the day length sets the orbit's height, the noon elevation its side)."""
+    from arbor.engine.life.experiment.schema import day_length_height, elevation_side
+    from arbor.engine.life.plant.sim import Simulation
+    from arbor.engine.life.rules.rules import Rules
+
+    def daily(hours: float) -> float:
+        rules = Rules()
+        rules.seasons.enabled = False
+        rules.sun.side = elevation_side(60, day_length_height(hours))
+        sim = Simulation(rules)
+        sim.set_orbit_height(day_length_height(hours))
+        total = 0.0
+        for k in range(1000):
+            sim.state.sun_angle = 2 * np.pi * (k + 0.5) / 1000
+            total += sim.sunshine()
+        return total
+
+    share = round(100 * daily(6) / daily(18))
+    assert f"the 6-hour sun gives {share} % of the 18-hour sun's light a day" in GUIDE.replace("\n", " ")
 
 
 def test_lesson_water_rare_drinks_leave_the_meter_low(tmp_path):
@@ -78,6 +102,8 @@ def test_lesson_water_rare_drinks_leave_the_meter_low(tmp_path):
     assert low["30"] > low["240"]  # the guide: the longer the wait, the lower the meter falls between drinks
     biomass = finals(out, "Time between drinks", "biomass")
     assert biomass["60"] > biomass["240"]
+    assert biomass["120"] < 0.2 * biomass["60"]  # the guide: a cliff at 120 s (growth needs 20 s above half)
+    assert finals(out, "Time between drinks", "water")["30"] > 0.9  # the guide: every 30 s the meter stays near full
 
 
 def test_lesson_competition_the_middle_tree_is_shaded(tmp_path):
@@ -109,6 +135,8 @@ def test_lesson_pruning_a_raised_crown_builds_less_and_roots_take_a_larger_share
     assert finals(out, "Lowest branches cut", "pruned")["0"] == 0  # the control is never cut
     ratio = finals(out, "Lowest branches cut", "root_shoot")
     assert ratio["0.6"] > ratio["0"]  # the roots keep their share while the crown is cut
+    height = finals(out, "Lowest branches cut", "height")
+    assert height["0"] <= height["0.6"] < 1.2 * height["0"]  # the guide: height changes little, rises a little
 
 
 def test_every_csv_column_is_documented_with_its_unit():

@@ -42,7 +42,7 @@ def test_the_real_units_follow_the_declared_time_scale():
     lab = Lab(experiment, rules)
     lab.run()
     values, day = lab.series[0].values, lab.series[0].day
-    assert values["real_days"][-1] == pytest.approx(day[-1] * 365 / 28)  # a game day: 13 real days
+    assert values["real_days"][-1] == pytest.approx(day[-1] * rules.seasons.real_year / rules.seasons.year_days)
     full = solar.full_par(rules.sun)
     assert 500 < full < 510  # W/m² of PAR under a clear sky's zenith sun
     assert values["par_day"][-1] > 0
