@@ -54,7 +54,7 @@ def test_a_render_derives_no_more_than_it_can_draw():
     most = render_modules((1024, 768), 0)
     assert render_memory((1024, 768), most, 0) <= trees.RENDER_MEMORY < render_memory((1024, 768), most + 10, 0)
     budget, why = derive_budget(system, TreeSource(CONTEXT), most)
-    assert budget == most < 2_000_000 and "memory limit of 2 GB holds at this --lod" in why
+    assert budget == most < 2_000_000 and "memory limit of 2.0 GB holds at this --lod" in why
 
 
 def test_the_cut_budget_is_said_only_when_it_held_growth_back(capsys):

@@ -88,7 +88,7 @@ def derive_budget(system: LSystem, source: TreeSource, most: int | None = None) 
     if most is not None and most < budget:
         budget = max(int(most), 1)
         why = (f"growing to {budget:,} modules at most (what a picture's or a mesh's memory limit of "
-               f"{RENDER_MEMORY / 1024**3:.0f} GB holds at this --lod)")
+               f"{RENDER_MEMORY / 1024**3:.1f} GB holds at this --lod)")
     return budget, why
 
 
