@@ -183,6 +183,16 @@ def _cmd_compare(args: argparse.Namespace) -> int:
     return 0
 
 
+def _cmd_worksheet(args: argparse.Namespace) -> int:
+    from arbor.game.commands.worksheet import make_worksheet
+    from arbor.game.errors import need_lab_extra
+
+    need_lab_extra("arbor worksheet (its charts)")
+    for path in make_worksheet(args.lesson, args.out, args.seeds, args.workers):
+        say(str(path))
+    return 0
+
+
 def _cmd_landscape(args: argparse.Namespace) -> int:
     from arbor.game.commands.landscape import parse_presets, render_landscape
 
@@ -358,6 +368,16 @@ def build_parser() -> argparse.ArgumentParser:
     comp.add_argument("--out", type=Path, required=True, help="folder for class.csv and the class figure")
     comp.add_argument("--no-plots", action="store_true", help="the table only")
     comp.set_defaults(run=_cmd_compare)
+    sheet = sub.add_parser("worksheet", help="educators: a printable worksheet for a lesson (question, prediction, "
+                           "setup, an empty chart, discussion, an answer key from a real run)")
+    sheet.add_argument("lesson", help="light, water, competition or pruning (docs/teaching.md)")
+    sheet.add_argument("--out", type=Path, required=True, help="the sheet: NAME.html (one page to print) or NAME.pdf "
+                       "(A4 pages); a sweep lesson's runs are kept beside it in NAME_runs/")
+    sheet.add_argument("--seeds", type=_bounded(1, 50, "--seeds"), default=3,
+                       help="seeds of the answer key's run (default 3; the lesson's own file has 6-8)")
+    sheet.add_argument("--workers", type=_bounded(1, 256, "--workers"), default=None,
+                       help="worker processes for the answer key's runs (default: every core)")
+    sheet.set_defaults(run=_cmd_worksheet)
     land = sub.add_parser("landscape", help="render a landscape of many trees (instancing, LOD, culling)")
     land.add_argument("trees", type=_bounded(1, MAX_TREES, "the number of trees"),
                       help=f"number of trees, 1-{MAX_TREES:,}")
@@ -405,7 +425,8 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
-COMPILING = ("render", "export", "landscape", "lab", "sweep", "view", "card", "import")  # use numba kernels
+COMPILING = ("render", "export", "landscape", "lab", "sweep", "view", "card", "import",
+             "worksheet")  # use numba kernels
 EXIT_OK, EXIT_FAILED, EXIT_USAGE = 0, 1, 2  # argparse exits with EXIT_USAGE for bad arguments
 EXIT_INTERRUPTED = 130  # Ctrl-C (SIGINT) before a window or a command handled it: 128 + 2, as shells report it
 
