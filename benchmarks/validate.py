@@ -10,7 +10,8 @@ Run: python -m benchmarks.validate [--days 14] [--markdown] [--write docs/plant.
    exponential light response of the SUCROS crop models (Goudriaan & van Laar 1994, "Modelling potential crop
    growth processes") with the same Amax and quantum efficiency, and its light compensation point.
 3. **The plant.** Both species grown watered in an endless summer for DAYS game days (14: half a year on the
-   declared time scale, a growing season), then their quantities in real units against literature ranges.
+   declared time scale, a growing season), then their quantities in real units against literature ranges;
+   and how long each lives in waterlogged soil (the can always held) against flood-tolerance classes.
 Every row says whether the model lies within 2x of the range ("ok"), and the table can be written into
 docs/plant.md between its markers (tests/test_validate.py checks the sun and leaf rows there against a run).
 """
@@ -183,6 +184,30 @@ def plant_rows(species: dict[str, object], days: float) -> list[Row]:
     return rows
 
 
+def drowned_days(system, most: float = 20.0) -> float:
+    """Real days (on the declared time scale) a tree lives with the can always held (waterlogged soil), at most
+    ``most`` game days."""
+    rules = load_rules(ASSETS / "rules.toml", pace="demo")
+    rules.seasons.enabled = False
+    world = World(system, rules, seed=3)
+    world.apply(Action.WATER, 1.0)
+    dt = 0.5
+    for _ in range(round(most * 2 * math.pi / rules.sun.speed / dt)):
+        world.step(dt)
+        if not world.sim.state.alive:
+            break
+    return world.sim.state.sun_turns * photosynthesis.real_days(rules)
+
+
+def flood_rows(species: dict[str, object]) -> list[Row]:
+    """How long each species lives in waterlogged soil against flood-tolerance classes."""
+    ranges = {"game_tree": ((7, 28), "flood-intolerant seedlings (a maple's) 1-4 weeks"),
+              "game_poplar": ((30, 120), "flood-tolerant seedlings (many poplars') months")}
+    return [Row(f"{name}: survival in waterlogged soil", "real days", drowned_days(system), *ranges[name][0],
+                f"{ranges[name][1]}, Kozlowski 1997, Responses of woody plants to flooding and salinity")
+            for name, system in species.items()]
+
+
 def table(rows: list[Row]) -> str:
     """The rows as a markdown table."""
     lines = ["| quantity | unit | model | reference | within 2x | source |", "|---|---|---|---|---|---|"]
@@ -208,6 +233,7 @@ def main() -> None:
     start = time.perf_counter()
     systems = {n: load_lsystem(ASSETS / "lsystems" / f"{n}.lsys") for n in ("game_tree", "game_poplar")}
     rows = sun_rows() + leaf_rows({n: s.constants for n, s in systems.items()}) + plant_rows(systems, args.days)
+    rows += flood_rows(systems)
     if args.markdown or args.write:
         text = table(rows)
         print(text)
