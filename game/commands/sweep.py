@@ -19,10 +19,13 @@ from pathlib import Path
 
 import numpy as np
 
+from arbor.engine.base.errors import SweepError
+from arbor.engine.base.reader import read_user_text
 from arbor.engine.life.experiment.sweep import STATS, Outcome, Sweep, Task, cell, final_values, runs, summarize
 from arbor.engine.life.experiment.sweep_file import load_sweep
 from arbor.engine.life.keep.save import read_garden
 from arbor.engine.life.rules.rules import load_rules
+from arbor.engine.lsystem.lsys import MAX_SOURCE_BYTES
 from arbor.game import report
 from arbor.game.commands.sweep_runs import RunStore, calibrate, outcomes, progress_bar, write_atomic
 from arbor.game.paths import ASSETS
@@ -102,7 +105,8 @@ def _run(path: Path, out: Path, workers: int | None, scheduler: str | None, plot
 def _tasks(sweep: Sweep, todo: list, keep: str = "first") -> list[Task]:
     rules = load_rules(ASSETS / "rules.toml", sweep.pace)
     names = {sweep.species, *(v for f in sweep.factors if f.key == "species" for v in f.levels)}
-    sources = {name: (ASSETS / "lsystems" / name).read_text(encoding="utf-8") for name in names}
+    sources = {name: read_user_text(ASSETS / "lsystems" / name, MAX_SOURCE_BYTES, SweepError)  # (the one reader)
+               for name in names}
     kept = {"all": lambda run: True, "first": lambda run: run.seed == sweep.seeds[0], "none": lambda run: False}
     return [Task(sweep, run, rules, sources, keep_tree=kept[keep](run)) for run in todo]
 
