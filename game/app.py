@@ -304,6 +304,29 @@ def run_lab_window(experiment: Path) -> int:
     return 0
 
 
+def run_builder_window(path: Path) -> int:
+    """The experiment builder in a window (arbor lab FILE --build): a sweep file set up with the mouse, saved,
+    and run with its progress shown."""
+    import pygame
+
+    from arbor.engine.life.experiment.builder import NotBuildableError
+    from arbor.game.commands.sweep import run_sweep
+    from arbor.game.input.events import InputHub
+    from arbor.game.screens.builder import BuilderScreen
+    from arbor.game.screens.stack import ScreenStack
+
+    try:
+        BuilderScreen(None, WINDOW, path, run_sweep)  # (a file it cannot show: one line, before any window)
+    except NotBuildableError as err:
+        raise UserError(f"{path}: {err}") from None
+    ctx = open_window(WINDOW, f"Arbor experiment builder - {path.name}")
+    with StopSignals() as signals:
+        screens = ScreenStack(BuilderScreen(ctx, WINDOW, path, run_sweep))
+        _main_loop(ctx, WINDOW, InputHub(WINDOW).poll, _screen_frame(screens, ctx.screen), signals=signals)
+    pygame.quit()
+    return 0
+
+
 def run_viewer(source: Path) -> int:
     """Open the viewer window on an .lsys file."""
     import pygame

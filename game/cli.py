@@ -152,6 +152,13 @@ def _cmd_lab(args: argparse.Namespace) -> int:
     from arbor.game.errors import need_lab_extra
 
     need_lab_extra("arbor lab (its charts)")
+    if args.build:
+        if args.out is not None:
+            raise UserError("--build opens the experiment builder's window: give --out only to run an experiment "
+                            "without a window")
+        from arbor.game.app import run_builder_window
+
+        return run_builder_window(args.experiment)
     if args.out is None:
         from arbor.game.app import run_lab_window
 
@@ -347,6 +354,8 @@ def build_parser() -> argparse.ArgumentParser:
     lab = sub.add_parser("lab", help="educators' lab: run an experiment (window, or --out DIR headless)")
     lab.add_argument("experiment", type=Path, help="experiment .toml (see assets/experiments)")
     lab.add_argument("--out", type=Path, default=None, help="write CSV, PNG charts and saves here, no window")
+    lab.add_argument("--build", action="store_true", help="the experiment builder: set up a sweep in FILE with the "
+                     "mouse (a new file, or one to change), save it and run it with its progress shown")
     lab.set_defaults(run=_cmd_lab)
     sweep = sub.add_parser("sweep", help="educators: many headless runs (factors x seeds) -> CSVs and plots")
     sweep.add_argument("sweep", type=Path, help="sweep .toml (see assets/experiments/sweep_*.toml)")
@@ -449,6 +458,8 @@ def check_files(args: argparse.Namespace) -> None:
 
     for name in INPUTS:
         path = getattr(args, name, None)
+        if isinstance(path, Path) and getattr(args, "build", False) and not path.exists():
+            continue  # (the builder makes the file it is given)
         if isinstance(path, Path):
             if path.is_dir():
                 raise UserError(f"{path}: is a folder; give a file")
