@@ -202,7 +202,10 @@ def run_kiosk(args: argparse.Namespace) -> int:
     pygame.mouse.set_visible(False)
     with StopSignals() as signals:  # (from the window on: a signal during the start ends it cleanly too)
         # the preparing screen while the kernels compile (a first start), beating the watchdog's heartbeat
-        show_until_ready(ctx, size, beat=Heartbeat().beat, stop=lambda: signals.stop)
+        if not show_until_ready(ctx, size, beat=Heartbeat().beat, stop=lambda: signals.stop) and signals.stop:
+            pygame.quit()  # stopped while the kernels compiled: no garden was loaded, nothing to save
+            lock.release()
+            return 0
         kiosk = Kiosk(lambda: Game(ctx, size, config, clock=time.perf_counter), settings, config.saves,
                       clock=time.perf_counter)
         if problem:
