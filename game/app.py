@@ -300,7 +300,9 @@ def run_lab_window(experiment: Path) -> int:
     lab = new_lab(experiment)
     ctx = open_window(WINDOW, f"Arbor lab - {lab.experiment.title}")
     with StopSignals() as signals:  # (from the window on: a signal while the screen is built ends it too)
+        signals.leave_at_once = True  # (its trees grow, maybe compiling kernels: nothing to save yet)
         screens = ScreenStack(LabScreen(ctx, WINDOW, lab))
+        signals.leave_at_once = False
         _main_loop(ctx, WINDOW, InputHub(WINDOW).poll, _screen_frame(screens, ctx.screen),
                    on_first_frame=lambda: timing("garden"), signals=signals)
     pygame.quit()
@@ -340,7 +342,9 @@ def run_viewer(source: Path) -> int:
 
     ctx = open_window(WINDOW, f"Arbor - {source.name}")
     with StopSignals() as signals:  # (from the window on: a signal while the tree is built ends it too)
+        signals.leave_at_once = True  # (the tree grows, maybe compiling kernels: nothing to save yet)
         viewer = Viewer(ctx, WINDOW, source)
+        signals.leave_at_once = False
         _main_loop(ctx, WINDOW, InputHub(WINDOW).poll, _screen_frame(viewer, ctx.screen),
                    on_first_frame=lambda: timing("garden"), signals=signals)
     pygame.quit()

@@ -15,16 +15,20 @@ STOP_SIGNALS = tuple(getattr(signal, name) for name in ("SIGINT", "SIGTERM", "SI
 
 
 class StopSignals:
-    """While entered, the stop signals only set :attr:`received` (the first one's number); leaving
-    puts the handlers that were there back."""
+    """While entered, the stop signals only set :attr:`received` (the first one's number), or, while
+    :attr:`leave_at_once` is set, end the process with status 0 at once; leaving puts the handlers that
+    were there back."""
 
     def __init__(self) -> None:
         self.received: int | None = None
+        self.leave_at_once = False  # True while there is nothing to save (a screen being built): exit at once
         self._old: dict[int, object] = {}
 
     def _handle(self, signum: int, frame) -> None:
         if self.received is None:
             self.received = signum
+        if self.leave_at_once:  # (a lab or a viewer compiling or growing its trees: nothing is lost)
+            raise SystemExit(0)
 
     def __enter__(self) -> StopSignals:
         for sig in STOP_SIGNALS:

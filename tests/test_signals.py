@@ -124,3 +124,19 @@ def test_ctrl_c_before_the_window_is_one_line_not_a_traceback(monkeypatch, capsy
     assert cli.main(["view", str(ROOT / "assets" / "lsystems" / "context_plant.lsys")]) == cli.EXIT_INTERRUPTED
     err = capsys.readouterr().err
     assert err == "arbor: stopped (Ctrl-C)\n"
+
+
+def test_a_stop_signal_while_a_screen_is_built_ends_the_process_at_once():
+    """The lab and the viewer build their trees after the window opened (growing them, on a first start
+    compiling kernels): nothing is there to save yet, so a stop signal then ends the process at once with
+    status 0 instead of waiting for the screen (issue 45: 8-30 s)."""
+    with StopSignals() as signals:
+        signals.leave_at_once = True
+        with pytest.raises(SystemExit) as info:
+            os.kill(os.getpid(), signal.SIGTERM)
+            time.sleep(2.0)  # (the handler runs at the next bytecode: the sleep is cut short)
+        assert info.value.code == 0 and signals.received == signal.SIGTERM
+        signals.leave_at_once = False
+        os.kill(os.getpid(), signal.SIGINT)  # the loop's time: only noted (the window saves and exits)
+        time.sleep(0.01)
+    assert signals.stop
