@@ -32,6 +32,12 @@ CONFIRM_SECONDS = 5.0  # a destructive key asks once; a second press within this
 Handler = Callable[[float], None]
 
 
+def tree_line(index: int, s) -> str:
+    """Tree ``index`` (from 0) in a few words: alive or dead, its age, its water (a restored garden's)."""
+    life = text("messages.alive" if s.alive else "messages.dead")
+    return text("messages.restored_tree", number=index + 1, life=life, age=duration(s.time), water=100 * s.water_meter)
+
+
 def pressed(handler: Callable[[], None]) -> Handler:
     """A button's handler: it acts when the button is pressed (value 1), not when it is let go (0)."""
     return lambda value: handler() if value else None
@@ -146,7 +152,9 @@ class CareActions:
             self.state.say(text("messages.loaded"))
 
     def restore(self) -> None:
-        """Settings -> Restore: play the next older autosave generation (autosave.1.arbor, then .2 ...)."""
+        """Settings -> Restore: play the next older autosave generation (autosave.1.arbor, then .2 ...), the
+        garden as it was when it was saved (the time it lay in the backup is not lived: a restored tree
+        comes back as it was, not dead of ten minutes' thirst)."""
         state, path = self.state, self.keeper.autosave_path
         kept = generations(path)
         if not kept:
@@ -154,12 +162,13 @@ class CareActions:
             return
         self.restored = self.restored % len(kept) + 1
         chosen = kept[self.restored - 1]
-        garden = self.keeper.load(chosen)
+        garden = self.keeper.load(chosen, catch_up=False)
         if garden is not None:
             state.use(garden)
             self.sync_sliders()
-            age = max(self.wall_clock() - chosen.stat().st_mtime, 0.0)
-            state.say(text("messages.restored", when=duration(age), n=self.restored, count=len(kept)), 8)
+            age = max(self.wall_clock() - self.keeper.saved_at, 0.0)  # (the file's time is its copy's)
+            state.say(text("messages.restored", when=duration(age), n=self.restored, count=len(kept),
+                           tree=tree_line(state.garden.current, state.world.sim.state)), 10)
 
     def _roots(self) -> None:
         self.state.cutaway = not self.state.cutaway

@@ -94,6 +94,7 @@ class Game:
         self.care.sync_sliders()
         if self.config.title:
             self.screens.push(self.title)
+            self.title.on_close.append(self._tell_catch_up)
 
     def _parts(self) -> None:
         """The game's parts, each given the state and the services it uses."""
@@ -120,7 +121,8 @@ class Game:
         self.menu_screen = MenuScreen(self.menu, self.screens, gestures=self.gestures, care=self.care,
                                       font=self.font)
         self.modeling.screen = ModelerScreen(self.modeling, self.screens, menu=self.menu, gestures=self.gestures,
-                                             care=self.care, tap=self.input.tap, fonts=(self.font, self.small_font))
+                                             care=self.care, tap=self.input.tap, fonts=(self.font, self.small_font),
+                                             left=self.input.guard_quit)
 
     @property
     def garden(self):
@@ -200,6 +202,12 @@ class Game:
     def hud_info(self) -> HudInfo:
         """What the HUD shows now."""
         return self.hud.hud_info()
+
+    def _tell_catch_up(self) -> None:
+        """The title is down: say again what the start's catch-up did (the title covered the line)."""
+        if self.keeper.start_message:
+            self.say(self.keeper.start_message, 10)
+            self.keeper.start_message = ""
 
     def quit(self) -> None:
         """Save on the way out (the garden and a settings change not yet written)."""

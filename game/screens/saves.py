@@ -43,6 +43,8 @@ class SaveKeeper:
         self.away = away  # the player's Away setting: the garden is watered while they are gone
         self.last_autosave = state.clock()
         self.last_summary: AwaySummary | None = None
+        self.saved_at = 0.0  # the wall-clock time the garden last loaded was saved at (seconds)
+        self.start_message = ""  # what the last catch-up did, in one line ('' when it lived no time worth telling)
         self.fresh = False  # True when start() found no garden to resume: a new player
         self.folded: list[Path] = []  # older garden-*.arbor files read into the garden (removed once saved)
 
@@ -70,14 +72,16 @@ class SaveKeeper:
         self.fresh = not self.autosave_path.exists()
         return Garden([self.new_world()])
 
-    def load(self, path: Path) -> Garden | None:
-        """A saved garden, grown by the time away; None (and the file kept as .broken) if unreadable."""
+    def load(self, path: Path, catch_up: bool = True) -> Garden | None:
+        """A saved garden, grown by the time away; None (and the file kept as .broken) if unreadable.
+        ``catch_up=False`` (Restore): the garden exactly as it was saved, none of the time since lived."""
         try:
             with reading(path):  # (a watchdog sets aside the file a crash loop died reading)
                 saved = read_garden(path, self.rules)
                 saved.worlds += self._legacy_trees(path, len(saved.worlds))
                 garden = saved.garden()
-                seconds = away_seconds(self.wall_clock(), saved.saved_at, self.rules.away.cap_days)
+                seconds = away_seconds(self.wall_clock(), saved.saved_at, self.rules.away.cap_days) if catch_up \
+                    else 0.0
                 summary = live_away(garden, seconds, watered=self.away())
         except Exception as err:  # a save that breaks loading (a bug it finds) must never break the start
             self.folded = []  # (their trees are not in the garden now: their files stay)
@@ -85,9 +89,10 @@ class SaveKeeper:
             return None
         if saved.dropped:
             self.state.say(text("messages.lineage_dropped", count=saved.dropped, name=path.name), 8)
-        self.last_summary = summary
-        if summary.anything:
-            self.state.say(away_message(summary), 10)
+        self.last_summary, self.saved_at = summary, saved.saved_at
+        self.start_message = away_message(summary) if summary.anything else ""
+        if self.start_message:
+            self.state.say(self.start_message, 10)
         return garden
 
     def _legacy_trees(self, path: Path, have: int) -> list[World]:

@@ -9,6 +9,8 @@ nothing else), and it covers the HUD: :meth:`TitleScreen.paint` draws it into th
 
 from __future__ import annotations
 
+from collections.abc import Callable
+
 import pygame
 
 from arbor.game.input.events import DOWN, KEY_DOWN, KEY_UP, MOVE, UP, InputEvent
@@ -28,6 +30,7 @@ class TitleScreen(Screen):
 
     def __init__(self, size: tuple[int, int], prompt: str | None = None) -> None:
         self.size = size
+        self.on_close: list[Callable[[], None]] = []  # told when a press takes the title down
         self.prompt = prompt or text("title.prompt")
         height = size[1]
         self.fonts = (pygame.font.Font(None, max(int(height * NAME_SIZE), 24)),
@@ -38,6 +41,8 @@ class TitleScreen(Screen):
         is no tap: the game's gestures see nothing of that press); the rest (a quit) goes down."""
         if e.kind in (DOWN, KEY_DOWN):
             self.close()
+            for listener in self.on_close:
+                listener()
         return None if e.kind in (DOWN, MOVE, UP, KEY_DOWN, KEY_UP) else e
 
     def draw(self, canvas: Canvas) -> None:
