@@ -9,7 +9,6 @@ import io
 import itertools
 import math
 
-import numpy as np
 import pytest
 
 from arbor.engine.life.experiment.builder import FACTORS, WATERING, Draft, NotBuildableError, draft_of
@@ -54,9 +53,11 @@ def test_hand_written_lessons_reopen_and_files_it_would_change_are_refused_by_na
 
 
 def test_a_sweep_built_saved_reopened_and_run_with_the_mouse_alone(gl_ctx, tmp_path):
+    import pygame
+
     from arbor.game.commands.sweep import run_sweep
     from arbor.game.input.events import DOWN, InputEvent
-    from arbor.game.screens.builder import BuilderScreen
+    from arbor.game.screens.builder import OFF, ON, BuilderScreen
     from arbor.game.screens.stack import ScreenStack
 
     size = (1280, 720)
@@ -87,11 +88,11 @@ def test_a_sweep_built_saved_reopened_and_run_with_the_mouse_alone(gl_ctx, tmp_p
     assert [f.key for f in sweep.factors] == ["watering.every"] and sweep.factors[0].levels == (60, 240)
     assert sweep.seeds == [1, 2] and sweep.responses == ("height", "biomass", "water_min", "alive")
     assert sweep.base.watering.every == 60 and "# a 5 s drink on a timetable" in path.read_text(encoding="utf-8")
-    fbo = gl_ctx.framebuffer(color_attachments=[gl_ctx.renderbuffer(size)])
-    screen.draw(fbo)
-    img = np.frombuffer(fbo.read(components=3), np.uint8).reshape(size[1], size[0], 3)[::-1]
-    x, y = screen.buttons[("level", 60)].center
-    assert tuple(img[y - 15, x - 20]) != tuple(img[5, 5]) and img.std() > 20  # the buttons are drawn
+    screen.draw(gl_ctx.framebuffer(color_attachments=[gl_ctx.renderbuffer(size)]))  # (the window's path)
+    img = pygame.surfarray.array3d(screen.picture()).swapaxes(0, 1)  # what draw blends over the window
+    for level, chosen in ((60, True), (240, True), (30, False), (480, False)):
+        x, y = screen.buttons[("level", level)].center
+        assert tuple(img[y - 15, x - 20]) == (ON if chosen else OFF)  # chosen levels lit, the others dark
 
     again = BuilderScreen(gl_ctx, size, path, run_sweep, results=tmp_path / "results", workers=1)
     assert again.message == "Opened my_sweep.toml" and again.draft.toml(DAY) == screen.draft.toml(DAY)
