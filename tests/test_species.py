@@ -49,3 +49,11 @@ def test_the_poplar_outgrows_the_game_tree_in_sun_and_loses_more_in_shade(specie
     assert mass["game_poplar", 0.0] > mass["game_tree", 0.0], mass  # the pioneer ahead in full sun
     keeps = {name: mass[name, 0.75] / mass[name, 0.0] for name in species}
     assert keeps["game_poplar"] < 0.6 * keeps["game_tree"], (keeps, mass)  # and much further behind in shade
+
+
+def test_the_poplar_bears_waterlogged_soil_longer(species):
+    """FLOOD: a maple's seedlings die in 1-4 weeks of waterlogging, many poplars' live months (Kozlowski 1997)."""
+    from benchmarks.validate import drowned_days
+
+    tree, poplar = drowned_days(species["game_tree"], 8), drowned_days(species["game_poplar"], 8)
+    assert 7 <= tree <= 28 and poplar > 1.8 * tree, (tree, poplar)

@@ -98,6 +98,7 @@ class Simulation:
         self.root_vigour = 1.0  # how fast the carbon pool lets the roots grow (set by its World; 0 .. 3)
         self.starving = 0.0  # s the tree's carbon pool has been empty with upkeep unpaid (set by its World)
         self.leaf_light = 1.0  # the share of the sun its leaves catch (0..1, set by its World at each step)
+        self.flood_tolerance = self.rules.water.flood_tolerance  # its species' (set by its World at each reading)
 
     def season(self) -> Season:
         """The season now (spring, summer, autumn, winter)."""
@@ -258,8 +259,9 @@ class Simulation:
         neglected = min(s.sun_meter, s.water_meter) < h.neglect_level or starved
         if not s.alive:
             return
-        if neglected or s.drowning > w.drown_time:
-            s.wilt = min(1.0, s.wilt + h.wilt_rate * dt)
+        drowned = s.drowning > w.drown_time * self.flood_tolerance  # (a tolerant species' roots bear it longer)
+        if neglected or drowned:
+            s.wilt = min(1.0, s.wilt + h.wilt_rate * dt / (1.0 if neglected else self.flood_tolerance))
         else:
             s.wilt = max(0.0, s.wilt - h.recover_rate * dt)
         s.dead_for = s.dead_for + dt if s.wilt >= 1.0 else max(s.dead_for - dt, 0.0)

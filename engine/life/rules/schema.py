@@ -204,6 +204,10 @@ SCHEMA: tuple[Rule, ...] = (
     Rule("carbon.root_most", 4.0, 1.0, 20.0, "x root_shoot", "the balance's need over supply at most (a dry soil's)"),
     Rule("carbon.root_catch_up", 125.66667, 1.0, 1e7, "s", "the roots close their gap to the balance's target over "
          "about this long (a day of the sun), as far as the pool pays", "time"),
+    Rule("water.flood_tolerance", 1.0, 0.1, 20.0, "x", "how much longer a tree's roots bear waterlogged soil before "
+         "it wilts, and how much more slowly it then wilts (a species' .lsys FLOOD replaces it)",
+         source="Kozlowski 1997, Responses of woody plants to flooding and salinity (intolerant seedlings die in 1-4 "
+         "weeks, tolerant ones live months)"),
 )
 
 

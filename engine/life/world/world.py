@@ -30,6 +30,7 @@ from arbor.engine.life.plant.sim import Rules, SimState, Simulation
 from arbor.engine.life.world.actions import Action
 from arbor.engine.life.world.commands import BeginEditing, of_action
 from arbor.engine.life.world.log import Log, snapshot
+from arbor.engine.life.world.status import tree_status
 from arbor.engine.lsystem.lsys import LSystem
 
 if TYPE_CHECKING:
@@ -193,6 +194,7 @@ class World:
         self.carbon.roots_built += paid * demand
         self.sim.root_vigour = paid * min(balance, 3.0)
         self.sim.starving = self.carbon.starving
+        self.sim.flood_tolerance = float(self.tree.system.constants.get("FLOOD", rules.water.flood_tolerance))
         self.sim.remember_light(self.light_caught(), seconds)
 
     def light_caught(self) -> float:
@@ -209,13 +211,9 @@ class World:
         self.sim.root_share = self.roots.share(self.rules.roots.full_length)
 
     def status(self, dark: bool | None = None) -> str:
-        """What the HUD says about this tree (see :meth:`Simulation.status`; ``dark``: the sky drawn is a
-        night's); a tree that grows by day but whose leaves get little light says it needs light."""
-        status = self.sim.status(dark)
-        shaded = self.tree.mean_light < self.tree.geometry_constants["SHQ"]
-        if status == "growing" and self.sim.sunshine() > 0 and shaded:
-            return "needs_light"
-        return status
+        """What the HUD says about this tree, from the one ranking of its real state
+        (engine/life/world/status.py; ``dark``: the sky drawn is a night's)."""
+        return tree_status(self, dark)
 
     def apply(self, command: Any, value: float = 0.0) -> Any:
         """Carry out a command (engine/life/world/commands.py; a world
