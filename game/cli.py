@@ -311,6 +311,8 @@ EPILOG = """examples:
   arbor render assets/lsystems/abop_2_8_tree.lsys --out tree.png
   arbor export saves/autosave.arbor --out tree.glb -q
   arbor sweep assets/experiments/sweep_sun_height.toml --out sun/ -v
+  arbor compare alice/ bob/ carol/ --out class/   a class's sweep folders in one table and figure
+  arbor worksheet light --out light.pdf          lesson 1's printable sheet, with an answer key
   arbor card saves/autosave.arbor --out tree.png && arbor import tree.png --saves other/
 
 Every command exits 0 when done, 1 on a failure at run time (one line on stderr says what to fix) and 2 on

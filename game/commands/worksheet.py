@@ -144,7 +144,11 @@ def run_sweep_key(sweep: Sweep, folder: Path, workers: int | None, echo=report.s
     from arbor.game.commands.sweep import _tasks
     from arbor.game.commands.sweep_runs import RunStore, outcomes, write_atomic
 
-    store = RunStore(folder, sweep)
+    try:
+        store = RunStore(folder, sweep)
+    except LSysError:
+        raise UserError(f"{folder} holds the runs of another answer key (other --seeds, or the lesson changed): "
+                        "delete that folder, or write the sheet under another name") from None
     everything = runs(sweep)
     todo = [r for r in everything if r.name not in store.done()]
     echo(f"{sweep.title}: the answer key's {len(everything)} runs, {len(everything) - len(todo)} already done "
