@@ -21,7 +21,7 @@ from arbor.engine.life.world.world import World
 from arbor.engine.lsystem.lsys import load_lsystem
 from arbor.engine.modeling.edits import load_edit_sets
 from arbor.engine.modeling.regions import Sphere
-from tests.test_modeler_tools import base_pixel, draw, press_bar, press_menu
+from tests.test_modeler_tools import base_pixel, click, draw, press_bar, press_menu
 
 ROOT = Path(__file__).resolve().parent.parent
 OWNER = ROOT / "engine" / "life" / "world"  # the world's own package: the only place that writes it
@@ -147,10 +147,20 @@ def test_a_modeler_session_in_the_real_game_replays_from_the_world_s_log(modeler
     a = np.linspace(0, 2 * np.pi, 48)
     draw(game, [(x0 + 110 * np.cos(t), y0 - 330 + 90 * np.sin(t)) for t in a])  # a lobe
     assert len(game.modeling.crown_tool.state().lobes) == 1
+    press_bar(game, "prune")  # a tap on a branch cuts it
+    segs = game.world.drawn_segments(game.world.tree.lstring)
+    tips = [k for k in range(len(segs)) if segs.parent[k] >= 0 and game.hud.project(game.camera(), segs.end[k])]
+    x, y = game.hud.project(game.camera(), (segs.start[tips[-1]] + segs.end[tips[-1]]) / 2)
+    click(game, x, y)
+    press_bar(game, "symbols")  # a region over the trunk, then Grow in it
+    draw(game, [(x0, y0 - 100), (x0, y0 - 160), (x0, y0 - 200)])
+    while game.modeling.edit != "grow":
+        game.act(game_action("edit"), 1.0)
+    click(game, x0, y0 - 160)
     game.act(game_action("undo"), 1.0)
     game.act(game_action("redo"), 1.0)
     edits = [type(c).__name__ for c in game.world.log.commands]
-    assert {"BeginEditing", "Stroke", "Crown", "Undo", "Redo"} <= set(edits), edits
+    assert {"BeginEditing", "Stroke", "Crown", "Cut", "RegionEdit", "Undo", "Redo"} <= set(edits), edits
     again = replay(game.world.log)
     assert again.tree.lstring.to_text() == game.world.tree.lstring.to_text()
 
