@@ -93,11 +93,12 @@ def test_tap_opens_the_menu_in_the_modeler_and_undo_redo(game):
     drawn = game.world.tree.lstring.to_text()
     assert drawn != empty
     press_menu(game, "undo")
-    assert game.world.tree.lstring.to_text() == empty and game.hud_info().message == "Undone."
+    assert game.world.tree.lstring.to_text() == empty and game.hud_info().message.startswith("Undone: ")
+    assert "branch pieces" in game.hud_info().message and "taken away" in game.hud_info().message
     press_menu(game, "undo")
     assert game.hud_info().message == "Nothing to undo."  # (not the undone stroke's old toast)
     press_menu(game, "redo")
-    assert game.world.tree.lstring.to_text() == drawn and game.hud_info().message == "Redone."
+    assert game.world.tree.lstring.to_text() == drawn and game.hud_info().message.startswith("Redone: ")
     press_menu(game, "redo")
     assert game.hud_info().message == "Nothing to redo."
 
@@ -242,7 +243,7 @@ def test_crown_regrows_into_every_lobe_and_undo_brings_lobes_back(game):
     draw(game, [(x0 - 90 + 90 * np.cos(t), y0 - 330 + 100 * np.sin(t)) for t in a])
     one = game.world.tree.lstring
     assert "1 lobe," in game.hud_info().message
-    draw(game, [(x0 + 110 + 90 * np.cos(t), y0 - 300 + 80 * np.sin(t)) for t in a])
+    draw(game, [(x0 + 130 + 110 * np.cos(t), y0 - 300 + 100 * np.sin(t)) for t in a])  # (the view stays as it was)
     two = game.world.tree.lstring
     assert "2 lobes" in game.hud_info().message
     assert game.modeling.crown_tool.state().base is base  # regrown from the tree before the crown

@@ -245,7 +245,7 @@ def in_view(game, points, margin=4):
         and (pixels[:, 1] >= margin).all() and (pixels[:, 1] <= SIZE[1] - margin).all())
 
 
-def test_the_view_frames_the_tree_on_entering_and_its_lobes_after_a_crown_grows(game):
+def test_the_view_frames_the_tree_on_entering_and_its_lobes_when_f_is_pressed(game):
     game.control.distance = 0.3  # zoomed in on the garden (the tree's top is out of view)
     tree = game.modeling.segments(game.world.tree.lstring)
     ends = np.r_[tree.start, tree.end]
@@ -263,6 +263,7 @@ def test_the_view_frames_the_tree_on_entering_and_its_lobes_after_a_crown_grows(
                 game.handle_input(InputEvent(kind, 0.05 * k, "hid:SpaceMouse", 0, *p, dims=3))
     lobes = game.modeling.crown_tool.state().lobes
     assert len(lobes) == 3 and "3 lobes" in game.hud_info().message
+    game.handle_event(pygame.event.Event(pygame.KEYDOWN, key=pygame.K_f, mod=0, scancode=0, unicode="f"))  # frame
     crown = game.modeling.segments(game.world.tree.lstring)
     assert in_view(game, np.concatenate([lobe.vertices for lobe in lobes]))  # every lobe, whole
     assert in_view(game, np.r_[crown.start, crown.end])  # and the grown crown

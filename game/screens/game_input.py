@@ -31,6 +31,7 @@ from arbor.game.screens.care import CareActions
 from arbor.game.screens.picking import Picker
 from arbor.game.screens.stack import TAP, Screen, ScreenStack
 from arbor.game.screens.state import GameState
+from arbor.game.strings import text
 
 KEY_YAW, KEY_TILT = 4.0, 3.0  # degrees per key press
 TURN_KEYS = {pygame.K_LEFT: (KEY_YAW, 0), pygame.K_RIGHT: (-KEY_YAW, 0),
@@ -54,6 +55,7 @@ class GameInput(Screen):
         self.stack, self.menu, self.gestures, self.care, self.picker = screens, menu, gestures, care, picker
         self.right_y: float | None = None
         self.keys_water = False
+        self.ask_quit = False  # the next Esc asks before quitting (set when Esc left the modeler)
 
     def note_device(self, e: InputEvent) -> None:
         """Remember the input devices seen (Settings -> Devices lists them)."""
@@ -121,6 +123,11 @@ class GameInput(Screen):
             self.care.sync_sliders()
             self.menu.show_at(x, y)
 
+    def guard_quit(self) -> None:
+        """Esc left the modeler: the garden's next Esc asks before quitting (a second Esc pressed in haste
+        does not end the app)."""
+        self.ask_quit = True
+
     def _key(self, e: InputEvent) -> InputEvent | None:
         key, down = e.key, e.kind == KEY_DOWN
         if key == pygame.K_w:
@@ -131,6 +138,10 @@ class GameInput(Screen):
         if not down:
             return None
         if key == pygame.K_ESCAPE:
+            if self.ask_quit:  # (the Esc before left the modeler: this one asks, the next quits)
+                self.ask_quit = False
+                self.state.say(text("messages.quit_confirm"), 5.0)
+                return None
             return InputEvent(QUIT, e.t, e.device)
         self._camera_key(key)
         if key == pygame.K_m:

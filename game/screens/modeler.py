@@ -9,8 +9,9 @@ modeling and resumes, growing branches from the drawn growth points, when the mo
 One tool is in use at a time (Draw, Crown, Shape, Prune, Symbols), shown lit on the modeler's tool bar
 (game/render/ui.py ToolBar) and told by the hint line (what a drag does with it). Entering the modeler
 starts with Draw; leaving it (Done) or a new sapling clears every overlay the tools drew (lobe rings,
-regions, the joint marker). The view frames the tree and the crown's lobes, and grows to hold them when
-a change reaches past it (a crown, a stroke drawn with a tracker).
+regions, the joint marker). The view frames the tree as the modeler opens and never re-frames by itself
+while a tool is in use (the next outline lands where it was aimed); F frames the tree and its lobes.
+Toasts say what changed (the pieces, leaves and lobes an undo took away or a redo put back).
 """
 
 from __future__ import annotations
@@ -36,6 +37,7 @@ from arbor.game.tools.choice import ToolChoice
 from arbor.game.tools.crown import CrownTool
 from arbor.game.tools.prune import PruneTool
 from arbor.game.tools.region import RegionTool
+from arbor.game.tools.told import change_told, counted
 
 WORK_SIZE = 150.0  # scene units: strokes and the modeler's view stay inside +-this (a runaway view cannot grow)
 MAX_STROKE_POINTS = 5000  # points of one stroke
@@ -109,15 +111,15 @@ class ModelingMode(ToolChoice):
         """Whether the modeler is open: its screen is up on the game's screen stack."""
         return self.screen is not None and self.screen.up
 
-    def toggle(self) -> None:
+    def toggle(self, leave_key: bool = False) -> None:
         """Enter the modeler with the draw tool (pausing the simulation) or leave it, clearing what the
-        tools drew."""
+        tools drew (``leave_key``: left with Esc, and told that the next Esc asks before quitting)."""
         if self.active:
             self.screen.close()
             self.reset_tools()
             self.state.loop.speed = self.resume_speed
             self.state.control.distance = self.garden_zoom
-            self.state.say(text("messages.modeler_off"))
+            self.state.say(text("messages.modeler_left" if leave_key else "messages.modeler_off"))
             return
         self.screen.open()
         self.resume_speed = self.state.loop.speed or 1.0
@@ -161,6 +163,18 @@ class ModelingMode(ToolChoice):
         self.bounds = holding(self.bounds, np.concatenate([*parts, segs.start, segs.end]))
         if zoom:
             self.state.control.distance = max(self.state.control.distance, 1.0)
+
+    def frame(self) -> None:
+        """Frame the tree and the crown's lobes as they are now (the F key): the view's box fits them
+        afresh (it may shrink) and a zoom is undone."""
+        if self.modeler is None:
+            return
+        parts = [lobe.vertices for lobe in self.crown_tool.state().lobes]
+        segs = self.segments(self.modeler.lstring)
+        points = np.concatenate([*parts, segs.start, segs.end])
+        self.bounds = holding(entry_box(points), points)
+        self.state.control.distance = 1.0
+        self.state.say(text("messages.framed"))
 
     def prune_at(self, x: float, y: float, camera: OrbitCamera) -> bool:
         """With the prune tool, cut the branch under pixel (x, y) (see game/tools/prune.py); False when
@@ -255,12 +269,12 @@ class ModelingMode(ToolChoice):
                 self.state.say(text("messages.stroke_budget"))  # nothing is lost: the stroke is just not added
                 self.cancel()
                 return
-            self.reframe()  # (a tracker can draw past the view)
             how = text("messages.stroke_merged" if result.merged else "messages.stroke_joined"
                        if result.snapped_to is not None else "messages.stroke_new")
             if result.bypassed:
                 how += ", " + text("messages.stroke_bent", count=result.bypassed)
-            self.state.say(text("messages.stroke", pieces=result.pieces, points=result.growth_points, how=how))
+            self.state.say(text("messages.stroke", pieces=counted(result.pieces, "piece"),
+                                points=counted(result.growth_points, "growth point"), how=how))
         self.cancel()
 
     def draw_outline(self, surface: pygame.Surface, project) -> None:
@@ -303,8 +317,13 @@ class ModelingMode(ToolChoice):
 
     def _step_history(self, command: Undo | Redo, done: str, none: str) -> None:
         self.follow()
-        if self.modeler is not None and self.state.world.apply(command):
-            self.state.say(text(f"messages.{done}"))
+        if self.modeler is None:
+            self.state.say(text(f"messages.{none}"))
+            return
+        before, lobes = self.modeler.lstring, len(self.crown_tool.state().lobes)
+        if self.state.world.apply(command):
+            what = change_told(before, self.modeler.lstring, lobes, len(self.crown_tool.state().lobes))
+            self.state.say(text(f"messages.{done}", what=what))
         else:
             self.state.say(text(f"messages.{none}"))
 

@@ -2,7 +2,12 @@
 (:class:`~arbor.game.screens.modeler.ModelingMode` opens and closes it). It takes the strokes (one pointer
 draws; a second pointer turns the stroke into a camera gesture, passed down to the garden), a 3D tracker's
 strokes, the presses on its tool bar and the taps (a cut or a region edit with their tools, else the menu's
-tools page opens there); it draws the tools' outlines, the symbols' overlay and the tool bar."""
+tools page opens there); it draws the tools' outlines, the symbols' overlay and the tool bar.
+
+Keys in the modeler: Esc leaves it (back to the garden, where the next Esc asks before quitting),
+Ctrl+Z undoes, Ctrl+Y or Ctrl+Shift+Z redoes, F frames the tree and its lobes (the view never re-frames
+by itself while a tool is in use). Other Ctrl combinations are the modeler's too (none reaches the
+garden's one-letter keys); the rest go down to the garden (arrows turn the view, +/- zoom)."""
 
 from __future__ import annotations
 
@@ -10,7 +15,7 @@ from collections.abc import Callable
 
 import pygame
 
-from arbor.game.input.events import DOWN, MOVE, UP, InputEvent
+from arbor.game.input.events import DOWN, KEY_DOWN, KEY_UP, MOVE, UP, InputEvent
 from arbor.game.input.gestures import Gestures
 from arbor.game.render.ui import Menu
 from arbor.game.screens.care import CareActions
@@ -22,6 +27,8 @@ from arbor.game.strings import text
 TAP_SECONDS, TAP_PIXELS = 0.3, 12
 DRAWN_POINTS = 10  # pointer moves after which a stroke a second finger turns into a gesture is said to be let go
 TRACKER = -3  # the stroke pointer of a 3D tracker's button
+CTRL_KEYS = (pygame.K_LCTRL, pygame.K_RCTRL, pygame.K_LMETA, pygame.K_RMETA)  # (Cmd on a Mac)
+SHIFT_KEYS = (pygame.K_LSHIFT, pygame.K_RSHIFT)
 
 
 class ModelerScreen(Screen):
@@ -29,10 +36,13 @@ class ModelerScreen(Screen):
 
     def __init__(self, modeling: ModelingMode, screens: ScreenStack, *, menu: Menu, gestures: Gestures,
                  care: CareActions, tap: Callable[[float, float], None],
-                 fonts: tuple[pygame.font.Font, pygame.font.Font]) -> None:
+                 fonts: tuple[pygame.font.Font, pygame.font.Font],
+                 left: Callable[[], None] = lambda: None) -> None:
         self.modeling, self.stack, self.menu, self.gestures, self.care = modeling, screens, menu, gestures, care
         self.state, self.camera = modeling.state, modeling.camera  # (the game's, as the modeler has them)
         self.tap, self.fonts = tap, fonts
+        self.left = left  # called when Esc left the modeler (the garden's next Esc then asks before quitting)
+        self.held: set[int] = set()  # Ctrl and Shift keys held down
         self.bar_pointers: set[int] = set()  # pointers pressing the tool bar
         self.stroke_pointer: int | None = None
         self.stroke_start: tuple[float, float, float] = (0.0, 0.0, 0.0)
@@ -43,6 +53,8 @@ class ModelerScreen(Screen):
             self.care.sync_sliders()
             self.menu.show_at(e.x, e.y, "tools")
             return None
+        if e.kind in (KEY_DOWN, KEY_UP):
+            return self._key(e)
         if e.kind not in (DOWN, MOVE, UP):
             return e
         if e.dims == 3:
@@ -65,10 +77,38 @@ class ModelerScreen(Screen):
             return None
         return e
 
+    def _key(self, e: InputEvent) -> InputEvent | None:
+        """The modeler's keys (see module docstring); the others go down to the garden."""
+        if e.key in (*CTRL_KEYS, *SHIFT_KEYS):
+            (self.held.add if e.kind == KEY_DOWN else self.held.discard)(e.key)
+            return e
+        mods = pygame.key.get_mods()
+        ctrl = bool(self.held.intersection(CTRL_KEYS)) or bool(mods & (pygame.KMOD_CTRL | pygame.KMOD_META))
+        shift = bool(self.held.intersection(SHIFT_KEYS)) or bool(mods & pygame.KMOD_SHIFT)
+        if e.kind != KEY_DOWN:
+            return None if ctrl else e
+        if e.key == pygame.K_ESCAPE:
+            self.stroke_pointer = None
+            self.modeling.cancel_points()
+            self.modeling.toggle(leave_key=True)
+            self.left()
+            return None
+        if ctrl:
+            if e.key == pygame.K_z:
+                (self.modeling.redo if shift else self.modeling.undo)()
+            elif e.key == pygame.K_y:
+                self.modeling.redo()
+            return None
+        if e.key == pygame.K_f:
+            self.modeling.frame()
+            return None
+        return e
+
     def close(self) -> None:
         """Leave the stack with the tool bar let go (the press on Done closes it before its release)."""
         super().close()
         self.bar_pointers.clear()
+        self.held.clear()
         self.modeling.bar.release()
 
     def holds(self, x: float, y: float) -> bool:

@@ -25,6 +25,7 @@ from arbor.engine.modeling.lobes import Lobe, lobe_from_loops, lobe_from_outline
 from arbor.game.render.camera import OrbitCamera, project_points, unproject_to_plane
 from arbor.game.render.ui import draw_polyline
 from arbor.game.strings import text
+from arbor.game.tools.told import counted
 
 MAX_CROWN_STATES = 32  # crown steps whose lobes undo/redo can bring back
 SHAPE_OPS = ("move", "scale", "turn", "squeeze", "point")
@@ -134,13 +135,12 @@ class CrownTool:
         grown = world.apply(Crown(state.base, tuple(state.lobes)))
         added, limited = grown.added, grown.limited
         ms = (time.perf_counter() - start) * 1e3
-        self._remember(world.tree.lstring, state)
-        self.mode.reframe(zoom=True)  # the view holds the grown crown and every lobe
+        self._remember(world.tree.lstring, state)  # (the view stays: F frames the crown and its lobes)
         if added == 0:
             key = "messages.crown_none"
         elif limited:
             key = "messages.crown_full"
-        lobes = f"{len(state.lobes)} lobe{'' if len(state.lobes) == 1 else 's'}"
+        lobes = counted(len(state.lobes), "lobe")
         self.mode.state.say(text(key, count=added, ms=ms, lobes=lobes, **extra))
 
     def next_op(self) -> str:

@@ -1,0 +1,42 @@
+"""What the modeler's toasts say changed: counts with their nouns in the singular or plural, and what an
+undo took away or a redo put back (branch pieces, leaves, growth points, the crown's lobes)."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from arbor.engine.lsystem.lstring import LString
+from arbor.game.strings import text
+
+TOLD = (("FI", "branch piece"), ("L", "leaf"), ("A", "growth point"), ("K", "blossom"))  # symbols, noun
+PLURALS = {"leaf": "leaves"}
+
+
+def counted(count: int, noun: str) -> str:
+    """'1 growth point', '3 growth points', '2 leaves'."""
+    return f"{count} {noun if count == 1 else PLURALS.get(noun, noun + 's')}"
+
+
+def _counts(ls: LString) -> dict[str, int]:
+    return {noun: int(np.isin(ls.sym, [ord(c) for c in symbols]).sum()) for symbols, noun in TOLD}
+
+
+def change_told(before: LString, after: LString, lobes_before: int, lobes_after: int) -> str:
+    """What a step from ``before`` to ``after`` changed, in words: the modules taken away or put back by
+    kind, and the crown's lobes when their number changed ('14 branch pieces and 2 leaves taken away, the
+    crown in 1 lobe')."""
+    old, new = _counts(before), _counts(after)
+    gone = [counted(old[n] - new[n], n) for n in old if old[n] > new[n]]
+    back = [counted(new[n] - old[n], n) for n in old if new[n] > old[n]]
+    parts = []
+    if gone:
+        parts.append(text("messages.change_removed", things=" and ".join(gone)))
+    if back:
+        parts.append(text("messages.change_added", things=" and ".join(back)))
+    if lobes_before != lobes_after:
+        parts.append(text("messages.change_lobes", lobes=counted(lobes_after, "lobe")) if lobes_after
+                     else text("messages.change_no_lobes"))
+    if not parts:
+        changed = int(np.count_nonzero(before.sym[:len(after)] != after.sym[:len(before)]))
+        parts.append(text("messages.change_same", count=max(changed, abs(len(before) - len(after)), 1)))
+    return ", ".join(parts)
