@@ -125,6 +125,8 @@ SCHEMA: tuple[Rule, ...] = (
     Rule("seasons.winter_water", 0.3, 0.0, 10.0, "x", "the water meter drains this much as fast in winter"),
     Rule("seasons.flush", 3.0, 0.0, 100.0, "x", "buds wake this many times as eagerly in spring"),
     Rule("seasons.leaf_fall", 0.08, 0.0, 100.0, f"per {PHYS}", "chance in autumn that a leaf starts to fall"),
+    Rule("seasons.leaf_drop", 0.5, 0.0, 1.0, "share of winter", "the leaves still on at winter's start fall within "
+         "this first share of it (looked at once a day)"),
     Rule("seasons.mature_age", 80.0, 0.0, 1e6, PHYS, "age from which a healthy tree blossoms in spring"),
     Rule("weather.spring_rain", 0.5, 0.0, 1.0, "chance a day", "a rain shower on a spring day"),
     Rule("weather.summer_rain", 0.3, 0.0, 1.0, "chance a day", "a rain shower on a summer day"),

@@ -149,11 +149,11 @@ class World:
         return self.sim.state.time - self.last_light >= every
 
     def grow(self) -> None:
-        """Rewrite the L-string if T has passed one rewrite step since the last rewrite; in the first half
-        of winter the leaves still on the tree fall (looked at once a day)."""
+        """Rewrite the L-string if T has passed one rewrite step since the last rewrite; in the first part
+        of winter (the rule seasons.leaf_drop) the leaves still on the tree fall (looked at once a day)."""
         s = self.sim.state
         season = self.sim.season()
-        if season.index == 3 and season.progress < 0.5 and self.bare_at != s.sun_turns // 1:
+        if season.index == 3 and season.progress < self.rules.seasons.leaf_drop and self.bare_at != s.sun_turns // 1:
             self.bare_at = s.sun_turns // 1  # (looked at once a day of the sun)
             self.tree.drop_leaves()
         if self.roots.grow(s.root_time, self.rules.roots.step):
