@@ -1,7 +1,8 @@
 """What the game tells a player besides the meters: first-run hints, gentle reminders, the journal.
 
 Hints teach the three things a new player must find (water, sun, turning the view), one at a time,
-each shown only while it applies (the water meter or the sun meter below comfortable, the tree alive)
+each shown only while it applies (the water meter down to the need line, the sun meter below comfortable,
+the tree alive)
 and gone once the player has done it. Reminders are one calm line about what is worth doing now (rain, ripe fruit,
 seeds to sow, another tree in need). New journal entries of any tree are announced as they happen;
 the menu's journal page lists the cared-for tree's milestones by day.
@@ -11,12 +12,14 @@ from __future__ import annotations
 
 import math
 
+from arbor.engine.life.world.status import fruit_count, water_low
 from arbor.engine.life.world.world import World
 from arbor.game.screens.state import GameState
 from arbor.game.strings import text
 
 HINTS = ("water", "sun", "turn")
-ATTENTION = ("dead", "wilting", "starving", "drowning", "thirsty", "needs_light")  # statuses worth a reminder
+# statuses worth a reminder
+ATTENTION = ("dead", "dead_fruit", "wilting", "starving", "drowning", "thirsty", "needs_light")
 JOURNAL_SHOWN = 12  # latest milestones listed on the journal page
 
 
@@ -49,14 +52,14 @@ class Coach:
         return text(f"hints.{shown}") if shown else ""
 
     def applies(self, what: str) -> bool:
-        """Whether hint ``what`` fits the cared-for tree now: water while its meter is below comfortable
+        """Whether hint ``what`` fits the cared-for tree now: water while its meter is down to the need line
         and the can is not pouring, sun while the sun meter is below comfortable; none on a dead tree."""
         s = self.state.world.sim.state
         comfort = self.state.rules.health.comfort
         if not s.alive:
             return False
-        if what == "water":
-            return s.water_meter < comfort and not s.watering
+        if what == "water":  # (only when the water is low: engine/life/world/status.py)
+            return water_low(self.state.world)
         if what == "sun":
             return s.sun_meter < comfort
         return True
@@ -87,7 +90,8 @@ class Coach:
         for number, other in enumerate(garden.worlds, 1):
             status = other.status()
             if other is not world and status in ATTENTION:
-                return text("reminders.other", number=number, status=text(f"status.{status}").split(":")[0])
+                said = text(f"status.{status}", fruit=fruit_count(other))
+                return text("reminders.other", number=number, status=said.split(":")[0])
         return ""
 
     def journal_lines(self) -> list[str]:

@@ -15,6 +15,7 @@ import pygame
 
 from arbor.engine.base.units import METRE
 from arbor.engine.life.rules.rules import Rules
+from arbor.engine.life.world.status import fruit_count
 from arbor.game.render.backdrop import sky_colors
 from arbor.game.render.camera import OrbitCamera, project_points
 from arbor.game.render.garden import GardenRenderer
@@ -28,7 +29,7 @@ from arbor.game.screens.state import GameState
 from arbor.game.strings import duration, text
 
 NEEDS_ICON = {"thirsty": "can", "wilting": "sun", "starving": "sun", "needs_light": "sun", "drowning": "can",
-              "dead": "cross"}
+              "dead": "cross", "dead_fruit": "cross"}
 BADGE = 30  # pixels: a garden marker's size
 
 
@@ -95,7 +96,8 @@ class GameHud:
         message = state.shown_message()
         if not message and tree.budget_hit:
             message = text("messages.budget")
-        status = text(f"status.{world.status(self.dark_sky())}", hold=duration(world.sim.settle_left()))
+        status = text(f"status.{world.status(self.dark_sky())}", hold=duration(world.sim.settle_left()),
+                      fruit=fruit_count(world))
         season = ""
         if rules.seasons.enabled:
             day = int(s.sun_turns) + 1

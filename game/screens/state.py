@@ -16,7 +16,7 @@ from arbor.engine.life.plant.sim import sun_angle_at
 from arbor.engine.life.rules.rules import Rules
 from arbor.engine.life.world.commands import SunAt
 from arbor.engine.life.world.garden import Garden
-from arbor.engine.life.world.guardian import Guardian, Need
+from arbor.engine.life.world.guardian import Guardian, Need, needs_of
 from arbor.engine.life.world.world import World
 from arbor.game.input.gestures import CameraControl
 from arbor.game.loop import FixedStepLoop
@@ -42,6 +42,7 @@ class GameState:
         self.rules = rules or Rules()
         self.guardian = Guardian(self.rules)  # watches every tree while time flies (engine/life/world)
         self.halted: Need | None = None  # the need the guardian stopped fast-forward for (until "go on")
+        self.halt_line = ""  # what the guardian's stop said (shown only while its need holds)
         self.resume_speed = 1.0  # the speed "go on" returns to
         self.autopilot = False  # the kiosk with nobody there: the garden is tended every step
         self.on_halt: list[Callable[[], None]] = []  # told when the guardian stops fast-forward (menu labels)
@@ -108,7 +109,8 @@ class GameState:
         self.halted, self.resume_speed = need, self.loop.speed
         self.loop.speed = 1.0
         self.loop.accumulator = self.loop.dt  # (the step in progress is this frame's last)
-        self.say(text(f"guardian.{need.what}", number=need.index + 1, speed=f"{self.resume_speed:g}"), 30)
+        self.halt_line = text(f"guardian.{need.what}", number=need.index + 1, speed=f"{self.resume_speed:g}")
+        self.say(self.halt_line, 30)
         for listener in self.on_halt:
             listener()
 
@@ -146,5 +148,16 @@ class GameState:
         self.message, self.message_until = text, self.clock() + seconds
 
     def shown_message(self) -> str:
-        """The message on screen now ('' once it timed out)."""
-        return self.message if self.clock() < self.message_until else ""
+        """The message on screen now ('' once it timed out, and a guardian's stop line once its need is
+        gone: no thirst warning over a tree watered past the need line, nor after a speed chosen by hand)."""
+        if self.clock() >= self.message_until:
+            return ""
+        if self.halt_line and self.message == self.halt_line and not self.halt_holds():
+            return ""
+        return self.message
+
+    def halt_holds(self) -> bool:
+        """Whether the guardian's stop still stands and the tree it named still has the need it named."""
+        need, worlds = self.halted, self.garden.worlds
+        return need is not None and need.index < len(worlds) and need.what in needs_of(worlds[need.index],
+                                                                                     self.rules)

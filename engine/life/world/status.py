@@ -1,0 +1,79 @@
+"""What the HUD says about a tree: ONE ranking of its real state (issues 28 and 47).
+
+:func:`tree_status` reads the simulation's state (the meters, wilt, drowning, the season, the sun, the
+growth hold) and the tree (its fruit, the light its leaves catch) and returns the first that holds:
+
+    dead (``dead_fruit`` when fruit still hang on it) > drowning > thirsty (water at or below the growth
+    threshold) > starving / wilting / recovering (a wilting tree) > needs_light (only by day) > winter (every
+    winter day: the tree is bare and rests, even while late winter blends into spring) > starting (growth
+    not earned yet) > resting (only under a dark sky) > needs_light (leaves in the shade, by day) > growing.
+
+Beside it, the lines the HUD shows only while they are true: :func:`water_low` (the can's hint: the water
+meter down to the need line, the can not pouring) and :func:`need_line` (where a thirst is worth a word:
+the guardian's stop and the warning it says are about water below it, never above it).
+The HUD and the kiosk (which plays the game's HUD) both take their status from here.
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+from arbor.engine.life.rules.rules import Rules
+
+if TYPE_CHECKING:  # (the world module imports this one: no import of it at run time)
+    from arbor.engine.life.world.world import World
+
+WINTER = 3  # the season index of winter (engine/life/plant/seasons.py)
+
+
+def need_line(rules: Rules) -> float:
+    """The water meter's need line: the growth threshold plus the guardian's margin (a share, 0..1)."""
+    return rules.growth.threshold + rules.health.guard_margin
+
+
+def fruit_count(world: World) -> int:
+    """Fruit hanging on the tree now (its L-string's fruit modules)."""
+    return world.tree.lstring.count("O")
+
+
+def water_low(world: World) -> bool:
+    """Whether the can's hint applies: a living tree whose water meter is down to the need line and whose
+    can is not pouring."""
+    s = world.sim.state
+    return s.alive and not s.watering and s.water_meter <= need_line(world.rules)
+
+
+def _wilting(world: World) -> str:
+    """A wilting tree's word: starving when its leaves cannot feed it, wilting while its sun is neglected,
+    recovering once both meters are cared for again."""
+    sim, rules = world.sim, world.rules
+    if sim.starving > rules.carbon.starve_time:
+        return "starving"
+    return "wilting" if sim.state.sun_meter < rules.health.neglect_level else "recovering"
+
+
+def tree_status(world: World, dark: bool | None = None) -> str:
+    """The status word of ``world`` (see module docstring); ``dark``: whether the sky drawn is a night's
+    (None: the sun is below the horizon)."""
+    sim, rules = world.sim, world.rules
+    s = sim.state
+    if not s.alive:
+        return "dead_fruit" if fruit_count(world) else "dead"
+    if s.drowning > rules.water.drown_time or (s.water_meter > rules.water.drown_level and s.drowning > 0):
+        return "drowning"
+    if s.water_meter <= rules.growth.threshold:
+        return "thirsty"
+    if s.wilt > 0.5:
+        return _wilting(world)
+    day = sim.sunshine() > 0
+    if s.sun_meter <= rules.growth.threshold and day:
+        return "needs_light"
+    if rules.seasons.enabled and sim.season().index == WINTER:
+        return "winter"
+    if sim.settle_left() > 0:
+        return "starting"
+    if (not day) if dark is None else dark:
+        return "resting"
+    if day and world.tree.mean_light < world.tree.geometry_constants["SHQ"]:
+        return "needs_light"
+    return "growing"
