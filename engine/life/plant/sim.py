@@ -55,8 +55,8 @@ class SimState:
 
     time: float = 0.0
     sun_angle: float = 0.25  # mid-morning
-    orbit_height: float = 0.35
-    sun_speed: float = 0.05
+    orbit_height: float = find_rule("sun.orbit_height").default
+    sun_speed: float = find_rule("sun.speed").default
     sun_meter: float = 0.6
     water_meter: float = 0.6
     watering: bool = False
@@ -114,8 +114,9 @@ class Simulation:
         leaf then lives until autumn's fall, not a fixed span)."""
         turns, rules = self.state.sun_turns, self.rules
         season = self.season()
-        bloom = season.index == 0 and season.progress < 0.6 and tree_age >= rules.seasons.mature_age
-        healthy = self.resources() > 0.5
+        bloom = (season.index == 0 and season.progress < rules.seasons.bloom_share
+                 and tree_age >= rules.seasons.mature_age)
+        healthy = self.resources() > rules.seasons.bloom_health
         return {"SF": seasons.flush(turns, rules), "AF": seasons.leaf_fall(turns, rules),
                 "SP": 1.0 if bloom and healthy else 0.0, "SL": 1.0 if rules.seasons.enabled else 0.0}
 
@@ -244,17 +245,19 @@ class Simulation:
         s.length_time += length * dt
         s.girth_time += girth * dt
         if s.alive:
-            wet = min(max((s.water_meter - 0.2) / 0.6, 0.0), 1.0) if s.water_meter <= rules.water.drown_level else 0.0
+            r = rules.roots
+            wet = (min(max((s.water_meter - r.dry_level) / max(r.wet_level - r.dry_level, 1e-9), 0.0), 1.0)
+                   if s.water_meter <= rules.water.drown_level else 0.0)
             s.root_time += (rules.roots.growth_rate * wet * self.root_vigour * seasons.growth_factor(s.sun_turns, rules)
                             * dt)  # no roots grow in waterlogged soil
 
     def _health(self, dt: float) -> None:
         s, h, w = self.state, self.rules.health, self.rules.water
-        # waterlogged soil drains (three times as fast as it floods), not at once; resting roots (winter) do not
-        # drown; a dying tree needs a lasting recovery to live
+        # waterlogged soil drains (water.drain_speed times as fast as it floods), not at once; resting roots
+        # (winter) do not drown; a dying tree needs a lasting recovery to live
         resting = seasons.growth_factor(s.sun_turns, self.rules) <= 0
         flooded = s.water_meter > w.drown_level and not resting
-        s.drowning = s.drowning + dt if flooded else max(s.drowning - 3.0 * dt, 0.0)
+        s.drowning = s.drowning + dt if flooded else max(s.drowning - w.drain_speed * dt, 0.0)
         starved = self.starving > self.rules.carbon.starve_time
         neglected = min(s.sun_meter, s.water_meter) < h.neglect_level or starved
         if not s.alive:
@@ -290,7 +293,7 @@ class Simulation:
         if s.water_meter <= threshold:
             return "thirsty"
         day = self.sunshine() > 0
-        if s.wilt > 0.5:
+        if s.wilt > rules.health.wilt_shown:
             if self.starving > rules.carbon.starve_time:
                 return "starving"
             return "wilting" if s.sun_meter < rules.health.neglect_level else "recovering"

@@ -89,6 +89,8 @@ SCHEMA: tuple[Rule, ...] = (
     Rule("water.fill_rate", 0.12, 0.0, 100.0, PER_S, "water meter filled while the can is held (any pace)"),
     Rule("water.drown_level", 0.95, 0.0, 1.0, METER, "above this for longer than drown_time the roots drown"),
     Rule("water.drown_time", 30.0, 0.0, 1e7, "s", "time above drown_level before the roots drown", "time"),
+    Rule("water.drain_speed", 3.0, 0.1, 100.0, "x", "waterlogged soil drains this many times as fast as it floods "
+         "(the time counted toward drowning falls back)"),
     Rule("water.leaf_min", 0.45, 0.0, 1.0, "share (0..1)", "leaf vigour (size, how long leaves stay) with an empty "
          "water meter"),
     Rule("water.drought_level", 0.35, 0.0, 1.0, METER, "below this shaded branches die up to 3x faster (drought)"),
@@ -97,6 +99,8 @@ SCHEMA: tuple[Rule, ...] = (
          "rate"),
     Rule("health.recover_rate", 0.01, 0.0, 100.0, "wilt per s", "wilt recovered otherwise", "rate"),
     Rule("health.death_time", 120.0, 0.0, 1e8, "s", "time at full wilt before the tree dies", "time"),
+    Rule("health.wilt_shown", 0.5, 0.0, 1.0, "wilt (0..1)", "above this wilt the HUD says the tree is wilting (or "
+         "starving, or recovering)"),
     Rule("health.guard_margin", 0.1, 0.0, 0.5, METER, "fast-forward drops to 1x when a meter falls to this above "
          "its need line (water: the growth threshold; sun: the neglect level) or a tree starts to wilt"),
     Rule("health.comfort", 0.8, 0.0, 1.0, METER, "tending (go on after a stop, the kiosk's autopilot) waters a tree "
@@ -128,6 +132,10 @@ SCHEMA: tuple[Rule, ...] = (
     Rule("seasons.leaf_drop", 0.5, 0.0, 1.0, "share of winter", "the leaves still on at winter's start fall within "
          "this first share of it (looked at once a day)"),
     Rule("seasons.mature_age", 80.0, 0.0, 1e6, PHYS, "age from which a healthy tree blossoms in spring"),
+    Rule("seasons.bloom_share", 0.6, 0.0, 1.0, "share of spring", "a mature tree may blossom in this first share of "
+         "spring ..."),
+    Rule("seasons.bloom_health", 0.5, 0.0, 1.0, "share (0..1)", "... while its health (growth earned by both meters, "
+         "times 1 - wilt) is above this"),
     Rule("weather.spring_rain", 0.5, 0.0, 1.0, "chance a day", "a rain shower on a spring day"),
     Rule("weather.summer_rain", 0.3, 0.0, 1.0, "chance a day", "a rain shower on a summer day"),
     Rule("weather.autumn_rain", 0.45, 0.0, 1.0, "chance a day", "a rain shower on an autumn day"),
@@ -139,6 +147,9 @@ SCHEMA: tuple[Rule, ...] = (
     Rule("away.fast_light", 4.0, 0.5, 100.0, "readings a day", "light readings while catching up (fewer: it is "
          "quick)"),
     Rule("roots.growth_rate", 0.06, 0.0, 100.0, "root time per s", "root growth with a full water meter", "rate"),
+    Rule("roots.dry_level", 0.2, 0.0, 1.0, METER, "no roots grow with the water meter at or below this ..."),
+    Rule("roots.wet_level", 0.8, 0.0, 1.0, METER, "... and they grow at full speed from this level up to "
+         "water.drown_level"),
     Rule("roots.step", 0.5, 0.01, 100.0, "root time", "time between two rewrites of the roots' L-string"),
     Rule("roots.drain_relief", 0.35, 0.0, 0.9, "share (0..1)", "a full root system drains the water meter this much "
          "more slowly"),
