@@ -59,8 +59,8 @@ def write(path, text):
     "mutate, words",
     [
         (lambda t: t[: len(t) // 2], "not a valid save"),  # truncated mid-file
-        (lambda t: t.replace("format = 2", "format = 9"), "newer Arbor"),
-        (lambda t: t.replace("format = 2", "format = 0"), "too old"),
+        (lambda t: t.replace("format = 3", "format = 9"), "newer Arbor"),
+        (lambda t: t.replace("format = 3", "format = 0"), "too old"),
         (lambda t: t.replace('seed = ', 'seed = "x"  # ', 1), "'seed' must be a whole number"),
         (lambda t: t.replace("#extern T G DT R", "#extern T G DT Q"), "does not match its hash"),
         (lambda t: t.replace("lstring = '''\nI(0,0,0,", "lstring = '''\nI(0,0,zz,"), "in the L-string"),
@@ -182,7 +182,7 @@ def test_what_is_read_writes_back_the_same_file(world, tmp_path):
 
 
 def test_a_format_1_save_reads_as_a_garden_of_its_one_tree(world, tmp_path):
-    text = save_text(world, "game_tree.lsys", saved_at=5.0).replace("format = 2", "format = 1")
+    text = save_text(world, "game_tree.lsys", saved_at=5.0).replace("format = 3", "format = 1")
     text = text.replace("[[trees]]\n", "").replace("[trees.growth]", "[tree]").replace("[trees.", "[")
     assert "\n[tree]\n" in text and "[trees" not in text  # one tree per file, its growth in [tree]
     path = tmp_path / "old.arbor"

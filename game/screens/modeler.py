@@ -21,7 +21,7 @@ from collections.abc import Callable
 import numpy as np
 import pygame
 
-from arbor.engine.life.world.commands import BeginEditing, Redo, Stroke, Undo
+from arbor.engine.life.world.commands import BeginEditing, Stroke
 from arbor.engine.lsystem.lstring import LString
 from arbor.engine.modeling.edits import EDIT_SETS, load_edit_sets
 from arbor.engine.modeling.modeler import Modeler
@@ -37,7 +37,7 @@ from arbor.game.tools.choice import ToolChoice
 from arbor.game.tools.crown import CrownTool
 from arbor.game.tools.prune import PruneTool
 from arbor.game.tools.region import RegionTool
-from arbor.game.tools.told import change_told, counted
+from arbor.game.tools.told import HistoryTold, counted
 
 WORK_SIZE = 150.0  # scene units: strokes and the modeler's view stay inside +-this (a runaway view cannot grow)
 MAX_STROKE_POINTS = 5000  # points of one stroke
@@ -68,7 +68,7 @@ def holding(bounds: tuple[np.ndarray, np.ndarray], points: np.ndarray) -> tuple[
     return np.array([-reach, 0.0, -reach]), np.array([reach, top, reach])
 
 
-class ModelingMode(ToolChoice):
+class ModelingMode(ToolChoice, HistoryTold):
     """Stroke capture, conversion and undo/redo for one game (the choice of tool: game/tools/choice.py)."""
 
     def __init__(self, state: GameState, renderer: GardenRenderer, size: tuple[int, int],
@@ -306,26 +306,6 @@ class ModelingMode(ToolChoice):
             self.region_tool.draw(surface, camera, font, project, self.points)
         else:
             self.region_tool.labels = []
-
-    def undo(self) -> None:
-        """Take back the last stroke (and say so, or that there is nothing to take back)."""
-        self._step_history(Undo(), "undone", "undo_none")
-
-    def redo(self) -> None:
-        """Put back the last undone stroke (and say so, or that there is nothing to put back)."""
-        self._step_history(Redo(), "redone", "redo_none")
-
-    def _step_history(self, command: Undo | Redo, done: str, none: str) -> None:
-        self.follow()
-        if self.modeler is None:
-            self.state.say(text(f"messages.{none}"))
-            return
-        before, lobes = self.modeler.lstring, len(self.crown_tool.state().lobes)
-        if self.state.world.apply(command):
-            what = change_told(before, self.modeler.lstring, lobes, len(self.crown_tool.state().lobes))
-            self.state.say(text(f"messages.{done}", what=what))
-        else:
-            self.state.say(text(f"messages.{none}"))
 
     def lstring(self) -> LString:
         """What to draw now: the live preview while a stroke is being drawn, else the tree."""

@@ -7,8 +7,9 @@ open stroke drawn across that lobe's top or bottom ring closes it with a dome in
 ring drawn away from that lobe (its centre outside the lobe's nearest ring, seen from above) starts a
 new lobe instead of being stitched to the first.
 Shape tool: a drag moves, scales, turns or squeezes the lobe under the pointer, or pulls one stroke
-point (the operation is chosen with the menu's option button). Which lobes a tree's crown grew into
-is kept with its L-string, so undo and redo bring the lobes back too.
+point (the operation is chosen with the menu's option button). The lobes a tree's crown grew into are
+part of the tree (its world keeps them, engine/modeling/crowned.py): undo and redo bring them back, and
+they are there again after Done, a save and load or a restart.
 """
 
 from __future__ import annotations
@@ -79,17 +80,22 @@ class CrownTool:
         self.drag: _Drag | None = None
 
     def clear(self) -> None:
-        """A new modeling session: earlier crown steps cannot be undone into."""
+        """A new modeling session: rings being drawn are dropped (the tree's lobes stay with the tree)."""
         self.states.clear()
         self.drag = None
 
     def state(self) -> CrownState:
-        """The crown step of the tree as it is now (a fresh one when it has no crown)."""
+        """The crown step of the tree as it is now: the rings being drawn on it, else its lobes (part of
+        the tree: its world keeps them through Done, saves and loads; engine/modeling/crowned.py), else a
+        fresh one."""
         ls = self.mode.modeler.lstring
         kept = self.states.get(id(ls))
         if kept is not None and kept[0] is ls:
             return kept[1]
-        return CrownState(ls)
+        crown = self.mode.state.world.crown
+        if crown is None:
+            return CrownState(ls)
+        return CrownState(crown.base_for(ls), list(crown.lobes))
 
     def _remember(self, ls: LString, state: CrownState) -> None:
         self.states[id(ls)] = (ls, state)

@@ -1,10 +1,12 @@
 """What the modeler's toasts say changed: counts with their nouns in the singular or plural, and what an
-undo took away or a redo put back (branch pieces, leaves, growth points, the crown's lobes)."""
+undo took away or a redo put back (branch pieces, leaves, growth points, the crown's lobes); undo and
+redo of the modeling mode, which say so."""
 
 from __future__ import annotations
 
 import numpy as np
 
+from arbor.engine.life.world.commands import Redo, Undo
 from arbor.engine.lsystem.lstring import LString
 from arbor.game.strings import text
 
@@ -40,3 +42,28 @@ def change_told(before: LString, after: LString, lobes_before: int, lobes_after:
         changed = int(np.count_nonzero(before.sym[:len(after)] != after.sym[:len(before)]))
         parts.append(text("messages.change_same", count=max(changed, abs(len(before) - len(after)), 1)))
     return ", ".join(parts)
+
+
+class HistoryTold:
+    """Mixin of the modeling mode (game/screens/modeler.py): undo and redo that say what they changed. It
+    uses the mode's ``follow``, ``modeler``, ``crown_tool`` and ``state``."""
+
+    def undo(self) -> None:
+        """Take back the last stroke (and say so, or that there is nothing to take back)."""
+        self._step_history(Undo(), "undone", "undo_none")
+
+    def redo(self) -> None:
+        """Put back the last undone stroke (and say so, or that there is nothing to put back)."""
+        self._step_history(Redo(), "redone", "redo_none")
+
+    def _step_history(self, command: Undo | Redo, done: str, none: str) -> None:
+        self.follow()
+        if self.modeler is None:
+            self.state.say(text(f"messages.{none}"))
+            return
+        before, lobes = self.modeler.lstring, len(self.crown_tool.state().lobes)
+        if self.state.world.apply(command):
+            what = change_told(before, self.modeler.lstring, lobes, len(self.crown_tool.state().lobes))
+            self.state.say(text(f"messages.{done}", what=what))
+        else:
+            self.state.say(text(f"messages.{none}"))

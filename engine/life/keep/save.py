@@ -6,7 +6,8 @@ of mixed generations. Saves are shared between players, so loading treats them a
 regular file of bounded size is read, TOML is parsed by the standard library (no eval), the embedded
 .lsys source by our own parser, the L-string by ``parse_lstring``, and every field is checked for type,
 range and finiteness (keep/save_check.py); every problem is a :class:`SaveError` naming the
-file, line and column. Format 1 (one tree per file) still loads.
+file, line and column. Format 3 adds each tree's crown lobes (keep/save_crown.py); formats 2 (no lobes)
+and 1 (one tree per file) still load.
 """
 
 from __future__ import annotations
@@ -50,6 +51,7 @@ from arbor.engine.life.keep.save_check import (
     value,
     vector,
 )
+from arbor.engine.life.keep.save_crown import crown_lines, read_crown
 from arbor.engine.life.lineage.lineage import Family, Lineage, lineage_from_row, new_lineage, species_of
 from arbor.engine.life.plant import genome
 from arbor.engine.life.plant.growth import GrowingTree
@@ -63,7 +65,7 @@ from arbor.engine.lsystem.lstring import LString, parse_lstring
 from arbor.engine.lsystem.lsys import parse_lsystem
 from arbor.engine.lsystem.text import format_number
 
-FORMAT = 2
+FORMAT = 3
 WRAP = 100
 MAX_BYTES = 64 * 1024 * 1024
 MAX_TREES = 6
@@ -191,6 +193,7 @@ def _tree_lines(world: World, lsystem_name: str) -> list[str]:
         f"modules = {len(ls)}",
         f"lstring = {_toml_lstring(ls)}",
         "",
+        *crown_lines(world.crown, tree.lstring, _toml_lstring),
     ]
     return lines
 
@@ -432,7 +435,9 @@ def _load_tree(data: dict, where: Where, rules: Rules, budget_slack: float) -> W
                     if isinstance(v, int | float) and not isinstance(v, bool) and abs(v) <= BIG}  # (10**25: no float)
     traits = genome.checked(system, saved_genome) if "genome" in data else {}
     growth = table(data, "growth", where)
-    tree = _restore_growth(genome.expressed(system, traits), seed, growth, where, budget_slack)
+    expressed = genome.expressed(system, traits)
+    tree = _restore_growth(expressed, seed, growth, where, budget_slack)
+    crown = read_crown(data, where, tree.lstring, int((expressed.budget or 10**6) * 2 * budget_slack))
     rng = np.random.Generator(np.random.PCG64(seed))
     restore_rng(rng, text_value(growth, "rng_world", where, 4096), "rng_world", where)
     saved = data.get("lineage")
@@ -446,7 +451,7 @@ def _load_tree(data: dict, where: Where, rules: Rules, budget_slack: float) -> W
                   journal=Journal.from_rows(table(data, "journal", where, required=False).get("entries", []))[0],
                   lineage=lineage, rng=rng, steps=value(data, "steps", *TREE_FIELDS["steps"], where),
                   last_light=value(growth, "last_light", *GROWTH_FIELDS["last_light"], where, default=float("-inf")),
-                  dropped_lineage=dropped)
+                  dropped_lineage=dropped, crown=crown)
     position = tuple(vector(data, "position", 2, where, [0.0, 0.0], limit=POSITION_LIMIT))
     return World(system, rules, seed=seed, position=position, parts=parts)
 

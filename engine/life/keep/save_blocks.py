@@ -19,7 +19,7 @@ from arbor.engine.base.reader import COSTLY_WORK, LINE_WORK, MAX_WORK, nesting_p
 
 __all__ = ["COSTLY_WORK", "LINE_WORK", "MAX_WORK", "TooDeepError", "TooMuchWorkError", "loads", "reading_work"]
 
-_KEYS = (b"\nlstring = '''\n", b"\nroots = '''\n")  # at a line start, as the writer puts them
+_KEYS = (b"\nlstring = '''\n", b"\nroots = '''\n", b"\ncrown_base = '''\n")  # at a line start, as written
 
 
 class TooMuchWorkError(ValueError):

@@ -215,15 +215,16 @@ def restore_rng(rng: np.random.Generator, state_text: str, key: str, where: Wher
         raise where.error(f"bad random state in '{key}': {exc}", key) from None
 
 
-def lstring_sane(ls, where: Where) -> None:
-    """Brackets balance and every parameter is a finite number of sane size (before any geometry)."""
+def lstring_sane(ls, where: Where, key: str = "lstring") -> None:
+    """Brackets balance and every parameter is a finite number of sane size (before any geometry); errors
+    name the line of ``key``."""
     from arbor.engine.lsystem.brackets import BracketError, check_balanced
 
     try:
         check_balanced(ls.sym)
     except BracketError as err:
-        raise where.error(f"in the L-string: {err}", "lstring") from None
+        raise where.error(f"in the L-string: {err}", key) from None
     bad = ~np.isfinite(ls.params) | (np.abs(ls.params) > BIG)
     if bad.any():
         raise where.error(f"in the L-string: a parameter is not a finite number of sane size "
-                          f"({ls.params[np.argmax(bad)]!r})", "lstring")
+                          f"({ls.params[np.argmax(bad)]!r})", key)

@@ -8,7 +8,9 @@ terms (scene units, module indices, regions), never screen pixels, so a log repl
 
 The modeler's commands work on the world's edit session (:attr:`World.editor`, an
 :class:`~arbor.engine.modeling.modeler.Modeler` holding the undo history): :class:`BeginEditing` starts
-one on the tree as it is; each edit commits one undoable step and the tree takes its L-string.
+one on the tree as it is; each edit commits one undoable step and the tree takes its L-string. The
+crown's lobes are part of the tree (:attr:`World.crown`, a :class:`CrownRecord`): :class:`Crown` sets
+them, every step remembers the lobes that stood with its L-string, so undo and redo bring them back.
 """
 
 from __future__ import annotations
@@ -26,6 +28,7 @@ from arbor.engine.lsystem.lstring import LString
 from arbor.engine.lsystem.lsys import LSystem
 from arbor.engine.lsystem.text import format_number
 from arbor.engine.modeling.bend import bend_region
+from arbor.engine.modeling.crowned import CrownRecord
 from arbor.engine.modeling.edits import apply_edit, prune_region
 from arbor.engine.modeling.regions import prune as prune_branch
 from arbor.engine.modeling.strokes import Stroke as StrokePoints
@@ -39,6 +42,7 @@ if TYPE_CHECKING:
 # never models need not load at start)
 
 GROW_STEPS = 20  # growth steps a region's "grow" edit keeps all of the tree's growth inside it
+MAX_CROWN_STEPS = 96  # L-strings of an edit session whose crown lobes undo/redo can bring back
 
 
 @dataclass(frozen=True)
@@ -190,13 +194,31 @@ class BeginEditing:
         tree = world.tree  # drawn axes get the species' density of side shoots, lambda(s)
         world.editor = Modeler(lstring=tree.lstring, settings=ModelerSettings.for_species(tree.geometry_constants),
                                segments_of=world.drawn_segments)
+        world.crown_steps = {}
+        _remember_crown(world, tree.lstring)
         return world.editor
 
 
+def _remember_crown(world: World, ls: LString) -> None:
+    """The crown's lobes standing now stand with ``ls`` (undo and redo to it bring them back); bounded."""
+    world.crown_steps[id(ls)] = (ls, world.crown)
+    while len(world.crown_steps) > MAX_CROWN_STEPS:
+        del world.crown_steps[next(iter(world.crown_steps))]
+
+
+def _step_to(world: World, ls: LString) -> None:
+    """Undo or redo reached ``ls``: the tree takes it, with the lobes that stood with it."""
+    world.tree.lstring = ls
+    kept = world.crown_steps.get(id(ls))
+    if kept is not None and kept[0] is ls:
+        world.crown = kept[1]
+
+
 def _commit(world: World, new: LString) -> None:
-    """One undoable edit: the session and the tree take ``new``."""
+    """One undoable edit: the session and the tree take ``new`` (the crown's lobes stand with it)."""
     world.editor.commit(new)
     world.tree.lstring = new
+    _remember_crown(world, new)
 
 
 @dataclass(frozen=True, eq=False)
@@ -245,6 +267,7 @@ class Crown:
         grown, added, limited = grow_within(self.base, list(self.lobes), room, int(editor.rng.integers(2**31)),
                                             world.drawn_segments,
                                             tip=f"[&(45)L({format_number(world.born_visible())})]")
+        world.crown = CrownRecord(tuple(self.lobes), self.base, grown) if self.lobes else None
         _commit(world, grown)
         return CrownResult(added, limited)
 
@@ -318,7 +341,7 @@ class Undo:
         editor = world.editing()
         if not editor.undo():
             return False
-        world.tree.lstring = editor.lstring
+        _step_to(world, editor.lstring)
         return True
 
 
@@ -331,7 +354,7 @@ class Redo:
         editor = world.editing()
         if not editor.redo():
             return False
-        world.tree.lstring = editor.lstring
+        _step_to(world, editor.lstring)
         return True
 
 

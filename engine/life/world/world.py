@@ -34,6 +34,7 @@ from arbor.engine.life.world.status import tree_status
 from arbor.engine.lsystem.lsys import LSystem
 
 if TYPE_CHECKING:
+    from arbor.engine.modeling.crowned import CrownRecord
     from arbor.engine.modeling.modeler import Modeler
 
 MAX_CATCH_UP_STEPS = 20_000  # a catch-up never takes more steps than this, whatever the rules say
@@ -54,6 +55,7 @@ class Parts:
     steps: int = 0
     last_light: float = float("-inf")
     dropped_lineage: int = 0
+    crown: CrownRecord | None = None
 
 
 @dataclass
@@ -82,6 +84,8 @@ class World:
     carbon: CarbonBudget = field(init=False)  # the sugar its leaves fix and its growth spends (plant/carbon.py)
     genome: dict[str, float] = field(init=False)  # its own values of the species' varying defines (plant/genome.py)
     editor: Modeler | None = field(default=None, init=False)  # the modeler's edit session (commands.py)
+    crown: CrownRecord | None = field(default=None, init=False)  # the crown's lobes, part of the tree (saved)
+    crown_steps: dict = field(default_factory=dict, init=False, repr=False)  # id(L-string) -> (it, its lobes)
     light_every: float | None = field(default=None, init=False)  # s between light readings, if not the rules'
     _segments: tuple | None = field(default=None, init=False, repr=False)  # (key, L-string, its drawn segments)
     # 1 when the save this tree was read from held a lineage that could not be trusted (so it starts a
@@ -115,6 +119,7 @@ class World:
         self.sim, self.tree, self.genome, self.roots = parts.sim, parts.tree, parts.genome, parts.roots
         self.carbon, self.journal, self.rng, self.steps = parts.carbon, parts.journal, parts.rng, parts.steps
         self.last_light, self.dropped_lineage, self.lineage = parts.last_light, parts.dropped_lineage, parts.lineage
+        self.crown = parts.crown
         self.sync_roots()
 
     def expressed(self) -> LSystem:
@@ -251,7 +256,7 @@ class World:
     def replant_now(self, planted: float | None = None) -> None:
         """A fresh sapling (and a fresh line of descent) in this tree's place (the :class:`Replant` command)."""
         self._replant(self.lineage.planted if planted is None else planted)
-        self.editor = None  # (the old tree's edits are gone with it)
+        self.editor, self.crown = None, None  # (the old tree's edits and lobes are gone with it)
 
     def _replant(self, planted: float, lineage: Lineage | None = None) -> None:
         """The sapling of a new seed drawn from the world's generator, meters at the rules' random refill;
