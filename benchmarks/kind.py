@@ -8,7 +8,11 @@ that tree's water before them, the lowest water and sun meters, the most wilt, a
 alive at the end. At the home pace the fixed step is scaled by the pace's time scale (as the garden's
 catch-up does), so 30 days take the same number of steps as at the demo pace.
 
-    python -m benchmarks.kind [--days 30] [--speed 100] [--baseline]
+With ``--gardener`` the player's Settings -> Gardener is on (engine/life/world/guardian.Gardener): the
+garden is tended while time flies and stops only for decisions (ripe fruit, a tree wilting anyway or dead,
+a season's first day).
+
+    python -m benchmarks.kind [--days 30] [--speed 100] [--baseline] [--gardener]
 """
 
 from __future__ import annotations
@@ -25,6 +29,7 @@ os.environ.setdefault("SDL_AUDIODRIVER", "dummy")
 import moderngl
 
 from arbor.engine.life.world.actions import Action
+from arbor.engine.life.world.guardian import NEEDS
 from arbor.game.screens.game import Game, GameConfig
 
 FRAME = 0.25  # real seconds a frame (the loop's clamp)
@@ -69,7 +74,8 @@ class Watch:
                 self.warned.discard(i)
 
 
-def run(pace: str, days: float, speed: float, ctx: moderngl.Context, guard: bool = True) -> None:
+def run(pace: str, days: float, speed: float, ctx: moderngl.Context, guard: bool = True,
+        gardener: bool = False) -> None:
     """One scripted player at ``pace``; prints one line of figures."""
     with tempfile.TemporaryDirectory() as saves:
         clock = [0.0]
@@ -81,6 +87,7 @@ def run(pace: str, days: float, speed: float, ctx: moderngl.Context, guard: bool
         if not guard:
             game.state.guardian.watch = lambda garden: None  # the baseline: nobody watches
         game.loop.max_steps = 1000
+        game.sound.prefs.gardener = gardener
         game.act(Action.PLANT, 1.0)  # a garden of two: every tree is watched
         watch = Watch(game)
         game.set_speed(speed)
@@ -91,9 +98,10 @@ def run(pace: str, days: float, speed: float, ctx: moderngl.Context, guard: bool
             game.update(FRAME)
             if game.state.halted is not None:
                 game.act(Action.GO_ON, 1.0)
-        needs = {w: sum(1 for *_, n in watch.stops if n == w) for w in ("water", "sun", "drown", "wilt")}
+        kinds = ("water", "sun", "drown", "wilt", "died", "dying", "fruit", "season")
+        needs = {w: sum(1 for *_, n in watch.stops if n == w) for w in kinds if gardener or w in NEEDS}
         alive = [w.sim.state.alive for w in game.state.garden.worlds]
-        who = "guarded" if guard else "no guardian"
+        who = "gardener" if gardener else "guarded" if guard else "no guardian"
         print(f"{pace:5s} {who} {days:g} days at {speed:g}x: {len(watch.stops)} guardian stops {needs}; "
               f"thirst episodes {watch.episodes}, without a stop before {watch.unwarned}; lowest water "
               f"{watch.low_water:.3f}, lowest sun {watch.low_sun:.3f}, most wilt {watch.wilt:.3f}; "
@@ -108,10 +116,11 @@ def main() -> None:
     parser.add_argument("--speed", type=float, default=100.0)
     parser.add_argument("--paces", default="demo,home")
     parser.add_argument("--baseline", action="store_true", help="also run without the guardian")
+    parser.add_argument("--gardener", action="store_true", help="Settings -> Gardener on")
     args = parser.parse_args()
     ctx = moderngl.create_standalone_context(backend="egl")
     for pace in args.paces.split(","):
-        run(pace, args.days, args.speed, ctx)
+        run(pace, args.days, args.speed, ctx, gardener=args.gardener)
         if args.baseline:
             run(pace, args.days, args.speed, ctx, guard=False)
 

@@ -192,7 +192,7 @@ def test_the_menu_puts_care_first_with_big_targets_and_tools_in_the_modeler(gl_c
     settings = game.menu.widget("settings")
     tap(game, *settings.rect.center)
     assert {w.name for w in game.menu.shown()} == {"save", "load", "share", "restore", "roots", "devices", "volume",
-                                                   "mute", "away", "back"}
+                                                   "mute", "away", "gardener", "back"}
     game.menu.hide()
     game.act(Action.MODELER, 1.0)
     assert game.modeling.active

@@ -57,14 +57,15 @@ PAGES = {
     "care": [["orbit_height"], ["sun_speed"], ["water", "speed"], ["garden", "tools", "settings", "journal"]],
     "garden": [["plant", "sow"], ["cross", "family"], ["next", "replant"], ["rock", "import", "back"]],
     "tools": [["modeler", "crown", "shape"], ["prune", "symbols", "edit"], ["undo", "redo", "back"]],
-    "settings": [["save", "load", "share"], ["restore", "roots", "devices"], ["volume"], ["mute", "away", "back"]],
+    "settings": [["save", "load", "share"], ["restore", "roots", "devices"], ["volume"],
+                 ["mute", "away", "gardener", "back"]],
     "journal": [["back"]],
 }
 ICONS = {"orbit_height": "sun", "sun_speed": "clock", "water": "can", "speed": "clock", "garden": "sapling",
          "tools": "pencil", "settings": "gear", "journal": "book", "plant": "sapling", "sow": "seed",
          "replant": "sapling", "back": "back", "modeler": "pencil", "cross": "seed", "family": "book",
          "roots": "sapling", "rock": "stone", "volume": "speaker", "mute": "speaker",
-         "away": "can", "share": "card", "import": "card"}
+         "away": "can", "gardener": "can", "share": "card", "import": "card"}
 NAV = {"garden", "tools", "settings", "journal", "back"}  # buttons that only change the page
 
 

@@ -88,6 +88,7 @@ class CareActions:
             Action.UNDO: pressed(modeling.undo), Action.REDO: pressed(modeling.redo),
             Action.DEVICES: pressed(self._devices),
             Action.AWAY: pressed(self._away),
+            Action.GARDENER: pressed(self._gardener),
         }
         if sound is not None:  # Settings -> Volume and Mute (see config.PlayerSettings)
             self.handlers.update(sound.handlers(self.sync_sliders))
@@ -199,6 +200,14 @@ class CareActions:
                                 days=f"{self.rules.away.cap_days:g}"), 6)
             self.sync_sliders()
 
+    def _gardener(self) -> None:
+        """Settings -> Gardener: at 10x and 100x the gardener tends the garden and stops only for what the
+        player must decide (engine/life/world/guardian.Gardener), or the guardian stops for every need."""
+        if self.sound is not None:
+            on = self.sound.toggle_gardener()
+            self.state.say(text("messages.gardener_on" if on else "messages.gardener_off"), 6)
+            self.sync_sliders()
+
     def _devices(self) -> None:
         names = sorted(self.state.devices) or [text("messages.no_devices")]
         self.state.say(text("messages.devices", names=", ".join(names)), 8)
@@ -300,6 +309,8 @@ class CareActions:
         if self.sound is not None:
             self.sound.show(menu)
             menu.widget("away").label = text("menu.away_on" if self.sound.prefs.away else "menu.away_off")
+            menu.widget("gardener").label = text("menu.gardener_on" if self.sound.prefs.gardener
+                                                 else "menu.gardener_off")
 
     def set_speed(self, speed: float) -> None:
         """Time speed: 0 (pause), 1, 10 or 100 (a speed chosen by hand answers a guardian's stop)."""

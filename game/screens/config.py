@@ -49,6 +49,7 @@ class Preferences:
     volume: float = 0.7
     muted: bool = False
     away: bool = False
+    gardener: bool = False  # at 10x and 100x the gardener tends the garden (engine/life/world/guardian.py)
 
 
 def check_volume(volume: float, file: str, text: str, key: str = "volume") -> None:
@@ -84,7 +85,8 @@ def write_preferences(prefs: Preferences, path: Path) -> None:
     """Write ``prefs`` to ``path`` atomically (the old file or the new one, never half of it)."""
     text = ("# Arbor's own settings (Settings in the game's menu); the garden is in autosave.arbor.\n"
             f"volume = {round(prefs.volume, 3)!r}\nmuted = {str(prefs.muted).lower()}\n"
-            f"away = {str(prefs.away).lower()}  # the garden is watered while you are away\n")
+            f"away = {str(prefs.away).lower()}  # the garden is watered while you are away\n"
+            f"gardener = {str(prefs.gardener).lower()}  # the gardener cares while you skip (10x, 100x)\n")
     atomic_write(path, text.encode("utf-8"))
 
 
@@ -126,6 +128,13 @@ class PlayerSettings:
         self.prefs.away = not self.prefs.away
         self._changed()
         return self.prefs.away
+
+    def toggle_gardener(self) -> bool:
+        """The Gardener button: at 10x and 100x the gardener tends the garden, or the guardian stops time
+        for every need. Returns it."""
+        self.prefs.gardener = not self.prefs.gardener
+        self._changed()
+        return self.prefs.gardener
 
     def handlers(self, then) -> dict:
         """The Settings page's actions (for the game's one dispatch table): the slider's position is the

@@ -81,6 +81,7 @@ class Game:
         self.title = TitleScreen(size)
         self.state = state = GameState(self.loop, self.control, clock, self.rules)
         state.sprouts = self.config.sprout
+        state.gardening = lambda: self.sound.prefs.gardener
         self.keeper = SaveKeeper(state, self.config, self.rules, self.system, wall_clock,
                                  away=lambda: self.sound.prefs.away)
         state.use(self.keeper.start())

@@ -16,7 +16,7 @@ from arbor.engine.life.plant.sim import sun_angle_at
 from arbor.engine.life.rules.rules import Rules
 from arbor.engine.life.world.commands import SunAt
 from arbor.engine.life.world.garden import Garden
-from arbor.engine.life.world.guardian import Guardian, Need, needs_of
+from arbor.engine.life.world.guardian import NEEDS, Gardener, Guardian, Need, needs_of
 from arbor.engine.life.world.world import World
 from arbor.game.input.gestures import CameraControl
 from arbor.game.loop import FixedStepLoop
@@ -41,6 +41,8 @@ class GameState:
         self.loop, self.control, self.clock = loop, control, clock
         self.rules = rules or Rules()
         self.guardian = Guardian(self.rules)  # watches every tree while time flies (engine/life/world)
+        self.gardener = Gardener(self.guardian)  # "the gardener cares while you skip" (at 10x and 100x)
+        self.gardening: Callable[[], bool] = lambda: False  # the player's setting for it (Settings)
         self.halted: Need | None = None  # the need the guardian stopped fast-forward for (until "go on")
         self.halt_line = ""  # what the guardian's stop said (shown only while its need holds)
         self.resume_speed = 1.0  # the speed "go on" returns to
@@ -97,6 +99,12 @@ class GameState:
         if self.autopilot:
             self.guardian.autopilot(self.garden)
             return
+        if self.loop.speed > 1.0 and self.gardening():  # (tended: stops only for a player's decision)
+            need = self.gardener.care(self.garden)
+            if need is not None:
+                self.halt(need)
+            return
+        self.gardener.season = None  # (a season seen at 1x is no stop when the gardener takes over again)
         self.guardian.care(self.garden)
         if self.loop.speed > 1.0:
             need = self.guardian.watch(self.garden)
@@ -109,7 +117,9 @@ class GameState:
         self.halted, self.resume_speed = need, self.loop.speed
         self.loop.speed = 1.0
         self.loop.accumulator = self.loop.dt  # (the step in progress is this frame's last)
-        self.halt_line = text(f"guardian.{need.what}", number=need.index + 1, speed=f"{self.resume_speed:g}")
+        season = text(f"seasons.{self.world.sim.season().name}")
+        self.halt_line = text(f"guardian.{need.what}", number=need.index + 1, speed=f"{self.resume_speed:g}",
+                              season=season)
         self.say(self.halt_line, 30)
         for listener in self.on_halt:
             listener()
@@ -157,7 +167,9 @@ class GameState:
         return self.message
 
     def halt_holds(self) -> bool:
-        """Whether the guardian's stop still stands and the tree it named still has the need it named."""
+        """Whether the guardian's stop still stands and the tree it named still has the need it named (a
+        gardener's stop for a decision stands until it is answered)."""
         need, worlds = self.halted, self.garden.worlds
-        return need is not None and need.index < len(worlds) and need.what in needs_of(worlds[need.index],
-                                                                                     self.rules)
+        if need is None or need.index >= len(worlds):
+            return False
+        return need.what not in NEEDS or need.what in needs_of(worlds[need.index], self.rules)

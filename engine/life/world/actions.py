@@ -44,6 +44,7 @@ class Action(Enum):
     VOLUME = "volume"  # value: the sound's volume 0..1 (Settings)
     MUTE = "mute"  # sound off / back on (Settings)
     AWAY = "away"  # the garden watered while the player is away, or not (Settings)
+    GARDENER = "gardener"  # the gardener cares while time flies (10x, 100x), or not: the guardian stops (Settings)
     SHARE = "share"  # a postcard of the cared-for tree, its save inside, in the saves folder's cards/ (Settings)
     IMPORT = "import"  # plant the newest card's tree found in cards/ beside the others (Garden)
 

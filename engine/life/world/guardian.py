@@ -8,11 +8,18 @@ and its need, once, and the game drops back to 1x (like sleeping until morning i
 watering can pours on each tree in need until its meter is comfortable, the one sun is raised to at
 least its default height when a sun meter runs low, a drowning tree's can is let go.
 The margins are rules (``health.guard_margin``, ``health.comfort``).
+
+The :class:`Gardener` (the player's "the gardener cares while you skip", at 10x and 100x) does the
+autopilot's tending every step, so water and light stay in the healthy band and no need stops time; it
+stops only for what a player must decide (DECISIONS): ripe fruit to pick, a tree wilting despite the care
+(or dead), the first day of a season.
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass
+
+import numpy as np
 
 from arbor.engine.life.rules.rules import Rules
 from arbor.engine.life.world.actions import Action
@@ -20,6 +27,7 @@ from arbor.engine.life.world.garden import Garden
 from arbor.engine.life.world.world import World
 
 NEEDS = ("drown", "water", "sun", "wilt")  # in the order the guardian tells them
+DECISIONS = ("died", "dying", "fruit", "season")  # what stops the gardener, in the order it tells them
 
 
 @dataclass(frozen=True)
@@ -106,3 +114,55 @@ class Guardian:
         if id(world) in self.pouring or world.sim.state.watering:
             world.apply(Action.WATER, 0.0)
         self.pouring.discard(id(world))
+
+
+def ripe_fruit(world: World) -> int:
+    """Ripe fruit on the tree now (fruit ``O(birth)`` older than the species' RIPEN on the tree's clock)."""
+    ls = world.tree.lstring
+    fruit = np.flatnonzero((ls.sym == ord("O")) & (ls.nparams >= 1))
+    if not len(fruit):
+        return 0
+    age = world.sim.state.length_time - ls.params[ls.offsets[fruit]]
+    return int(np.count_nonzero(age >= world.tree.geometry_constants["RIPEN"]))
+
+
+def decisions_of(world: World) -> list[str]:
+    """What this tree asks of its player now: died, or dying (ripe fruit and the season are the garden's)."""
+    s = world.sim.state
+    if not s.alive:
+        return ["died"]
+    return ["dying"] if s.wilt > 0.5 else []
+
+
+class Gardener:
+    """Fast-forward with the gardener (see module docstring): :meth:`care` after each step tends the
+    garden as the kiosk's autopilot does and returns the first decision not told yet, or None."""
+
+    def __init__(self, guardian: Guardian) -> None:
+        self.guardian = guardian
+        self.told: set[tuple[int, str]] = set()  # (id of the world, decision) told and not yet gone
+        self.season: tuple[int, int] | None = None  # (year, season) last seen
+
+    def care(self, garden: Garden) -> Need | None:
+        """Tend every tree (water and light kept in the healthy band), then a decision to stop for."""
+        self.guardian.autopilot(garden)
+        return self.decide(garden)
+
+    def decide(self, garden: Garden) -> Need | None:
+        """The first decision not told yet (told now): a tree died or wilts despite the care, ripe fruit on
+        any tree (told once until no tree has any), then a season's first day; decisions that passed are
+        forgotten, so they are told again later."""
+        now = {(id(w), what): (i, what) for i, w in enumerate(garden.worlds) for what in decisions_of(w)}
+        ripe = next((i for i, w in enumerate(garden.worlds) if w.sim.state.alive and ripe_fruit(w)), None)
+        if ripe is not None:  # (the garden's: one stop while any tree has ripe fruit, not one a tree)
+            now[(id(garden), "fruit")] = (ripe, "fruit")
+        self.told &= set(now)
+        for key, (index, what) in now.items():
+            if key not in self.told:
+                self.told.add(key)
+                return Need(index, what)
+        season = garden.world.sim.season()
+        seen, self.season = self.season, (season.year, season.index)
+        if seen is not None and seen != self.season:
+            return Need(garden.current, "season")
+        return None
