@@ -1,4 +1,7 @@
-"""User-facing text, loaded from assets/strings/<language>.toml (editable without code)."""
+"""User-facing text, loaded from assets/strings/<language>.toml (editable without code).
+
+On a touch screen (the kiosk: :func:`set_touch`) a text that names keys has its touch form: ``section.name``
+is read from the table ``[touch_section]`` when that has ``name`` (no "press G", no "(W)" on a kiosk)."""
 
 from __future__ import annotations
 
@@ -12,6 +15,7 @@ from arbor.game.paths import ASSETS
 STRINGS_DIR = ASSETS / "strings"
 _table: dict[str, dict[str, str]] = {}
 _language = ""
+_touch = False  # the texts for a touch screen (see module docstring)
 
 
 LANGUAGE = re.compile(r"[a-z]{2,3}([_-][A-Za-z]{2,4})?")  # a language's file name: en, fr, pt_BR, zh-Hans
@@ -41,12 +45,19 @@ def set_language(language: str = "en", folder: Path = STRINGS_DIR) -> str:
     return problem
 
 
+def set_touch(touch: bool) -> None:
+    """Use the touch forms of the texts (a kiosk: nobody has keys), or the keyboard's (the game)."""
+    global _touch
+    _touch = bool(touch)
+
+
 def text(key: str, **values) -> str:
-    """The text for 'section.name', with {placeholders} filled in."""
+    """The text for 'section.name' (its touch form on a touch screen), with {placeholders} filled in."""
     if not _table:
         set_language(_language or "en")
     section, _, name = key.partition(".")
-    template = _table.get(section, {}).get(name, key)
+    touch = _table.get(f"touch_{section}", {}) if _touch else {}
+    template = touch.get(name) or _table.get(section, {}).get(name, key)
     try:
         return template.format(**values)
     except (KeyError, IndexError, ValueError):

@@ -51,6 +51,7 @@ from arbor.game.screens.sharing import Sharing
 from arbor.game.screens.stack import ScreenStack
 from arbor.game.screens.state import GameState
 from arbor.game.screens.title import TitleScreen
+from arbor.game.strings import set_touch
 
 __all__ = ["Game", "GameConfig"]
 
@@ -61,6 +62,7 @@ class Game:
     def __init__(self, ctx: moderngl.Context, size: tuple[int, int], config: GameConfig | None = None,
                  clock=time.monotonic, wall_clock=time.time) -> None:
         self.config = config or GameConfig()
+        set_touch(False)  # (the keyboard's texts; the kiosk, a touch screen, turns its own on after this)
         self.size = size
         self.clock, self.wall_clock = clock, wall_clock
         self.rules = load_rules(self.config.rules, self.config.pace)

@@ -33,7 +33,7 @@ from arbor.game.screens.config import check_volume
 from arbor.game.screens.saves import VisitorSaves
 from arbor.game.screens.stack import Canvas, Screen
 from arbor.game.screens.title import TitleScreen
-from arbor.game.strings import set_language, text
+from arbor.game.strings import set_language, set_touch, text
 from arbor.game.watchdog import reading
 
 CORNER = 90  # px: the staff corner
@@ -191,6 +191,7 @@ class Kiosk:
             log.error("%s", language)
         self.make_game, self.config, self.saves, self.clock = make_game, config, saves, clock
         self.game = make_game()
+        set_touch(True)  # (no key names on a touch screen: "tap Go on", not "press G")
         if language:
             self.game.say(language, 12)
         self.game.set_speed(config.speed)
@@ -271,6 +272,7 @@ class Kiosk:
         except Exception:
             log.error("could not save while recovering:\n%s", traceback.format_exc())
         self.game = self.make_game()
+        set_touch(True)
         self.game.set_speed(self.config.speed)
         self._kiosk_volume()
         self.game.screens.push(self.screen)
