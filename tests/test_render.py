@@ -25,14 +25,14 @@ def ctx(gl_ctx):
 
 
 @pytest.fixture(scope="module")
-def pictures(ctx, lsys_dir):
+def pictures(lsys_dir):
     system = load_lsystem(lsys_dir / "abop_2_8_tree.lsys")
     tree = build_geometry(derive(system, 5), system).mesh
     empty = TreeMesh(Mesh.empty(), Mesh.empty(), Mesh.empty())
-    with_tree = render_image(tree, SIZE, ctx=ctx)
+    with_tree = render_image(tree, SIZE)  # (a context of its own: no GL state left by earlier tests)
     # same camera and light, tree not drawn: isolates the tree's pixels
-    without = render_image(tree_without_drawing(tree), SIZE, ctx=ctx)
-    blank = render_image(empty, SIZE, ctx=ctx)
+    without = render_image(tree_without_drawing(tree), SIZE)
+    blank = render_image(empty, SIZE)
     return with_tree, without, blank
 
 
