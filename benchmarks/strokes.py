@@ -3,7 +3,10 @@
 Run: python -m benchmarks.strokes
 Goal (issue 5): <= 16 ms for conversion and re-mesh together. Prints the median of 20 runs for a
 trunk stroke on an empty tree, and for a branch stroke that snaps onto (and is checked for collisions
-against) an already modeled tree of 8 strokes.
+against) an already modeled tree of 8 strokes. Then the jitter figures (issue 48): a straight stroke
+with 1 % jitter (5 seeds: how much longer its path is, the median and 90th percentile turn between
+pieces; goal: length within 2 %, median turn <= 2 deg) and clean bent strokes (their length and
+farthest stray from the drawn curve; goal: within 0.3 %).
 """
 
 from __future__ import annotations
@@ -27,6 +30,51 @@ def wavy(start, direction, length, n=RAW_POINTS, seconds=2.0, seed=0) -> Stroke:
     pts = (np.asarray(start) + u * length * np.asarray(direction) + np.sin(u * 5) * 0.3 * side
            + rng.normal(0, 0.002, (n, 3)))
     return Stroke(pts, np.linspace(0, seconds, n))
+
+
+def turns(path: np.ndarray) -> np.ndarray:
+    """The turn between consecutive pieces of a path (degrees)."""
+    d = np.diff(path, axis=0)
+    d /= np.linalg.norm(d, axis=1)[:, None]
+    return np.degrees(np.arccos(np.clip(np.einsum("ij,ij->i", d[1:], d[:-1]), -1.0, 1.0)))
+
+
+def path_length(path: np.ndarray) -> float:
+    """The length of a polyline."""
+    return float(np.linalg.norm(np.diff(path, axis=0), axis=1).sum())
+
+
+BENDS = {  # clean strokes with real bends, u in 0..1 (scene units)
+    "sine": lambda u: np.stack([1.5 * np.sin(2 * u), 4 * u, 0.5 * u * u], 1),
+    "quarter circle": lambda u: np.stack([2 * (1 - np.cos(u * np.pi / 2)), 2 * np.sin(u * np.pi / 2), 0 * u], 1),
+    "S": lambda u: np.stack([0.6 * np.sin(2 * np.pi * u), 4 * u, 0 * u], 1),
+    "hook": lambda u: np.stack([np.where(u < 0.5, 0.0, (u - 0.5) * 4) ** 2 * 0.5, 4 * u, 0 * u], 1),
+}
+
+
+def jitter_figures(seeds: int = 5, points: int = 120, piece: float = 0.25) -> dict:
+    """The jitter figures (see module docstring): ``straight`` (longer, median turn, 90th percentile turn)
+    per seed, and per bent stroke (its length's change, its farthest stray), both as fractions of its length."""
+    from arbor.engine.modeling.modeler import smooth_path
+
+    u = np.linspace(0, 1, points)
+    line = np.stack([0 * u, 4 * u, 0 * u], 1)
+    clean, _ = smooth_path(Stroke(line, u), piece)
+    straight = []
+    for seed in range(seeds):
+        shaky = line + np.random.default_rng(seed).normal(0, 0.01 * 4.0, line.shape)
+        path, _ = smooth_path(Stroke(shaky, u), piece)
+        t = turns(path)
+        straight.append((path_length(path) / path_length(clean) - 1, float(np.median(t)), float(np.percentile(t, 90))))
+    bends = {}
+    dense = np.linspace(0, 1, 4000)
+    for name, curve in BENDS.items():
+        path, _ = smooth_path(Stroke(curve(u), u), piece)
+        drawn = curve(dense)
+        stray = np.min(np.linalg.norm(path[:, None] - drawn[None], axis=2), axis=1).max()
+        full = path_length(drawn)
+        bends[name] = (path_length(path) / full - 1, float(stray / full))
+    return {"straight": straight, "bends": bends}
 
 
 def _remesh(modeler: Modeler) -> int:
@@ -63,6 +111,12 @@ def main() -> None:
     ms, (result, tris) = median_ms(onto_tree)
     print(f"branch stroke onto an 8-stroke tree (snapped: {result.snapped_to is not None}, "
           f"bypassed {result.bypassed} points) + mesh ({tris:,} triangles): {ms:.1f} ms median")
+    figures = jitter_figures()
+    for seed, (longer, median, p90) in enumerate(figures["straight"]):
+        print(f"straight stroke, 1 % jitter, seed {seed}: path {longer:+.2%} longer, median turn {median:.2f} deg, "
+              f"90th percentile {p90:.2f} deg (goal: within 2 %, median <= 2 deg)")
+    for name, (longer, stray) in figures["bends"].items():
+        print(f"clean {name}: length {longer:+.3%}, farthest stray {stray:.3%} of its length (goal: within 0.3 %)")
 
 
 if __name__ == "__main__":

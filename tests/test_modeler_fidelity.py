@@ -81,7 +81,9 @@ def drawn_tree(rng):
 
     modeler = Modeler()
     u = np.linspace(0, 1, 120)
-    modeler.add_stroke(Stroke(np.stack([0 * u, 3 * u, 0 * u], 1) + rng.normal(0, 0.02, (120, 3)),
+    # (the trunk leans a little towards the viewer, as drawn: a bend then turns it down that way, not
+    # towards whichever side its jitter happened to lean, since jitter no longer reads as a lean)
+    modeler.add_stroke(Stroke(np.stack([0 * u, 3 * u, 0.15 * u], 1) + rng.normal(0, 0.02, (120, 3)),
                               np.linspace(0, 1, 120)))
     for side in (-1, 1):
         path = np.stack([side * 2.2 * u, 2.0 + 1.2 * np.sin(np.pi * u), 0.4 * u], 1) + rng.normal(0, 0.02, (120, 3))

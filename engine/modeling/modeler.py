@@ -30,13 +30,13 @@ from arbor.engine.lsystem import brackets
 from arbor.engine.lsystem.lstring import LString, concat, parse_lstring
 from arbor.engine.lsystem.text import format_number
 from arbor.engine.modeling.history import Undoable
+from arbor.engine.modeling.smoothing import smoothed
 from arbor.engine.modeling.strokes import ArcLengthSpline, Stroke, adaptive_sample, curvature, speeds_at
 
 DRAWN = ord("F")
 GROWTH_POINT = ord("A")
 F_PARAMS = 11
 MAX_PIECES = 400  # pieces of one stroke at most (a longer stroke gets longer pieces)
-SMOOTH_WINDOW = 0.15  # of a stroke's points: the span the jitter filter fits a cubic over
 CHUNK_PAIRS = 250_000  # point x segment pairs held at once while bending a stroke around trunks
 
 
@@ -154,26 +154,11 @@ def _rot_y(deg: float) -> np.ndarray:
     return np.array([[c, 0.0, s], [0.0, 1.0, 0.0], [-s, 0.0, c]])
 
 
-def smoothed(points: np.ndarray, window: float = SMOOTH_WINDOW, order: int = 3) -> np.ndarray:
-    """The stroke without hand jitter, before eq. 1 reads its curvature: a Savitzky-Golay pass (a cubic
-    fitted over ``window`` of the stroke's points around each point), which keeps the drawn bends (a
-    cubic follows them) while tremor, which would read as curvature, averages out; the ends stay where
-    they were drawn (the start is where the stroke joins the tree)."""
-    from scipy.signal import savgol_filter  # here, not at start: importing scipy.signal costs ~1 s of CPU
-
-    n = len(points)
-    width = max(order + 2, int(window * n)) | 1
-    if n <= width:
-        return points
-    out = savgol_filter(points, width, order, axis=0, mode="interp")
-    out[0], out[-1] = points[0], points[-1]
-    return out
-
-
 def smooth_path(stroke: Stroke, piece: float, tolerance: float = 0.002) -> tuple[np.ndarray, np.ndarray]:
     """Key points by curvature, an arc-length spline through them, resampled every ``piece`` at most.
 
-    The stroke is smoothed first (``smoothed``). Where the curve bends, pieces get shorter so a chord
+    The stroke is smoothed first (engine/modeling/smoothing.py: jitter out, drawn bends kept). Where the
+    curve bends, pieces get shorter so a chord
     never strays more than ``tolerance`` x the stroke length from the curve (sagitta l^2 kappa / 8).
     Returns the path (m, 3) and the arc length
     of each path point along the spline.
