@@ -12,12 +12,12 @@ from __future__ import annotations
 
 import functools
 import math
-import tomllib
 from dataclasses import field, make_dataclass
 from pathlib import Path
 
 from arbor.engine.base.config import toml_position
 from arbor.engine.base.errors import LSysError, RulesError
+from arbor.engine.base.reader import read_user_toml
 from arbor.engine.life.rules.schema import SCHEMA, SECTION_DOCS, TABLE_MARKERS, Rule, find_rule, rules_table_markdown
 
 SECTIONS = tuple(SECTION_DOCS)
@@ -52,13 +52,7 @@ def load_rules(path: str | Path, pace: str | None = None, schema: tuple[Rule, ..
     wrong type or out of its range, or a bad pace is a RulesError naming the file, line and column."""
     path = Path(path)
     file = str(path)
-    try:
-        text = path.read_text(encoding="utf-8")
-        data = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as exc:
-        raise RulesError(f"not valid TOML: {exc}", file) from None
-    except (OSError, UnicodeDecodeError) as exc:
-        raise RulesError(f"cannot read: {exc}", file) from None
+    text, data = read_user_toml(path, RulesError)  # (the one reader of files a user can hand us: bounded)
     paces = data.pop("paces", {})
     chosen = pace or data.pop("pace", "demo")
     data.pop("pace", None)
@@ -141,7 +135,7 @@ def file_overrides(path: str | Path, schema: tuple[Rule, ...] = SCHEMA) -> list[
     """What a rules file sets, in its order: ``(table, key, value, default)``, ``table`` "" for the top level
     (the pace played at, default "demo") and ``"paces.NAME"`` for a pace, whose default is the schema's
     default at that pace's time scale (a pace's own ``time_scale`` defaults to 1)."""
-    data = tomllib.loads(Path(path).read_text(encoding="utf-8"))
+    _, data = read_user_toml(path, RulesError)
     found = [("", "pace", data["pace"], "demo")] if "pace" in data else []
     for table, values in data.items():
         if table in SECTIONS:
