@@ -24,13 +24,9 @@ import time
 from dataclasses import dataclass
 from pathlib import Path
 
-import numpy as np
-
-from arbor.engine.life.experiment.measure import measure, root_shoot
-from arbor.engine.life.experiment.schema import day_length_height, elevation_side, latitude_sun
+from arbor.engine.life.experiment.measure import measure, place_day_par, root_shoot
 from arbor.engine.life.plant import photosynthesis, solar
 from arbor.engine.life.plant.carbon import full_ppfd
-from arbor.engine.life.plant.sim import Simulation
 from arbor.engine.life.rules.rules import Rules, load_rules
 from arbor.engine.life.world.actions import Action
 from arbor.engine.life.world.world import World
@@ -73,23 +69,6 @@ def top_of_atmosphere(latitude: float, day: int, constant: float) -> float:
                                                            + math.cos(phi) * math.cos(dec) * math.sin(sunset))
 
 
-def game_par(latitude: float, day: int) -> float:
-    """The game's sun for a place and date (the lab's mapping onto the orbit's sliders): its PAR over one turn,
-    as MJ per m² in a real day."""
-    rules = Rules()
-    rules.seasons.enabled = False
-    hours, noon = latitude_sun(latitude, day)
-    rules.sun.side = elevation_side(noon, day_length_height(hours))
-    sim = Simulation(rules)
-    sim.set_orbit_height(day_length_height(hours))
-    angles = 2 * np.pi * (np.arange(2000) + 0.5) / 2000
-    total = 0.0
-    for angle in angles:
-        sim.state.sun_angle = float(angle)
-        total += sim.par()
-    return total / len(angles) * 86400 * 1e-6
-
-
 def sun_rows() -> list[Row]:
     """The model's clear sky against FAO-56 and the game's sun against the model's real sun."""
     rules = Rules().sun
@@ -104,7 +83,8 @@ def sun_rows() -> list[Row]:
                         solar.daily_global(lat, day, rules), 0.75 * toa, 0.75 * toa, f"{FAO} (TOA {toa:.1f})"))
     for lat in (0, 30, 60):
         real = solar.daily_par(lat, 172, rules)
-        rows.append(Row(f"the game's sun (lab place and date), {lat} N midsummer", "MJ PAR/m²/day", game_par(lat, 172),
+        rows.append(Row(f"the game's sun (lab place and date), {lat} N midsummer", "MJ PAR/m²/day",
+                        place_day_par(lat, 172),
                         real, real, "solar.daily_par of the real sun, same place and date"))
     return rows
 

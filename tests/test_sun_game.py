@@ -5,7 +5,8 @@ import math
 
 import pytest
 
-from arbor.engine.life.experiment.schema import day_length_height, elevation_side, latitude_sun
+from arbor.engine.life.experiment.measure import place_day_par
+from arbor.engine.life.experiment.schema import day_length_height, elevation_side
 from arbor.engine.life.plant import solar
 from arbor.engine.life.plant.sim import Simulation
 from arbor.engine.life.rules.rules import Rules
@@ -13,26 +14,10 @@ from arbor.engine.life.rules.rules import Rules
 MIDSUMMER = 172
 
 
-def game_day_par(latitude: float, day: int) -> float:
-    """The game's sun for a place and date (the lab's mapping: the day length sets the orbit's height, the noon
-    elevation its side), its PAR summed over one turn (MJ per m² in a real day's seconds)."""
-    rules = Rules()
-    rules.seasons.enabled = False
-    hours, noon = latitude_sun(latitude, day)
-    rules.sun.side = elevation_side(noon, day_length_height(hours))
-    sim = Simulation(rules)
-    sim.set_orbit_height(day_length_height(hours))
-    steps, total = 2000, 0.0
-    for k in range(steps):
-        sim.state.sun_angle = 2 * math.pi * (k + 0.5) / steps
-        total += sim.par()
-    return total / steps * 86400 * 1e-6
-
-
 def test_the_game_s_sun_sliders_give_the_real_sun_s_daily_light():
     rules = Rules().sun
     for lat in (0, 30, 60):
-        assert game_day_par(lat, MIDSUMMER) == pytest.approx(solar.daily_par(lat, MIDSUMMER, rules), rel=0.15)
+        assert place_day_par(lat, MIDSUMMER) == pytest.approx(solar.daily_par(lat, MIDSUMMER, rules), rel=0.15)
 
 
 def test_shade_dims_the_sun_and_keeps_the_day_length():
