@@ -12,7 +12,7 @@ import struct
 import zlib
 from pathlib import Path
 
-from arbor.engine.base.files import read_regular
+from arbor.engine.base.reader import read_user_bytes
 from arbor.engine.life.keep.save import MAX_BYTES, SavedGarden, garden_text, read_garden_bytes
 from arbor.engine.life.keep.save_check import SaveError
 from arbor.engine.life.plant.sim import Rules
@@ -41,12 +41,7 @@ def card_save_bytes(path: str | Path) -> bytes:
     """The save text a card at ``path`` carries, as bytes; a SaveError naming the file when it is not a
     PNG, carries no Arbor save, or its save is larger than a save may be."""
     path = Path(path)
-    try:
-        raw = read_regular(path, MAX_CARD_BYTES)
-    except OSError as exc:
-        raise _error(f"cannot read: {exc.strerror}", str(path)) from None
-    if len(raw) > MAX_CARD_BYTES:
-        raise _error(f"too large for a card (more than {MAX_CARD_BYTES:,} bytes)", str(path))
+    raw = read_user_bytes(path, MAX_CARD_BYTES, CardError)  # (the one reader: a regular file, size bounded)
     chunks = list(_chunks(raw, str(path)))  # every chunk to IEND, each length and CRC checked
     if chunks[0][0] != b"IHDR":
         raise _error("not a PNG picture (it does not start with its header chunk, IHDR)", str(path))
@@ -75,10 +70,17 @@ def plant_card(garden: Garden, shared: SavedGarden) -> World:
     return garden.adopt(world)
 
 
+class CardError(SaveError):
+    """A SaveError about a card as a picture: no line and column (it has none; the message names the byte
+    where it can)."""
+
+    def __init__(self, message: str, file: str = "<card>", line: int = 0, col: int = 0) -> None:
+        super().__init__(message, file, line, col)
+
+
 def _error(message: str, label: str) -> SaveError:
-    """A SaveError about the card ``label`` as a picture: no line and column (it has none; the message
-    names the byte where it can)."""
-    return SaveError(message, label, 0, 0)
+    """A :class:`CardError` about the card ``label``."""
+    return CardError(message, label)
 
 
 def _chunk(kind: bytes, data: bytes) -> bytes:
