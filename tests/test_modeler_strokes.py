@@ -5,8 +5,9 @@ also for a jittery mouse stroke drawn in the real game; figures from benchmarks.
 import numpy as np
 import pytest
 
+from arbor.game.input.events import DOWN, MOVE, UP
 from benchmarks.strokes import jitter_figures, path_length, turns
-from tests.test_modeler_tools import base_pixel, draw, press_menu
+from tests.test_modeler_tools import base_pixel, draw, press_menu, touch
 
 
 def test_one_percent_jitter_on_a_straight_stroke_is_smoothed_away_and_bends_are_kept():
@@ -41,3 +42,62 @@ def test_a_jittery_mouse_stroke_in_the_game_draws_as_straight_as_a_clean_one(mod
     print(f"mouse stroke, 1.5 px jitter, seed {seed}: {longer:+.2%} longer, median turn {turn:.2f} deg "
           f"(clean {float(np.median(turns(clean))):.2f})")
     assert abs(longer) <= 0.02 and turn <= 2.0
+
+
+def grown_segments(game):
+    ls = game.world.tree.lstring
+    segs = game.modeling.segments(ls)
+    return segs, ls.sym[segs.module] == ord("I")
+
+
+def first_drawn_start(game):
+    ls = game.world.tree.lstring
+    drawn = np.flatnonzero((ls.sym == ord("F")) & (ls.nparams == 11))
+    return ls.params[ls.offsets[drawn[0]] + 1:ls.offsets[drawn[0]] + 4]
+
+
+def test_a_branch_joins_a_grown_internode_where_it_was_pressed(modeler_game):
+    game = modeler_game(seed=3)
+    press_menu(game, "modeler")
+    segs, grown = grown_segments(game)
+    length = np.linalg.norm(segs.end - segs.start, axis=1)
+    k = int(np.argmax(np.where(grown & (segs.start[:, 1] > 0.3), length, 0)))  # the longest grown internode
+    middle = (segs.start[k] + segs.end[k]) / 2
+    x, y = game.hud.project(game.camera(), tuple(middle))
+    before = {tuple(np.round(p, 6)) for p in np.r_[segs.start[grown], segs.end[grown]]}
+    draw(game, [(x + 5 * i, y - 3 * i) for i in range(25)])
+    start = first_drawn_start(game)
+    assert np.linalg.norm(start - middle) < 0.1 * length[k]  # at the pressed point, not the internode's end
+    assert "joined the tree" in game.hud_info().message
+    segs, grown = grown_segments(game)
+    after = {tuple(np.round(p, 6)) for p in np.r_[segs.start[grown], segs.end[grown]]}
+    assert before <= after and len(after) == len(before) + 1  # the internode split there, the sapling as it was
+
+
+def test_a_stroke_started_in_the_air_moves_onto_the_tree_as_it_is_drawn(modeler_game):
+    game = modeler_game(seed=3)
+    press_menu(game, "modeler")
+    camera = game.camera()
+    facing = camera.target - camera.eye
+    side = np.cross([0.0, 1.0, 0.0], facing / np.linalg.norm(facing))
+    side[1] = 0.0
+    side /= np.linalg.norm(side)
+    air = np.array([0.0, 0.8, 0.0]) + 1.2 * side  # 1.2 m beside the sapling's trunk, on the drawing plane
+    x, y = game.hud.project(camera, tuple(air))
+    points = [(x + 5 * i, y - 4 * i) for i in range(25)]
+    touch(game, DOWN, 0, *points[0])
+    for p in points[1:]:
+        game.clock_box[0] += 0.06
+        touch(game, MOVE, 0, *p)
+        if p == points[12]:  # drawn part way: the ring shows the joint on the trunk, the preview starts there
+            joint = game.modeling.joint
+            assert joint is not None and np.abs(joint[[0, 2]]).max() < 0.1
+    touch(game, UP, 0, *points[-1])
+    start = first_drawn_start(game)
+    assert np.abs(start[[0, 2]]).max() < 0.1 and 0.3 < start[1] < 1.3  # it starts on the trunk ...
+    ls = game.world.tree.lstring
+    drawn = np.flatnonzero((ls.sym == ord("F")) & (ls.nparams == 11))
+    drawn_length = float(ls.params[ls.offsets[drawn]].sum())
+    assert drawn_length < 1.2  # ... with no 1.2 m connector piece
+    message = game.hud_info().message
+    assert "m to start on the tree" in message and ("moved 1.1" in message or "moved 1.2" in message), message

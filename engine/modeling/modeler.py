@@ -88,6 +88,7 @@ class StrokeResult:
     snap_point: np.ndarray | None = None  # where the stroke joins the tree (the joint point, Onishi et al. 2003)
     merged: bool = False  # a trunk drawn from the foot of a grown sapling, which now grows on top of it
     bypassed: int = 0  # samples moved to avoid a collision
+    moved: float = 0.0  # how far a stroke started in the air was moved to start on the tree (scene units, m)
     text: str = ""
 
 
@@ -389,14 +390,12 @@ class Modeler(Undoable):
             return self._trunk_under(path, widths, growth, 2 * float(segs.radius[base[0]]), result)
         on_ground = path[0][1] <= cfg.snap_distance and dist > cfg.snap_distance + segs.radius[k]
         if not on_ground:  # every stroke off the ground belongs to the tree: join the nearest branch
-            if not self._is_drawn(int(segs.module[k])):
-                frac = 1.0  # grown internodes take branches at their joints
-            snap = segs.start[k] + frac * (segs.end[k] - segs.start[k])
+            snap = segs.start[k] + frac * (segs.end[k] - segs.start[k])  # where it was pressed, on any piece
             if dist <= cfg.snap_distance + segs.radius[k]:
                 path = path + np.linspace(1.0, 0.0, len(path))[:, None] * (snap - path[0])  # ease onto the axis
-            else:
-                path = np.concatenate([[snap], path])  # a connecting piece from the branch to the stroke
-                widths = np.concatenate([widths[:1], widths])
+            else:  # started in the air: the stroke, as drawn, moves to start on the tree (the preview shows it)
+                result.moved = float(np.linalg.norm(snap - path[0]))
+                path = path + (snap - path[0])
             result.snapped_to, result.snap_point = int(segs.module[k]), snap
             widths = np.minimum(widths, 2 * segs.radius[k] * 0.9)  # no thicker than the stem at the joint
             skip[k] = True
@@ -457,12 +456,21 @@ class Modeler(Undoable):
 
 
 def _branch_at(ls: LString, module: int, frac: float, body: str) -> LString:
-    """Insert ``[body]`` at ``frac`` along module ``module``: drawn pieces are split there; any other
-    module (a grown internode, whose size comes from its age) gets the branch at its end."""
+    """Insert ``[body]`` at ``frac`` along module ``module``: drawn pieces are split there, and so are
+    grown internodes ``I(b,g,o,s,w[,n])`` (whose length is ``n`` pieces' at their age: the two halves
+    keep ``frac`` and ``1 - frac`` of the pieces, so they draw as the one did and grow on alike); any
+    other module gets the branch at its end."""
     sym, params = ls.module(module)
     index = np.arange(len(ls))
+    if sym == "I" and len(params) in (5, 6) and 1e-6 < frac < 1 - 1e-6:
+        pieces = params[5] if len(params) == 6 else 1.0
+        first, second = [*params[:5], pieces * frac], [*params[:5], pieces * (1 - frac)]
+        mid = parse_lstring(f"I({_fmt(first)})[{body}]I({_fmt(second)})")
+        return concat(ls.select(index < module), mid, ls.select(index > module))
     if not (sym == "F" and len(params) == F_PARAMS):
-        return concat(ls.select(index <= module), parse_lstring(f"[{body}]"), ls.select(index > module))
+        at_start = sym == "I" and frac <= 1e-6
+        return concat(ls.select(index < module if at_start else index <= module), parse_lstring(f"[{body}]"),
+                      ls.select(index >= module if at_start else index > module))
     first, second = list(params), list(params)
     length = params[0]
     first[0] = length * frac

@@ -271,6 +271,8 @@ class ModelingMode(ToolChoice, HistoryTold):
                 return
             how = text("messages.stroke_merged" if result.merged else "messages.stroke_joined"
                        if result.snapped_to is not None else "messages.stroke_new")
+            if result.moved:  # (started in the air: the preview showed it moved onto the tree)
+                how += ", " + text("messages.stroke_moved", distance=result.moved)
             if result.bypassed:
                 how += ", " + text("messages.stroke_bent", count=result.bypassed)
             self.state.say(text("messages.stroke", pieces=counted(result.pieces, "piece"),
