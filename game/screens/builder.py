@@ -31,10 +31,10 @@ from arbor.engine.life.experiment.builder import (
 )
 from arbor.engine.life.experiment.sweep import runs
 from arbor.engine.life.experiment.sweep_file import load_sweep
-from arbor.game.input.events import DOWN, KEY_DOWN, QUIT, InputEvent
+from arbor.game.input.events import DOWN, InputEvent
 from arbor.game.paths import ASSETS
 from arbor.game.render.renderer import Overlay
-from arbor.game.screens.stack import Screen
+from arbor.game.screens.stack import Screen, quit_asked
 
 ROW_H, PAD, LEFT = 58, 10, 250  # pixels: a row of buttons, the gap between buttons, the labels' column
 INK, PAPER, ON, OFF = (245, 245, 240), (236, 236, 228), (70, 120, 60), (60, 66, 60)
@@ -174,10 +174,8 @@ class BuilderScreen(Screen):
     # -- the screen -------------------------------------------------------------------------------------
     def handle(self, e: InputEvent) -> InputEvent | None:
         """Taps on the buttons; a quit (the window's close, or Esc) is left over."""
-        if e.kind == QUIT:
-            return e
-        if e.kind == KEY_DOWN and e.key == pygame.K_ESCAPE:
-            return InputEvent(QUIT, e.t, e.device)
+        if (asked := quit_asked(e)) is not None:
+            return asked
         if e.kind == DOWN and e.dims == 2:
             for action, rect in list(self.buttons.items()):
                 if rect.collidepoint(e.x, e.y):

@@ -18,14 +18,14 @@ import pygame
 
 from arbor.engine.life.experiment.lab import Lab, save_stem
 from arbor.engine.life.keep.save import SavedGarden, write_garden
-from arbor.game.input.events import DOWN, KEY_DOWN, QUIT, InputEvent
+from arbor.game.input.events import DOWN, KEY_DOWN, InputEvent
 from arbor.game.loop import SPEEDS, FixedStepLoop
 from arbor.game.render.camera import OrbitCamera
 from arbor.game.render.charts import COLORS, draw_charts
 from arbor.game.render.figures import lab_charts
 from arbor.game.render.plot_scene import PlotScene, tree_state
 from arbor.game.render.renderer import Overlay, TreeRenderer, save_png
-from arbor.game.screens.stack import Screen
+from arbor.game.screens.stack import Screen, quit_asked
 
 SCENE_FRACTION = 0.55
 BUTTON_H = 56
@@ -59,10 +59,8 @@ class LabScreen(Screen):
 
     def handle(self, e: InputEvent) -> InputEvent | None:
         """Taps on the buttons, keys 0-3 and E; a quit (the window's close, or Esc) is left over."""
-        if e.kind == QUIT:
-            return e
-        if e.kind == KEY_DOWN and e.key == pygame.K_ESCAPE:
-            return InputEvent(QUIT, e.t, e.device)
+        if (asked := quit_asked(e)) is not None:
+            return asked
         if e.kind == DOWN and e.dims == 2:
             for name, rect in self.buttons.items():
                 if rect.collidepoint(e.x, e.y):

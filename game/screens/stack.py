@@ -18,9 +18,20 @@ from collections.abc import Callable, Iterator
 from dataclasses import dataclass
 from typing import Any
 
-from arbor.game.input.events import QUIT, InputEvent
+import pygame
+
+from arbor.game.input.events import KEY_DOWN, QUIT, InputEvent
 
 TAP = "tap"  # an event kind the screens make themselves: a quick press and release at (x, y)
+
+
+def quit_asked(e: InputEvent) -> InputEvent | None:
+    """The quit a window's event asks for (the window's close, or Esc in a window of its own), else None."""
+    if e.kind == QUIT:
+        return e
+    if e.kind == KEY_DOWN and e.key == pygame.K_ESCAPE:
+        return InputEvent(QUIT, e.t, e.device)
+    return None
 
 
 @dataclass(frozen=True)
