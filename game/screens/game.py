@@ -50,7 +50,7 @@ from arbor.game.screens.saves import SaveKeeper
 from arbor.game.screens.sharing import Sharing
 from arbor.game.screens.stack import ScreenStack
 from arbor.game.screens.state import GameState
-from arbor.game.screens.title import TitleScreen
+from arbor.game.screens.title import TitleScreen, box_corners
 from arbor.game.strings import set_touch
 
 __all__ = ["Game", "GameConfig"]
@@ -81,6 +81,7 @@ class Game:
         self.translator = PygameTranslator(size)
         self.screens = ScreenStack()  # (the garden at the bottom, then whatever is up over it)
         self.title = TitleScreen(size)
+        self.title.subject = lambda: box_corners(self.renderer.lo, self.renderer.hi)  # (kept clear of the tree)
         self.state = state = GameState(self.loop, self.control, clock, self.rules)
         state.sprouts = self.config.sprout
         state.gardening = lambda: self.sound.prefs.gardener

@@ -32,7 +32,7 @@ from arbor.game.screens.attract import AttractShow
 from arbor.game.screens.config import check_volume
 from arbor.game.screens.saves import VisitorSaves
 from arbor.game.screens.stack import Canvas, Screen
-from arbor.game.screens.title import TitleScreen
+from arbor.game.screens.title import TitleScreen, box_corners
 from arbor.game.strings import set_language, set_touch, text
 from arbor.game.watchdog import reading
 
@@ -334,12 +334,18 @@ class Kiosk:
         self.game.sound.use(self.config.volume)
         self.game.care.sync_sliders()
 
-    def draw_attract(self, surface: pygame.Surface) -> None:
-        """While the attract loop plays, the title over the garden playing behind it."""
+    def draw_attract(self, canvas: Canvas | pygame.Surface) -> None:
+        """While the attract loop plays, the title over the garden playing behind it (clear of the crown
+        when ``canvas`` is the game's: its camera says where the tree is)."""
         if self.attract is not None:
+            surface = canvas.surface if isinstance(canvas, Canvas) else canvas
             if self.title is None or self.title.size != surface.get_size():
                 self.title = TitleScreen(surface.get_size(), prompt=text("kiosk.attract"))
-            self.title.paint(surface)
+                self.title.subject = lambda: box_corners(self.game.renderer.lo, self.game.renderer.hi)
+            if isinstance(canvas, Canvas):
+                self.title.draw(canvas)
+            else:
+                self.title.paint(surface)
 
 
 class KioskScreen(Screen):
@@ -362,7 +368,7 @@ class KioskScreen(Screen):
 
     def draw(self, canvas: Canvas) -> None:
         """The attract loop's title (see :meth:`Kiosk.draw_attract`)."""
-        self.kiosk.draw_attract(canvas.surface)
+        self.kiosk.draw_attract(canvas)
 
     def key(self) -> tuple:
         """Whether the attract loop plays."""
