@@ -32,11 +32,18 @@ def test_a_restored_tree_is_the_tree_as_it_was_saved(gl_ctx, tmp_path):
     clock.t += 600.0
     game = _game(gl_ctx, tmp_path, clock)
     assert game.world.sim.state.length_time < 77.0  # the sapling (it lived the ten minutes)
-    game.act(Action.RESTORE, 1.0)
+    game.act(Action.RESTORE, 1.0)  # the first press shows what each kept autosave holds
+    preview = game.state.shown_message()
+    assert game.world.sim.state.length_time < 77.0 and preview.startswith("Autosaves kept: 1) 10 min ago"), preview
+    assert "tree 1 alive, 77 s old, water 48 %" in preview and "bring back 1" in preview, preview
+    game.act(Action.RESTORE, 1.0)  # the second, within 5 s, brings it back
     s = game.world.sim.state
     assert s.length_time == 77.0, "Restore did not bring the replaced tree"
     assert s.alive and abs(s.water_meter - WATER) < 1e-6, (s.alive, s.water_meter)
     shown = game.state.shown_message()
+    clock.t += 6.0  # a press after a pause shows the list again: it never restores at once
+    game.act(Action.RESTORE, 1.0)
+    assert game.state.shown_message().startswith("Autosaves kept") and game.world.sim.state.length_time == 77.0
     assert "10 min" in shown and "alive" in shown and "48 %" in shown and "77 s old" in shown, shown
 
 

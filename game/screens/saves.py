@@ -95,6 +95,15 @@ class SaveKeeper:
             self.state.say(self.start_message, 10)
         return garden
 
+    def peek(self, path: Path) -> SavedGarden | None:
+        """The save at ``path`` as it was saved, for a preview (no catch-up, nothing set aside; None when
+        it cannot be read: Restore then says so when it is chosen)."""
+        try:
+            with reading(path):
+                return read_garden(path, self.rules)
+        except Exception:  # (a preview never breaks the game: the restore itself reports the error)
+            return None
+
     def _legacy_trees(self, path: Path, have: int) -> list[World]:
         """Trees from garden-*.arbor files of older versions (one tree each), when loading the autosave."""
         if path != self.autosave_path:
