@@ -186,8 +186,9 @@ def pipe_area(ls: LString, segs: Segments, const: dict[str, float], ends: np.nda
 
 def radii(ls: LString, segs: Segments, clocks: Clocks, const: dict[str, float]) -> np.ndarray:
     """Radii: the built wood or the pipe area, whichever is larger; drawn pieces (the modeler's strokes
-    and crowns, whose widths already follow the pipe law below them) keep their drawn width. Internodes
-    from before the living tree (three parameters) thicken with age instead."""
+    and crowns) are as wide as drawn or as the pipe model needs for what they carry, whichever is larger
+    (a drawn width is a floor, not a cap: a trunk drawn thin under a big crown thickens as a tree's
+    would). Internodes from before the living tree (three parameters) thicken with age instead."""
     module = segs.module
     count = ls.nparams[module]
     grown = (ls.sym[module] == INTERNODE) & (count >= 3)
@@ -198,23 +199,23 @@ def radii(ls: LString, segs: Segments, clocks: Clocks, const: dict[str, float]) 
     legacy = grown & (count < 5)
     rings = np.where(legacy, const["GMAX"] * saturate(clocks.girth_time - girth_birth, const["GT"]), 0.0)
     radius = np.sqrt(np.maximum(pipes * (1.0 + rings), wood))
-    drawn = (ls.sym[module] == ord("F")) & (count == 11)  # modeler pieces: the width the user drew (or the
-    out = np.where(grown, radius, np.where(drawn, segs.radius, np.maximum(radius, segs.radius)))  # crown's)
+    drawn = (ls.sym[module] == ord("F")) & (count == 11)  # modeler pieces: as drawn, or the pipes' width
+    out = np.where(grown, radius, np.maximum(np.where(drawn, np.sqrt(pipes), radius), segs.radius))
     return _capped_by_drawn(ls, segs, out, grown, drawn)
 
 
 def _capped_by_drawn(ls: LString, segs: Segments, radius: np.ndarray, grown: np.ndarray,
                      drawn: np.ndarray) -> np.ndarray:
     """Wood grown on a drawn piece (the sapling above a trunk drawn from its foot, branches from a
-    stroke's growth points) no wider than the piece where it starts: each such grown sub-tree is scaled
-    as a whole (the pipe law holds within it), so a crown's pipes never make the wood above a thin
-    drawn trunk swell past it. The innermost grown sub-tree's own scale wins."""
+    stroke's growth points) no wider than the piece where it starts (as wide as drawn, or as its pipes
+    need: :func:`radii`): each such grown sub-tree is scaled as a whole (the pipe law holds within it).
+    The innermost grown sub-tree's own scale wins."""
     parent = segs.parent
     roots = np.flatnonzero(grown & (parent >= 0) & drawn[np.maximum(parent, 0)])
     if len(roots) == 0:
         return radius
     below = parent[roots]
-    cap = np.minimum(segs.radius[below], segs.radius_end[below])
+    cap = radius[below]
     scale = np.minimum(1.0, cap / np.maximum(radius[roots], 1e-12))
     stops = np.searchsorted(segs.module, brackets.branch_ends(ls.sym, segs.module[roots]))
     factor = np.ones(len(radius))
