@@ -55,7 +55,13 @@ def water(level):
     return set_water
 
 
-ROWS = [  # (what, scripted state, the status's key, the water hint shown)
+def sun(level):
+    def set_sun(g):
+        g.world.sim.state.sun_meter = level(g.rules)
+    return set_sun
+
+
+ROWS = [  # (what, scripted state, the status's key, the hint shown)
     ("day, comfortable", lambda g: None, "growing", False),
     ("late winter rests", winter_blend, "winter", False),
     ("night under the dark sky of 1x", night, "resting", False),
@@ -65,6 +71,8 @@ ROWS = [  # (what, scripted state, the status's key, the water hint shown)
     ("water between comfortable and the need line: no hint", water(lambda r: need_line(r) + 0.05), "growing", False),
     ("water down to the need line: the can's hint", water(lambda r: need_line(r) - 0.01), "growing", True),
     ("water at the threshold: thirsty", water(lambda r: r.growth.threshold - 0.01), "thirsty", True),
+    ("sun between comfortable and the need line: no hint", sun(lambda r: need_line(r) + 0.05), "growing", False),
+    ("sun down to the need line: the sun's hint", sun(lambda r: need_line(r) - 0.01), "growing", "sun"),
 ]
 
 
@@ -75,7 +83,10 @@ def test_the_hud_says_what_the_state_is(game, what, script, key, hint):
     info = game.hud.hud_info()
     expected = text(f"status.{key}", hold="", fruit=2)
     assert info.status == expected, (what, info.status)
-    assert (info.hint == text("hints.water")) == hint, (what, info.hint)
+    if hint:
+        assert info.hint == text("hints.sun" if hint == "sun" else "hints.water"), (what, info.hint)
+    else:
+        assert info.hint not in (text("hints.water"), text("hints.sun")), (what, info.hint)
     if key == "dead_fruit":
         assert "2 fruit" in info.status
 

@@ -1,8 +1,7 @@
 """What the game tells a player besides the meters: first-run hints, gentle reminders, the journal.
 
 Hints teach the three things a new player must find (water, sun, turning the view), one at a time,
-each shown only while it applies (the water meter down to the need line, the sun meter below comfortable,
-the tree alive)
+each shown only while it applies (the water meter or the sun meter down to the need line, the tree alive)
 and gone once the player has done it. Reminders are one calm line about what is worth doing now (rain, ripe fruit,
 seeds to sow, another tree in need). New journal entries of any tree are announced as they happen;
 the menu's journal page lists the cared-for tree's milestones by day.
@@ -12,7 +11,7 @@ from __future__ import annotations
 
 import math
 
-from arbor.engine.life.world.status import fruit_count, water_low
+from arbor.engine.life.world.status import fruit_count, sun_low, water_low
 from arbor.engine.life.world.world import World
 from arbor.game.screens.state import GameState
 from arbor.game.strings import text
@@ -53,15 +52,13 @@ class Coach:
 
     def applies(self, what: str) -> bool:
         """Whether hint ``what`` fits the cared-for tree now: water while its meter is down to the need line
-        and the can is not pouring, sun while the sun meter is below comfortable; none on a dead tree."""
-        s = self.state.world.sim.state
-        comfort = self.state.rules.health.comfort
-        if not s.alive:
+        and the can is not pouring, sun while the sun meter is down to the need line; none on a dead tree."""
+        if not self.state.world.sim.state.alive:
             return False
         if what == "water":  # (only when the water is low: engine/life/world/status.py)
             return water_low(self.state.world)
         if what == "sun":
-            return s.sun_meter < comfort
+            return sun_low(self.state.world)
         return True
 
     def watch(self) -> None:

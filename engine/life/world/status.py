@@ -9,9 +9,10 @@ growth hold) and the tree (its fruit, the light its leaves catch) and returns th
     not earned yet) > resting (only under a dark sky) > needs_light (leaves in the shade, by day) > growing.
 
 Beside it, the lines the HUD shows only while they are true: :func:`water_low` (the can's hint: the water
-meter down to the need line, the can not pouring) and :func:`need_line` (where a thirst is worth a word:
-the guardian's stop and the warning it says are about water below it, never above it).
-The HUD and the kiosk (which plays the game's HUD) both take their status from here.
+meter down to the need line, the can not pouring), :func:`sun_low` (the sun's hint, likewise) and
+:func:`need_line` (where a thirst is worth a word: the guardian's stop and the warning it says are about water
+below it, never above it). The HUD and the kiosk (which plays the game's HUD) both take their status from
+here.
 """
 
 from __future__ import annotations
@@ -41,6 +42,12 @@ def water_low(world: World) -> bool:
     can is not pouring."""
     s = world.sim.state
     return s.alive and not s.watering and s.water_meter <= need_line(world.rules)
+
+
+def sun_low(world: World) -> bool:
+    """Whether the sun's hint applies: a living tree whose sun meter is down to the need line."""
+    s = world.sim.state
+    return s.alive and s.sun_meter <= need_line(world.rules)
 
 
 def _wilting(world: World) -> str:
