@@ -6,7 +6,8 @@ Prints the median of 20 runs for: stitching the lobes from 5 closed strokes each
 from a drawn trunk into ~5,000 attractors, and writing the skeleton as L-string text; then, for hand-
 drawn (1 % jitter) trees and lobes grown as the game grows them (12,000 modules, a leaf per tip, the
 game's radii): each lobe's fill (share of its volume within a tenth of its size from the wood), the
-drawn trunk's width after the crown over its drawn width, and the time. With --game: three lobes
+drawn trunk's width after the crown over its drawn width, and the time; six lobes round a drawn tree
+(issue 48: each lobe's fill, goal >= 85 %). With --game: three lobes
 drawn by a shaky hand (1.5 px) in the real game, headless (EGL), each crown's time as the game reports
 it, the lobes' fill, and a screenshot (PNG, default /tmp/three_lobes_game.png).
 """
@@ -104,6 +105,28 @@ def game_cases(grow=None, repeat: int = 3) -> dict[str, tuple[list[float], float
     return out
 
 
+SIX = {  # six lobes round a tree (issue 48): (x, y) centres, outline half-width and half-height (m)
+    "6 lobes (0.9 m) round a drawn tree": ([(-2.6, 3.6), (-1.4, 5.2), (0.0, 6.0), (1.4, 5.2), (2.6, 3.6),
+                                             (0.0, 4.2)], 0.9, 0.7),
+    "6 small lobes (0.55 m) round a drawn tree": ([(-2.6, 3.2), (-1.6, 4.6), (0.0, 5.4), (1.6, 4.6), (2.6, 3.2),
+                                                    (0.0, 3.6)], 0.55, 0.45),
+}
+
+
+def six_lobe_cases() -> dict[str, tuple[list[float], float]]:
+    """Six lobes round a tree drawn with three branches, with the game's budget: each lobe's fill, ms."""
+    out = {}
+    for name, (spots, rx, ry) in SIX.items():
+        rng = np.random.default_rng(11)
+        modeler = drawn_tree([(-2.2, 3.4), (2.2, 3.4), (0.0, 4.8)], rng)
+        lobes = [_outline_lobe((x, y, 0.1), rx, ry, rng) for x, y in spots]
+        start = time.perf_counter()
+        grown, _, _ = grow_within(modeler.lstring, lobes, GAME_BUDGET - len(modeler.lstring), 5, game_segments,
+                                  LEAF_TIP)
+        out[name] = (lobe_fill(lobes, game_segments(grown)), (time.perf_counter() - start) * 1e3)
+    return out
+
+
 def in_game(png: str) -> None:
     """Three outlines drawn with the crown tool in the real game (touch events, 1.5 px jitter)."""
     import os
@@ -169,6 +192,8 @@ def main() -> None:
           " have not yet entered a lobe; none once inside)")
     ms, text = median_ms(lambda: skeleton_text(skeleton))
     print(f"skeleton -> L-string: {ms:.1f} ms, {len(text)} characters")
+    for name, (fill, ms) in six_lobe_cases().items():
+        print(f"{name}: fill {' '.join(f'{f:.0%}' for f in fill)}, {ms:.0f} ms (goal: each >= 85 %)")
     for name, (fill, width, ms) in game_cases().items():
         print(f"{name}: fill {' '.join(f'{f:.0%}' for f in fill)}, drawn trunk width x{width:.2f}, {ms:.0f} ms")
 

@@ -247,14 +247,16 @@ def grow_crown(modeler: Modeler, lobes: list[Lobe], rng: np.random.Generator, pe
 
 
 def _bridged(skeleton: Skeleton, lobes: list[Lobe], step: float) -> Skeleton:
-    """The skeleton with a straight axis grown to every lobe that no node is in or within ``step`` of:
+    """The skeleton with a straight axis grown to every lobe that no node is in (a node just outside a
+    lobe, in a neighbouring lobe, cannot grow into it: a branch never leaves the lobe it is in, so the
+    top one of six lobes round a tree filled 28 %, with the axis 86 %):
     from the node nearest to the lobe to a point a quarter of the way from the lobe's nearest surface
     point to its centre, in pieces of about ``step``; only the axis' tip grows on (an empty lobe far from
     the wood is filled from its own entry, not starved by the crown next to it)."""
     for lobe in lobes:
         pos = skeleton.position
         gap, near = _kdtree(lobe.vertices).query(pos)
-        if lobe.contains(pos).any() or gap.min() <= step:
+        if lobe.contains(pos).any():
             continue
         node = int(np.argmin(gap))
         surface_point = lobe.vertices[near[node]]
