@@ -11,7 +11,6 @@ import math
 from collections.abc import Callable
 from dataclasses import dataclass
 
-from arbor.engine.life.keep.generations import generations
 from arbor.engine.life.rules.rules import Rules
 from arbor.engine.life.world.actions import Action
 from arbor.engine.life.world.commands import Replant
@@ -23,19 +22,14 @@ from arbor.game.screens.coach import Coach
 from arbor.game.screens.config import PlayerSettings
 from arbor.game.screens.family import FamilyScreen
 from arbor.game.screens.modeler import ModelingMode
+from arbor.game.screens.restoring import Restorer
 from arbor.game.screens.saves import SaveKeeper
 from arbor.game.screens.state import GameState
-from arbor.game.strings import duration, text
+from arbor.game.strings import text
 
 CONFIRM_SECONDS = 5.0  # a destructive key asks once; a second press within this long confirms
 
 Handler = Callable[[float], None]
-
-
-def tree_line(index: int, s) -> str:
-    """Tree ``index`` (from 0) in a few words: alive or dead, its age, its water (a restored garden's)."""
-    life = text("messages.alive" if s.alive else "messages.dead")
-    return text("messages.restored_tree", number=index + 1, life=life, age=duration(s.time), water=100 * s.water_meter)
 
 
 def pressed(handler: Callable[[], None]) -> Handler:
@@ -68,8 +62,7 @@ class CareActions:
         self.wall_clock = parts.wall_clock
         self.crossing = None  # the mother of a cross, while the player picks the father
         self.replant_asked, self.replant_at = None, 0.0  # the tree a first Replant press asked about, and when
-        self.restored = 0  # the autosave generation Restore brought back last (0: none)
-        self.restore_at: float | None = None  # when Restore was last pressed (a press soon after acts)
+        self.restoring = Restorer(state, self.keeper, self.wall_clock, self.sync_sliders)
         state.on_halt.append(self.sync_sliders)
         tool = lambda switch: pressed(lambda: self._tool(switch))  # noqa: E731
         self.handlers: dict[Action, Handler] = {
@@ -154,44 +147,8 @@ class CareActions:
             self.state.say(text("messages.loaded"))
 
     def restore(self) -> None:
-        """Settings -> Restore: the first press shows each kept autosave (its age, its tree alive or dead, its
-        water); a press within CONFIRM_SECONDS of the last plays the next older generation (autosave.1.arbor,
-        then .2 ...), the garden as it was when it was saved (the time it lay in the backup is not lived: a
-        restored tree comes back as it was, not dead of ten minutes' thirst)."""
-        state, path = self.state, self.keeper.autosave_path
-        kept = generations(path)
-        if not kept:
-            state.say(text("messages.no_generations"), 5)
-            return
-        now, last = state.clock(), self.restore_at
-        self.restore_at = state.clock()
-        if last is None or now - last > CONFIRM_SECONDS:  # the first press shows what each one holds
-            state.say(self.preview(kept), CONFIRM_SECONDS + 5)
-            return
-        self.restored = self.restored % len(kept) + 1
-        chosen = kept[self.restored - 1]
-        garden = self.keeper.load(chosen, catch_up=False)
-        if garden is not None:
-            state.use(garden)
-            self.sync_sliders()
-            age = max(self.wall_clock() - self.keeper.saved_at, 0.0)  # (the file's time is its copy's)
-            state.say(text("messages.restored", when=duration(age), n=self.restored, count=len(kept),
-                           tree=tree_line(state.garden.current, state.world.sim.state)), 10)
-
-    def preview(self, kept: list) -> str:
-        """One line: each kept autosave's age and its cared-for tree (alive or dead, age, water), and which
-        one the next press of Restore brings back."""
-        items = []
-        for n, path in enumerate(kept, 1):
-            saved = self.keeper.peek(path)
-            if saved is None:
-                items.append(text("messages.restore_unreadable", n=n))
-                continue
-            at = saved.saved_at if saved.saved_at is not None and math.isfinite(saved.saved_at) else math.nan
-            when = duration(max(self.wall_clock() - at, 0.0)) if math.isfinite(at) else "?"
-            items.append(text("messages.restore_item", n=n, when=when,
-                              tree=tree_line(saved.current, saved.world.sim.state)))
-        return text("messages.restore_preview", items="; ".join(items), next=self.restored % len(kept) + 1)
+        """Settings -> Restore: the kept autosaves listed, then brought back as saved (restoring.py)."""
+        self.restoring.press()
 
     def _roots(self) -> None:
         self.state.cutaway = not self.state.cutaway
