@@ -288,7 +288,8 @@ REDRAWS = 5  # title screen frames a second at most (a warm start's CPU went to 
 
 def show_until_ready(ctx, size: tuple[int, int], extra=None, beat=None, stop=None) -> bool:
     """Show the title screen while the kernels warm up on a thread (and ``extra`` runs after them);
-    False when the player closed the window meanwhile, or ``stop()`` became true (a stop signal).
+    False when the player closed the window meanwhile, or ``stop()`` became true (a stop signal). Keys
+    pressed meanwhile are given back to the window's queue: the game's first frame gets them.
     ``beat(now)`` is called every frame (a watchdog's heartbeat: a first start that compiles for minutes
     on a slow machine is alive, not hung)."""
     import pygame
@@ -297,9 +298,12 @@ def show_until_ready(ctx, size: tuple[int, int], extra=None, beat=None, stop=Non
     warm = Warmup(extra)
     line = FIRST_START + "..." if warm.cold else "waking the garden..."
     first, shown, shown_at = True, None, 0.0
+    kept = []  # keys pressed meanwhile: given back to the window's queue for the game (never lost)
     while not warm.done:
-        if any(e.type == pygame.QUIT for e in pygame.event.get()) or (stop is not None and stop()):
+        events = pygame.event.get()
+        if any(e.type == pygame.QUIT for e in events) or (stop is not None and stop()):
             return False
+        kept += [e for e in events if e.type in (pygame.KEYDOWN, pygame.KEYUP)]
         now = time.perf_counter()
         if beat is not None:
             beat(now)
@@ -313,6 +317,8 @@ def show_until_ready(ctx, size: tuple[int, int], extra=None, beat=None, stop=Non
                 first = False
         clock.tick(30)
     warm.result()
+    for event in kept:
+        pygame.event.post(event)
     screen.draw(1.0, "planting the garden...")
     pygame.display.flip()
     if first:
