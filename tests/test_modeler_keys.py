@@ -40,6 +40,9 @@ def trunk(game):
 def test_esc_leaves_the_modeler_and_the_next_esc_asks_before_quitting(game):
     press_menu(game, "modeler")
     assert game.modeling.active
+    game.tap(500, 300)  # the menu's tools page, over the modeler
+    assert game.menu.visible
+    assert key(game, pygame.K_ESCAPE) is not False and not game.menu.visible and game.modeling.active  # closes it
     assert key(game, pygame.K_ESCAPE) is not False and not game.modeling.active  # back in the garden
     assert "Esc again" in game.hud_info().message
     assert key(game, pygame.K_ESCAPE) is not False  # asks ...

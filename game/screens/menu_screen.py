@@ -1,7 +1,7 @@
 """The tap menu as a screen of the game's stack (game/screens/stack.py): up while the menu is shown
 (:class:`~arbor.game.render.ui.Menu` tells it when it opens and closes). It takes the presses on its
-widgets, the wheel, a 3D mouse's turn and the camera keys (the view holds still under it), and a tap,
-which closes it; a press elsewhere is a gesture that moves nothing (only its tap counts), except on a
+widgets, the wheel, a 3D mouse's turn and the camera keys (the view holds still under it), and a tap or
+Esc, which closes it; a press elsewhere is a gesture that moves nothing (only its tap counts), except on a
 control of a screen below (the modeler's tool bar), which gets the press."""
 
 from __future__ import annotations
@@ -44,7 +44,7 @@ class MenuScreen(Screen):
         """See module docstring."""
         if e.kind in (WHEEL, ROTATE) or (e.kind == KEY_DOWN and e.key in CAMERA_KEYS):
             return None
-        if e.kind == TAP:
+        if e.kind == TAP or (e.kind == KEY_DOWN and e.key == pygame.K_ESCAPE):  # (Esc closes it, nothing more)
             self._act(self.menu.hide())
             return None
         if e.kind not in (DOWN, MOVE, UP) or e.dims != 2:

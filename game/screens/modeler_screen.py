@@ -4,10 +4,11 @@ draws; a second pointer turns the stroke into a camera gesture, passed down to t
 strokes, the presses on its tool bar and the taps (a cut or a region edit with their tools, else the menu's
 tools page opens there); it draws the tools' outlines, the symbols' overlay and the tool bar.
 
-Keys in the modeler: Esc leaves it (back to the garden, where the next Esc asks before quitting),
-Ctrl+Z undoes, Ctrl+Y or Ctrl+Shift+Z redoes, F frames the tree and its lobes (the view never re-frames
-by itself while a tool is in use). Other Ctrl combinations are the modeler's too (none reaches the
-garden's one-letter keys); the rest go down to the garden (arrows turn the view, +/- zoom)."""
+Keys in the modeler: Esc leaves it (the menu's screen above takes an Esc that closes it; back in the
+garden, the next Esc asks before quitting), Ctrl+Z undoes, Ctrl+Y or Ctrl+Shift+Z redoes, F frames the tree and its
+lobes (the view never re-frames by itself while a tool is in use). Other Ctrl combinations are the
+modeler's too (none reaches the garden's one-letter keys); the rest go down to the garden (arrows turn
+the view, +/- zoom)."""
 
 from __future__ import annotations
 
