@@ -57,8 +57,8 @@ PAGES = {
     "care": [["orbit_height"], ["sun_speed"], ["water", "speed"], ["garden", "tools", "settings", "journal"]],
     "garden": [["plant", "sow"], ["cross", "family"], ["next", "replant"], ["rock", "import", "back"]],
     "tools": [["modeler", "crown", "shape"], ["prune", "symbols", "edit"], ["undo", "redo", "back"]],
-    "settings": [["save", "load", "share"], ["restore", "roots", "devices"], ["volume"],
-                 ["mute", "away", "gardener", "back"]],
+    "settings": [["save", "load", "share"], ["restore", "roots", "devices"], ["volume"], ["away", "gardener"],
+                 ["mute", "back"]],
     "journal": [["back"]],
 }
 ICONS = {"orbit_height": "sun", "sun_speed": "clock", "water": "can", "speed": "clock", "garden": "sapling",
