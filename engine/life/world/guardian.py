@@ -131,7 +131,7 @@ def decisions_of(world: World) -> list[str]:
     s = world.sim.state
     if not s.alive:
         return ["died"]
-    return ["dying"] if s.wilt > 0.5 else []
+    return ["dying"] if s.wilt > world.rules.health.wilt_shown else []
 
 
 class Gardener:

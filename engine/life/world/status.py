@@ -70,7 +70,7 @@ def tree_status(world: World, dark: bool | None = None) -> str:
         return "drowning"
     if s.water_meter <= rules.growth.threshold:
         return "thirsty"
-    if s.wilt > 0.5:
+    if s.wilt > rules.health.wilt_shown:
         return _wilting(world)
     day = sim.sunshine() > 0
     if s.sun_meter <= rules.growth.threshold and day:
