@@ -94,8 +94,8 @@ def derive_budget(system: LSystem, source: TreeSource, most: int | None = None) 
 
 def _watched(step, progress, asked: int, budget: int, after: Callable[[int], float]):
     """``step`` (a Deriver's) reporting to ``progress`` after each step: seconds so far, and an estimate of
-    the whole: the steps left at the last step's time grown as the string grows (at most to ``budget``
-    modules and DERIVE_SECONDS), then ``after(modules)``, the stages that follow (meshing, writing)."""
+    the whole: the steps left at the last step's time grown as the string grows (up to ``budget`` modules;
+    within DERIVE_SECONDS), then ``after(modules)``, the stages that follow (meshing, writing)."""
     started, taken = time.perf_counter(), [0]
 
     def watched(ls, *args, **kwargs):
@@ -105,11 +105,12 @@ def _watched(step, progress, asked: int, budget: int, after: Callable[[int], flo
         last, now = time.perf_counter() - begun, time.perf_counter() - started
         growth = max(report.modules_out / max(report.modules_in, 1), 1.0)
         modules, left = float(report.modules_out), 0.0
-        for _ in range(asked - taken[0]):
-            if modules >= budget:
-                break
-            modules, last = min(modules * growth, budget), last * growth
+        for _ in range(asked - taken[0]):  # (at the budget a step still takes its time: it grows no more)
+            if modules < budget:
+                modules, last = min(modules * growth, budget), last * growth
             left += last
+            if left >= DERIVE_SECONDS:
+                break
         left = min(left, max(DERIVE_SECONDS - now, 0.0))
         progress.to(now, f"deriving: step {taken[0]} of {asked:,}", total=now + left + after(int(modules)))
         return result, report
