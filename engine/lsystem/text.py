@@ -2,7 +2,8 @@
 
 The text is ABOP-style, ``F(5)[+(25.7)F(2.5)]``. Trees repeat their numbers (constants, angles,
 birth times), so both ways work on the distinct numbers: each is formatted once (and parsed once in
-each part of the text read), and the rest is gathering bytes. Equal values are grouped with a small hash table probed by numpy, not by sorting.
+each part of the text read), and the rest is gathering bytes. Equal values are grouped with a small hash
+table probed by numpy, not by sorting.
 """
 
 from __future__ import annotations
