@@ -19,7 +19,7 @@ import numpy as np
 
 from arbor.engine.life.plant import seasons, solar
 from arbor.engine.life.plant.seasons import Season, raining, season_at
-from arbor.engine.life.rules.rules import GrowthRules, Rules, load_rules
+from arbor.engine.life.rules.rules import GrowthRules, Rules, clamp_orbit, load_rules
 from arbor.engine.life.rules.schema import find_rule
 
 __all__ = ["GrowthCycle", "Rules", "SimState", "Simulation", "load_rules"]
@@ -147,14 +147,12 @@ class Simulation:
         return v / np.linalg.norm(v)
 
     def set_orbit_height(self, value: float) -> None:
-        """Slider: height of the orbit centre, clamped to the rules' range."""
-        r = self.rules.sun
-        self.state.orbit_height = min(max(value, r.orbit_height_min), r.orbit_height_max)
+        """Slider: height of the orbit centre, clamped to the rules' range (rules.clamp_orbit)."""
+        self.state.orbit_height = clamp_orbit(self.rules.sun, value, self.state.sun_speed)[0]
 
     def set_sun_speed(self, value: float) -> None:
-        """Slider: the sun's angular speed, clamped to the rules' range."""
-        r = self.rules.sun
-        self.state.sun_speed = min(max(value, r.speed_min), r.speed_max)
+        """Slider: the sun's angular speed, clamped to the rules' range (rules.clamp_orbit)."""
+        self.state.sun_speed = clamp_orbit(self.rules.sun, self.state.orbit_height, value)[1]
 
     def replant(self, rng: np.random.Generator) -> None:
         """The sapling button: a new tree; meters refilled to a random level in the rules' range."""
