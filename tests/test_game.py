@@ -196,7 +196,7 @@ def test_meters_and_growth_under_the_rules(game):
     s = game.world.sim.state
     assert s.time == pytest.approx(100.0, abs=0.2)
     assert s.sun_cycle.earned >= 1 and s.length_time > t0
-    assert len(game.world.tree.lstring) > modules0 and game.world.sim.status() == "growing"
+    assert len(game.world.tree.lstring) > modules0 and game.world.status() == "growing"
 
 
 def test_slow_frame_does_not_spiral(game):

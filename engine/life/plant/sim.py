@@ -275,32 +275,3 @@ class Simulation:
         hold = self.rules.growth.hold_time
         left = [hold - c.above for c in (self.state.sun_cycle, self.state.water_cycle) if c.rate == 0]
         return max([0.0, *left])
-
-    def status(self, dark: bool | None = None) -> str:
-        """A short word for the HUD from ONE ranking of the tree's real state, the first that holds:
-        dead > drowning > thirsty > wilting (starving when its leaves cannot feed it, recovering when it
-        is cared for again) > needs_light (only by day) > winter > starting (growth not earned yet) >
-        resting (a night whose sky is dark: ``dark``, or the sun below the horizon when not given) >
-        growing."""
-        s, rules = self.state, self.rules
-        threshold = rules.growth.threshold
-        if not s.alive:
-            return "dead"
-        if s.drowning > rules.water.drown_time or (s.water_meter > rules.water.drown_level and s.drowning > 0):
-            return "drowning"
-        if s.water_meter <= threshold:
-            return "thirsty"
-        day = self.sunshine() > 0
-        if s.wilt > rules.health.wilt_shown:
-            if self.starving > rules.carbon.starve_time:
-                return "starving"
-            return "wilting" if s.sun_meter < rules.health.neglect_level else "recovering"
-        if s.sun_meter <= threshold and day:
-            return "needs_light"
-        if self.season().index == 3 and seasons.growth_factor(s.sun_turns, rules) == 0:
-            return "winter"
-        if self.settle_left() > 0:
-            return "starting"
-        if (not day) if dark is None else dark:
-            return "resting"
-        return "growing"
