@@ -127,8 +127,8 @@ def test_arbor_opens_a_window(tmp_path):
     assert pixels.std() > 20
     green = (pixels[..., 1] > pixels[..., 0] + 15) & (pixels[..., 1] > pixels[..., 2] + 15)
     assert green.mean() > 0.2
-    title = pixels[500:780, 200:300].min(axis=2)  # x, y: the window opens on the title screen (issue 29)
-    assert (title > 235).mean() > 0.05  # the name's pale letters over the garden
+    title = pixels[500:780, :432].min(axis=2)  # x, y: the window opens on the title screen (issue 29), its
+    assert (title > 235).mean() > 0.03  # name's pale letters over the sky or the ground (clear of the crown)
     assert (tmp_path / "saves" / "autosave.arbor").exists()  # saved on quit
 
 

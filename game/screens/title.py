@@ -122,5 +122,5 @@ def _band(surface: pygame.Surface, top: float, height: float) -> None:
     band = pygame.Surface((1, rows), pygame.SRCALPHA)
     for r in range(rows):
         middle = 1.0 - abs(2.0 * r / max(rows - 1, 1) - 1.0)
-        band.set_at((0, r), (*BAND, int(150 * min(middle * 1.6, 1.0))))
+        band.set_at((0, r), (*BAND, int(85 * min(middle * 1.6, 1.0))))
     surface.blit(pygame.transform.scale(band, (w, rows)), (0, int(top)))
