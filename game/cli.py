@@ -277,33 +277,45 @@ def _add_growth_args(p: argparse.ArgumentParser, saves: bool = False) -> None:
                    help=f"module budget, at most {MAX_BUDGET:,} (default: the file's budget:, else {DEFAULT_BUDGET:,})")
 
 
-def _add_global_options(parser: argparse.ArgumentParser, here: bool) -> None:
-    """The options every command takes, anywhere on the line (``arbor -q render X`` and ``arbor render X -q``,
-    as git and pip accept theirs). ``here``: the top-level parser, which holds the defaults; a subcommand's
-    copies default to SUPPRESS, so an option given before the subcommand is not reset by the subcommand."""
-    group = parser.add_argument_group("options of every command (before or after the command)")
+WINDOWS = ("view", "lab")  # subcommands with a window of their own: they take the input options too
 
-    def add(*flags: str, **kw) -> None:
+
+def _add_global_options(parser: argparse.ArgumentParser, here: bool, inputs: bool = True) -> None:
+    """The options of every command, anywhere on the line (``arbor -q render X`` and ``arbor render X -q``,
+    as git and pip accept theirs): --saves, -q and -v; with ``inputs`` the input options of a window (TUIO,
+    recording, replay). ``here``: the top-level parser (the game), which holds the defaults and the game's own
+    options (--pace, --kiosk, --windowed); a subcommand's copies default to SUPPRESS, so an option given
+    before the subcommand is not reset by the subcommand."""
+    group = parser.add_argument_group("options of every command (before or after the command)")
+    own = parser.add_argument_group("options of the window") if here or inputs else None
+
+    def add(*flags: str, into=group, **kw) -> None:
         if not here:
             kw["default"] = argparse.SUPPRESS
-        group.add_argument(*flags, **kw)
+        into.add_argument(*flags, **kw)
 
     add("--saves", type=Path, default=None, metavar="DIR",
         help="folder for save files (default: saves/ in a checkout, else ~/.local/share/arbor/saves)")
-    add("--tuio", action="store_true", default=False, help="accept TUIO 1.1 touch over UDP")
-    add("--tuio-host", default="127.0.0.1", metavar="ADDRESS", help="address to listen on for TUIO (default 127.0.0.1)")
-    add("--tuio-port", type=_bounded(1, 65535, "--tuio-port"), default=3333, metavar="PORT",
-        help="UDP port to listen on for TUIO (default 3333, TUIO's own)")
-    add("--record", type=Path, default=None, metavar="FILE", help="record this session's input to a file")
-    add("--replay", type=Path, default=None, metavar="FILE", help="replay recorded input")
-    add("--pace", choices=("home", "demo"), default=None,
-        help="home: a day of the sun lasts a day (default); demo: 2-minute days, as in the thesis")
-    add("--kiosk", action="store_true", default=False, help="unattended touchscreen mode (see assets/kiosk.toml)")
-    add("--windowed", action="store_true", default=False, help="with --kiosk: a window instead of fullscreen")
     add("-q", "--quiet", action="store_true", default=False, help="say nothing but errors: no report of what was "
         "written, no progress, no first-start notice (errors still say one line)")
     add("-v", "--verbose", action="store_true", default=False, help="each step of a long run (every finished "
         "sweep run) and the time taken")
+    if own is None:
+        return
+    add("--tuio", into=own, action="store_true", default=False, help="accept TUIO 1.1 touch over UDP")
+    add("--tuio-host", into=own, default="127.0.0.1", metavar="ADDRESS",
+        help="address to listen on for TUIO (default 127.0.0.1)")
+    add("--tuio-port", into=own, type=_bounded(1, 65535, "--tuio-port"), default=3333, metavar="PORT",
+        help="UDP port to listen on for TUIO (default 3333, TUIO's own)")
+    add("--record", into=own, type=Path, default=None, metavar="FILE", help="record this session's input to a file")
+    add("--replay", into=own, type=Path, default=None, metavar="FILE", help="replay recorded input")
+    if not here:
+        return
+    add("--pace", into=own, choices=("home", "demo"), default=None,
+        help="home: a day of the sun lasts a day (default); demo: 2-minute days, as in the thesis")
+    add("--kiosk", into=own, action="store_true", default=False,
+        help="unattended touchscreen mode (see assets/kiosk.toml)")
+    add("--windowed", into=own, action="store_true", default=False, help="with --kiosk: a window instead of fullscreen")
 
 
 EPILOG = """examples:
@@ -430,8 +442,8 @@ def build_parser() -> argparse.ArgumentParser:
     sub.add_parser("watchdog", help="arbor watchdog ARGS...: keep `arbor ARGS...` running (restarts it when it "
                    "crashes or hangs; for kiosks: arbor watchdog --kiosk; arbor watchdog --help says more)")
     _add_global_options(parser, here=True)
-    for command in sub.choices.values():
-        _add_global_options(command, here=False)
+    for name, command in sub.choices.items():
+        _add_global_options(command, here=False, inputs=name in WINDOWS)
     parser.add_argument("--version", action="version", version=f"arbor {_version()}")
     return parser
 

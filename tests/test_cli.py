@@ -122,3 +122,22 @@ def test_a_teachers_command_without_matplotlib_says_what_to_install(tmp_path, ca
     assert main(["sweep", str(toml), "--out", str(tmp_path / "o")]) == 1
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 2 and all("pip install 'arbor-trees[lab]'" in line for line in err)
+
+
+def test_a_command_s_help_lists_only_the_options_it_takes(capsys):
+    """-q, -v and --saves go with every command; the window's input options (TUIO, recording, replay) with
+    the windows (the game, view, lab); the game's own (--pace, --kiosk, --windowed) with the game alone."""
+    from arbor.game.cli import build_parser
+
+    parser = build_parser()
+    for command, shown, hidden in (("compare", ("--saves", "-q"), ("--tuio", "--kiosk", "--record")),
+                                   ("view", ("--tuio", "--replay"), ("--kiosk", "--pace"))):
+        with pytest.raises(SystemExit):
+            parser.parse_args([command, "--help"])
+        out = capsys.readouterr().out
+        assert all(flag in out for flag in shown) and not any(flag in out for flag in hidden), out
+    assert parser.parse_args(["view", "x.lsys", "--tuio"]).tuio is True
+    assert parser.parse_args(["--kiosk", "--windowed"]).kiosk is True
+    with pytest.raises(SystemExit) as exit_:
+        parser.parse_args(["render", "x.lsys", "--kiosk"])
+    assert exit_.value.code == 2
