@@ -114,12 +114,27 @@ def test_a_run_that_differs_from_the_references_is_found(folders, tmp_path):
     assert said[1] == "frank: 4 runs; of the 2 with a seed alice ran too, 1 identical to alice's, 1 differ"
 
 
+def _edited_level(text: str) -> str:
+    """The tidy table with its first row's first factor cell changed to a level the sweep never ran."""
+    lines = text.splitlines()
+    cells = lines[1].split(",")
+    cells[2] = "0.777"
+    return "\n".join([lines[0], ",".join(cells), *lines[2:]]) + "\n"
+
+
+def test_one_folder_given_twice_is_refused(folders, tmp_path):
+    with pytest.raises(UserError, match="given twice"):
+        compare([folders["alice"], folders["bob"], folders["alice"]], tmp_path / "class", plots=False)
+
+
 @pytest.mark.parametrize("damage, words", [
     (lambda f: (f / "tidy.csv").unlink(), "no tidy.csv: the sweep is not finished"),
     (lambda f: (f / "sweep.toml").unlink(), "no sweep.toml"),
     (lambda f: (f / "tidy.csv").write_text("run,seed\nrun00000,1\n"), "tidy.csv:1:1: the columns are not"),
     (lambda f: (f / "tidy.csv").write_text((f / "tidy.csv").read_text().replace(",1,", ",one,", 1)),
      "tidy.csv:2:1: 'seed' is not a number"),
+    (lambda f: (f / "tidy.csv").write_text(_edited_level((f / "tidy.csv").read_text())),
+     "tidy.csv:2:1: .* is none of the sweep's levels"),
 ])
 def test_a_broken_folder_is_one_line_naming_it(folders, tmp_path, damage, words):
     broken = tmp_path / "gina"

@@ -20,7 +20,7 @@ from pathlib import Path
 
 from arbor.engine.base.errors import LSysError, SweepError
 from arbor.engine.base.reader import read_user_text
-from arbor.engine.life.experiment.sweep import Sweep, final_values
+from arbor.engine.life.experiment.sweep import Sweep, cell, final_values
 from arbor.engine.life.experiment.sweep_file import load_sweep
 from arbor.game import report
 from arbor.game.commands.sweep_runs import write_atomic
@@ -74,6 +74,17 @@ def read_student(folder: Path, name: str) -> Student:
     if not rows:
         raise SweepError("no rows", str(tidy), 1, 1)
     return Student(name, folder, sweep, rows)
+
+
+def check_levels(student: Student) -> None:
+    """Every row's factor cells are levels its sweep ran (an edited table could name one it never ran); else
+    one line naming the file and the row."""
+    levels = {f.name: {cell(level) for level in f.levels} for f in student.sweep.factors}
+    for line, row in enumerate(student.rows, 2):
+        for name, known in levels.items():
+            if row[name] not in known:
+                raise UserError(f"{student.folder / 'tidy.csv'}:{line}:1: {name!r} = {row[name][:40]!r} is none of "
+                                "the sweep's levels (an edited table?); run the sweep again")
 
 
 def differences(sweep: Sweep, other: Sweep) -> list[str]:
@@ -139,11 +150,18 @@ def compare(folders: list[Path], out: Path, plots: bool = True,
     returns the files written. Refuses (UserError) folders of another experiment, by name."""
     if not 2 <= len(folders) <= MAX_FOLDERS:
         raise UserError(f"arbor compare takes 2 to {MAX_FOLDERS} sweep folders (got {len(folders)})")
+    seen: dict[Path, Path] = {}
+    for folder in folders:  # (one folder twice would count its runs twice in the class's spread)
+        if folder.resolve() in seen:
+            raise UserError(f"{folder}: given twice (as {seen[folder.resolve()]} too); give each student's folder once")
+        seen[folder.resolve()] = folder
     try:
         students = [read_student(f, n) for f, n in zip(folders, _names(folders), strict=True)]
     except LSysError as err:
         raise UserError(str(err)) from None
     check_same(students)
+    for student in students:
+        check_levels(student)
     if out.exists() and not out.is_dir():
         raise UserError(f"{out}: is a file; give a folder for --out")
     out.mkdir(parents=True, exist_ok=True)
