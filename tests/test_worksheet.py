@@ -41,7 +41,7 @@ def test_a_sweep_lessons_sheet_has_every_part_and_a_key_from_its_run(tmp_path):
     assert "Day length (h)" in empty and ">kg<" in empty and "<path" in empty  # the axes, with units
     assert "mean over the seeds" not in empty and "mean over the seeds" in key  # no answer on the sheet's chart
     assert "What changes: Day length (h), at 6, 10, 14, 18." in page and "grows 8 seeds" in page
-    assert "1 seeds (the lesson&#x27;s file has 8)" in page and "shortened" in page
+    assert "1 seed (the lesson&#x27;s file has 8)" in page and "shortened" in page
     rows = list(csv.DictReader(io.StringIO((tmp_path / "light_runs" / "tidy.csv").read_text(encoding="utf-8"))))
     last = {r["Day length"]: float(r["biomass"]) for r in rows}  # (rows in time order: the last sample wins)
     cells = re.findall(r"<tr><td>([^<]+)</td><td>([^<]+)</td>", page)

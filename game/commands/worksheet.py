@@ -131,7 +131,8 @@ def sweep_setup(sweep: Sweep, seeds: int, day: float) -> list[str]:
     if base.prune is not None:
         shared.append(f"pruned every {base.prune.every_days:g} game days")
     return [f"What changes: {axis_label(factor)}, at {levels}.",
-            f"Every level grows {seeds} seed{'' if seeds == 1 else 's'} (the same seeds at each level) for {sweep.duration / day:.0f} game days "
+            f"Every level grows {seeds} seed{'' if seeds == 1 else 's'} (the same seeds at each level) for "
+            f"{sweep.duration / day:.0f} game days "
             f"({sweep.duration:g} s of game time).",
             *([f"Every tree has {', '.join(shared)}."] if shared else []),
             f"What is measured: {', '.join(sweep.responses)} (docs/columns.md)."]
@@ -181,8 +182,8 @@ def sweep_answer(sheet: Sheet, sweep: Sweep, rows: list[dict], seeds_of_lesson: 
     x = [float(v) if not isinstance(v, str) else k for k, v in enumerate(factor.levels)] \
         if any(isinstance(v, str) for v in factor.levels) else [float(v) for v in factor.levels]
     points = {"mean": (x, means[sheet.response], [list(finals[(v,)][sheet.response]) for v in factor.levels])}
-    run = (f"{len(sweep.seeds)} seed{'' if len(sweep.seeds) == 1 else 's'} (the lesson's file has {seeds_of_lesson}), the full {sweep.duration / day:.0f} "
-           "game days")
+    run = (f"{len(sweep.seeds)} seed{'' if len(sweep.seeds) == 1 else 's'} (the lesson's file has {seeds_of_lesson}), "
+           f"the full {sweep.duration / day:.0f} game days")
     return Answer(header, table, sentences, run, points)
 
 
