@@ -101,3 +101,31 @@ def test_the_view_stays_while_a_tool_is_in_use_and_f_frames_it(game):
     lobe = game.modeling.crown_tool.state().lobes[0].vertices
     pixels = np.array(game.hud.project_many(framed, lobe))
     assert len(pixels) == len(lobe) and (pixels[:, 0] < game.modeling.bar.rect.left).all()  # the lobe in view
+
+
+def test_the_can_let_go_with_ctrl_held_stops_pouring(game):
+    """W down, Ctrl down, W up, Ctrl up in the modeler: the garden hears W go up and the can stops."""
+    press_menu(game, "modeler")
+    key(game, pygame.K_w)
+    assert game.world.sim.state.watering
+    key(game, pygame.K_LCTRL)
+    key(game, pygame.K_w, up=True)
+    key(game, pygame.K_LCTRL, up=True)
+    assert not game.world.sim.state.watering
+
+
+def test_a_stroke_cut_off_by_leaving_the_modeler_leaves_no_finger_down(game):
+    """Leaving the modeler in the middle of a stroke (the attract loop, a lost focus): the next time a
+    finger draws, it draws."""
+    from arbor.game.input.events import DOWN, MOVE
+    from tests.test_modeler_tools import touch
+
+    press_menu(game, "modeler")
+    x0, y0 = base_pixel(game)
+    touch(game, DOWN, 0, x0, y0)
+    touch(game, MOVE, 0, x0, y0 - 40)
+    game.modeling.toggle()  # left with the finger still down
+    press_menu(game, "modeler")
+    before = game.world.tree.lstring
+    trunk(game)
+    assert game.world.tree.lstring is not before

@@ -87,10 +87,8 @@ class ModelerScreen(Screen):
         ctrl = bool(self.held.intersection(CTRL_KEYS)) or bool(mods & (pygame.KMOD_CTRL | pygame.KMOD_META))
         shift = bool(self.held.intersection(SHIFT_KEYS)) or bool(mods & pygame.KMOD_SHIFT)
         if e.kind != KEY_DOWN:
-            return None if ctrl else e
+            return e  # (a release always reaches the garden: W let go with Ctrl held stops the can)
         if e.key == pygame.K_ESCAPE:
-            self.stroke_pointer = None
-            self.modeling.cancel_points()
             self.modeling.toggle(leave_key=True)
             self.left()
             return None
@@ -106,11 +104,14 @@ class ModelerScreen(Screen):
         return e
 
     def close(self) -> None:
-        """Leave the stack with the tool bar let go (the press on Done closes it before its release)."""
+        """Leave the stack with the tool bar let go (the press on Done closes it before its release) and no
+        stroke half drawn (its pointer would stay a finger down for good)."""
         super().close()
         self.bar_pointers.clear()
         self.held.clear()
         self.modeling.bar.release()
+        self.stroke_pointer = None
+        self.modeling.cancel_points()
 
     def holds(self, x: float, y: float) -> bool:
         """The tool bar: a press on it reaches it through the open menu."""
