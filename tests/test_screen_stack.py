@@ -188,6 +188,18 @@ def test_the_modeler_family_and_title_are_screens_of_the_stack(game):
     assert names(game) == ["GameInput"] and not game.menu.visible
 
 
+def test_a_screen_opens_under_those_of_a_higher_layer():
+    log = []
+    garden, kiosk, menu, pin = (Layer(n, log) for n in ("garden", "kiosk", "menu", "pin"))
+    kiosk.layer, pin.layer = 2, 3
+    stack = ScreenStack(garden, kiosk)
+    stack.push(menu)  # a visitor's menu opens under the kiosk's own layer
+    assert [s.name for s in stack] == ["garden", "menu", "kiosk"]
+    stack.push(pin)
+    stack.push(menu)  # opened again: still under the kiosk and the pad
+    assert [s.name for s in stack] == ["garden", "menu", "kiosk", "pin"]
+
+
 def test_the_kiosk_pin_pad_is_a_screen_over_the_game(gl_ctx, tmp_path):
     from arbor.game.screens.game import Game, GameConfig
     from arbor.game.screens.kiosk import Kiosk, KioskConfig
@@ -204,6 +216,8 @@ def test_the_kiosk_pin_pad_is_a_screen_over_the_game(gl_ctx, tmp_path):
     assert not kiosk.game.menu.visible
     press(kiosk.game, *kiosk.pin_pad.keys["cancel"].center, clock.t, pointer=2)
     assert kiosk.pin_pad is None and names(kiosk.game) == ["GameInput", "KioskScreen"]
+    kiosk.game.tap(600, 200)  # a visitor opens the menu: the kiosk's layer stays over it
+    assert kiosk.game.menu.visible and names(kiosk.game)[-1] == "KioskScreen"
 
 
 def test_input_routing_reads_no_visibility_flags():

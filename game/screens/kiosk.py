@@ -115,6 +115,8 @@ class PinPad(Screen):
     """A big on-screen keypad; returns True from :meth:`tap` when the right PIN was entered. On the game's
     screen stack it takes every press and calls ``on_right`` for the right PIN; Cancel takes it down."""
 
+    layer = 3  # (over everything: the staff's PIN takes every press)
+
     def __init__(self, size: tuple[int, int], pin: str, lock: PinLock | None = None, clock=time.monotonic,
                  font: pygame.font.Font | None = None, on_right=None) -> None:
         self.pin, self.entered, self.wrong = pin, "", False
@@ -352,6 +354,8 @@ class KioskScreen(Screen):
     """The kiosk's screen, over the game's: keys and window-close do nothing (only the staff PIN quits), a
     press held in the top-left corner is watched (it brings up the PIN pad, pushed over this), and the
     attract loop's title is drawn."""
+
+    layer = 2  # (the kiosk's own layer stays over a menu or the modeler a visitor opens)
 
     def __init__(self, kiosk: Kiosk) -> None:
         self.kiosk = kiosk

@@ -9,7 +9,8 @@ stack, bottom first: the garden (game_input.py), the modeler (modeler_screen.py)
 (menu_screen.py), the family tree (family.py), the title (title.py), the kiosk's own layers (kiosk.py);
 the lab's window is a stack with the lab screen alone (game/app.py).
 
-Nothing here knows pygame or the game: a screen is anything with ``handle``, ``update`` and ``draw``.
+Nothing here knows the game: a screen is anything with ``handle``, ``update`` and ``draw``; a screen's
+``layer`` keeps the kiosk's layers over what opens after them (a menu, the modeler).
 """
 
 from __future__ import annotations
@@ -49,6 +50,7 @@ class Screen:
     nothing; a screen overrides what it does."""
 
     covers = False  # drawn in place of every screen below it (those are not drawn)
+    layer = 0  # a screen opens on top of those of its layer and lower, under any of a higher layer
     stack: ScreenStack | None = None  # the stack it is pushed on (set by push; a screen opens itself on it)
 
     def handle(self, e: InputEvent) -> InputEvent | None:
@@ -96,11 +98,14 @@ class ScreenStack:
             self.push(screen)
 
     def push(self, screen: Screen) -> Screen:
-        """Put ``screen`` on top (a screen already on the stack moves to the top); returns it."""
+        """Put ``screen`` on top of the screens of its ``layer`` and lower, under any of a higher layer (the
+        kiosk's own layers stay over a menu opened after them); a screen already on the stack
+        moves there. Returns it."""
         if screen in self._screens:
             self._screens.remove(screen)
         screen.stack = self
-        self._screens.append(screen)
+        at = next((i for i, s in enumerate(self._screens) if s.layer > screen.layer), len(self._screens))
+        self._screens.insert(at, screen)
         return screen
 
     def pop(self, screen: Screen | None = None) -> Screen | None:
