@@ -104,3 +104,18 @@ def test_a_sweep_built_saved_reopened_and_run_with_the_mouse_alone(gl_ctx, tmp_p
     rows = list(csv.DictReader(io.StringIO((tmp_path / "results" / "my_sweep" / "tidy.csv").read_text())))
     assert {r["Time between drinks"] for r in rows} == {"60", "240"} and {r["seed"] for r in rows} == {"1"}
     assert load_sweep(path, LSYS).seeds == [1]  # Run saved the change first
+
+
+def test_a_save_that_cannot_be_written_keeps_the_draft_and_says_why(gl_ctx, tmp_path):
+    from arbor.game.commands.sweep import run_sweep
+    from arbor.game.input.events import DOWN, InputEvent
+    from arbor.game.screens.builder import BuilderScreen
+    from arbor.game.screens.stack import ScreenStack
+
+    path = tmp_path / "gone" / "my_sweep.toml"  # (its folder does not exist)
+    screen = BuilderScreen(gl_ctx, (1280, 720), path, run_sweep, results=tmp_path / "results", workers=1)
+    stack = ScreenStack(screen)
+    draft = screen.draft.toml(DAY)
+    x, y = screen.buttons[("save",)].center
+    assert stack.handle_input(InputEvent(DOWN, 0.0, "mouse", 0, x, y))  # the window stays open
+    assert screen.message.startswith("Not saved:") and screen.draft.toml(DAY) == draft and not path.exists()

@@ -123,10 +123,11 @@ class BuilderScreen(Screen):
             d.watering = action[1]
         elif kind == "response":
             d.toggle_response(action[1])
-        elif kind == "save":
-            self.save()
-        elif kind == "run":
-            self.run()
+        elif kind in ("save", "run"):
+            try:
+                (self.save if kind == "save" else self.run)()
+            except (LSysError, OSError) as exc:  # (a folder gone or read-only: the draft stays, the reason shows)
+                self.message = f"Not saved: {getattr(exc, 'strerror', None) or exc}; the experiment is still here"
         self._layout()
 
     def save(self) -> Path:
@@ -152,8 +153,8 @@ class BuilderScreen(Screen):
             try:
                 self.status["status"] = self.run_sweep(self.path, out, self.workers, echo=self.status["said"].append,
                                                        keep="first")
-            except (LSysError, OSError) as exc:
-                self.status["said"].append(str(exc))
+            except Exception as exc:  # (whatever ends the run, the window says so and goes on)
+                self.status["said"].append(str(exc) or type(exc).__name__)
                 self.status["status"] = 1
 
         self.running = threading.Thread(target=work, daemon=True)
