@@ -52,9 +52,14 @@ class Restorer:
         if garden is not None:
             state.use(garden)
             self.then()
-            age = max(self.wall_clock() - self.keeper.saved_at, 0.0)  # (the file's time is its copy's)
-            state.say(text("messages.restored", when=duration(age), n=self.restored, count=len(kept),
+            state.say(text("messages.restored", when=self.age(self.keeper.saved_at), n=self.restored, count=len(kept),
                            tree=tree_line(state.garden.current, state.world.sim.state)), 10)
+
+    def age(self, saved_at: float | None) -> str:
+        """How long ago a save was written, in words ("?" when its clock cannot be read: None or NaN)."""
+        if saved_at is None or not math.isfinite(saved_at):
+            return "?"
+        return duration(max(self.wall_clock() - saved_at, 0.0))
 
     def preview(self, kept: list[Path]) -> str:
         """One line: each kept autosave's age and its cared-for tree (alive or dead, age, water), and which
@@ -65,8 +70,6 @@ class Restorer:
             if saved is None:
                 items.append(text("messages.restore_unreadable", n=n))
                 continue
-            at = saved.saved_at if saved.saved_at is not None and math.isfinite(saved.saved_at) else math.nan
-            when = duration(max(self.wall_clock() - at, 0.0)) if math.isfinite(at) else "?"
-            items.append(text("messages.restore_item", n=n, when=when,
+            items.append(text("messages.restore_item", n=n, when=self.age(saved.saved_at),
                               tree=tree_line(saved.current, saved.world.sim.state)))
         return text("messages.restore_preview", items="; ".join(items), next=self.restored % len(kept) + 1)
