@@ -25,9 +25,11 @@ TOML_LIMIT = 1024 * 1024  # bytes of a TOML file a person writes (an experiment,
 MAX_WORK = 2_000_000  # reading work TOML may be given (at most 1.6 s on this machine): see :func:`reading_work`
 _COSTLY = (b",", b"[", b"{", b"=", b"\\")  # a value, a table, a key or an escape: about 8-34 us each
 COSTLY_WORK, LINE_WORK = 32, 2
-# What can hold a bracket that is not one: strings of the four kinds and comments; else a bracket.
-_TOKENS = re.compile(r'"""(?:[^"\\]|\\.|"(?!""))*"""+' r"|'''.*?'''+" r'|"(?:[^"\\\n]|\\.)*"'
-                     r"|'[^'\n]*'|#[^\n]*|[\[\]{}]", re.S)
+# What can hold a bracket that is not one: strings of the four kinds and comments; else a bracket. A string
+# left open runs to the end of its line (its text, for the triple-quoted kinds) instead of failing to match:
+# a failed match would be tried again from every quote in it (a hostile line of quotes: quadratic time).
+_TOKENS = re.compile(r'"""(?:[^"\\]|\\.|"(?!""))*(?:"""+)?' r"|'''(?:(?!''').)*(?:'''+)?"
+                     r'|"(?:[^"\\\n]|\\.)*"?' r"|'[^'\n]*'?|#[^\n]*|[\[\]{}]", re.S)
 _DOTTED = re.compile(r"^[ \t]*(?:[A-Za-z0-9_-]+|\"[^\"\n]*\"|'[^'\n]*')(?:[ \t]*\.[ \t]*(?:[A-Za-z0-9_-]+"
                      r"|\"[^\"\n]*\"|'[^'\n]*'))+", re.M)
 
