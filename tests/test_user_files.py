@@ -196,3 +196,26 @@ def test_a_line_of_unclosed_quotes_is_read_in_linear_time():
         started = time.process_time()
         assert nesting_problem(text, 32) is None
         assert time.process_time() - started < 2.0  # (linear: milliseconds; the old regex took tens of seconds)
+
+
+def test_a_shared_species_with_hostile_traits_is_kept_within_the_rules_ranges():
+    """A save carries its species' .lsys: FLOOD 0 divided the flooded tree's wilting by zero (a traceback),
+    and AMAX, QE and RDS were taken as written. Each is kept within its rule's range."""
+    from arbor.engine.life.plant.photosynthesis import leaf_traits
+    from arbor.engine.life.rules.rules import Rules
+    from arbor.engine.life.rules.schema import find_rule
+    from arbor.engine.life.world.commands import Water
+    from arbor.engine.life.world.world import World
+    from arbor.engine.lsystem.lsys import load_lsystem, parse_lsystem
+
+    tree = load_lsystem(Path(__file__).resolve().parent.parent / "assets" / "lsystems" / "game_tree.lsys")
+    hostile = parse_lsystem(tree.source, "shared.lsys", overrides={"FLOOD": 0, "AMAX": -5, "QE": 1e9, "RDS": 50})
+    rules = Rules()
+    traits = leaf_traits(hostile.constants, rules)
+    assert traits.amax == find_rule("carbon.amax").low and traits.quantum == find_rule("carbon.quantum_efficiency").high
+    assert traits.dark == traits.amax * find_rule("carbon.dark_share").high
+    world = World(hostile, rules, seed=1)
+    world.apply(Water(True))
+    for _ in range(int(3 * rules.water.drown_time)):  # flooded long past drowning: no division by zero
+        world.step(1.0)
+    assert world.sim.flood_tolerance == find_rule("water.flood_tolerance").low

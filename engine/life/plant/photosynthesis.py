@@ -23,7 +23,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from arbor.engine.life.rules.rules import Rules
+from arbor.engine.life.rules.rules import Rules, species_trait
 
 CH2O = 30.03e-6  # g of sugar (CH2O) per µmol of CO2 fixed
 DAY = 86400.0  # s in a real day
@@ -55,9 +55,9 @@ class LeafTraits:
 def leaf_traits(constants: dict[str, float], rules: Rules) -> LeafTraits:
     """A species' leaf traits: its .lsys AMAX, QE and RDS (dark respiration as a share of AMAX), else the rules'."""
     c = rules.carbon
-    amax = float(constants.get("AMAX", c.amax))
-    return LeafTraits(amax, float(constants.get("QE", c.quantum_efficiency)), c.curvature,
-                      amax * float(constants.get("RDS", c.dark_share)))
+    amax = species_trait(constants, "AMAX", "carbon.amax", c.amax)
+    return LeafTraits(amax, species_trait(constants, "QE", "carbon.quantum_efficiency", c.quantum_efficiency),
+                      c.curvature, amax * species_trait(constants, "RDS", "carbon.dark_share", c.dark_share))
 
 
 def gross(ppfd: np.ndarray | float, traits: LeafTraits) -> np.ndarray:

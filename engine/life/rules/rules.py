@@ -191,3 +191,15 @@ def clamp_orbit(sun: SunRules, orbit_height: float, speed: float) -> tuple[float
     (the one place they are clamped: a slider, a loaded save, a save being written)."""
     return (min(max(orbit_height, sun.orbit_height_min), sun.orbit_height_max),
             min(max(speed, sun.speed_min), sun.speed_max))
+
+
+def species_trait(constants: dict[str, float], name: str, key: str, default: float) -> float:
+    """A species' own value of the rule ``key`` from its .lsys ``#define name`` (untrusted: a shared save
+    carries its source), kept within the rule's range; ``default`` (the rules' value) when it gives none or
+    one that is not a number."""
+    value = constants.get(name)
+    if not isinstance(value, int | float) or not math.isfinite(value):
+        return default
+    rule = find_rule(key)
+    return min(max(float(value), rule.low), rule.high)
+

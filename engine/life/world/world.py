@@ -27,6 +27,7 @@ from arbor.engine.life.plant.journal import Journal
 from arbor.engine.life.plant.light import exposure
 from arbor.engine.life.plant.roots import Roots
 from arbor.engine.life.plant.sim import Rules, SimState, Simulation
+from arbor.engine.life.rules.rules import species_trait
 from arbor.engine.life.world.actions import Action
 from arbor.engine.life.world.commands import BeginEditing, of_action
 from arbor.engine.life.world.log import Log, snapshot
@@ -199,7 +200,8 @@ class World:
         self.carbon.roots_built += paid * demand
         self.sim.root_vigour = paid * min(balance, 3.0)
         self.sim.starving = self.carbon.starving
-        self.sim.flood_tolerance = float(self.tree.system.constants.get("FLOOD", rules.water.flood_tolerance))
+        self.sim.flood_tolerance = species_trait(self.tree.system.constants, "FLOOD", "water.flood_tolerance",
+                                                 rules.water.flood_tolerance)
         self.sim.remember_light(self.light_caught(), seconds)
 
     def light_caught(self) -> float:
