@@ -116,6 +116,8 @@ def hostile(game, tmp_path, change):
     (lambda t: t.replace("lobe_ring_sizes = [", "lobe_ring_sizes = [999, "), "same length", "lobe_faces"),
     (lambda t: re.sub(r"lobe_rings = \[\d+", "lobe_rings = [900", t), "whole number from 0", "lobe_rings"),
     (lambda t: re.sub(r"lobe_rings = \[\d+", "lobe_rings = [100", t), "rings of", "lobe_rings"),
+    (lambda t: re.sub(r"lobe_ring_sizes = \[\d+", "lobe_ring_sizes = [0", t), "rings of", "lobe_rings"),
+    (lambda t: re.sub(r"lobe_rings = \[\d+", "lobe_rings = [1", t), "rings of", "lobe_rings"),
     (lambda t: t.replace("crown_base = '''\n", "crown_base = '''\n]]"), "without a matching", "crown_base"),
     (lambda t: t.replace("crown_base = '''\n", "crown_base = '''\nF(zz)"), "crown base", "crown_base+1:3"),
 ])
@@ -136,3 +138,21 @@ def test_a_format_2_save_loads_without_lobes(game, tmp_path):
     path.write_text(text[:text.index("[trees.crown]")].replace("format = 3", "format = 2"))
     back = read_garden(path).world
     assert back.crown is None and back.tree.lstring.to_text() == game.world.tree.lstring.to_text()
+
+
+def test_a_crown_the_tree_could_not_keep_is_not_grown_and_says_why(game):
+    """More lobes, or a lobe of more points, than a save holds: the crown is refused with its reason and the
+    tree stays as it was (before, the save dropped lobes past the 16th or wrote one its reader refused)."""
+    from arbor.engine.life.world.commands import Crown
+    from arbor.engine.modeling.crowned import MAX_LOBE_VERTICES, MAX_LOBES
+    from arbor.engine.modeling.lobes import Lobe
+
+    press_menu(game, "crown")
+    outline(game)
+    world, lobe = game.world, game.world.crown.lobes[0]
+    before = world.tree.lstring
+    many = world.apply(Crown(before, (lobe,) * (MAX_LOBES + 1)))
+    huge = Lobe(np.zeros((MAX_LOBE_VERTICES + 1, 3)), lobe.faces, lobe.ring_size, 0)
+    big = world.apply(Crown(before, (huge,)))
+    assert f"at most {MAX_LOBES}" in many.refused and "points" in big.refused and world.tree.lstring is before
+

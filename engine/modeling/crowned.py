@@ -9,6 +9,22 @@ from dataclasses import dataclass
 from arbor.engine.lsystem.lstring import LString
 from arbor.engine.modeling.lobes import Lobe
 
+MAX_LOBES = 16  # lobes of one crown (what a save keeps: engine/life/keep/save_crown.py)
+MAX_LOBE_VERTICES = 4096  # points of one lobe's mesh ...
+MAX_LOBE_FACES = 8192  # ... and its triangles
+
+
+def too_big(lobes: tuple[Lobe, ...] | list[Lobe]) -> str | None:
+    """Why a crown of ``lobes`` could not be kept with its tree (more lobes, or a lobe of more points or
+    triangles, than a save holds), None when it can."""
+    if len(lobes) > MAX_LOBES:
+        return f"{len(lobes)} lobes, at most {MAX_LOBES}"
+    for k, lobe in enumerate(lobes, 1):
+        if len(lobe.vertices) > MAX_LOBE_VERTICES or len(lobe.faces) > MAX_LOBE_FACES:
+            return (f"lobe {k} has {len(lobe.vertices):,} points and {len(lobe.faces):,} triangles, at most "
+                    f"{MAX_LOBE_VERTICES:,} and {MAX_LOBE_FACES:,}")
+    return None
+
 
 @dataclass(frozen=True, eq=False)
 class CrownRecord:

@@ -139,6 +139,9 @@ class CrownTool:
         start = time.perf_counter()
         world = self.mode.state.world
         grown = world.apply(Crown(state.base, tuple(state.lobes)))
+        if grown.refused is not None:  # (nothing grew: the lobes stay as they were)
+            self.mode.state.say(text("messages.crown_refused", why=grown.refused))
+            return
         added, limited = grown.added, grown.limited
         ms = (time.perf_counter() - start) * 1e3
         self._remember(world.tree.lstring, state)  # (the view stays: F frames the crown and its lobes)

@@ -18,12 +18,9 @@ from arbor.engine.base.errors import LSysError
 from arbor.engine.life.keep.save_check import POSITION_LIMIT, SaveError, Where, lstring_sane
 from arbor.engine.lsystem.lstring import LString, parse_lstring
 from arbor.engine.lsystem.text import format_number
-from arbor.engine.modeling.crowned import CrownRecord
+from arbor.engine.modeling.crowned import MAX_LOBE_FACES, MAX_LOBE_VERTICES, MAX_LOBES, CrownRecord
 from arbor.engine.modeling.lobes import Lobe
 
-MAX_LOBES = 16
-MAX_LOBE_VERTICES = 4096
-MAX_LOBE_FACES = 8192
 NUMBER_CHARACTERS = 32  # characters a saved number may take (with its space)
 KEYS = ("lobe_vertices", "lobe_faces", "lobe_rings", "lobe_ring_sizes")
 
@@ -83,9 +80,9 @@ def _lobe(data: dict, k: int, where: Where) -> Lobe:
         raise where.error(f"'lobe_faces' #{k + 1} must be 4 or more triangles (three vertex numbers 0 to {n - 1})",
                           "lobe_faces")
     rings, size = (_count(data[key][k], key, k, n, where) for key in ("lobe_rings", "lobe_ring_sizes"))
-    if rings * size > n:
-        raise where.error(f"lobe #{k + 1}: {rings} rings of {size} points are more than its {n} vertices",
-                          "lobe_rings")
+    if rings and not (rings >= 2 and size >= 3 and rings * size + 2 <= n):  # (two caps beside the rings)
+        raise where.error(f"lobe #{k + 1}: {rings} rings of {size} points do not fit its {n} vertices (2 or more "
+                          "rings of 3 or more points, and two caps)", "lobe_rings")
     return Lobe(vertices.reshape(-1, 3), faces.reshape(-1, 3), size, rings)
 
 

@@ -28,7 +28,7 @@ from arbor.engine.lsystem.lstring import LString
 from arbor.engine.lsystem.lsys import LSystem
 from arbor.engine.lsystem.text import format_number
 from arbor.engine.modeling.bend import bend_region
-from arbor.engine.modeling.crowned import CrownRecord
+from arbor.engine.modeling.crowned import CrownRecord, too_big
 from arbor.engine.modeling.edits import apply_edit, prune_region
 from arbor.engine.modeling.regions import prune as prune_branch
 from arbor.engine.modeling.strokes import Stroke as StrokePoints
@@ -243,10 +243,12 @@ class Stroke:
 
 @dataclass
 class CrownResult:
-    """What a crown regrowth did: the branch pieces added, whether the budget limited them."""
+    """What a crown regrowth did: the branch pieces added, whether the budget limited them, and why it was
+    not grown at all (``refused``: a crown the tree could not keep in its save), None when it was."""
 
     added: int
     limited: bool
+    refused: str | None = None
 
 
 @dataclass(frozen=True, eq=False)
@@ -262,6 +264,8 @@ class Crown:
         from arbor.engine.modeling.crown_fill import MAX_CROWN_MODULES, grow_within
 
         editor = world.editing()
+        if too_big(self.lobes):  # (a crown the tree could not keep in its save is not grown)
+            return CrownResult(0, False, too_big(self.lobes))
         budget = world.tree.deriver.budget
         room = MAX_CROWN_MODULES if budget is None else budget - len(self.base)
         grown, added, limited = grow_within(self.base, list(self.lobes), room, int(editor.rng.integers(2**31)),
