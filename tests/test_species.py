@@ -57,3 +57,24 @@ def test_the_poplar_bears_waterlogged_soil_longer(species):
 
     tree, poplar = drowned_days(species["game_tree"], 8), drowned_days(species["game_poplar"], 8)
     assert 7 <= tree <= 28 and poplar > 1.8 * tree, (tree, poplar)
+
+
+def test_a_flood_tolerant_species_drowns_later_everywhere_drowning_counts():
+    """The poplar's FLOOD (x drown_time) holds wherever drowned roots matter: growth, stomata, the status
+    and the guardian ask one Simulation.drowned() (growth and stomata used the bare drown_time)."""
+    from pathlib import Path
+
+    from arbor.engine.life.rules.rules import Rules
+    from arbor.engine.life.world.world import World
+    from arbor.engine.lsystem.lsys import load_lsystem
+
+    lsys = Path(__file__).resolve().parent.parent / "assets" / "lsystems"
+    rules = Rules()
+    worlds = {name: World(load_lsystem(lsys / f"{name}.lsys"), rules, seed=1) for name in ("game_tree", "game_poplar")}
+    for world in worlds.values():
+        s = world.sim.state
+        s.drowning = 2 * rules.water.drown_time  # waterlogged twice as long as a maple bears
+        s.sun_cycle.rate = s.water_cycle.rate = 1.0  # (growth earned: only the roots decide)
+    tolerant, intolerant = worlds["game_poplar"].sim, worlds["game_tree"].sim
+    assert tolerant.flood_tolerance > 2 and not tolerant.drowned() and intolerant.drowned()
+    assert intolerant.growth_speeds() == (0.0, 0.0) and tolerant.growth_speeds()[0] > 0

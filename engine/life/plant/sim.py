@@ -98,7 +98,7 @@ class Simulation:
         self.root_vigour = 1.0  # how fast the carbon pool lets the roots grow (set by its World; 0 .. 3)
         self.starving = 0.0  # s the tree's carbon pool has been empty with upkeep unpaid (set by its World)
         self.leaf_light = 1.0  # the share of the sun its leaves catch (0..1, set by its World at each step)
-        self.flood_tolerance = self.rules.water.flood_tolerance  # its species' (set by its World at each reading)
+        self.flood_tolerance = self.rules.water.flood_tolerance  # its species' (set by its World when planted)
 
     def season(self) -> Season:
         """The season now (spring, summer, autumn, winter)."""
@@ -193,7 +193,7 @@ class Simulation:
         s, g = self.state, self.rules.growth
         if not s.alive:
             return 0.0, 0.0
-        if s.drowning > self.rules.water.drown_time:  # drowned roots take up nothing: no growth
+        if self.drowned():  # drowned roots take up nothing: no growth
             return 0.0, 0.0
         gate = s.sun_cycle.rate * s.water_cycle.rate * (1.0 - s.wilt) * seasons.growth_factor(s.sun_turns, self.rules)
         return g.length_rate * self.light_growth() * gate, g.girth_rate * s.water_meter * gate
@@ -260,7 +260,7 @@ class Simulation:
         neglected = min(s.sun_meter, s.water_meter) < h.neglect_level or starved
         if not s.alive:
             return
-        drowned = s.drowning > w.drown_time * self.flood_tolerance  # (a tolerant species' roots bear it longer)
+        drowned = self.drowned()
         if neglected or drowned:
             s.wilt = min(1.0, s.wilt + h.wilt_rate * dt / (1.0 if neglected else self.flood_tolerance))
         else:
@@ -268,6 +268,11 @@ class Simulation:
         s.dead_for = s.dead_for + dt if s.wilt >= 1.0 else max(s.dead_for - dt, 0.0)
         if s.dead_for > h.death_time:
             s.alive = False
+
+    def drowned(self) -> bool:
+        """Whether the roots have drowned: waterlogged longer than drown_time x the species' flood tolerance
+        (a tolerant species' roots bear it longer)."""
+        return self.state.drowning > self.rules.water.drown_time * self.flood_tolerance
 
     def settle_left(self) -> float:
         """Seconds until growth is earned if both meters stay above half: the longest of the two meters'

@@ -52,7 +52,7 @@ def needs_of(world: World, rules: Rules) -> list[str]:
     if s.sun_meter < rules.health.neglect_level + margin:
         out.append("sun")
     if s.wilt > 0.0 and (world.sim.starving > rules.carbon.starve_time or min(s.sun_meter, s.water_meter)
-                         < rules.health.neglect_level or s.drowning > rules.water.drown_time):
+                         < rules.health.neglect_level or world.sim.drowned()):
         out.append("wilt")
     return out
 

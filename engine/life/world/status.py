@@ -66,7 +66,7 @@ def tree_status(world: World, dark: bool | None = None) -> str:
     s = sim.state
     if not s.alive:
         return "dead_fruit" if fruit_count(world) else "dead"
-    if s.drowning > rules.water.drown_time or (s.water_meter > rules.water.drown_level and s.drowning > 0):
+    if sim.drowned() or (s.water_meter > rules.water.drown_level and s.drowning > 0):
         return "drowning"
     if s.water_meter <= rules.growth.threshold:
         return "thirsty"

@@ -113,7 +113,13 @@ class World:
                 self.tree = self._plant(self.seed)
                 self.roots = Roots(seed=self.seed)
                 self.carbon = CarbonBudget.for_seedling(self.rules)
+        self._species_traits()
         self.log.origin = snapshot(self)
+
+    def _species_traits(self) -> None:
+        """What the simulation takes from this tree's species (its .lsys, kept within the rules' ranges)."""
+        self.sim.flood_tolerance = species_trait(self.tree.system.constants, "FLOOD", "water.flood_tolerance",
+                                                 self.rules.water.flood_tolerance)
 
     def _take(self, parts: Parts) -> None:
         """A saved tree's parts as this world's."""
@@ -183,7 +189,7 @@ class World:
     def economy(self, seconds: float, shine: float) -> Economy:
         """This tree's dealings with its carbon budget for a light reading ``seconds`` after the last."""
         s, rules = self.sim.state, self.rules
-        drowned = s.drowning > rules.water.drown_time
+        drowned = self.sim.drowned()
         activity = min(max(seasons.growth_factor(s.sun_turns, rules), rules.carbon.dormant), 1.0)
         return Economy(self.carbon, rules, seconds, shine, carbon.stomata(s.water_meter, drowned, rules), activity,
                        carbon.wood_density(self.tree.system.constants, rules), seasons.leafy(s.sun_turns, rules),
@@ -200,8 +206,6 @@ class World:
         self.carbon.roots_built += paid * demand
         self.sim.root_vigour = paid * min(balance, 3.0)
         self.sim.starving = self.carbon.starving
-        self.sim.flood_tolerance = species_trait(self.tree.system.constants, "FLOOD", "water.flood_tolerance",
-                                                 rules.water.flood_tolerance)
         self.sim.remember_light(self.light_caught(), seconds)
 
     def light_caught(self) -> float:
@@ -210,7 +214,7 @@ class World:
         area, rules = self.carbon.leaf_area, self.rules
         if area > 0 and self.carbon.full_rate > 0:
             return self.carbon.caught()
-        drowned = self.sim.state.drowning > rules.water.drown_time
+        drowned = self.sim.drowned()
         return self.sim.sunshine() * carbon.stomata(self.sim.state.water_meter, drowned, rules) * self.tree.mean_light
 
     def sync_roots(self) -> None:
@@ -272,6 +276,7 @@ class World:
         self.carbon = CarbonBudget.for_seedling(self.rules)
         self.last_light = float("-inf")  # (the new sim's clock starts at 0: its light is read at once)
         self.sync_roots()
+        self._species_traits()
 
     def catch_up(self, seconds: float, dt: float = 1.0, max_steps: int = MAX_CATCH_UP_STEPS) -> int:
         """Let the tree live ``seconds`` of game time unattended (offline growth; see :func:`live`)."""
