@@ -11,7 +11,7 @@
   active radiation against leaf photosynthesis data": 0.45-0.50), as photons 4.57 µmol per J.
 
 The game's sun (an orbit the player's sliders set) shines with the strength of its elevation
-(:func:`relative`): a low sun is weak, a high one strong, whatever the hours of the day. Every constant is a
+(:func:`strength`): a low sun is weak, a high one strong, whatever the hours of the day. Every constant is a
 rule of the schema's [sun] table (engine/life/rules/schema.py) with its source.
 """
 
@@ -40,13 +40,16 @@ def elevation(latitude: float, day_of_year: float, hour: float | np.ndarray) -> 
     return np.arcsin(np.clip(np.sin(lat) * np.sin(dec) + np.cos(lat) * np.cos(dec) * np.cos(angle), -1.0, 1.0))
 
 
+def _air_mass(elev):
+    """Kasten & Young 1989's formula for an elevation above the horizon (radians; floats or an array)."""
+    return 1.0 / (np.sin(elev) + 0.50572 * (np.degrees(elev) + 6.07995) ** -1.6364)
+
+
 def air_mass(elev: float | np.ndarray) -> np.ndarray:
     """Relative optical air mass at elevation ``elev`` (radians; 1 at the zenith, about 38 at the horizon):
     Kasten & Young 1989. Infinite below the horizon."""
     e = np.asarray(elev, float)
-    deg = np.degrees(np.maximum(e, 0.0))
-    m = 1.0 / (np.sin(np.maximum(e, 0.0)) + 0.50572 * (deg + 6.07995) ** -1.6364)
-    return np.where(e > 0, m, np.inf)
+    return np.where(e > 0, _air_mass(np.maximum(e, 0.0)), np.inf)
 
 
 def global_irradiance(elev: float | np.ndarray, rules: SunRules) -> np.ndarray:
@@ -70,26 +73,15 @@ def full_par(rules: SunRules) -> float:
     return float(par_watts(math.pi / 2, rules))
 
 
-def relative(elev: float | np.ndarray, rules: SunRules) -> np.ndarray:
-    """The sun's strength 0..1 at elevation ``elev`` (radians) against the zenith sun's, with the share
-    ``shade`` removed (a shade cloth or a canopy above: it dims the sun, it does not shorten the day)."""
-    return par_watts(elev, rules) / full_par(rules) * (1.0 - rules.shade)
-
-
 def strength(elev: float, rules: SunRules) -> float:
-    """:func:`relative` for one elevation, in plain floats (the simulation asks at every step)."""
+    """The sun's strength 0..1 at elevation ``elev`` (radians): its clear-sky PAR against the zenith sun's,
+    with the share ``shade`` removed (a shade cloth or a canopy above: it dims the sun, it does not shorten
+    the day). In plain floats: the simulation asks at every step."""
     if not elev > 0:
         return 0.0
-    deg = math.degrees(elev)
-    mass = 1.0 / (math.sin(elev) + 0.50572 * (deg + 6.07995) ** -1.6364)
-    zenith = 1.0 / (1.0 + 0.50572 * 96.07995 ** -1.6364)
+    mass, zenith = _air_mass(elev), _air_mass(math.pi / 2)
     power, t = rules.transmittance_power, rules.transmittance
     return t ** (mass ** power - zenith ** power) * math.sin(elev) * (1.0 - rules.shade)
-
-
-def photons(par_w: float | np.ndarray, rules: SunRules) -> np.ndarray:
-    """PAR in W/m² as a photon flux (µmol per m² per s)."""
-    return np.asarray(par_w, float) * rules.par_photons
 
 
 def daily_par(latitude: float, day_of_year: float, rules: SunRules, steps: int = 1440) -> float:
@@ -105,9 +97,3 @@ def daily_global(latitude: float, day_of_year: float, rules: SunRules, steps: in
     hours = (np.arange(steps) + 0.5) * 24.0 / steps
     watts = global_irradiance(elevation(latitude, day_of_year, hours), rules)
     return float(watts.sum() * 86400.0 / steps * MJ)
-
-
-def direction_elevation(direction: np.ndarray) -> float:
-    """The elevation (radians) of a direction vector toward the sun (y up)."""
-    d = np.asarray(direction, float)
-    return math.atan2(float(d[1]), math.hypot(float(d[0]), float(d[2])))
