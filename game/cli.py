@@ -461,7 +461,7 @@ def _version() -> str:
     return version()
 
 
-INPUTS = ("source", "experiment", "sweep", "save", "card", "a", "b")  # the argument names of files a command reads
+INPUTS = ("source", "experiment", "sweep", "save", "card")  # the argument names of files a command reads
 OUTPUTS = ("out", "glb")  # ... and of files it writes (lab's and sweep's --out are folders, made by them)
 
 
@@ -504,8 +504,9 @@ def watchdog_help() -> str:
             f"  hang time        no heartbeat for {w.HANG_SECONDS:g} s after that: killed and restarted\n"
             f"  restarts         after 1 s, 2 s, 4 s, ... at most 30 s while crashes come quickly; back to 1 s\n"
             f"                   after a run of over a minute\n"
-            f"  crash loop       {w.CRASH_LOOP} runs in a row shorter than {w.YOUNG:g} s: the kiosk's saved garden\n"
-            f"                   is moved aside (autosave.TIME.crashed) so a bad save cannot keep it down\n"
+            f"  crash loop       {w.CRASH_LOOP} runs in a row shorter than {w.YOUNG:g} s: the file the app was\n"
+            f"                   reading when it died (a settings file, a save) is set aside as NAME.crashed,\n"
+            f"                   and the log says which, so a bad file cannot keep it down\n"
             f"  stops when       staff quit the kiosk with the PIN (status {w.STAFF_EXIT}), the app refuses its\n"
             f"                   arguments (status {w.USAGE_EXIT}), the home game quits cleanly (0), or the\n"
             f"                   watchdog gets SIGTERM, SIGINT or SIGHUP (passed on: the app saves and exits)")

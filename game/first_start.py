@@ -53,11 +53,6 @@ def kernels_cold() -> bool:
     return not all(_cached(d) for d in kernel_dispatchers())
 
 
-def compiled_share(dispatchers: list) -> float:
-    """Share of the kernels with a version in memory (compiled now or loaded from the cache), 0..1."""
-    return sum(1 for d in dispatchers if d.overloads) / max(len(dispatchers), 1)
-
-
 def _warm_context() -> None:
     from arbor.engine.base.assets import assets_dir
     from arbor.engine.lsystem.derive import Deriver

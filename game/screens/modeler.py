@@ -153,16 +153,14 @@ class ModelingMode(ToolChoice, HistoryTold):
             self._start()
             self.tool(tool, quiet=True)
 
-    def reframe(self, zoom: bool = False) -> None:
+    def reframe(self) -> None:
         """Grow the view's box to hold the tree and the crown's lobes (it never shrinks while modeling, so
-        the view does not jump back and forth); ``zoom``: also undo a zoom-in that would cut them off."""
+        the view does not jump back and forth)."""
         if self.modeler is None or self.bounds is None:
             return
         parts = [lobe.vertices for lobe in self.crown_tool.state().lobes]
         segs = self.segments(self.modeler.lstring)
         self.bounds = holding(self.bounds, np.concatenate([*parts, segs.start, segs.end]))
-        if zoom:
-            self.state.control.distance = max(self.state.control.distance, 1.0)
 
     def frame(self) -> None:
         """Frame the tree and the crown's lobes as they are now (the F key): the view's box fits them
@@ -288,11 +286,6 @@ class ModelingMode(ToolChoice, HistoryTold):
             self.crown_tool.draw(surface, project, self.points if self.crown else [], self.shaping)
         elif self.points and self.joint is not None:
             draw_joint(surface, project, self.joint)
-
-    def born_visible(self) -> float:
-        """A birth time for leaves and blossoms added while the garden is paused: one growth time
-        constant ago, so they show at once (63 % grown) and finish growing when time runs again."""
-        return self.state.world.born_visible()
 
     def edit_at(self, x: float, y: float, camera: OrbitCamera) -> bool:
         """With the symbols tool, a tap inside the region applies the chosen edit there (undoable).

@@ -16,8 +16,6 @@ from typing import TYPE_CHECKING
 import numpy as np
 import pygame
 
-from arbor.engine.geometry.turtle import TurtleConfig, module_positions
-from arbor.engine.life.form.interpret import render_view
 from arbor.engine.life.world.commands import RegionEdit
 from arbor.engine.lsystem.lstring import LString
 from arbor.engine.modeling.regions import Sphere, Supertoroid, fit_supertoroid, moved_region, scaled_region
@@ -238,7 +236,5 @@ class RegionTool:
     def positions(self, ls: LString) -> np.ndarray:
         """Turtle positions of every module of the tree as drawn now (cached per L-string)."""
         if self._positions is None or self._positions[0] is not ls:
-            tree, clocks = self.mode.state.world.tree, self.mode.state.world.clocks()
-            view = render_view(ls, clocks, tree.geometry_constants)
-            self._positions = (ls, module_positions(view, TurtleConfig(pipe_model=False, leaves_at_tips=0)))
+            self._positions = (ls, self.mode.state.world.module_positions(ls))
         return self._positions[1]
