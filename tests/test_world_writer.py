@@ -152,6 +152,8 @@ def test_a_modeler_session_in_the_real_game_replays_from_the_world_s_log(modeler
     tips = [k for k in range(len(segs)) if segs.parent[k] >= 0 and game.hud.project(game.camera(), segs.end[k])]
     x, y = game.hud.project(game.camera(), (segs.start[tips[-1]] + segs.end[tips[-1]]) / 2)
     click(game, x, y)
+    said = game.hud_info().message  # ('Cut 1 branch piece.' or 'Cut 3 branch pieces.', never '1 branch pieces')
+    assert said.startswith("Cut ") and ("1 branch piece." if said.startswith("Cut 1 ") else "pieces.") in said
     press_bar(game, "symbols")  # a region over the trunk, then Grow in it
     draw(game, [(x0, y0 - 100), (x0, y0 - 160), (x0, y0 - 200)])
     while game.modeling.edit != "grow":

@@ -8,6 +8,7 @@ import numpy as np
 from arbor.engine.life.world.commands import Cut
 from arbor.game.render.camera import OrbitCamera, project_points
 from arbor.game.strings import text
+from arbor.game.tools.told import counted
 
 PICK_PIXELS = 18.0  # how close a tap must be to a branch to cut it
 
@@ -37,5 +38,5 @@ class PruneTool:
             mode.state.say(text("messages.prune_base"))
             return True
         removed = mode.state.world.apply(Cut(int(segs.module[k])))
-        mode.state.say(text("messages.pruned", count=removed))
+        mode.state.say(text("messages.pruned", pieces=counted(removed, "branch piece")))
         return True
