@@ -75,6 +75,24 @@ def test_a_run_stops_at_the_sample_a_response_crosses_its_value(tmp_path):
         assert rows[-1]["stop"] == "end" and rows[-1]["stop_time_s"] == "600"
 
 
+def test_a_run_stopped_early_stays_at_its_last_values_in_the_mean_over_seeds(tmp_path):
+    """The time series' mean over seeds: a run that stopped at a crossing is held where it crossed (it was
+    left out, so the mean jumped to the runs still going: the fast growers left first)."""
+    from arbor.game.commands.sweep import _series
+
+    text = DRY.replace('levels = [0.004, 0.02]', 'levels = [0.004]') + '\n[stop]\nresponse = "water"\nbelow = 0.3\n'
+    path = tmp_path / "s.toml"
+    path.write_text(text, encoding="utf-8")
+    sweep = load_sweep(path, ASSETS / "lsystems")
+    rows = [{"run": run, "Drain": "0.004", "time_s": str(t), "water": str(w), "stop": stop}
+            for run, samples, stop in (("a", [(0, 0.9), (100, 0.25)], "water <= 0.3"),
+                                       ("b", [(0, 0.9), (100, 0.6), (200, 0.5)], "end"))
+            for t, w in samples]
+    sweep.responses = ("water",)
+    times, values = _series(sweep, rows)[("0.004",)]
+    assert list(times) == [0, 100, 200] and list(values["water"][0]) == [0.9, 0.25, 0.25]
+
+
 @pytest.mark.parametrize("table, line, col, words", [
     ("[stop]\ndie = true", 17, 1, "unknown key 'die' in [stop] (did you mean 'dies'?)"),
     ("[stop]\ndies = 1", 17, 8, "'dies' must be true or false"),

@@ -148,8 +148,8 @@ def summary_csv(sweep: Sweep, finals: dict) -> str:
 
 def _series(sweep: Sweep, rows: list[dict]) -> dict:
     """levels -> (times, {response: seeds x samples}) from the tidy rows. A run that stopped early is filled
-    to the longest run's samples: a dead tree with its last values (it stays as it died), a run stopped at a
-    crossing with NaN (no longer followed)."""
+    to the longest run's samples with its last values (a dead tree stays as it died; a run stopped at a
+    crossing stays where it crossed), so the mean over seeds does not jump when a run leaves it."""
     by_run: dict[str, list[dict]] = {}
     for row in rows:
         by_run.setdefault(row["run"], []).append(row)
@@ -166,8 +166,7 @@ def _series(sweep: Sweep, rows: list[dict]) -> dict:
             for resp in sweep.responses:
                 column = [float(r[resp]) for r in member]
                 values[resp][k, :len(column)] = column
-                if member[-1].get("stop") == "died":
-                    values[resp][k, len(column):] = column[-1]
+                values[resp][k, len(column):] = column[-1]
         series[levels] = (times, values)
     return series
 

@@ -138,7 +138,7 @@ def dose_figure(sweep, finals: dict, day_seconds: float = 125.66):
         axes[0].legend(fontsize=10, frameon=False)
     fixed = [f"{f.name} = {_text(f.levels[0])}" for i, f in enumerate(sweep.factors)
              if i != across and len(f.levels) == 1]
-    fig.suptitle(textwrap.fill(f"{sweep.title}: after {_duration(sweep.duration, day_seconds)}, "
+    fig.suptitle(textwrap.fill(f"{sweep.title}: {_when(sweep, day_seconds)}, "
                                f"{len(sweep.seeds)} seeds per level{''.join(', ' + f for f in fixed)} "
                                "(line: mean; bar and band: 10-90 %; dots: every run)", 110), fontsize=16)
     return fig
@@ -435,6 +435,13 @@ def _limits(ax, response: str) -> None:
 
 def _text(value) -> str:
     return str(value).removesuffix(".lsys") if isinstance(value, str) else f"{value:g}"
+
+
+def _when(sweep, day_seconds: float) -> str:
+    """When the final values were taken: after the runs' length, or at each run's stop when a [stop] table
+    ended some runs early (a run's last sample then)."""
+    end = f"after {_duration(sweep.duration, day_seconds)}"
+    return end if getattr(sweep, "stop", None) is None else f"at each run's stop, or {end}"
 
 
 def _duration(seconds: float, day_seconds: float) -> str:
