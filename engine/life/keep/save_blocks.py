@@ -58,7 +58,7 @@ def loads(raw: bytes) -> tuple[dict, str]:
         else:
             if _put_back(data, texts) == len(blocks):
                 return data, text
-    _check_work(raw)
+        _check_work(raw)  # (with no blocks lifted, the text just checked is the whole file: not twice)
     text = raw.decode("utf-8")
     return tomllib.loads(text), text
 
