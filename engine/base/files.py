@@ -10,9 +10,7 @@ import glob
 import os
 from pathlib import Path
 
-from arbor.engine.base.reader import read_regular
-
-__all__ = ["FolderBusyError", "FolderLock", "atomic_write", "read_regular", "remove_stale_temp_files", "set_aside"]
+__all__ = ["FolderBusyError", "FolderLock", "atomic_write", "remove_stale_temp_files", "set_aside"]
 
 
 def atomic_write(path: str | Path, data: bytes) -> None:

@@ -13,7 +13,6 @@ and 1 (one tree per file) still load.
 from __future__ import annotations
 
 import codecs
-import errno
 import functools
 import hashlib
 import json
@@ -27,7 +26,8 @@ from pathlib import Path
 import numpy as np
 
 from arbor.engine.base.errors import LSysError
-from arbor.engine.base.files import atomic_write, read_regular
+from arbor.engine.base.files import atomic_write
+from arbor.engine.base.reader import read_user_bytes
 from arbor.engine.life.keep import save_blocks
 from arbor.engine.life.keep.save_check import (
     BIG,
@@ -314,12 +314,7 @@ def write_garden(saved: SavedGarden, path: str | Path) -> None:
 def _read(path: Path) -> tuple[dict, str]:
     """The TOML of a save: only a regular file (not a link, FIFO or device), at most MAX_BYTES, UTF-8 (a BOM
     is allowed)."""
-    try:
-        raw = read_regular(path, MAX_BYTES)
-    except OSError as exc:
-        reason = "it is a link (a save must be a plain file)" if exc.errno == errno.ELOOP else exc.strerror
-        raise SaveError(f"cannot read: {reason}", str(path)) from None
-    return _decode(raw, path)
+    return _decode(read_user_bytes(path, MAX_BYTES, SaveError), path)  # (the one reader of user files)
 
 
 def _decode(raw: bytes, path: Path) -> tuple[dict, str]:
