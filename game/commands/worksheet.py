@@ -272,9 +272,11 @@ def _lab_parts(sheet: Sheet, duration: float | None):
     setup = [f"The trees: {', '.join(r.name for r in experiment.regimes)}, from one seed ({experiment.seed}).",
              (f"They stand in a row {experiment.spacing:g} m apart on one plot and shade each other."
               if experiment.spacing else "Each tree stands on a plot of its own."),
-             f"They grow {full / day:.0f} game days; every tree is watered alike"
+             f"They grow {full / day:.0f} game days; "
+             + ("every tree is watered alike" if len({repr(r.watering) for r in experiment.regimes}) == 1
+                else "each tree is watered as the lesson's file says")
              + (f", with {' and '.join(s for s in shared if s)}." if any(shared) else "."),
-             "What is measured: light intercepted a day, biomass, light on the leaves, height (docs/columns.md)."]
+             f"What is measured: {', '.join(TITLES.get(r, r).lower() for r in sheet.key)} (docs/columns.md)."]
     label = y_label(sheet.response) + (" per day" if sheet.response == "light_day" else "")
     chart = Chart(TITLES.get(sheet.response, sheet.response), "time (game days)", label,
                   [float(d) for d in range(0, round(full / day) + 1, 5)],
