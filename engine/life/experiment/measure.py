@@ -172,16 +172,16 @@ def place_day_par(latitude: float, day_of_year: int, steps: int = 2000) -> float
     """The daily PAR (MJ per m² in a real day) of the game's sun set for a place and date the way the lab
     sets it (the day length sets the orbit's height, the noon elevation its side; engine/life/experiment/
     schema.py): its PAR summed over one turn, to hold against the real sun's (solar.daily_par)."""
-    from arbor.engine.life.experiment.schema import day_length_height, elevation_side, latitude_sun
+    from arbor.engine.life.experiment.lab import Regime, orbit_height, regime_rules
     from arbor.engine.life.plant.sim import Simulation
     from arbor.engine.life.rules.rules import Rules
 
-    rules = Rules()
-    rules.seasons.enabled = False
-    hours, noon = latitude_sun(latitude, day_of_year)
-    rules.sun.side = elevation_side(noon, day_length_height(hours))
+    base = Rules()
+    base.seasons.enabled = False
+    place = Regime("place", latitude=latitude, day_of_year=day_of_year)
+    rules = regime_rules(base, place)
     sim = Simulation(rules)
-    sim.set_orbit_height(day_length_height(hours))
+    sim.set_orbit_height(orbit_height(place, rules))
     total = 0.0
     for k in range(steps):
         sim.state.sun_angle = 2 * math.pi * (k + 0.5) / steps
