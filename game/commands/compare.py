@@ -20,7 +20,7 @@ from pathlib import Path
 
 from arbor.engine.base.errors import LSysError, SweepError
 from arbor.engine.base.reader import read_user_text
-from arbor.engine.life.experiment.sweep import Sweep, cell, final_values
+from arbor.engine.life.experiment.sweep import Sweep, by_run, cell, final_values
 from arbor.engine.life.experiment.sweep_file import load_sweep
 from arbor.game import report
 from arbor.game.commands.sweep_runs import write_atomic
@@ -108,14 +108,6 @@ def _names(folders: list[Path]) -> list[str]:
     """Each folder's student name: its own name, or the path as given when two folders share a name."""
     names = [f.resolve().name or str(f) for f in folders]
     return [str(f) if names.count(n) > 1 else n for f, n in zip(folders, names, strict=True)]
-
-
-def by_run(rows: list[dict[str, str]]) -> dict[str, list[dict[str, str]]]:
-    """The tidy rows of each run, in order."""
-    runs: dict[str, list[dict[str, str]]] = {}
-    for row in rows:
-        runs.setdefault(row["run"], []).append(row)
-    return runs
 
 
 def agreement(reference: Student, student: Student) -> tuple[int, int]:

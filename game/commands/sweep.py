@@ -21,7 +21,17 @@ import numpy as np
 
 from arbor.engine.base.errors import SweepError
 from arbor.engine.base.reader import read_user_text
-from arbor.engine.life.experiment.sweep import STATS, Outcome, Sweep, Task, cell, final_values, runs, summarize
+from arbor.engine.life.experiment.sweep import (
+    STATS,
+    Outcome,
+    Sweep,
+    Task,
+    by_run,
+    cell,
+    final_values,
+    runs,
+    summarize,
+)
 from arbor.engine.life.experiment.sweep_file import load_sweep
 from arbor.engine.life.keep.save import read_garden
 from arbor.engine.life.rules.rules import load_rules
@@ -150,11 +160,8 @@ def _series(sweep: Sweep, rows: list[dict]) -> dict:
     """levels -> (times, {response: seeds x samples}) from the tidy rows. A run that stopped early is filled
     to the longest run's samples with its last values (a dead tree stays as it died; a run stopped at a
     crossing stays where it crossed), so the mean over seeds does not jump when a run leaves it."""
-    by_run: dict[str, list[dict]] = {}
-    for row in rows:
-        by_run.setdefault(row["run"], []).append(row)
     groups: dict[tuple, list[list[dict]]] = {}
-    for run_rows in by_run.values():
+    for run_rows in by_run(rows).values():
         levels = tuple(run_rows[0][f.name] for f in sweep.factors)
         groups.setdefault(levels, []).append(run_rows)
     series = {}
@@ -198,15 +205,13 @@ def _thumbnails(sweep: Sweep, store: RunStore, everything: list, echo: Callable[
         echo(f"the grid of every seed's tree is left out: {len(kept)} trees kept, more than {MAX_SEED_GRID}")
         kept = {key: r for key, r in kept.items() if r.seed == sweep.seeds[0]}
     rules = load_rules(ASSETS / "rules.toml", sweep.pace)
-    by_run: dict[str, list[dict]] = {}
-    for row in rows:
-        by_run.setdefault(row["run"], []).append(row)
+    rows_of = by_run(rows)
     meshes, notes = {}, {}
     for key, run in kept.items():
         world = read_garden(store.trees_dir / run.tree_name(sweep), rules).world
         meshes[key] = world.tree.geometry(world.clocks())
         if not world.sim.state.alive:
-            notes[key] = death_note(by_run.get(run.name, []), day_seconds(sweep))
+            notes[key] = death_note(rows_of.get(run.name, []), day_seconds(sweep))
     if not meshes:
         echo("thumbnails skipped: no kept trees (--keep none)")
         return []

@@ -215,6 +215,14 @@ def final_values(table: list[dict[str, str]], sweep: Sweep) -> dict[tuple, dict[
     return {k: {r: np.array(v) for r, v in g.items()} for k, g in groups.items() if len(g[sweep.responses[0]])}
 
 
+def by_run(rows: list[dict[str, str]]) -> dict[str, list[dict[str, str]]]:
+    """The tidy rows of each run (by its name), in order."""
+    runs: dict[str, list[dict[str, str]]] = {}
+    for row in rows:
+        runs.setdefault(row["run"], []).append(row)
+    return runs
+
+
 def cell(value) -> str:
     """How a level or a value is written in the CSVs (text as is, numbers to 10 digits)."""
     return value if isinstance(value, str) else f"{float(value):.10g}"
