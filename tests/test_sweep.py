@@ -220,3 +220,19 @@ def test_kept_trees_are_named_by_level_and_seed(tmp_path, keep, seeds):
         set_level()
     kept = sorted(p.name for p in (tmp_path / "out" / "trees").iterdir())
     assert kept == sorted(f"orbit_height={h}_seed{s}.arbor" for h in ("-0.6", "1") for s in seeds)
+
+
+def test_one_definition_of_the_same_experiment(sweep_file):
+    """compare lets seeds differ, the builder does not; the length compares within the share given."""
+    import dataclasses
+
+    from arbor.engine.life.experiment.sweep import differences
+
+    sweep = load_sweep(sweep_file, ASSETS / "lsystems")
+    assert differences(sweep, sweep) == []
+    reseeded = dataclasses.replace(sweep, seeds=[s + 100 for s in sweep.seeds], title="another title")
+    assert differences(sweep, reseeded) == ["seeds"]
+    assert differences(sweep, reseeded, seeds=False) == []
+    longer = dataclasses.replace(sweep, duration=sweep.duration * 1.005, species="game_poplar.lsys")
+    assert differences(sweep, longer) == ["duration", "species"]
+    assert differences(sweep, longer, within=0.01) == ["species"]

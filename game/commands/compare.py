@@ -20,7 +20,7 @@ from pathlib import Path
 
 from arbor.engine.base.errors import LSysError, SweepError
 from arbor.engine.base.reader import read_user_text
-from arbor.engine.life.experiment.sweep import Sweep, by_run, cell, final_values
+from arbor.engine.life.experiment.sweep import Sweep, by_run, cell, differences, final_values
 from arbor.engine.life.experiment.sweep_file import load_sweep
 from arbor.game import report
 from arbor.game.commands.sweep_runs import write_atomic
@@ -29,8 +29,6 @@ from arbor.game.paths import ASSETS
 
 MAX_FOLDERS = 200  # a class or two
 TIDY_LIMIT = 256 * 1024 * 1024  # bytes of one student's tidy.csv (a sweep of the largest size writes about 100 MB)
-SAME = {"factors": "factor", "duration": "duration", "sample_every": "sample_every", "responses": "responses",
-        "base": "base", "species": "species", "pace": "pace", "seasons": "seasons", "stop": "stop"}
 
 
 @dataclass
@@ -87,15 +85,10 @@ def check_levels(student: Student) -> None:
                                 "the sweep's levels (an edited table?); run the sweep again")
 
 
-def differences(sweep: Sweep, other: Sweep) -> list[str]:
-    """The sweep file's keys in which ``other`` differs from ``sweep`` (seeds and title may)."""
-    return [key for field, key in SAME.items() if getattr(sweep, field) != getattr(other, field)]
-
-
 def check_same(students: list[Student]) -> None:
     """Every student ran the first one's experiment; else one line naming each who did not, with the keys."""
     first = students[0]
-    other = [(s, differences(first.sweep, s.sweep)) for s in students[1:]]
+    other = [(s, differences(first.sweep, s.sweep, seeds=False)) for s in students[1:]]
     other = [(s, keys) for s, keys in other if keys]
     if other:
         named = "; ".join(f"{s.name} ({', '.join(keys)})" for s, keys in other)

@@ -26,10 +26,9 @@ from arbor.engine.life.experiment.builder import (
     WATERING,
     Draft,
     NotBuildableError,
-    changes,
     draft_of,
 )
-from arbor.engine.life.experiment.sweep import runs
+from arbor.engine.life.experiment.sweep import differences, runs
 from arbor.engine.life.experiment.sweep_file import load_sweep
 from arbor.game.input.events import DOWN, InputEvent
 from arbor.game.paths import ASSETS
@@ -222,7 +221,7 @@ def reopen(path: Path, day_seconds: float) -> Draft:
     with tempfile.TemporaryDirectory() as folder:
         again = Path(folder) / path.name
         again.write_text(draft.toml(day_seconds), encoding="utf-8")
-        differ = changes(before, load_sweep(again, ASSETS / "lsystems"))
+        differ = differences(before, load_sweep(again, ASSETS / "lsystems"), within=0.01)  # (it rounds to days)
     if differ:
         raise NotBuildableError(f"the builder cannot keep its {', '.join(differ)} as written: edit it in a text "
                                 "editor")

@@ -164,18 +164,3 @@ def draft_of(sweep: Sweep, day_seconds: float) -> Draft:
     if sweep.seeds != list(range(1, len(sweep.seeds) + 1)) or len(sweep.seeds) > MAX_SEEDS:
         raise NotBuildableError("the builder gives seeds 1 to N; this file lists its own: edit it in a text editor")
     return draft
-
-
-
-def changes(before: Sweep, after: Sweep) -> list[str]:
-    """What the builder's file (``after``) would run differently from ``before`` (the file it opened): the
-    keys that differ (the length and sampling within 1 %), [] when it runs the same experiment."""
-    out = [key for key, a, b in (("factor", before.factors, after.factors), ("seeds", before.seeds, after.seeds),
-                                 ("responses", before.responses, after.responses), ("base", before.base, after.base),
-                                 ("species", before.species, after.species), ("pace", before.pace, after.pace),
-                                 ("seasons", before.seasons, after.seasons), ("stop", before.stop, after.stop))
-           if a != b]
-    for key in ("duration", "sample_every"):
-        if abs(getattr(before, key) - getattr(after, key)) > 0.01 * getattr(before, key):
-            out.append(key)
-    return out

@@ -127,6 +127,26 @@ class Outcome:
     stop_time: float = 0.0
 
 
+# What makes two sweep files the same experiment: (field, the sweep file's key); seeds and the title may
+# differ between a class's folders (arbor compare), not between a file and the builder's copy of it.
+EXPERIMENT = (("factors", "factor"), ("seeds", "seeds"), ("duration", "duration"), ("sample_every", "sample_every"),
+              ("responses", "responses"), ("base", "base"), ("species", "species"), ("pace", "pace"),
+              ("seasons", "seasons"), ("stop", "stop"))
+
+
+def differences(sweep: Sweep, other: Sweep, *, seeds: bool = True, within: float = 0.0) -> list[str]:
+    """The sweep file's keys in which ``other`` runs another experiment than ``sweep`` ([] for the same one):
+    seeds counted unless ``seeds`` is False; the length and sampling equal within the share ``within``."""
+    out = []
+    for name, key in EXPERIMENT:
+        a, b = getattr(sweep, name), getattr(other, name)
+        if key == "seeds" and not seeds:
+            continue
+        if abs(a - b) > within * abs(a) if key in ("duration", "sample_every") else a != b:
+            out.append(key)
+    return out
+
+
 def runs(sweep: Sweep) -> list[Run]:
     """Every run of the sweep: each combination of levels, each seed, in a fixed order."""
     combos = itertools.product(*(f.levels for f in sweep.factors))
