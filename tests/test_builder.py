@@ -9,6 +9,7 @@ import io
 import itertools
 import math
 
+import numpy as np
 import pytest
 
 from arbor.engine.life.experiment.builder import FACTORS, WATERING, Draft, NotBuildableError, draft_of
@@ -53,7 +54,6 @@ def test_hand_written_lessons_reopen_and_files_it_would_change_are_refused_by_na
 
 
 def test_a_sweep_built_saved_reopened_and_run_with_the_mouse_alone(gl_ctx, tmp_path):
-    import pygame
 
     from arbor.game.commands.sweep import run_sweep
     from arbor.game.input.events import DOWN, InputEvent
@@ -88,11 +88,21 @@ def test_a_sweep_built_saved_reopened_and_run_with_the_mouse_alone(gl_ctx, tmp_p
     assert [f.key for f in sweep.factors] == ["watering.every"] and sweep.factors[0].levels == (60, 240)
     assert sweep.seeds == [1, 2] and sweep.responses == ("height", "biomass", "water_min", "alive")
     assert sweep.base.watering.every == 60 and "# a 5 s drink on a timetable" in path.read_text(encoding="utf-8")
-    screen.draw(gl_ctx.framebuffer(color_attachments=[gl_ctx.renderbuffer(size)]))  # (the window's path)
-    img = pygame.surfarray.array3d(screen.picture()).swapaxes(0, 1)  # what draw blends over the window
-    for level, chosen in ((60, True), (240, True), (30, False), (480, False)):
+    fbo = gl_ctx.framebuffer(color_attachments=[gl_ctx.renderbuffer(size)])
+
+    def lit(level) -> bool:  # is the level's button lit in what the window shows (drawn only when it changed)
+        screen.draw(fbo)
+        img = np.frombuffer(fbo.read(components=3), np.uint8).reshape(size[1], size[0], 3)[::-1]
         x, y = screen.buttons[("level", level)].center
-        assert tuple(img[y - 15, x - 20]) == (ON if chosen else OFF)  # chosen levels lit, the others dark
+        colour = img[y - 15, x - 20].astype(int)
+        assert min(np.abs(colour - ON).max(), np.abs(colour - OFF).max()) <= 2, colour
+        return bool(np.abs(colour - ON).max() <= 2)
+
+    assert [lit(level) for level in (60, 240, 30, 480)] == [True, True, False, False]
+    tap(screen, stack, ("level", 30))
+    assert lit(30) and lit(30)  # the tap shows at once, and stays shown when nothing changes
+    tap(screen, stack, ("level", 30))
+    assert not lit(30)
 
     again = BuilderScreen(gl_ctx, size, path, run_sweep, results=tmp_path / "results", workers=1)
     assert again.message == "Opened my_sweep.toml" and again.draft.toml(DAY) == screen.draft.toml(DAY)

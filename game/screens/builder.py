@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import math
 import threading
+import time
 from collections.abc import Callable
 from pathlib import Path
 
@@ -36,6 +37,7 @@ from arbor.game.render.renderer import Overlay
 from arbor.game.screens.stack import Screen, quit_asked
 
 ROW_H, PAD, LEFT = 58, 10, 250  # pixels: a row of buttons, the gap between buttons, the labels' column
+COUNT_EVERY = 0.5  # seconds between looks into a running sweep's runs folder (a glob of up to thousands of files)
 INK, PAPER, ON, OFF = (245, 245, 240), (236, 236, 228), (70, 120, 60), (60, 66, 60)
 
 
@@ -58,6 +60,8 @@ class BuilderScreen(Screen):
         self.overlay = Overlay(ctx, size) if ctx is not None else None
         self.surface = pygame.Surface(size, pygame.SRCALPHA)
         self.buttons: dict[tuple, pygame.Rect] = {}
+        self._shown: tuple | None = None  # what the surface shows (redrawn only when that changes)
+        self._counted = (-1.0, 0)  # (when, runs done) of the last look into the runs folder
         self._layout()
 
     @staticmethod
@@ -164,7 +168,10 @@ class BuilderScreen(Screen):
         if not self.status:
             return ""
         out, total = self.status["out"], self.status["total"]
-        done = len(list((out / "runs").glob("run*.csv"))) if (out / "runs").is_dir() else 0
+        if time.monotonic() - self._counted[0] > COUNT_EVERY:
+            done = len(list((out / "runs").glob("run*.csv"))) if (out / "runs").is_dir() else 0
+            self._counted = (time.monotonic(), done)
+        done = self._counted[1]
         if self.status["status"] is None:
             return f"Running: {done} of {total} runs done"
         if self.status["status"] == 0:
@@ -187,7 +194,11 @@ class BuilderScreen(Screen):
         """The rows of buttons, the file's name and what happened last."""
         fbo.use()
         fbo.clear(*(c / 255 for c in PAPER), 1.0)
-        self.overlay.draw(pygame.image.tobytes(self.picture(), "RGBA", True))
+        shown = (tuple(self.rows()), self.message, self.progress())
+        if shown != self._shown:
+            self.picture()
+        self.overlay.draw_surface(self.surface, shown != self._shown)
+        self._shown = shown
 
     def picture(self) -> pygame.Surface:
         """The builder drawn on its surface (what draw shows)."""
