@@ -74,6 +74,8 @@ def test_tidy_and_summary_tables(pooled):
     height = {(r["Sun orbit height"], r["Drain"]): r for r in summary if r["response"] == "height"}
     low, high = height[("-0.6", "0.004")], height[("1", "0.004")]
     assert float(low["n"]) == 3 and float(low["p10"]) <= float(low["median"]) <= float(low["p90"])
+    assert {(r["response"], r["unit"]) for r in summary} == {("height", "m"), ("girth", "cm"), ("leaves", "count"),
+                                                             ("alive", "1 or 0")}
     finals = [float(r["height"]) for r in rows if r["time_s"] == "150" and r["Sun orbit height"] == "1"
               and r["Drain"] == "0.004"]
     assert np.isclose(float(high["mean"]), np.mean(finals))

@@ -21,6 +21,7 @@ import numpy as np
 
 from arbor.engine.base.errors import SweepError
 from arbor.engine.base.reader import read_user_text
+from arbor.engine.life.experiment.measure import UNITS
 from arbor.engine.life.experiment.sweep import (
     STATS,
     Outcome,
@@ -147,12 +148,13 @@ def write_outputs(sweep: Sweep, store: RunStore, everything: list, plots: bool =
 
 
 def summary_csv(sweep: Sweep, finals: dict) -> str:
-    """Per combination of levels and response, the spread over seeds of the final values."""
+    """Per combination of levels and response, the response's unit and the spread over seeds of the final
+    values."""
     buf = io.StringIO()
     writer = csv.writer(buf, lineterminator="\n")
-    writer.writerow([*(f.name for f in sweep.factors), "response", *STATS])
+    writer.writerow([*(f.name for f in sweep.factors), "response", "unit", *STATS])
     for levels, response, stats in summarize(finals):
-        writer.writerow([*(cell(v) for v in levels), response, *(cell(s) for s in stats)])
+        writer.writerow([*(cell(v) for v in levels), response, UNITS[response], *(cell(s) for s in stats)])
     return buf.getvalue()
 
 
