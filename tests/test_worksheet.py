@@ -49,7 +49,7 @@ def test_a_sweep_lessons_sheet_has_every_part_and_a_key_from_its_run(tmp_path):
     for (_, biomass), want in zip(cells, ("6", "10", "14", "18"), strict=True):
         assert float(biomass) == pytest.approx(last[want], rel=5e-3)  # the key is the run's numbers
     make_worksheet("light", out, seeds=1, workers=1, duration=300.0, echo=said.append)
-    assert "4 runs, 4 already done" in said[-1]  # a second sheet of the lesson reuses the kept runs
+    assert any("4 runs, 4 already done" in line for line in said[-3:])  # a second sheet reuses the kept runs
     with pytest.raises(UserError, match="light_runs holds the runs of another answer key"):
         make_worksheet("light", out, seeds=2, workers=1, duration=300.0, echo=said.append)
 

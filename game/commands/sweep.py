@@ -48,12 +48,12 @@ KEEP = ("all", "first", "none")
 RESUME = "run the same command to resume"  # what a stopped sweep says (the runs kept are not run again)
 
 
-def run_sweep(path: Path, out: Path, workers: int | None = None, scheduler: str | None = None,
+def run_sweep(path: Path | Sweep, out: Path, workers: int | None = None, scheduler: str | None = None,
               plots: bool = True, echo: Callable[[str], None] = report.say, keep: str = "first") -> int:
-    """Run what is not done yet of the sweep in ``path`` into ``out``; write tables and figures when every
-    run is done. ``keep`` says which final trees are saved (all, each level's first seed, none). Returns
-    the exit status (0 done, 1 some runs failed, 130 stopped by Ctrl-C: at any moment, it says how to
-    resume)."""
+    """Run what is not done yet of the sweep in ``path`` (a sweep file, or a sweep already read) into
+    ``out``; write tables and figures when every run is done. ``keep`` says which final trees are saved
+    (all, each level's first seed, none). Returns the exit status (0 done, 1 some runs failed, 130 stopped
+    by Ctrl-C: at any moment, it says how to resume)."""
     if keep not in KEEP:
         raise ValueError(f"keep must be one of {KEEP}")
     try:
@@ -64,9 +64,9 @@ def run_sweep(path: Path, out: Path, workers: int | None = None, scheduler: str 
         return 130
 
 
-def _run(path: Path, out: Path, workers: int | None, scheduler: str | None, plots: bool,
+def _run(path: Path | Sweep, out: Path, workers: int | None, scheduler: str | None, plots: bool,
          echo: Callable[[str], None], keep: str) -> int:
-    sweep = load_sweep(path, ASSETS / "lsystems")
+    sweep = path if isinstance(path, Sweep) else load_sweep(path, ASSETS / "lsystems")
     store = RunStore(out, sweep)
     everything = runs(sweep)
     done = store.done()

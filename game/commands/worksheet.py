@@ -22,7 +22,7 @@ import numpy as np
 from arbor.engine.base.errors import LSysError, SettingsError
 from arbor.engine.base.reader import read_user_toml
 from arbor.engine.life.experiment.measure import UNITS
-from arbor.engine.life.experiment.sweep import Outcome, Sweep, cell, final_values, runs
+from arbor.engine.life.experiment.sweep import Sweep, cell, final_values
 from arbor.engine.life.experiment.sweep_file import load_sweep
 from arbor.game import report
 from arbor.game.errors import UserError
@@ -139,38 +139,28 @@ def sweep_setup(sweep: Sweep, seeds: int, day: float) -> list[str]:
 
 
 def run_sweep_key(sweep: Sweep, folder: Path, workers: int | None, echo=report.say) -> list[dict]:
-    """The lesson's runs (kept in ``folder``: a second sheet does not run them again); the tidy rows."""
-    import os
-
-    from arbor.game.commands.sweep import _tasks
-    from arbor.game.commands.sweep_runs import RunStore, outcomes, write_atomic
+    """The lesson's runs by the sweep command (kept in ``folder``: a second sheet does not run them again);
+    the tidy rows."""
+    from arbor.game.commands.sweep import RESUME, run_sweep
 
     try:
-        store = RunStore(folder, sweep)
+        status = run_sweep(sweep, folder, workers, plots=False, echo=echo, keep="none")
     except LSysError:
         raise UserError(f"{folder} holds the runs of another answer key (other --seeds, or the lesson changed): "
                         "delete that folder, or write the sheet under another name") from None
-    everything = runs(sweep)
-    todo = [r for r in everything if r.name not in store.done()]
-    echo(f"{sweep.title}: the answer key's {len(everything)} runs, {len(everything) - len(todo)} already done "
-         f"(in {folder})")
-    for outcome in outcomes(_tasks(sweep, todo, "none"), workers or os.cpu_count() or 1, None):
-        if not isinstance(outcome, Outcome):
-            raise UserError(f"a run of the answer key failed: {outcome[1].strip().splitlines()[-1]}")
-        store.keep(outcome)
-    table = store.table(everything)
-    write_atomic(folder / "tidy.csv", table)
-    return list(csv.DictReader(io.StringIO(table)))
+    if status:
+        raise UserError(f"the answer key's runs did not all end (said above); {RESUME}")
+    return list(csv.DictReader(io.StringIO((folder / "tidy.csv").read_text(encoding="utf-8"))))
 
 
 def sweep_answer(sheet: Sheet, sweep: Sweep, rows: list[dict], seeds_of_lesson: int, day: float) -> Answer:
     """The answer key of a sweep lesson: the means per level of the key's responses and what they show."""
-    from arbor.game.render.figures import TITLES, axis_label
+    from arbor.game.render.figures import TITLES, axis_label, factor_unit
 
     finals = final_values(rows, sweep)
     factor = sweep.factors[0]
-    unit = axis_label(factor).removeprefix(factor.name).strip(" ()")
-    unit = unit if unit and not set(unit) & set(" ,.") else ""  # (h, s, m: after each level; not "share, 0..1")
+    unit = factor_unit(factor)
+    unit = unit if not set(unit) & set(" ,.") else ""  # (h, s, m: after each level; not "share, 0..1")
     names = [f"{cell(v).removesuffix('.lsys')}{' ' + unit if unit else ''}" for v in factor.levels]
     header = [axis_label(factor), *(f"{r} ({UNITS.get(r, '')})" for r in sheet.key)]
     table, sentences = [], []

@@ -413,11 +413,16 @@ def axis_label(factor) -> str:
     """A factor's name for its axis, with the unit of what it varies (the experiment schema's sun and
     watering keys, the rule schema's rules, e.g. "Drain (meter per s)"), so a figure says what its numbers
     count; a species axis is named, it has no unit."""
-    if factor.key == "species":
-        return factor.name
-    key = FACTOR_KEYS.get(factor.key)
-    unit = key.unit if key else getattr(find_rule(factor.key), "unit", "")
+    unit = factor_unit(factor)
     return f"{factor.name} ({unit})" if unit and f"({unit})" not in factor.name else factor.name
+
+
+def factor_unit(factor) -> str:
+    """The unit of what a factor varies (the experiment schema's or the rule schema's; "" for species)."""
+    if factor.key == "species":
+        return ""
+    key = FACTOR_KEYS.get(factor.key)
+    return key.unit if key else getattr(find_rule(factor.key), "unit", "")
 
 
 def y_label(response: str) -> str:
