@@ -33,7 +33,9 @@ import time
 from collections.abc import Callable, Iterator
 from pathlib import Path
 
+from arbor.engine.base.errors import LSysError
 from arbor.engine.base.files import set_aside
+from arbor.game.errors import UserError
 from arbor.game.signals import StopSignals
 
 log = logging.getLogger("arbor.watchdog")
@@ -130,15 +132,24 @@ def _note(heartbeat: Path) -> Path:
 @contextlib.contextmanager
 def reading(path: str | Path) -> Iterator[None]:
     """While the body runs, note (for a watchdog, when one runs this process) that the user's file
-    ``path`` is being read; the note is cleared when the body finished (an exception leaves it: the
-    process may die of it; the window's first frame clears it, :func:`started`), so a crash or a hang
-    while reading leaves it, and a crash loop sets that file aside, not another."""
+    ``path`` is being read; the note is cleared when the body finished or refused the file in one clear
+    line (an LSysError, UserError or OSError: the caller says so and goes on). Any other exception leaves
+    it (the process may die of it; the window's first frame clears it, :func:`started`), so a crash or a
+    hang while reading leaves it, and a crash loop sets that file aside, not another."""
     beat = os.environ.get("ARBOR_HEARTBEAT")
     note = _note(Path(beat)) if beat else None
     if note is not None:
         with contextlib.suppress(OSError):
             note.write_text(str(Path(path).absolute()), encoding="utf-8")
-    yield
+    try:
+        yield
+    except (LSysError, UserError, OSError):
+        _clear(note)
+        raise
+    _clear(note)
+
+
+def _clear(note: Path | None) -> None:
     if note is not None:
         with contextlib.suppress(OSError):
             note.unlink(missing_ok=True)

@@ -5,11 +5,15 @@ instead; healthy starts on a loaded machine were killed at 60 s)."""
 
 from __future__ import annotations
 
+import contextlib
 import os
 import sys
 import time
 from pathlib import Path
 
+import pytest
+
+from arbor.engine.life.keep.save_check import SaveError
 from arbor.game.watchdog import STAFF_EXIT, reading, started, watch
 
 NOTE = "pathlib.Path(os.environ['ARBOR_HEARTBEAT'] + '.reading').write_text({!r})\n"
@@ -68,6 +72,11 @@ def test_the_reading_note_is_cleared_once_read_and_kept_when_reading_fails(tmp_p
     except RuntimeError:
         pass
     assert note.read_text() == str(tmp_path / "autosave.arbor")
+    with pytest.raises(SaveError), reading(tmp_path / "broken.arbor"):  # refused in one line: the caller goes on
+        raise SaveError("not a garden", "broken.arbor", 1, 1)
+    assert not note.exists()
+    with contextlib.suppress(RuntimeError), reading(tmp_path / "autosave.arbor"):
+        raise RuntimeError("died reading it")
     started()  # the first frame: the start is over
     assert not note.exists()
     monkeypatch.delenv("ARBOR_HEARTBEAT")
