@@ -7,7 +7,7 @@ from a drawn trunk into ~5,000 attractors, and writing the skeleton as L-string 
 drawn (1 % jitter) trees and lobes grown as the game grows them (12,000 modules, a leaf per tip, the
 game's radii): each lobe's fill (share of its volume within a tenth of its size from the wood), the
 drawn trunk's width after the crown over its drawn width, and the time; six lobes round a drawn tree
-(issue 48: each lobe's fill, goal >= 85 %). With --game: three lobes
+(issue 48: each lobe's fill, goal >= 85 %, tests/test_crown_six_lobes.py). With --game: three lobes
 drawn by a shaky hand (1.5 px) in the real game, headless (EGL), each crown's time as the game reports
 it, the lobes' fill, and a screenshot (PNG, default /tmp/three_lobes_game.png).
 """

@@ -81,6 +81,7 @@ def grow_into_lobes(skeleton: Skeleton, lobes: list[Lobe], attractors: np.ndarra
     if (skeleton.active & near).any():
         skeleton.active = skeleton.active & near
     deep = np.zeros(len(skeleton.parent), bool)  # the branch has been well inside a lobe
+    start_nodes, grown_by = len(skeleton.parent), np.zeros(len(lobes), np.int64)  # new nodes of each lobe
     t = np.radians(t_deg)
     owner_local = None
     best, stale = np.full(len(remaining), np.inf), np.zeros(len(remaining), np.int64)
@@ -108,7 +109,9 @@ def grow_into_lobes(skeleton: Skeleton, lobes: list[Lobe], attractors: np.ndarra
         stays = new_inside | ~inside[nodes]
         room = max_nodes - len(skeleton.parent)
         unfilled = volume * np.bincount(labels, minlength=len(lobes)) / count0
-        chosen = _fair(np.flatnonzero(stays), lobe_of, unfilled, room, rng)
+        allowed = _quota(volume, grown_by, np.bincount(labels, minlength=len(lobes)) > 0, max_nodes - start_nodes)
+        chosen = _fair(_capped(np.flatnonzero(stays), lobe_of, allowed), lobe_of, unfilled, room, rng)
+        grown_by += np.bincount(lobe_of[chosen], minlength=len(lobes))
         nodes, directions, new_pos, new_inside = nodes[chosen], directions[chosen], new_pos[chosen], new_inside[chosen]
         if len(nodes) == 0:
             break
@@ -127,6 +130,29 @@ def grow_into_lobes(skeleton: Skeleton, lobes: list[Lobe], attractors: np.ndarra
         remaining, owner_local, labels = remaining[far], owner_local[far], labels[far]
         best, stale = best[far], stale[far]
     return skeleton
+
+
+def _quota(volume: np.ndarray, grown_by: np.ndarray, growing: np.ndarray, total: int) -> np.ndarray:
+    """How many more pieces each lobe may grow: the node budget ``total`` less what the lobes that are done
+    (``growing`` False: no attractors left) used, shared among the growing ones by volume, less what each
+    has grown. A lobe near much wood sprouts many pieces every step and, shared only when the budget
+    binds, had used most of it before a lobe reached late by its bridging axis began (six small lobes
+    round a tree: 63 % and 66 % filled beside 91 %)."""
+    if not growing.any():
+        return np.zeros(len(volume), np.int64)
+    left = total - int(grown_by[~growing].sum())
+    share = np.where(growing, left * volume / float(volume[growing].sum()), 0.0)
+    return np.maximum(np.floor(share).astype(np.int64) - grown_by, 0)
+
+
+def _capped(candidates: np.ndarray, lobe_of: np.ndarray, allowed: np.ndarray) -> np.ndarray:
+    """The first ``allowed[lobe]`` candidate pieces of each lobe, in growth order."""
+    lobe = lobe_of[candidates]
+    order = np.argsort(lobe, kind="stable")
+    starts = np.searchsorted(lobe[order], np.arange(len(allowed)))
+    rank = np.empty(len(candidates), np.int64)
+    rank[order] = np.arange(len(candidates)) - starts[lobe[order]]
+    return candidates[rank < allowed[lobe]]
 
 
 def _fair(candidates: np.ndarray, lobe_of: np.ndarray, unfilled: np.ndarray, room: int,
@@ -275,8 +301,14 @@ _OPEN, _CLOSE = parse_lstring("["), parse_lstring("]")
 
 
 def _tip(tip: str):
-    """The tip's modules (None for no tip)."""
-    return parse_lstring(tip) if tip else None
+    """The tip's modules (None for no tip), without brackets round the whole of it: a tip ends its branch,
+    so a ']' or the string's end follows it and its own brackets draw nothing (two of every tip's four
+    modules in '[&(45)L(1)]': dropped, the same module budget holds 15 % more crown)."""
+    if not tip:
+        return None
+    ls = parse_lstring(tip)
+    whole = len(ls) >= 2 and ls.sym[0] == ord("[") and brackets.branch_ends(ls.sym, np.array([1]))[0] == len(ls) - 1
+    return ls.select(np.arange(len(ls)) % (len(ls) - 1) != 0) if whole else ls
 
 
 TWIG = 0.024  # diameter of a crown branch's last piece: twice the species' pipe radius per leaf (TIP

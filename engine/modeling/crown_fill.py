@@ -1,9 +1,9 @@
 """A crown within a module budget, and how well it fills its lobes (the measure the modeler is judged by).
 
 ``grow_within`` grows the crown and, when the L-string it writes is bigger than the room the budget
-leaves, grows it again with proportionally fewer nodes (the lobes share them by unfilled volume, see
-crown.grow_into_lobes). ``lobe_fill`` is the share of each lobe's volume lying within a tenth of the
-lobe's size from the wood (any drawn or grown segment).
+leaves, grows it again with longer pieces (fewer nodes fill the lobes), and at last with proportionally
+fewer nodes (the lobes share them by volume, see crown.grow_into_lobes). ``lobe_fill`` is the share of
+each lobe's volume lying within a tenth of the lobe's size from the wood (any drawn or grown segment).
 """
 
 from __future__ import annotations
@@ -20,7 +20,8 @@ from arbor.engine.modeling.lobes import Lobe
 from arbor.engine.modeling.modeler import Modeler
 
 MAX_CROWN_MODULES = 24000  # one crown's bound even without a tree budget
-LONGER = 0.75  # a try over the budget by a factor f is grown again with pieces (and reach) f**LONGER as long
+LONGER = 1.0  # a try over the budget by a factor f is grown again with pieces (and reach) f**LONGER as long
+MIN_LONGER = 0.03  # ... and at least this much longer (a try just over the budget went to the node bound)
 MAX_STEP = 0.45  # of a lobe's size: the longest pieces
 FILL_REACH = 0.1  # of a lobe's size: a place this close to the wood counts as filled
 
@@ -44,7 +45,7 @@ def grow_within(base: LString, lobes: list[Lobe], room: int, seed: int,
             return scratch.lstring, added, added >= nodes - 2 or nodes < MAX_CROWN_MODULES // 4
         # too big: longer pieces that use up the attractors a little farther away fill the lobes with
         # fewer nodes; the node bound is the last resort, shared fairly among the lobes
-        grow = min((extra / room) ** LONGER, MAX_STEP / step)
+        grow = min(max((extra / room) ** LONGER, 1.0 + MIN_LONGER), MAX_STEP / step)
         if grow > 1.01 and k < tries - 2:
             step, reach = step * grow, reach * grow
         else:
