@@ -108,10 +108,12 @@ def test_first_run_hints_go_one_by_one_as_the_player_finds_things(gl_ctx, tmp_pa
 def test_status_tells_a_new_player_what_the_tree_needs_in_their_pace(gl_ctx, tmp_path):
     home = new_game(gl_ctx, tmp_path / "home", pace="home")
     home.world.sim.state.sun_meter = home.world.sim.state.water_meter = 0.9
-    assert home.hud_info().status.startswith("settling in") and "3.8 h" in home.hud_info().status
+    # (a new garden's first day runs 144x at the home pace: 3.8 h of settling in are 95 s of play)
+    assert home.hud_info().status.startswith("settling in") and "2 min" in home.hud_info().status
+    assert home.hud_info().speed_note == "first day 144x, 10 min more"
     demo = new_game(gl_ctx, tmp_path / "demo")
     demo.world.sim.state.sun_meter = demo.world.sim.state.water_meter = 0.9
-    assert "20 s" in demo.hud_info().status
+    assert "20 s" in demo.hud_info().status and demo.hud_info().speed_note == ""
     demo.world.sim.state.water_meter = 0.3
     assert "watering can" in demo.hud_info().status
     assert demo.hud_info().season.startswith("Spring, day 1")

@@ -116,6 +116,8 @@ def test_a_rule_added_to_the_schema_is_read_checked_scaled_and_documented(tmp_pa
      "meter_min must not be above meter_max", 1, 1),
     ("pace = \"home\"\n[paces.home]\ntime_scale = 10\n\"sun.glare\" = 1\n", "[paces.home]: unknown rule", 4, 1),
     ("pace = \"slow\"\n[paces.home]\ntime_scale = 10\n", "unknown pace 'slow'", 1, 1),
+    ("pace = \"home\"\n[paces.home]\ntime_scale = 10\nfirst_day_speed = 0.5\n", "first_day_speed must be", 4, 1),
+    ("pace = \"home\"\n[paces.home]\nfirst_day_speed = true\n", "from 1 to 1000", 3, 1),
 ])
 def test_bad_rules_files_name_the_key_where_it_is(tmp_path, text, words, line, col):
     path = write(tmp_path, text)

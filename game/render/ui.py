@@ -341,6 +341,7 @@ class HudInfo:
     hint: str = ""  # a first-run hint, shown large at the top
     reminder: str = ""  # one calm line about what is worth doing now
     height_m: float = 0.0  # the tree's height, the top of its wood (engine.geometry.tree.tree_height; 0: none)
+    speed_note: str = ""  # after the speed: a new garden's faster first day, while it lasts ('' otherwise)
 
 
 def draw_hud(surface: pygame.Surface, font: pygame.font.Font, info: HudInfo) -> None:
@@ -364,6 +365,8 @@ def draw_hud(surface: pygame.Surface, font: pygame.font.Font, info: HudInfo) -> 
     age = (text("hud.minutes", minutes=minutes) if minutes < 120 else text("hud.hours", hours=minutes / 60)
            if minutes < 2880 else text("hud.days", days=minutes / 1440))
     speed = text("hud.paused") if info.speed == 0 else text("hud.speed", speed=info.speed)
+    if info.speed_note:
+        speed += " - " + info.speed_note
     line = text("hud.line", age=age, speed=speed)
     if info.height_m > 0:
         line = text("hud.tall", metres=info.height_m) + " - " + line

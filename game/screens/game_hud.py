@@ -96,8 +96,11 @@ class GameHud:
         message = state.shown_message()
         if not message and tree.budget_hit:
             message = text("messages.budget")
-        status = text(f"status.{world.status(self.dark_sky())}", hold=duration(world.sim.settle_left()),
+        fast, left = self.first_day()
+        pace = max(state.loop.speed, 1.0) * fast  # game s per real s (as at 1x while paused)
+        status = text(f"status.{world.status(self.dark_sky())}", hold=duration(world.sim.settle_left() / pace),
                       fruit=fruit_count(world))
+        note = text("hud.first_day", fast=fast, left=duration(left / pace)) if left > 0 else ""
         season = ""
         if rules.seasons.enabled:
             day = int(s.sun_turns) + 1
@@ -107,7 +110,15 @@ class GameHud:
         if modeling:  # (the garden is paused: its status lines would only lie across the tree being drawn)
             status = season = ""
         return HudInfo(s.sun_meter, s.water_meter, status, s.time, state.loop.speed, message, s.watering, season,
-                       world.sim.raining(), hint, "" if modeling else self.coach.reminder(), tree.height / METRE)
+                       world.sim.raining(), hint, "" if modeling else self.coach.reminder(), tree.height / METRE,
+                       note)
+
+    def first_day(self) -> tuple[float, float]:
+        """(how many times as fast a new garden's first day runs, game seconds left of it): (1, 0) when
+        the garden is past it or the pace has none (the HUD tells the first day's pace even while the can
+        pours and time runs at the loop's speed)."""
+        left = self.state.first_day_left()
+        return (self.rules.first_day_speed, left) if left > 0 else (1.0, 0.0)
 
     def dark_sky(self) -> bool:
         """True when the sky drawn now is a night's (at fast speeds the scene leans toward noon, so a

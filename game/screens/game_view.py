@@ -220,7 +220,7 @@ class GameView:
         screen neither strobes nor goes dark every second, while the sim keeps its real sun."""
         sim = self.state.world.sim
         sun = sim.sun_direction()
-        turn = sim.state.sun_speed * self.state.loop.speed  # radians of the sun per real second
+        turn = sim.state.sun_speed * self.state.time_speed()  # radians of the sun per real second
         day = 2 * math.pi / turn if turn > 0 else math.inf
         lean = min(max((SMOOTH_DAY - day) / (SMOOTH_DAY - STEADY_DAY), 0.0), 1.0)
         if lean == 0.0:

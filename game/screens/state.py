@@ -13,7 +13,7 @@ from collections.abc import Callable
 
 from arbor.engine.life.form.interpret import Clocks
 from arbor.engine.life.plant.sim import sun_angle_at
-from arbor.engine.life.rules.rules import Rules
+from arbor.engine.life.rules.rules import Rules, first_day
 from arbor.engine.life.world.commands import SunAt
 from arbor.engine.life.world.garden import Garden
 from arbor.engine.life.world.guardian import NEEDS, Gardener, Guardian, Need, needs_of
@@ -92,10 +92,33 @@ class GameState:
         """Live one frame's worth of fixed steps (at the loop's speed)."""
         self.alpha = self.loop.advance(real_seconds, self._step)
 
+    def first_day_left(self) -> float:
+        """Game seconds left of a new garden's faster first day (the pace's ``first_day_speed``): while every
+        tree of the garden is in its first day of the sun; 0 at a pace without one."""
+        if self.rules.first_day_speed <= 1.0:
+            return 0.0
+        oldest = max(world.sim.state.time for world in self.garden.worlds)
+        return max(first_day(self.rules) - oldest, 0.0)
+
+    def first_day_factor(self) -> float:
+        """How many times as fast the garden lives than the loop's speed: the pace's ``first_day_speed``
+        during a new garden's first day, 1 after it and while any can pours (the can fills per real second)."""
+        if self.first_day_left() <= 0 or any(world.sim.state.watering for world in self.garden.worlds):
+            return 1.0
+        return self.rules.first_day_speed
+
+    def time_speed(self) -> float:
+        """Game seconds per real second now (0 when paused): the loop's speed x :meth:`first_day_factor`."""
+        return self.loop.speed * self.first_day_factor()
+
     def _step(self, dt: float) -> None:
-        """One fixed step of the whole garden (the frame interpolates from the state before it)."""
+        """One fixed step of the whole garden (the frame interpolates from the state before it): ``dt`` x
+        :meth:`first_day_factor` of game time; the step that ends a faster first day says so."""
         self.previous = copy.copy(self.world.sim.state)
-        self.garden.step(dt)
+        factor = self.first_day_factor()
+        self.garden.step(dt * factor)
+        if factor > 1.0 and self.first_day_left() <= 0:
+            self.say(text("messages.first_day_over"), 10)
         if self.autopilot:
             self.guardian.autopilot(self.garden)
             return

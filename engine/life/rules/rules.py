@@ -3,7 +3,9 @@
 A pace scales time: the same rules run at the tamagotchi thesis's demonstration pace (a day of the sun in about
 two minutes, growth earned after 20 s above half) or at a home pace (a day of the sun in a day, meters
 that last about a day, seasons of a week). Times are multiplied by the pace's time scale and rates
-divided by it, so the 20 s / 40 s rules keep their shape; a pace may also override single rules.
+divided by it, so the 20 s / 40 s rules keep their shape; a pace may also override single rules, and may
+give a new garden a faster first day (``first_day_speed``: the game lives a garden whose trees are all in
+their first day of the sun that many times as fast, so a first session sees its tree grow).
 The rules themselves (defaults, ranges, units, what a pace scales) are declared once in schema.py;
 the dataclasses here are made from it.
 """
@@ -26,14 +28,16 @@ SECTIONS = tuple(SECTION_DOCS)
 @functools.cache
 def rules_class(schema: tuple[Rule, ...] = SCHEMA) -> type:
     """The ``Rules`` dataclass for ``schema``: one field per section (a dataclass of its rules, with the
-    schema's defaults), then the pace the rules are at and its time scale (real s per s of the demo pace)."""
+    schema's defaults), then the pace the rules are at, its time scale (real s per s of the demo pace) and
+    how many times as fast a new garden's first day runs at it (1: no faster first day)."""
     sections = []
     for section, (name, doc) in SECTION_DOCS.items():
         own = [(r.name, type(r.default), field(default=r.default)) for r in schema if r.section == section]
         cls = make_dataclass(name, own, namespace={"__doc__": doc, "__module__": __name__})
         sections.append((section, cls, field(default_factory=cls)))
     return make_dataclass("Rules", [*sections, ("pace", str, field(default="demo")),
-                                    ("time_scale", float, field(default=1.0))],
+                                    ("time_scale", float, field(default=1.0)),
+                                    ("first_day_speed", float, field(default=1.0))],
                           namespace={"__doc__": "All game rules, one section per table of rules.toml.",
                                      "__module__": __name__, "SCHEMA": schema})
 
@@ -44,6 +48,8 @@ GrowthRules, SunRules, WaterRules, HealthRules, ReplantRules, LightRules, WindRu
     TimeAwayRules, RootRules, CarbonRules = (_fields[s].default_factory for s in SECTIONS)
 TIMES = tuple(r.key for r in SCHEMA if r.scales == "time")  # multiplied by a pace's time scale
 RATES = tuple(r.key for r in SCHEMA if r.scales == "rate")  # per second: divided by it
+PACE_KEYS = ("time_scale", "first_day_speed")  # a pace's own settings (its other keys override single rules)
+FIRST_DAY_MOST = 1000.0  # x: the fastest first day a pace may ask for
 RULE_RANGES = {r.key: (r.low, r.high) for r in SCHEMA if r.low is not None}  # physical limits of every number
 
 
@@ -84,12 +90,22 @@ def apply_pace(rules: Rules, name: str, pace: dict, file: str = "<rules>", text:
             target = getattr(rules, rule.section)
             value = getattr(target, rule.name)
             setattr(target, rule.name, value * scale if rule.scales == "time" else value / scale)
+    first = pace.get("first_day_speed", 1.0)
+    if isinstance(first, bool) or not isinstance(first, int | float) or not 1 <= first <= FIRST_DAY_MOST:
+        raise RulesError(f"[{table}] first_day_speed must be a number from 1 to {FIRST_DAY_MOST:g}", file,
+                         *toml_position(text, table, "first_day_speed"))
     for key, value in pace.items():
-        if key != "time_scale":
+        if key not in PACE_KEYS:
             set_rule(rules, key, value, file, at=toml_position(text, table, key), what=f"[{table}]: ")
     check_rules(rules, file)
-    rules.pace, rules.time_scale = name, float(scale)
+    rules.pace, rules.time_scale, rules.first_day_speed = name, float(scale), float(first)
     return rules
+
+
+def first_day(rules: Rules) -> float:
+    """Game seconds of a garden's first day: a day of the sun at the pace's default sun speed (a pace's
+    ``first_day_speed`` runs that long of a new garden's life faster)."""
+    return 2 * math.pi / rules.sun.speed
 
 
 def set_rule(rules: Rules, key: str, value, file: str, error: type[LSysError] = RulesError,
