@@ -261,6 +261,7 @@ class Crown:
 
     def run(self, world: World) -> CrownResult:
         """Grow the crown and commit it."""
+        from arbor.engine.life.form.crown_leaves import fit_crown_leaves
         from arbor.engine.modeling.crown_fill import MAX_CROWN_MODULES, grow_within
 
         editor = world.editing()
@@ -268,9 +269,12 @@ class Crown:
             return CrownResult(0, False, too_big(self.lobes))
         budget = world.tree.deriver.budget
         room = MAX_CROWN_MODULES if budget is None else budget - len(self.base)
+        born = format_number(world.born_visible())
         grown, added, limited = grow_within(self.base, list(self.lobes), room, int(editor.rng.integers(2**31)),
-                                            world.drawn_segments,
-                                            tip=f"[&(45)L({format_number(world.born_visible())})]")
+                                            world.drawn_segments, tip=f"[&(45)L({born})]")
+        if added:  # each leaf as large as its lobe leaves room for (the foliage keeps to the outline)
+            grown = fit_crown_leaves(grown, world.clocks(), world.tree.geometry_constants, list(self.lobes),
+                                     float(born))
         world.crown = CrownRecord(tuple(self.lobes), self.base, grown) if self.lobes else None
         _commit(world, grown)
         return CrownResult(added, limited)
