@@ -7,9 +7,9 @@ open stroke drawn across that lobe's top or bottom ring closes it with a dome in
 ring drawn away from that lobe (its centre outside the lobe's nearest ring, seen from above) starts a
 new lobe instead of being stitched to the first.
 Shape tool: a drag moves, scales, turns or squeezes the lobe under the pointer, or pulls one stroke
-point (the operation is chosen with the menu's option button). The lobes a tree's crown grew into are
-part of the tree (its world keeps them, engine/modeling/crowned.py): undo and redo bring them back, and
-they are there again after Done, a save and load or a restart.
+point (the operation is chosen with the menu's option button); only that lobe's crown regrows. The lobes
+a tree's crown grew into are part of the tree (its world keeps them, engine/modeling/crowned.py): undo
+and redo bring them back, and they are there again after Done, a save and load or a restart.
 """
 
 from __future__ import annotations
@@ -134,11 +134,12 @@ class CrownTool:
             state = CrownState(state.base, [*state.lobes, lobe_from_outline(points)])
         self._regrow_into(state, "messages.crown")
 
-    def _regrow_into(self, state: CrownState, key: str, **extra) -> None:
-        """Regrow the crown from the tree before it into ``state``'s lobes; one undoable step."""
+    def _regrow_into(self, state: CrownState, key: str, only: int | None = None, **extra) -> None:
+        """Regrow the crown from the tree before it into ``state``'s lobes (``only``: the one lobe an edit
+        changed, whose crown alone regrows); one undoable step."""
         start = time.perf_counter()
         world = self.mode.state.world
-        grown = world.apply(Crown(state.base, tuple(state.lobes)))
+        grown = world.apply(Crown(state.base, tuple(state.lobes), only))
         if grown.refused is not None:  # (nothing grew: the lobes stay as they were)
             self.mode.state.say(text("messages.crown_refused", why=grown.refused))
             return
@@ -217,7 +218,7 @@ class CrownTool:
         lobes = list(state.lobes)
         lobes[d.index] = d.edited
         edited = CrownState(state.base, lobes)  # rings and arches made the old shape: drawing starts anew
-        self._regrow_into(edited, "messages.shaped", op=text(f"shapes.{self.op}"))
+        self._regrow_into(edited, "messages.shaped", d.index, op=text(f"shapes.{self.op}"))
 
     def _on_plane(self, x: float, y: float, through: np.ndarray, camera: OrbitCamera) -> np.ndarray:
         """The point under pixel (x, y) on the camera-facing plane through ``through``."""

@@ -254,10 +254,13 @@ class CrownResult:
 @dataclass(frozen=True, eq=False)
 class Crown:
     """Regrow the crown from ``base`` (the tree before any crown) into ``lobes`` (Zhang et al.), within
-    the module budget; one undoable step. Result: a :class:`CrownResult`."""
+    the module budget; one undoable step. ``only``: the one lobe an edit changed (its index): while the
+    tree is as its crown grew, only that lobe's crown is regrown and the others' stay as they are
+    (engine/modeling/crown_edit.py). Result: a :class:`CrownResult`."""
 
     base: LString
     lobes: tuple[Lobe, ...]
+    only: int | None = None
 
     def run(self, world: World) -> CrownResult:
         """Grow the crown and commit it."""
@@ -269,15 +272,33 @@ class Crown:
             return CrownResult(0, False, too_big(self.lobes))
         budget = world.tree.deriver.budget
         room = MAX_CROWN_MODULES if budget is None else budget - len(self.base)
+        base, lobes = self.base, list(self.lobes)
+        record = world.crown
+        if (self.only is not None and record is not None and record.base is not None and record.grown is editor.lstring
+                and len(record.lobes) == len(lobes) and 0 <= self.only < len(lobes)):
+            base, lobes, room = _one_lobe(world, record, lobes, self.only, room)
         born = format_number(world.born_visible())
-        grown, added, limited = grow_within(self.base, list(self.lobes), room, int(editor.rng.integers(2**31)),
-                                            world.drawn_segments, tip=f"[&(45)L({born})]")
+        grown, added, limited = grow_within(base, lobes, room, int(editor.rng.integers(2**31)), world.drawn_segments,
+                                            tip=f"[&(45)L({born})]")
         if added:  # each leaf as large as its lobe leaves room for (the foliage keeps to the outline)
             grown = fit_crown_leaves(grown, world.clocks(), world.tree.geometry_constants, list(self.lobes),
                                      float(born))
         world.crown = CrownRecord(tuple(self.lobes), self.base, grown) if self.lobes else None
         _commit(world, grown)
         return CrownResult(added, limited)
+
+
+def _one_lobe(world: World, record: CrownRecord, lobes: list[Lobe], k: int, room: int):
+    """What growing only lobe ``k`` again starts from: the tree without the wood its crown grew into the
+    lobe before the edit, the edited lobe alone, and its room (its share of the crown's budget by volume,
+    at most what the budget leaves)."""
+    from arbor.engine.modeling.crown_edit import without_lobe_crown
+
+    ls = world.editor.lstring
+    stripped = without_lobe_crown(ls, record.base, world.drawn_segments(ls), list(record.lobes), k)
+    share = lobes[k].volume / max(sum(lobe.volume for lobe in lobes), 1e-12)
+    left = room - (len(stripped) - len(record.base))
+    return stripped, [lobes[k]], max(min(int(room * share), left), 0)
 
 
 @dataclass(frozen=True)
