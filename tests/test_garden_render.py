@@ -335,3 +335,26 @@ def test_a_nearer_tree_gets_finer_detail_and_a_far_one_coarser(game):
         lods.append(game.renderer.last_details[0].lod)
     assert lods[0] == 0 and lods[-1] == 3
     assert lods == sorted(lods)
+
+
+def test_a_heavy_tree_is_drawn_over_frames_at_full_resolution_and_looks_as_drawn_at_once(game, monkeypatch):
+    """On a software GL a tree costly to draw (LAYER_COST) is drawn as a layer's picture a share a frame, at
+    the frame's resolution, smoothed (FXAA) once per picture: the frames must show what drawing it whole in
+    every frame shows."""
+    from arbor.game.render import garden
+
+    if game.renderer.samples > 1:
+        pytest.skip("multisampled: trees are drawn whole every frame")
+    game.rules.wind.strength = 0.0
+    monkeypatch.setattr(garden, "LAYER_COST", 10**12)
+    frame(game)
+    at_once = frame(game)
+    assert not game.renderer.last_layered and game.renderer.last_scale == 1.0
+    monkeypatch.setattr(garden, "LAYER_COST", 0)
+    pictures = game.renderer.pictures
+    shown = pictures.version
+    for _ in range(8):
+        over_frames = frame(game)
+    assert game.renderer.last_layered and pictures.front.size == SIZE  # a picture at full resolution
+    assert pictures.version >= shown + 2 and sum(into for _, into in pictures.shown.steps) >= 3  # drawn in steps
+    assert np.abs(over_frames - at_once).max() <= 2

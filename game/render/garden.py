@@ -42,10 +42,12 @@ from arbor.game.render.stage import Scene, Stage
 LOD_PIXELS = (520, 260, 120)  # on-screen height (px) above which a tree gets level 0, 1, 2 (else 3)
 TWIG_PIXELS = (0.0, 0.1, 0.2, 0.35)  # per level: grown segments of a smaller radius (px) are left out
 LEAF_PIXELS = 1_000_000  # leaf area (pixels, all layers) above which a software GL draws trees smaller
-LEAF_SPLIT = 0.4  # a picture drawn over frames: this share of the leaves, the rest, then the wood
+SEGMENT_PIXELS = 130  # a grown segment costs a software GL about as much as this many pixels of leaves
+LAYER_COST = 100_000  # cost (leaf pixels, all layers, and segments) above which a software GL draws trees as a picture
+STEP_COST = 120_000  # a picture drawn over frames draws its leaves in shares of about this many pixels
+LEAF_STEPS = (2, 6)  # and in at least, at most so many shares
 LEAVES = Piece(frozenset({"leaf", "leaf_young", "blossom", "fruit"}))
 WOOD = Piece(frozenset({"tube", "tube_young", "stone"}))
-FIRST_LEAVES = Piece(frozenset({"leaf"}), 0.0, LEAF_SPLIT)
 BARK = (1.4, 1.36, 1.3)  # (near grey: the sun's warm light does the rest)
 BLOSSOM = (1.2, 0.9, 1.0)
 SHADOW_WAIT = 4  # frames a due shadow map waits at most for a frame the backdrop is not being drawn in
@@ -96,6 +98,8 @@ class GardenRenderer:
         self.last_details: list[Detail] = []
         self.pictures = Pictures(ctx)
         self.last_scale = 1.0
+        self.last_layered = False  # whether the last frame showed the trees as a layer's picture (layer.py)
+        self.leaf_steps = LEAF_STEPS[0]  # shares of the leaves a picture drawn over frames draws them in
         self.shadow_waited = 0  # frames a due shadow map has waited (see SHADOW_WAIT)
 
     def place(self, placed: list[Placed], lo: np.ndarray, hi: np.ndarray) -> None:
@@ -156,7 +160,12 @@ class GardenRenderer:
         details = [self._detail(p.buffers, p.offset, camera, size[1]) if p.buffers.view else Detail(3)
                    for p in self.placed]
         self.last_details = details
-        self.last_scale = scale = self._scale(details, camera, size[1])
+        leaf_pixels = self._leaf_pixels(details, camera, size[1])
+        self.last_scale = scale = self._scale(leaf_pixels)
+        cost = sum(leaf_pixels) + SEGMENT_PIXELS * sum(d.tubes for d in details)
+        layered = self.samples <= 1 and (scale < 1.0 or cost > LAYER_COST)
+        self.last_layered = layered
+        self.leaf_steps = min(max(math.ceil(sum(leaf_pixels) * scale**2 / STEP_COST), LEAF_STEPS[0]), LEAF_STEPS[1])
         grow_grass(self.grass, self.placed)
         self.backdrop.drift = int(self.time * CLOUD_DRIFT / CLOUD_STEP)
         self.backdrop.soft = (self.soft_shadows, 1.0 / SHADOW_SIZE)
@@ -173,7 +182,7 @@ class GardenRenderer:
             self.stage.cover_look = self.grass.look(uniforms)
         boxes = [(np.asarray(p.buffers.view.lo) + p.offset, np.asarray(p.buffers.view.hi) + p.offset)
                  for p in self.placed if p.buffers.view is not None]
-        if scale >= 1.0:
+        if not layered:
             # a software GL draws a changed backdrop a part a frame (kept.py): the shadow map waits
             # for a frame without one (a few frames at most), so that no frame pays for both
             steps = self._shadow_steps(light, sun, details, [WHOLE])
@@ -189,31 +198,36 @@ class GardenRenderer:
             self._trees_step(details, uniforms, WHOLE)[0]()
         else:
             self._render_layered(target, size, Scene(camera, vp, sun, light, boxes, self._scene_bounds()[1]),
-                                 details, uniforms, scale)
-        if smooth:
+                                 details, uniforms, scale, smooth)
+        if smooth and not layered:
             self.post.smooth(fbo, size, screen_rect(camera, size, boxes, margin=0.15))
         elif target is not fbo:
             self.ctx.copy_framebuffer(fbo, target)
 
     def _render_layered(self, target: moderngl.Framebuffer, size: tuple[int, int], scene: Scene,
-                        details: list[Detail], uniforms: dict, scale: float) -> None:
+                        details: list[Detail], uniforms: dict, scale: float, smooth: bool = False) -> None:
         """The trees as a layer's picture (drawn over frames while the camera holds still, see
-        layer.Pictures) over the backdrop, all as they were when the picture shown was begun."""
+        layer.Pictures) over the backdrop, all as they were when the picture shown was begun; with
+        ``smooth``, FXAA over them once per picture shown (a picture at the frame's resolution)."""
         corners = np.array([[x, y, z] for lo, hi in scene.boxes for x in (lo[0], hi[0]) for y in (lo[1], hi[1])
                             for z in (lo[2], hi[2])]).reshape(-1, 3)
         # the trees a picture shows (falling branches are new buffers every frame: counted only)
         views = (len(self.placed), tuple(id(p.buffers.view) for p in self.placed if p.version >= 0))
         self.pictures.draw(size, scale, scene.vp, corners, views,
                            lambda whole: self._picture_steps(scene, details, uniforms, size, whole), scene)
-        self.stage.layered(target, size, self.pictures.shown.scene, self.pictures)
+        post = (lambda into, rect: self.post.smooth(into, size, rect)) if smooth else None
+        self.stage.layered(target, size, self.pictures.shown.scene, self.pictures, post)
 
     def _picture_steps(self, scene: Scene, details: list[Detail], uniforms: dict, size: tuple[int, int],
                        whole: bool) -> list[Step]:
         """What a picture of the trees takes, frame by frame (see layer.Pictures): the shadow map when it
-        is due, then shares of the leaves, then the rest and the wood, and a frame for showing it (the
-        backdrop keeps itself up to date, a part a frame: stage.Stage.layered)."""
+        is due, then shares of the grown leaves (``leaf_steps`` of them, the last with the young leaves,
+        blossoms and fruit), then the wood, and a frame for showing it (the backdrop keeps itself up to
+        date, a part a frame: stage.Stage.layered)."""
         shadows = self._shadow_steps(scene.light, scene.sun, details, [WHOLE] if whole else [LEAVES, WOOD])
-        pieces = [WHOLE] if whole else [FIRST_LEAVES, Piece(LEAVES.names, LEAF_SPLIT), WOOD]
+        n = self.leaf_steps
+        shares = [Piece(frozenset({"leaf"}), k / n, (k + 1) / n) for k in range(n - 1)]
+        pieces = [WHOLE] if whole else [*shares, Piece(LEAVES.names, (n - 1) / n), WOOD]
         trees = [self._trees_step(details, dict(uniforms), p) for p in pieces]
         show = [] if whole else [(lambda: None, False)]  # the new picture is shown in a frame of its own
         return [(step, False) for step in shadows] + trees + show
@@ -240,15 +254,19 @@ class GardenRenderer:
             return self.textures
         return {**self.textures, "leaf_cluster": self.textures[look.cluster]}
 
-    def _scale(self, details: list[Detail], camera: OrbitCamera, height_px: int) -> float:
+    def _leaf_pixels(self, details: list[Detail], camera: OrbitCamera, height_px: int) -> list[float]:
+        """Each placed tree's drawn leaves in pixels at the frame's resolution (all their layers together)."""
+        return [p.buffers.leaf_area * d.leaf_share * d.leaf_grow**2
+                / pixel_size(p.buffers, p.offset, camera, height_px) ** 2 if p.buffers.view is not None else 0.0
+                for p, d in zip(self.placed, details, strict=True)]
+
+    def _scale(self, leaf_pixels: list[float]) -> float:
         """The resolution the trees are drawn at: the whole frame's, or on a software GL less when
-        their leaves would cover the screen many times over (their pixels are the frame's cost)."""
+        their leaves (``leaf_pixels``, see :meth:`_leaf_pixels`) would cover the screen many times over
+        (their pixels are the frame's cost)."""
         if self.samples > 1:
             return 1.0
-        pixels = sum(p.buffers.leaf_area * d.leaf_share * d.leaf_grow**2
-                     / pixel_size(p.buffers, p.offset, camera, height_px) ** 2
-                     for p, d in zip(self.placed, details, strict=True) if p.buffers.view is not None)
-        return min(max(math.sqrt(LEAF_PIXELS / max(pixels, 1.0)), MIN_SCALE), 1.0)
+        return min(max(math.sqrt(LEAF_PIXELS / max(sum(leaf_pixels), 1.0)), MIN_SCALE), 1.0)
 
     def _lit_uniforms(self, mvp: bytes, light: bytes, sun: np.ndarray, day: float) -> dict:
         zenith, _, _ = sky_colors(sun)

@@ -27,7 +27,7 @@ class TreeLayer:
 
     def __init__(self, ctx: moderngl.Context) -> None:
         self.ctx = ctx
-        self.prog = program(ctx, "overlay.vert", "overlay.frag")
+        self.prog = program(ctx, "overlay.vert", "layer.frag")
         corners = np.array([[-1, -1], [1, -1], [1, 1], [-1, -1], [1, 1], [-1, 1]], "f4")
         self.quad = ctx.vertex_array(self.prog, [(ctx.buffer(corners.tobytes()), "2f", "in_pos")])
         self.fbo: moderngl.Framebuffer | None = None
@@ -56,17 +56,21 @@ class TreeLayer:
     def composite(self, target: moderngl.Framebuffer, size: tuple[int, int],
                   rect: tuple[int, int, int, int] | None = None) -> None:
         """Lay the layer over ``target``, only within ``rect`` (x, y from the bottom, width, height)
-        when given (its colours are premultiplied: drawn pixels have alpha 1)."""
+        when given (its colours are premultiplied: drawn pixels have alpha 1). Where it lays a tree's
+        pixel it writes depth (0.5), so that a pass after it can keep to the trees (fxaa.py)."""
         target.use()
         self.ctx.viewport = (0, 0, *size)
         self.ctx.scissor = rect
         self.fbo.color_attachments[0].use(location=0)
         self.prog["u_tex"].value = 0
-        self.ctx.disable(moderngl.DEPTH_TEST)
+        self.ctx.enable(moderngl.DEPTH_TEST)
+        self.ctx.depth_func = "1"  # (always: the depth is only written)
         self.ctx.enable(moderngl.BLEND)
         self.ctx.blend_func = moderngl.ONE, moderngl.ONE_MINUS_SRC_ALPHA
         self.quad.render()
         self.ctx.disable(moderngl.BLEND)
+        self.ctx.depth_func = "<"
+        self.ctx.disable(moderngl.DEPTH_TEST)
         self.ctx.scissor = None
 
     def release(self) -> None:

@@ -175,11 +175,14 @@ class Stage:
         sky = part("sky", lambda: backdrop.draw_sky(vp, camera.eye, camera.distance * 20.0, sun))
         return Parts(sky, part("ground", ground), part("cover", cover) if cover is not None else None, shadows)
 
-    def layered(self, target: moderngl.Framebuffer, size: tuple[int, int], scene: Scene, pictures: Pictures) -> None:
+    def layered(self, target: moderngl.Framebuffer, size: tuple[int, int], scene: Scene, pictures: Pictures,
+                smooth: Callable[[moderngl.Framebuffer, tuple | None], None] | None = None) -> None:
         """Backdrop and the front picture of the trees laid over it, into ``target``, as they were when
         that picture was begun (camera, sun, shadows): kept as a picture of its own and copied until the
         next picture is shown or the backdrop changed (the layer's composite is a full-screen pass). The
-        backdrop follows a part a frame what the camera did not change (see :meth:`draw`)."""
+        backdrop follows a part a frame what the camera did not change (see :meth:`draw`). ``smooth``
+        (target, rect): a pass over the trees once they are laid over the backdrop (their depth is set
+        there: FXAA), run once per picture shown, its result kept with it."""
         rect = screen_rect(scene.camera, size, scene.boxes, margin=0.15)
         self._keep(size, scene, spread=True, wait=False)
         key = (self.kept.shown, self.kept.shadows, pictures.version, rect)
@@ -188,6 +191,9 @@ class Stage:
             self.ctx.copy_framebuffer(target, self.kept.frame)
             _clear_depth(target)
             pictures.composite(target, size, rect)
+            if smooth is not None:
+                smooth(target, rect)
+                _clear_depth(target)
             self.ctx.copy_framebuffer(self._scene, target)
             self._scene_key = key
         else:
