@@ -48,3 +48,13 @@ def test_root_shoot_is_a_young_tree_s_and_rises_in_drought_and_falls_in_shade(ls
     watered, dry, shaded = grown(system, 0.55, 0.75), grown(system, 0.25, 0.55), grown(system, 0.55, 0.75, 0.75)
     assert 0.2 <= watered <= 0.5, watered
     assert dry > 1.2 * watered and shaded < 0.9 * watered, (dry, watered, shaded)
+
+
+def test_the_roots_grow_as_fast_as_the_balance_asks_up_to_the_rule_root_most(lsys_dir):
+    """World.settle lets the roots grow at the balance's need over supply, capped once, by carbon.root_most."""
+    rules = load_rules("assets/rules.toml", pace="demo")
+    world = World(load_lsystem(lsys_dir / "game_tree.lsys"), rules, seed=3)
+    world.carbon.pool, world.carbon.built = 1e6, 10.0  # a full pool and a shoot to balance
+    world.sim.state.water_meter, world.sim.state.daylight = 0.02, 1.0  # a dry soil under a bright crown
+    world.settle(10.0)
+    assert world.sim.root_vigour == pytest.approx(rules.carbon.root_most)

@@ -95,7 +95,7 @@ class Simulation:
                              daylight=self.rules.growth.daylight_full)
         self.state = state
         self.root_share = 0.0  # how much of a full root system the tree has (set by its World)
-        self.root_vigour = 1.0  # how fast the carbon pool lets the roots grow (set by its World; 0 .. 3)
+        self.root_vigour = 1.0  # how fast the carbon pool lets the roots grow (set by its World; 0 .. carbon.root_most)
         self.starving = 0.0  # s the tree's carbon pool has been empty with upkeep unpaid (set by its World)
         self.leaf_light = 1.0  # the share of the sun its leaves catch (0..1, set by its World at each step)
         self.flood_tolerance = self.rules.water.flood_tolerance  # its species' (set by its World when planted)

@@ -204,7 +204,7 @@ class World:
         demand = carbon.root_demand(self.carbon, rules, seconds, balance)
         paid = self.carbon.fund(rules, demand)
         self.carbon.roots_built += paid * demand
-        self.sim.root_vigour = paid * min(balance, 3.0)
+        self.sim.root_vigour = paid * balance  # (at most carbon.root_most: root_balance caps it)
         self.sim.starving = self.carbon.starving
         self.sim.remember_light(self.light_caught(), seconds)
 
