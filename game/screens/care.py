@@ -95,7 +95,7 @@ class CareActions:
     def _water(self, value: float) -> None:
         if value:
             self.coach.done("water")
-        self.state.world.apply(Action.WATER, value)
+        self.state.hold_can(self.state.world, bool(value))
 
     def _sun(self, action: Action, value: float) -> None:
         """A sun slider: one sun over the whole garden."""

@@ -193,6 +193,7 @@ class Kiosk:
             log.error("%s", language)
         self.make_game, self.config, self.saves, self.clock = make_game, config, saves, clock
         self.game = make_game()
+        self.game.state.valve_always = True  # (a child holds the can on and on: it stops at the top)
         set_touch(True)  # (no key names on a touch screen: "tap Go on", not "press G")
         if language:
             self.game.say(language, 12)
@@ -274,6 +275,7 @@ class Kiosk:
         except Exception:
             log.error("could not save while recovering:\n%s", traceback.format_exc())
         self.game = self.make_game()
+        self.game.state.valve_always = True
         set_touch(True)
         self.game.set_speed(self.config.speed)
         self._kiosk_volume()

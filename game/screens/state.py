@@ -14,6 +14,7 @@ from collections.abc import Callable
 from arbor.engine.life.form.interpret import Clocks
 from arbor.engine.life.plant.sim import sun_angle_at
 from arbor.engine.life.rules.rules import Rules, first_day
+from arbor.engine.life.world.actions import Action
 from arbor.engine.life.world.commands import SunAt
 from arbor.engine.life.world.garden import Garden
 from arbor.engine.life.world.guardian import NEEDS, Gardener, Guardian, Need, needs_of
@@ -47,6 +48,10 @@ class GameState:
         self.halt_line = ""  # what the guardian's stop said (shown only while its need holds)
         self.resume_speed = 1.0  # the speed "go on" returns to
         self.autopilot = False  # the kiosk with nobody there: the garden is tended every step
+        # the cans the player holds: id of the world -> "float" (stops at the top of the soil: a hold begun
+        # below it, every hold on the kiosk; "floated" once it did), "open" (pours on); see hold_can
+        self.valves: dict[int, str] = {}
+        self.valve_always = False  # the kiosk: a held can never floods a tree
         self.on_halt: list[Callable[[], None]] = []  # told when the guardian stops fast-forward (menu labels)
         self.message, self.message_until = "", 0.0
         self.alpha = 1.0  # how far the frame is between the last two sim states
@@ -92,6 +97,38 @@ class GameState:
         """Live one frame's worth of fixed steps (at the loop's speed)."""
         self.alpha = self.loop.advance(real_seconds, self._step)
 
+    def hold_can(self, world: World, held: bool) -> None:
+        """The player holds the watering can over ``world`` (or lets go). A forgiving can: a hold begun below
+        :meth:`can_top` floats (it stops there by itself and says why, and pours again once the meter falls
+        below comfortable, so a can held on and on keeps the tree well and never drowns it); a new hold on
+        a full soil pours on (too much water is the player's choice), except on the kiosk."""
+        if held:
+            floats = self.valve_always or world.sim.state.water_meter < self.can_top()
+            self.valves[id(world)] = "float" if floats else "open"
+        else:
+            self.valves.pop(id(world), None)
+        world.apply(Action.WATER, 1.0 if held else 0.0)
+
+    def can_top(self) -> float:
+        """The water meter at which a floating can stops: one step's pour below the drowning line."""
+        return self.rules.water.drown_level - self.rules.water.fill_rate * self.loop.dt
+
+    def _float_cans(self) -> None:
+        """After a step: every floating can the player holds stops at the top (the first time saying why)
+        and pours again below comfortable."""
+        top, comfort = self.can_top(), self.rules.health.comfort
+        for world in self.garden.worlds:
+            mode, s = self.valves.get(id(world)), world.sim.state
+            if mode not in ("float", "floated") or not s.alive:
+                continue
+            if s.watering and s.water_meter >= top:
+                world.apply(Action.WATER, 0.0)
+                if mode == "float":
+                    self.say(text("messages.soil_full"), 5)
+                self.valves[id(world)] = "floated"
+            elif not s.watering and s.water_meter < comfort:
+                world.apply(Action.WATER, 1.0)
+
     def first_day_left(self) -> float:
         """Game seconds left of a new garden's faster first day (the pace's ``first_day_speed``): while every
         tree of the garden is in its first day of the sun; 0 at a pace without one."""
@@ -117,6 +154,8 @@ class GameState:
         self.previous = copy.copy(self.world.sim.state)
         factor = self.first_day_factor()
         self.garden.step(dt * factor)
+        if self.valves:
+            self._float_cans()
         if factor > 1.0 and self.first_day_left() <= 0:
             self.say(text("messages.first_day_over"), 10)
         if self.autopilot:
