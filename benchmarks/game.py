@@ -1,19 +1,23 @@
 """Game benchmark: frame times of the real game loop on the trees players see, headless (EGL, Mesa
 llvmpipe here), 1280x720.
 
-Run: python -m benchmarks.game [--quick] [--years DIR]
+Run: python -m benchmarks.game [--quick] [--home] [--years DIR]
 The first frames (shaders compiled, textures and the first tree uploaded) are timed apart as the warm-up.
 Then, each at the default zoom and close up (the camera at its nearest), with the level of detail the
 game itself picks: a fresh sapling; a leafy summer tree grown 25 days at the demo pace (its calendar set
 so that day 25 is midsummer: at the demo pace with seasons the 25th day fell in winter, with no leaves);
-the home pace's tree in the summer of its first and third year (the saves `python -m benchmarks.years 3
-DIR` writes, when --years DIR is given); and a 50,000-segment tree grown by the game's own rules with the
-budget raised (every bud woken, no light limits, growing on at its tips). Each frame = input + fixed steps
-+ record updates + 3D render + HUD, timed to ctx.finish(): wall time and CPU time (this process, all its
-threads: llvmpipe's too), the load average printed first. Beside every figure: the tree's leaf clusters,
-and the level of detail, segments and leaves the renderer drew. Then a growing tree's cost per frame: a
-full rebuild of its records against the incremental update of the same growth (the parts that grew since
-the last rewrite), per tree size.
+the home pace's tree in the summer of its first, third, tenth and thirtieth year (the saves `python -m
+benchmarks.years 30 DIR` writes, when --years DIR is given: those found; seen at 13:00, the saves being
+written at the season's end, at night), each also drawn whole every frame as the game drew it before it
+drew costly trees as a picture over frames (the old figure beside the new, same run); and a
+50,000-segment tree grown by the game's own rules with the budget raised (every bud woken, no light
+limits, growing on at its tips). `--home` runs the home pace's trees alone. Each frame = input + fixed
+steps + record updates + 3D render + HUD, timed to ctx.finish(): wall time and CPU time (this process,
+all its threads: llvmpipe's too), the load average printed first and last. Beside every figure: the
+tree's leaf clusters, and the level of detail, segments and leaves the renderer drew, and whether it drew
+the trees whole or as a layer's picture over frames (game/render/garden.py: LAYER_COST) and in how many
+shares of leaves. Then a growing tree's cost per frame: a full rebuild of its records against the
+incremental update of the same growth (the parts that grew since the last rewrite), per tree size.
 """
 
 from __future__ import annotations
@@ -28,6 +32,7 @@ import numpy as np
 
 SIZE = (1280, 720)
 FPS = 60
+HOME_YEARS = (1, 3, 10, 30)  # the home pace's summers drawn (benchmarks.years' saves)
 MATURE = 20.0  # physiological time the big tree rests before the frames (its old parts stop growing)
 
 
@@ -65,8 +70,10 @@ def _drawn(game) -> str:
     if not details:
         return f"({leaves:,} leaf clusters; nothing drawn)"
     d = details[0]
+    r = game.renderer
+    how = f"a picture over frames, leaves in {r.leaf_steps} shares" if r.last_layered else "whole every frame"
     return (f"({leaves:,} leaf clusters; drawn: LOD {d.lod}, {d.tubes:,} grown segments, {d.leaves:,} grown "
-            f"leaf cards, share {d.leaf_share:.2f}, at {game.renderer.last_scale:.2f} of the resolution)")
+            f"leaf cards, share {d.leaf_share:.2f}, at {r.last_scale:.2f} of the resolution, {how})")
 
 
 ZOOMS = {"default": 1.0, "close": None}  # camera distance factor (close: the game's nearest)
@@ -145,18 +152,39 @@ def rebuild_costs(trees) -> None:
 
 
 def _home_pace(folder: Path | None) -> list:
-    """The home pace's tree in the summer of its first and third year (benchmarks.years' saves), if any."""
+    """The home pace's tree in the summer of its first, third, tenth and thirtieth year (benchmarks.years'
+    saves), those found, each in the early afternoon (the saves are written at night)."""
     from arbor.engine.life.keep.save import read_garden
+    from arbor.engine.life.plant.sim import sun_angle_at
 
     found = []
-    for year in (1, 3):
+    for year in HOME_YEARS:
         path = None if folder is None else folder / f"summer_{year}.arbor"
         if path is not None and path.exists():
-            found.append((f"home pace, year {year} summer", read_garden(path, budget_slack=2.0).worlds[0]))
+            world = read_garden(path, budget_slack=2.0).worlds[0]
+            world.sim.state.sun_angle = sun_angle_at(13 * 3600)
+            found.append((f"home pace, year {year} summer", world))
         else:
-            print(f"(home pace, year {year}: no summer_{year}.arbor; run python -m benchmarks.years 3 DIR, "
+            print(f"(home pace, year {year}: no summer_{year}.arbor; run python -m benchmarks.years {year} DIR, "
                   "then --years DIR)")
     return found
+
+
+def _home_trees(game, ctx, fbo, n: int, tick, folder: Path | None) -> None:
+    """The home pace's trees at both zooms, drawn as the game draws them and (the old way) whole every frame."""
+    from arbor.game.render import garden
+
+    for name, world in _home_pace(folder):
+        game.garden.worlds[0] = world
+        game.state.remember()
+        _frames(game, ctx, fbo, 5, tick)
+        kept = garden.LAYER_COST
+        try:
+            garden.LAYER_COST = float("inf")  # (scale < 1, the biggest crowns close up, stays layered)
+            _zooms(game, ctx, fbo, n, tick, f"{name}, whole every frame")
+        finally:
+            garden.LAYER_COST = kept
+        _zooms(game, ctx, fbo, n, tick, name)
 
 
 def main() -> None:
@@ -166,7 +194,7 @@ def main() -> None:
     from arbor.game.render.renderer import headless_context
     from arbor.game.screens.game import Game, GameConfig
 
-    quick = "--quick" in sys.argv
+    quick, home = "--quick" in sys.argv, "--home" in sys.argv
     years = Path(sys.argv[sys.argv.index("--years") + 1]) if "--years" in sys.argv else None
     pygame.init()
     pygame.display.set_mode((64, 64))
@@ -183,33 +211,38 @@ def main() -> None:
             clock[0] += 1 / FPS
 
         _report("warm-up (first frames: compiles, uploads)", _frames(game, ctx, fbo, 30, tick), _drawn(game))
-        _zooms(game, ctx, fbo, n, tick, "sapling")
-        days = 6 if quick else 25
-        game.garden.worlds[0] = grown_tree(days, summer=True)
-        _frames(game, ctx, fbo, 5, tick)  # (its first upload, apart)
-        _zooms(game, ctx, fbo, n, tick, f"summer tree, {days} days")
-        for name, world in _home_pace(years):
-            game.garden.worlds[0] = world
-            game.state.remember()
-            _frames(game, ctx, fbo, 5, tick)
-            _zooms(game, ctx, fbo, n, tick, name)
-        tree, t = big_tree(5_000 if quick else 50_000)
-        world = game.world
-        world.tree = tree
-        t += MATURE  # its older parts have finished growing; new ones keep coming at the tips
-        tree.last_rewrite_T = t - 0.5
-        world.sim.state.length_time = world.sim.state.girth_time = t
-        world.last_light = float("inf")  # drawing is measured here, not light readings of a huge tree
-        game.rules.growth.length_rate = 0.5  # a rewrite every ~2 s of frames: it keeps growing
-        game.state.remember()
-        game.draw(fbo)
-        while game.view.pending:  # the first build of the big tree (on the worker thread), apart
-            time.sleep(0.05)
-            game.draw(fbo)
-        _zooms(game, ctx, fbo, n, tick, f"{tree.lstring.count('I'):,}-internode tree, growing")
-        sizes = [big_tree(s) for s in ((1_000, 3_000) if quick else (1_000, 3_000, 10_000, 25_000, 50_000))]
-        rebuild_costs(sizes)
+        if home:
+            _home_trees(game, ctx, fbo, n, tick, years)
+        else:
+            _everything(game, ctx, fbo, n, tick, years, quick)
+    print("load average " + " ".join(f"{x:.2f}" for x in os.getloadavg()))
     ctx.release()
+
+
+def _everything(game, ctx, fbo, n: int, tick, years: Path | None, quick: bool) -> None:
+    """Every scenario after the warm-up (see the module docstring)."""
+    _zooms(game, ctx, fbo, n, tick, "sapling")
+    days = 6 if quick else 25
+    game.garden.worlds[0] = grown_tree(days, summer=True)
+    _frames(game, ctx, fbo, 5, tick)  # (its first upload, apart)
+    _zooms(game, ctx, fbo, n, tick, f"summer tree, {days} days")
+    _home_trees(game, ctx, fbo, n, tick, years)
+    tree, t = big_tree(5_000 if quick else 50_000)
+    world = game.world
+    world.tree = tree
+    t += MATURE  # its older parts have finished growing; new ones keep coming at the tips
+    tree.last_rewrite_T = t - 0.5
+    world.sim.state.length_time = world.sim.state.girth_time = t
+    world.last_light = float("inf")  # drawing is measured here, not light readings of a huge tree
+    game.rules.growth.length_rate = 0.5  # a rewrite every ~2 s of frames: it keeps growing
+    game.state.remember()
+    game.draw(fbo)
+    while game.view.pending:  # the first build of the big tree (on the worker thread), apart
+        time.sleep(0.05)
+        game.draw(fbo)
+    _zooms(game, ctx, fbo, n, tick, f"{tree.lstring.count('I'):,}-internode tree, growing")
+    sizes = [big_tree(s) for s in ((1_000, 3_000) if quick else (1_000, 3_000, 10_000, 25_000, 50_000))]
+    rebuild_costs(sizes)
 
 
 if __name__ == "__main__":
