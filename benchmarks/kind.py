@@ -82,6 +82,7 @@ def run(pace: str, days: float, speed: float, ctx: moderngl.Context, guard: bool
         game = Game(ctx, (1280, 720), GameConfig(saves=Path(saves), seed=11, pace=pace),
                     clock=lambda: clock[0], wall_clock=lambda: 1.7e9 + clock[0])
         game.loop.dt *= game.rules.time_scale
+        game.rules.first_day_speed = 1.0  # (a faster first day would take 144 of these coarse steps at once)
         # the can is held per 0.1 s step of the real game: a coarse step pours what 0.1 s would
         game.rules.water.fill_rate *= 0.1 / game.loop.dt
         if not guard:
