@@ -219,3 +219,25 @@ def test_a_shared_species_with_hostile_traits_is_kept_within_the_rules_ranges():
     for _ in range(int(3 * rules.water.drown_time)):  # flooded long past drowning: no division by zero
         world.step(1.0)
     assert world.sim.flood_tolerance == find_rule("water.flood_tolerance").low
+
+
+def test_every_users_toml_names_an_unclosed_quote_where_it_opens(tmp_path):
+    """The one reader says where a one-line string was opened and not closed (the TOML reader names only
+    the line's end), for settings and rules as for a teacher's experiment."""
+    import pytest
+
+    from arbor.engine.base.errors import SettingsError
+    from arbor.engine.base.reader import read_user_toml
+
+    path = tmp_path / "settings.toml"
+    path.write_text('speed = 1\nlanguage = "fr\nkiosk = true\n', encoding="utf-8")
+    with pytest.raises(SettingsError) as caught:
+        read_user_toml(path, SettingsError)
+    err = caught.value
+    assert (err.line, err.col) == (2, 12) and "opened with \" at column 12 is not closed" in err.message
+    path.write_text("title = 'a title\n", encoding="utf-8")  # (a literal string reads to the document's end)
+    with pytest.raises(SettingsError, match="opened with ' at column 9"):
+        read_user_toml(path, SettingsError)
+    path.write_text('a = """two\nlines "\n"""\nb = [1,\n', encoding="utf-8")  # (inside a multi-line string: no)
+    with pytest.raises(SettingsError, match="not valid TOML"):
+        read_user_toml(path, SettingsError)

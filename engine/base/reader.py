@@ -146,6 +146,12 @@ def loads_toml(text: str, file: str, error: type[LSysError] = LSysError, depth: 
     except tomllib.TOMLDecodeError as exc:
         match = re.search(r"line (\d+), column (\d+)", str(exc))
         line, col = (int(match.group(1)), int(match.group(2))) if match else (1, 1)
+        last = text.count("\n") + 1 if "end of document" in str(exc) else line  # (an open 'literal' reads on)
+        opened = _first_unclosed(text, last)
+        if opened is not None:  # (the TOML reader says only "Illegal character '\n'" at the line's end)
+            quote, line, col = opened
+            raise error(f"the text opened with {quote} at column {col} is not closed: end it with {quote} on the "
+                        "same line", file, line, col) from None
         raise error(f"not valid TOML: {exc}", file, line, col) from None
     except (RecursionError, MemoryError):  # a shape the count above missed: still one clear line
         raise error(f"nested too deeply (at most {depth} levels)", file) from None
@@ -157,3 +163,36 @@ def read_user_toml(path: str | Path, error: type[LSysError] = LSysError, limit: 
     bytes, nested at most ``depth`` deep, bounded in reading work; else ``error`` with file:line:column."""
     text = read_user_text(path, limit, error)
     return text, loads_toml(text, str(path), error, depth)
+
+
+def _first_unclosed(text: str, last: int) -> tuple[str, int, int] | None:
+    """(quote, line, column) of the first of the first ``last`` lines of ``text`` that opens a one-line
+    string and does not close it, or None (the scan stops at a multi-line string)."""
+    for number, line in enumerate(text.splitlines()[:last], 1):
+        if '"""' in line or "'''" in line:  # a multi-line string: its lines are not one-line texts
+            return None
+        opened = unclosed_quote(line)
+        if opened is not None:
+            return opened[0], number, opened[1]
+    return None
+
+
+def unclosed_quote(line: str) -> tuple[str, int] | None:
+    """(the quote, its 1-based column) of a string ``line`` opens and does not close, or None (a comment
+    ends the scan; a line with a multi-line string's triple quote is left to the TOML reader)."""
+    if '"""' in line or "'''" in line:
+        return None
+    quote, start, k = "", 0, 0
+    while k < len(line):
+        c = line[k]
+        if quote:
+            if c == "\\" and quote == '"':
+                k += 1
+            elif c == quote:
+                quote = ""
+        elif c in "\"'":
+            quote, start = c, k
+        elif c == "#":
+            return None
+        k += 1
+    return (quote, start + 1) if quote else None

@@ -24,6 +24,7 @@ from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 from arbor.engine.base.errors import ExperimentError
+from arbor.engine.base.reader import read_user_toml
 from arbor.engine.base.units import METRE
 from arbor.engine.life.experiment import schema
 from arbor.engine.life.experiment.measure import METRICS, Meters, crown_shape, measure
@@ -110,7 +111,7 @@ def load_experiment(path: str | Path, lsystem_dir: Path) -> Experiment:
     """Read and check an experiment file against the schema (engine/life/experiment/schema.py): every
     problem is one ExperimentError naming the file, the key's line and column, and the fix."""
     file = str(path)
-    text, data = schema.read_file(path, ExperimentError)
+    text, data = read_user_toml(path, ExperimentError)
     reader = Reader(file, text, ExperimentError)
     reader.table(data, schema.EXPERIMENT, (), "the experiment")
     trees = reader.value(data, "tree", schema.EXPERIMENT["tree"], (), [])

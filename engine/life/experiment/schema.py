@@ -16,10 +16,8 @@ import difflib
 import math
 import re
 from dataclasses import dataclass
-from pathlib import Path
 
 from arbor.engine.base.errors import LSysError
-from arbor.engine.base.reader import TOML_LIMIT, loads_toml, read_user_text
 from arbor.engine.life.rules.schema import SCHEMA as RULE_SCHEMA
 
 _HEADER = re.compile(r"\s*(\[\[?)\s*([^\]]*?)\s*\]\]?\s*(#.*)?$")
@@ -315,48 +313,6 @@ class Reader:
         if (low is not None and (value <= low if spec.above else value < low)) or (high is not None and value > high):
             raise self.fail(f"{key!r} must be {spec.describe()} (it is {_num(value)})", path, value=True, item=item)
         return int(value) if spec.kind == "whole" else float(value)
-
-
-def read_file(path: str | Path, error: type[LSysError]) -> tuple[str, dict]:
-    """The text and data of a teacher's TOML file (the one reader for users' files: a regular file, size,
-    nesting and work bounded); a text whose closing quote is missing is named at its opening quote (the TOML
-    reader says only "Illegal character '\\n'" at the line's end)."""
-    text = read_user_text(path, TOML_LIMIT, error)
-    try:
-        return text, loads_toml(text, str(path), error)
-    except LSysError as err:
-        lines = text.splitlines()
-        last = len(lines) if "end of document" in err.message else err.line  # (an open 'literal' reads to the end)
-        for number, line in enumerate(lines[:last], 1):
-            if '"""' in line or "'''" in line:  # a multi-line string: its lines are not one-line texts
-                break
-            opened = unclosed_quote(line)
-            if opened is not None:
-                quote, col = opened
-                raise error(f"the text opened with {quote} at column {col} is not closed: end it with {quote} on "
-                            "the same line", err.file, number, col) from None
-        raise
-
-
-def unclosed_quote(line: str) -> tuple[str, int] | None:
-    """(the quote, its 1-based column) of a string ``line`` opens and does not close, or None (a comment
-    ends the scan; a line with a multi-line string's triple quote is left to the TOML reader)."""
-    if '"""' in line or "'''" in line:
-        return None
-    quote, start, k = "", 0, 0
-    while k < len(line):
-        c = line[k]
-        if quote:
-            if c == "\\" and quote == '"':
-                k += 1
-            elif c == quote:
-                quote = ""
-        elif c in "\"'":
-            quote, start = c, k
-        elif c == "#":
-            return None
-        k += 1
-    return (quote, start + 1) if quote else None
 
 
 def day_length_height(hours: float) -> float:

@@ -25,6 +25,7 @@ import math
 from pathlib import Path
 
 from arbor.engine.base.errors import SweepError
+from arbor.engine.base.reader import read_user_toml
 from arbor.engine.life.experiment import schema
 from arbor.engine.life.experiment.lab import check_noon, check_species, pace_value, parse_regime, species_name
 from arbor.engine.life.experiment.schema import Reader
@@ -50,7 +51,7 @@ def load_sweep(path: str | Path, lsystem_dir: Path) -> Sweep:
     """Read and check a sweep file against the schema (engine/life/experiment/schema.py); species must be
     .lsys files in ``lsystem_dir``. Every problem is one SweepError naming the key's line and column."""
     file = str(path)
-    source, data = schema.read_file(path, SweepError)
+    source, data = read_user_toml(path, SweepError)
     reader = Reader(file, source, SweepError)
     reader.table(data, schema.SWEEP, (), "the sweep")
     get = lambda key, default=None: reader.value(data, key, schema.SWEEP[key], (), default)  # noqa: E731
