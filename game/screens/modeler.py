@@ -199,6 +199,9 @@ class ModelingMode(ToolChoice, HistoryTold):
         if self.shaping:
             self.crown_tool.begin_shape(x, y, camera)
             return
+        if self.pruning:
+            self.prune_tool.begin(x, y, camera)
+            return
         self.add2d(x, y, t, camera)
 
     def cancel_points(self) -> None:
@@ -207,6 +210,7 @@ class ModelingMode(ToolChoice, HistoryTold):
         self.points, self.times, self.preview, self.joint = [], [], None, None
         self._preview_at = float("-inf")
         self.crown_tool.drag = None
+        self.prune_tool.drag = None
         self.region_tool.cancel()
 
     def pinch(self, scale: float, x: float, y: float) -> bool:
@@ -219,6 +223,9 @@ class ModelingMode(ToolChoice, HistoryTold):
             return
         if self.shaping:
             self.crown_tool.drag_shape(x, y, self.stroke_camera or camera)
+            return
+        if self.pruning:
+            self.prune_tool.move(x, y)
             return
         hit = unproject_to_plane(self.stroke_camera or camera, self.size, x, y, *self.plane)
         if hit is not None:
@@ -260,7 +267,7 @@ class ModelingMode(ToolChoice, HistoryTold):
         elif self.symbols and self.stroke_camera is not None:
             self.region_tool.finish(self.points, self.stroke_camera)
         elif self.pruning:
-            pass  # the prune tool cuts with taps
+            self.prune_tool.end()  # (its cuts are taps; its edits are drags)
         elif self.modeler is not None and len(self.points) >= 3:
             result = self.state.world.apply(Stroke(np.array(self.points), np.array(self.times)))
             if result is None:
@@ -284,6 +291,8 @@ class ModelingMode(ToolChoice, HistoryTold):
             return
         if (self.crown or self.shaping) and self.modeler is not None:
             self.crown_tool.draw(surface, project, self.points if self.crown else [], self.shaping)
+        elif self.pruning:
+            self.prune_tool.draw(surface, project)
         elif self.points and self.joint is not None:
             draw_joint(surface, project, self.joint)
 

@@ -1,8 +1,9 @@
 """The modeler's tools as one choice: one tool in use at a time (Draw, Crown, Shape, Prune, Symbols), lit on the
 tool bar (game/render/ui.py ToolBar), told by the hint line (what a drag does with it), with the option of
-the tool in use (Shape's lobe operation, Symbols' region edit). A tool stays in use until another is
-chosen; Draw, entering the modeler, leaving it and a new sapling are back to the draw tool with no
-overlay left (lobe rings, regions, the joint marker).
+the tool in use (Shape's lobe operation, Prune's branch edit: cut, width, angle or length; Symbols' region
+edit). A tool stays in use until another is chosen; Draw, entering the modeler, leaving it and a new
+sapling are back to the draw tool with no overlay left (lobe rings, regions, the joint marker, a picked
+branch).
 """
 
 from __future__ import annotations
@@ -17,8 +18,8 @@ TOOLS = {"draw": None, "crown": "crown", "shape": "shaping", "prune": "pruning",
 class ToolChoice:
     """Mixin of the modeling mode (game/screens/modeler.py): its tool flags (``crown``, ``shaping``,
     ``pruning``, ``symbols``; none set: the draw tool), the tool bar ``bar`` and the region edit ``edit``
-    chosen; it uses the mode's ``active``, ``toggle``, ``cancel``, ``crown_tool``, ``region_tool`` and
-    ``state``."""
+    chosen; it uses the mode's ``active``, ``toggle``, ``cancel``, ``crown_tool``, ``prune_tool``,
+    ``region_tool`` and ``state``."""
 
     crown = shaping = pruning = symbols = False
     edit = EDIT_SETS[0]
@@ -30,6 +31,7 @@ class ToolChoice:
         self.region_tool.clear()
         self.region_tool.labels = []
         self.crown_tool.clear()
+        self.prune_tool.clear()
         self.cancel()
         self.show_bar()
 
@@ -59,17 +61,21 @@ class ToolChoice:
     def show_bar(self) -> None:
         """The tool bar as the tools are now: shown in the modeler, the tool in use lit, its option."""
         tool = self.current_tool
-        self.bar.show(self.active, tool, self.option_label() if tool in ("shape", "symbols") else "")
+        self.bar.show(self.active, tool, self.option_label() if tool in ("shape", "prune", "symbols") else "")
 
     def hint(self) -> str:
         """The hint line in the modeler: what a drag does with the tool in use."""
         tool = self.current_tool
+        if tool == "prune" and self.prune_tool.op != "cut":
+            return text("hints.modeler_branch", op=text(f"branch_ops.{self.prune_tool.op}"))
         return text(f"hints.modeler_{tool}", op=text(f"shapes.{self.crown_tool.op}"), edit=text(f"edits.{self.edit}"))
 
     def option_label(self) -> str:
         """The menu option button's label: the lobe operation with the shape tool, else the region edit."""
         if self.shaping:
             return text("menu.shape_op", op=text(f"shapes.{self.crown_tool.op}"))
+        if self.pruning:
+            return text("menu.branch_op", op=text(f"branch_ops.{self.prune_tool.op}"))
         return text("menu.edit", name=text(f"edits.{self.edit}"))
 
     def next_option(self) -> str:
@@ -77,6 +83,9 @@ class ToolChoice:
         edit. Returns the button's new label."""
         if self.shaping:
             self.crown_tool.next_op()
+        elif self.pruning:
+            self.prune_tool.next_op()
+            self.state.say(self.hint())
         else:
             self.edit = EDIT_SETS[(EDIT_SETS.index(self.edit) + 1) % len(EDIT_SETS)]
         self.show_bar()

@@ -40,7 +40,8 @@ def change_told(before: LString, after: LString, lobes_before: int, lobes_after:
                      else text("messages.change_no_lobes"))
     if not parts:
         changed = int(np.count_nonzero(before.sym[:len(after)] != after.sym[:len(before)]))
-        parts.append(text("messages.change_same", count=max(changed, abs(len(before) - len(after)), 1)))
+        parts.append(text("messages.change_same", count=counted(max(changed, abs(len(before) - len(after)), 1),
+                                                                  "module")))
     return ", ".join(parts)
 
 

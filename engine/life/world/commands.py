@@ -321,6 +321,49 @@ class Cut:
 
 
 @dataclass
+class BranchResult:
+    """What a branch edit did: the pieces of the branch, how many of them are drawn (only drawn wood takes
+    a width or a length; engine/modeling/branch_edit.py), the amount applied (clipped to its limits) and
+    the module the branch now starts at (0 pieces: no branch was there)."""
+
+    pieces: int
+    drawn: int = 0
+    amount: float = 0.0
+    module: int = -1
+
+
+@dataclass(frozen=True)
+class BranchEdit:
+    """Change the width (a factor), the angle (degrees away from its parent's axis) or the length (a
+    factor) of the branch that the segment drawn by module ``module`` lies on, all of it following
+    rigidly; one undoable step (engine/modeling/branch_edit.py). Result: a :class:`BranchResult`."""
+
+    module: int
+    edit: str
+    amount: float
+
+    def run(self, world: World) -> BranchResult:
+        """Edit the branch and commit it."""
+        from arbor.engine.modeling.branch_edit import LIMITS, branch_of, branch_span, drawn_in, edited, refreshed
+
+        editor = world.editing()
+        ls = editor.lstring
+        segs = world.drawn_segments(ls)
+        k = np.flatnonzero(segs.module == self.module)
+        if len(k) == 0 or self.edit not in LIMITS:
+            return BranchResult(0)
+        first = branch_of(segs, int(k[0]))
+        start, end = branch_span(ls, segs, first)
+        pieces = int(((segs.module >= start) & (segs.module < end)).sum())
+        new = edited(ls, segs, first, self.edit, self.amount)
+        new = refreshed(new, world.drawn_segments(new))
+        _commit(world, new)
+        amount = float(np.clip(self.amount, *LIMITS[self.edit]))
+        return BranchResult(pieces, len(drawn_in(ls, start, end)), amount,
+                            int(segs.module[first]) + len(new) - len(ls))
+
+
+@dataclass
 class EditResult:
     """What a region edit did: modules changed (negative: a new axis was started), modules the budget
     held back."""
