@@ -196,3 +196,23 @@ def test_with_seasons_a_leaf_lives_out_its_season_and_in_an_endless_summer_it_ag
         leaf = np.flatnonzero(ls.sym == ord("L"))
         falling.append(int(np.count_nonzero(ls.params[ls.offsets[leaf] + 2] > 0)))
     assert falling == [0, 50]  # a summer leaf stays till autumn; without seasons every old leaf falls
+
+
+def test_the_gardener_sees_ripe_fruit_come_and_go_as_the_tree_changes(year):
+    """The gardener keeps the fruit's births between rewrites; a pick (a new L-string) and the clock moving
+    on are seen at once: its count is ripe_fruit's at every turn."""
+    from arbor.engine.life.world.guardian import Gardener, Guardian, ripe_fruit
+
+    world, _ = year
+    world = copy.deepcopy(world)
+    garden, gardener = Garden([world]), Gardener(Guardian(world.rules))
+    ls, s = world.tree.lstring, world.sim.state
+    ripe = gardener._ripe(world)
+    assert ripe == ripe_fruit(world) > 0 and ls.count("O") > ripe  # (green fruit too)
+    while ripe:  # every ripe one picked, one at a time
+        fruit = np.flatnonzero(world.tree.lstring.sym == ord("O"))
+        assert any(garden.harvest(world, int(k)) is not None for k in fruit)  # (the first ripe one)
+        assert gardener._ripe(world) == ripe_fruit(world) == ripe - 1
+        ripe -= 1
+    s.length_time += 1000.0  # the clock moves on: the green ones ripen on the same L-string
+    assert gardener._ripe(world) == ripe_fruit(world) == world.tree.lstring.count("O")

@@ -25,6 +25,7 @@ from arbor.engine.life.rules.rules import Rules
 from arbor.engine.life.world.actions import Action
 from arbor.engine.life.world.garden import Garden
 from arbor.engine.life.world.world import World
+from arbor.engine.lsystem.lstring import LString
 
 NEEDS = ("drown", "water", "sun", "wilt")  # in the order the guardian tells them
 DECISIONS = ("died", "dying", "fruit", "season")  # what stops the gardener, in the order it tells them
@@ -116,14 +117,18 @@ class Guardian:
         self.pouring.discard(id(world))
 
 
-def ripe_fruit(world: World) -> int:
-    """Ripe fruit on the tree now (fruit ``O(birth)`` older than the species' RIPEN on the tree's clock)."""
-    ls = world.tree.lstring
+def fruit_births(ls: LString) -> np.ndarray:
+    """The births of the fruit ``O(birth)`` on ``ls``, earliest first."""
     fruit = np.flatnonzero((ls.sym == ord("O")) & (ls.nparams >= 1))
-    if not len(fruit):
-        return 0
-    age = world.sim.state.length_time - ls.params[ls.offsets[fruit]]
-    return int(np.count_nonzero(age >= world.tree.geometry_constants["RIPEN"]))
+    return np.sort(ls.params[ls.offsets[fruit]])
+
+
+def ripe_fruit(world: World, births: np.ndarray | None = None) -> int:
+    """Ripe fruit on the tree now (fruit older than the species' RIPEN on the tree's clock); ``births``:
+    :func:`fruit_births` of its L-string, when known."""
+    births = fruit_births(world.tree.lstring) if births is None else births
+    ripe_before = world.sim.state.length_time - world.tree.geometry_constants["RIPEN"]
+    return int(np.searchsorted(births, ripe_before, side="right"))
 
 
 def decisions_of(world: World) -> list[str]:
@@ -142,6 +147,7 @@ class Gardener:
         self.guardian = guardian
         self.told: set[tuple[int, str]] = set()  # (id of the world, decision) told and not yet gone
         self.season: tuple[int, int] | None = None  # (year, season) last seen
+        self.births: dict[int, tuple[LString, np.ndarray]] = {}  # id of the world -> (its L-string, fruit_births)
 
     def care(self, garden: Garden) -> Need | None:
         """Tend every tree (water and light kept in the healthy band), then a decision to stop for."""
@@ -153,7 +159,9 @@ class Gardener:
         any tree (told once until no tree has any), then a season's first day; decisions that passed are
         forgotten, so they are told again later."""
         now = {(id(w), what): (i, what) for i, w in enumerate(garden.worlds) for what in decisions_of(w)}
-        ripe = next((i for i, w in enumerate(garden.worlds) if w.sim.state.alive and ripe_fruit(w)), None)
+        if len(self.births) > len(garden.worlds):  # (trees replanted or gone: forget theirs)
+            self.births = {id(w): self.births[id(w)] for w in garden.worlds if id(w) in self.births}
+        ripe = next((i for i, w in enumerate(garden.worlds) if w.sim.state.alive and self._ripe(w)), None)
         if ripe is not None:  # (the garden's: one stop while any tree has ripe fruit, not one a tree)
             now[(id(garden), "fruit")] = (ripe, "fruit")
         self.told &= set(now)
@@ -166,3 +174,11 @@ class Gardener:
         if seen is not None and seen != self.season:
             return Need(garden.current, "season")
         return None
+
+    def _ripe(self, world: World) -> int:
+        """:func:`ripe_fruit`, the fruit found again only when the tree's L-string changed (a rewrite, a
+        pick: every step at 100x scanned every tree's modules)."""
+        ls, kept = world.tree.lstring, self.births.get(id(world))
+        if kept is None or kept[0] is not ls:
+            kept = self.births[id(world)] = (ls, fruit_births(ls))
+        return ripe_fruit(world, kept[1])
