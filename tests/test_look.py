@@ -208,8 +208,30 @@ def test_a_branch_swells_where_it_leaves_its_parent_and_the_trunk_flares_at_its_
     assert lateral.sum() == 1 and (segs.parent < 0).sum() == 1
     assert np.all(data[lateral, 18] > 1.2 * own[lateral])  # the collar: wider than the branch there
     assert np.all(data[segs.parent < 0, 18] > 1.4 * own[segs.parent < 0])  # the root flare
-    along = segs.continues & (segs.parent >= 0)
+    along = segs.continues & (segs.parent >= 0) & ((segs.order > 0) | (segs.start[:, 1] > 5 * own))
+    assert along.sum() >= 1  # (off the trunk's flared foot)
     np.testing.assert_allclose(data[along, 18], own[along])  # elsewhere the rings are the branch's own
+
+
+def test_an_older_thicker_trunk_flares_wider_and_higher_and_its_rings_still_join():
+    """The root flare ages with the trunk: a sapling's is a collar at the ground, an old tree's spreads up
+    its foot over several segments, the same on both sides of every joint (no steps)."""
+    from arbor.engine.base.units import METRE
+    from arbor.engine.geometry.instances import FLARE, tube_instances
+    from arbor.engine.geometry.turtle import TurtleConfig, interpret
+    from arbor.engine.lsystem.lstring import parse_lstring
+
+    def trunk(radius_m: float) -> np.ndarray:
+        text = f"!({2 * radius_m * METRE})" + "F(1)" * 12  # (a width) a trunk of 10 cm segments
+        segs = interpret(parse_lstring(text), TurtleConfig(leaves_at_tips=0, pipe_model=False)).segments
+        data = tube_instances(segs).data
+        np.testing.assert_allclose(data[1:, 18], data[:-1, 19])  # a joint's two rings alike
+        return data[:, 18] / (radius_m * METRE)  # each start ring against the trunk's own radius
+
+    young, old = trunk(0.01), trunk(0.2)
+    assert young[0] == pytest.approx(FLARE[0], rel=0.02) and old[0] == pytest.approx(FLARE[1], rel=0.02)
+    assert young[1] < 1.01 and old[1] > 1.3 and old[2] > 1.1  # 10 and 20 cm up: only the old one still flares
+    assert old[-1] < 1.01  # and not up the whole trunk
 
 
 def test_fruit_is_drawn_at_least_six_pixels_across_however_small(scene):

@@ -95,9 +95,12 @@ def test_the_wood_program_and_culling_draw_the_same_picture(gl_ctx, tree_game):
 def test_a_sun_moving_while_the_camera_holds_still_costs_a_frame_one_part_of_the_backdrop(tree_game, monkeypatch):
     """The kept backdrop (software GL) follows the sun a part a frame (sky, ground, grass, shadows) and
     within a few frames shows what a fresh drawing shows."""
+    from arbor.game.render import garden
+
     renderer = tree_game.renderer
     if renderer.samples > 1:
         pytest.skip("multisampled: the backdrop is drawn every frame")
+    monkeypatch.setattr(garden, "LAYER_COST", float("inf"))  # the trees drawn whole every frame (not a picture)
     drawn: list[str] = []
     for owner, name in ((renderer.backdrop, "draw_sky"), (renderer.backdrop, "draw_ground"),
                         (renderer.grass, "draw"), (renderer.backdrop, "draw_shadows")):

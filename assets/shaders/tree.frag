@@ -1,7 +1,8 @@
 #version 330
 // Lit bark (kind 0), leaf cards (1), blossoms (2) and fruit (3): sun with a filtered shadow map, a sky/ground
 // hemisphere ambient, and an ambient-occlusion term that darkens the inside of the crown. Bark has relief
-// from a tangent-space normal map (x around the branch, y along it) and darkens with age (its radius);
+// from a tangent-space normal map (x around the branch, y along it) and darkens and coarsens with age (its
+// radius: deeper relief, darker furrows between lighter ridges);
 // leaves vary in shade card by card and let the sun through when it is behind them (u_translucency; 0 =
 // an opaque card). In autumn (u_autumn 0..1) leaves turn yellow, orange and red, each at its own time
 // (by its hash); fruit is a lit ball, green while it ripens and red when it is ripe; a rock (4) is a
@@ -58,7 +59,7 @@ vec3 bark_normal(vec3 n, vec2 uv) {
     if (dot(v_tangent, v_tangent) < 0.25 || u_relief <= 0.0) return n;
     vec3 t = normalize(v_tangent - dot(v_tangent, n) * n);
     vec3 m = texture(u_normal_map, uv).xyz * 2.0 - 1.0;
-    m.xy *= u_relief;
+    m.xy *= u_relief * (v_extra < 0.0 ? 1.0 : mix(0.6, 1.7, smoothstep(0.1, 1.5, v_extra)));  // older: deeper
     return normalize(m.x * cross(t, n) + m.y * t + m.z * n);
 }
 
@@ -96,6 +97,9 @@ void main() {
     } else {
         n = bark_normal(n, uv);
         if (v_extra >= 0.0) albedo *= mix(vec3(1.1, 1.1, 0.92), vec3(0.66, 0.62, 0.58), smoothstep(0.03, 0.6, v_extra));
+        // old bark (a radius of 1 to 15 cm: 0.1 to 1.5 scene units): its ridges lighter, its furrows darker
+        // (about the bark texture's median, 0.23: its mean kept)
+        albedo *= 1.0 + 0.4 * smoothstep(0.1, 1.5, v_extra) * clamp((tex.g - 0.23) * 8.0, -1.0, 1.0);
     }
     float ndl = dot(n, u_sun_dir);
     float diffuse = (u_kind == 0 || u_kind >= 3) ? max(ndl, 0.0) : max(ndl, 0.0) * 0.8;

@@ -5,7 +5,8 @@ tangent, twist-free reference direction, radius, bark v coordinate), whether it 
 how far it is from the trunk's base (for wind). The vertex shader builds the ring vertices from a small
 template; consecutive segments share their joint ring exactly (same centre, tangent, reference and
 radius), so tapering is continuous and there are no caps except at tips. A lateral branch's own start
-ring is wider (its collar where it leaves its parent) and so is the trunk's foot (the root flare).
+ring is wider (its collar where it leaves its parent) and so is the trunk's foot (the root flare, wider
+and reaching higher as the trunk thickens with age: :func:`flare`).
 Leaves are one record each (base, axis, normal, size, width). Growth then rewrites a few records, not a mesh.
 """
 
@@ -15,12 +16,15 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from arbor.engine.base.units import METRE
 from arbor.engine.geometry.chains import chain_sum
 from arbor.engine.geometry.mesh import wood_rings
 from arbor.engine.geometry.turtle import Leaves, Segments
 
 COLLAR = 1.3  # a branch's start ring is this much wider than the branch: the collar where it leaves its parent
-FLARE = 1.6  # and the trunk's foot this much wider than the trunk: the root flare
+FLARE = (1.3, 1.9)  # and the trunk's foot this much wider than the trunk, a sapling's to an old tree's
+FLARE_AGED = (0.01 * METRE, 0.15 * METRE)  # trunk radius (scene units) of a sapling and of an old tree
+FLARE_REACH = 0.8  # the flare falls off e-fold every this many trunk radii up
 TUBE_FLOATS = 26  # c0 t0 x0 c1 t1 x1 (18), r0 r1, v0 v1, flex0 flex1, cap, order
 LEAF_FLOATS = 13  # base (3), axis (3), normal (3), length, width, flex, hash (which leaves a coarse level keeps)
 
@@ -77,13 +81,26 @@ def tube_instances(segs: Segments, bark_scale: float = 1.0) -> TubeInstances:
     data[:, 9:12], data[:, 12:15], data[:, 15:18] = rings.center[:m], rings.tangent[:m], rings.x[:m]
     data[:, 18], data[:, 19] = rings.radius[start], rings.radius[:m]
     data[(segs.parent >= 0) & ~segs.continues, 18] *= COLLAR  # (a lateral's start ring is its own)
-    data[segs.parent < 0, 18] *= FLARE
+    roots, trunk = segs.parent < 0, segs.order == 0
+    foot, thick = float(segs.start[roots, 1].min()), float(rings.radius[:m][roots].max())  # (its end ring's)
+    for col, height in ((18, 1), (19, 10)):  # (a joint's two rings: the same height, the same flare)
+        data[trunk, col] *= flare(data[trunk, height] - foot, thick)
     data[:, 20], data[:, 21] = rings.v[start] * bark_scale, rings.v[:m] * bark_scale
     data[:, 22], data[:, 23] = d0 / reach, d1 / reach
     data[:, 24] = 0.0
     data[wood.tips, 24] = 1.0
     data[:, 25] = segs.order
     return TubeInstances(data, segs.module.astype(np.int64))
+
+
+def flare(height: np.ndarray, radius: float) -> np.ndarray:
+    """How much wider than itself the trunk is drawn ``height`` above its foot (scene units), for a trunk
+    of ``radius`` there: FLARE[0] at a sapling's foot to FLARE[1] at an old tree's, falling off e-fold
+    every FLARE_REACH trunk radii up (a young trunk's flare is a collar at the ground, an old one's
+    spreads into its roots)."""
+    age = min(max((radius - FLARE_AGED[0]) / (FLARE_AGED[1] - FLARE_AGED[0]), 0.0), 1.0)
+    wider = FLARE[0] + (FLARE[1] - FLARE[0]) * age - 1.0
+    return (1.0 + wider * np.exp(-np.maximum(height, 0.0) / max(FLARE_REACH * radius, 1e-6))).astype(np.float32)
 
 
 def leaf_instances(leaves: Leaves, flex: np.ndarray, aspect: float = 0.5) -> LeafInstances:
