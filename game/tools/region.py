@@ -6,7 +6,8 @@ outlines of a crown region, and two of them are fitted with eq. 3's supertoroid 
 outlines), its width across the view they were drawn in. A drag that starts on the region's centre
 handle or well inside it (within MOVE_INSIDE of the way to its rim, as seen) moves it; one that starts
 on its rim resizes it; anywhere else a drag starts a new region. A tap inside the region applies the edit
-chosen with the menu's option button, to the modules inside only (one undoable step).
+chosen with the menu's option button, to the modules inside only (one undoable step); a prune that would
+cut drawn work, or a quarter of the tree, says so first and is done by a second tap inside the region.
 """
 
 from __future__ import annotations
@@ -18,17 +19,22 @@ import pygame
 
 from arbor.engine.life.world.commands import RegionEdit
 from arbor.engine.lsystem.lstring import LString
+from arbor.engine.modeling.edits import prune_region
+from arbor.engine.modeling.modeler import DRAWN, F_PARAMS
 from arbor.engine.modeling.regions import Sphere, Supertoroid, fit_supertoroid, moved_region, scaled_region
 from arbor.game.render.camera import OrbitCamera, project_ball, project_points
 from arbor.game.render.ui import draw_polyline
 from arbor.game.strings import text
 from arbor.game.tools.symbols import draw_symbols
+from arbor.game.tools.told import counted
 
 if TYPE_CHECKING:
     from scipy.spatial import ConvexHull
 
 CONTOUR_PIXELS = 80.0  # a drag at least this tall, and twice as tall as wide, is a contour
 GROUPS = {"grow": "grown", "prune": "pruned_region"}  # edits with their own message
+ASK_SECONDS = 5.0  # a prune asked about is done by a second tap inside the region within this time
+ASK_SHARE = 0.25  # a prune cutting more than this share of the tree's modules is asked about
 HANDLE_PIXELS = 12.0  # radius of the region's centre handle (a touch-sized disc): a drag from it moves the region
 MOVE_INSIDE = 0.6  # a drag starting within this share of the way from the centre to the rim moves the region
 RIM_PIXELS = 16.0  # a drag starting up to this far outside the rim (as seen) still resizes the region
@@ -46,6 +52,7 @@ class RegionTool:
         self.pixels: list[tuple[float, float]] = []  # the drag being made, in window pixels
         self.labels: list[tuple[str, float, float, bool]] = []  # last drawn: symbol, x, y, transformation
         self._positions: tuple[LString, np.ndarray] | None = None
+        self.asked: tuple | None = None  # a prune asked about: (its region, the tree then, when)
 
     def clear(self) -> None:
         """Forget the region and any half-drawn contours."""
@@ -204,11 +211,34 @@ class RegionTool:
         mode = self.mode
         if mode.modeler is None or not self.hit(x, y, camera):
             return False
+        if edit == "prune" and self._ask(edit):
+            return True
         done = mode.state.world.apply(RegionEdit(edit, self.region, system))
         changed, held = done.changed, done.held
         key = "messages.new_axis" if changed < 0 else f"messages.{GROUPS.get(edit, 'edited')}"
         message = text(key, edit=text(f"edits.{edit}"), count=changed)
         mode.state.say(message + (" " + text("messages.budget") if held else ""))
+        return True
+
+    def _ask(self, edit: str) -> bool:
+        """Whether a prune here must first be asked about (told, and done by a second tap inside the same
+        region within ASK_SECONDS): it would cut drawn work (strokes, crowns) or more than ASK_SHARE of
+        the tree's modules. A Prune here once cut a drawn branch whose base lay at the region's edge
+        without a word."""
+        mode = self.mode
+        ls = mode.modeler.lstring
+        now = mode.state.clock()
+        asked, self.asked = self.asked, None
+        if asked is not None and asked[0] is self.region and asked[1] is ls and now - asked[2] <= ASK_SECONDS:
+            return False  # (the second tap: do it)
+        new, removed = prune_region(ls, self.positions(ls), self.region)
+        drawn = _drawn(ls) - _drawn(new)
+        if drawn == 0 and removed <= ASK_SHARE * len(ls):
+            return False
+        self.asked = (self.region, ls, now)
+        key = "messages.prune_ask" if drawn else "messages.prune_ask_much"
+        mode.state.say(text(key, drawn=counted(drawn, "drawn piece"), count=counted(removed, "module"),
+                            share=removed / max(len(ls), 1), seconds=ASK_SECONDS), ASK_SECONDS)
         return True
 
     def draw(self, surface: pygame.Surface, camera: OrbitCamera, font: pygame.font.Font, project,
@@ -238,3 +268,8 @@ class RegionTool:
         if self._positions is None or self._positions[0] is not ls:
             self._positions = (ls, self.mode.state.world.module_positions(ls))
         return self._positions[1]
+
+
+def _drawn(ls: LString) -> int:
+    """The drawn pieces (strokes' and crowns') of ``ls``."""
+    return int(((ls.sym == DRAWN) & (ls.nparams == F_PARAMS)).sum())
