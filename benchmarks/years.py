@@ -17,6 +17,7 @@ from pathlib import Path
 import numpy as np
 
 from arbor.engine.base.units import METRE
+from arbor.engine.life.form.shoot_units import leaf_count
 from arbor.engine.life.keep.save import SavedGarden, write_garden
 from arbor.engine.life.plant.sim import sun_angle_at
 from arbor.engine.life.rules.rules import load_rules
@@ -64,7 +65,7 @@ def main(years: int = 3, out: Path | None = None) -> None:
                 water(garden)
             garden.step(STEP)
             peak_modules = max(peak_modules, len(world.tree.lstring))
-        leaves_now = world.tree.lstring.count("L")
+        leaves_now = leaf_count(world.tree.lstring)
         if world.sim.season().index == current:  # (a day that ended in the next season counts there)
             peak_leaves = max(peak_leaves, leaves_now)
             if out is not None and current == 3:  # the bare crown on the year's last day (rewritten daily)

@@ -20,7 +20,9 @@ from arbor.engine.life.form.interpret import (
     LEAF,
     LEAF_ASPECT,
     Clocks,
+    add_unit_leaves,
     cluster_scales,
+    leaf_birth,
     leaf_clusters,
     leaf_keep,
     leaf_sizes,
@@ -29,6 +31,7 @@ from arbor.engine.life.form.interpret import (
     saturate,
     turtle_config,
 )
+from arbor.engine.life.form.shoot_units import is_unit
 from arbor.engine.lsystem.lstring import LString, params_where
 
 YOUNG = 3.5  # elongation time constants: a younger internode still visibly grows (97 % grown by then)
@@ -42,7 +45,7 @@ class GrowthView:
         self.lstring, self.const, self.wilt = ls, const, clocks.wilt
         self._built_T = clocks.length_time
         view = render_view(ls, clocks, const)
-        turtle = interpret(view, turtle_config(const))
+        turtle = add_unit_leaves(ls, interpret(view, turtle_config(const)), clocks, const)
         segs = turtle.segments
         if len(segs):
             set_radii(segs, radii(ls, segs, clocks, const))
@@ -114,7 +117,7 @@ class GrowthView:
         ends = self.end[np.maximum(self.leaf_carrier, 0)] if len(segs) else np.zeros((len(leaves), 3))
         self.leaf_offset = leaves.position - np.where((self.leaf_carrier >= 0)[:, None], ends, 0.0)
         is_leaf = (ls.sym[leaves.module] == LEAF) & (ls.nparams[leaves.module] >= 1)
-        self.leaf_birth = np.where(is_leaf, ls.params[ls.offsets[leaves.module]], 0.0)
+        self.leaf_birth = np.where(is_leaf | is_unit(ls, leaves.module), leaf_birth(ls, leaves.module), 0.0)
         count = len(turtle.leaves)
         self.leaf_scale = cluster_scales(turtle.leaves.module) if count else np.zeros(0)
         on_young = np.zeros(len(segs), bool)
@@ -136,8 +139,8 @@ class GrowthView:
         dynamic[self.young_leaves] = True
         if k:
             ls, off = self.lstring, self.lstring.offsets[self.leaf_module]
-            falling = np.where(self.lstring.nparams[self.leaf_module] >= 3, ls.params[np.minimum(off + 2, len(
-                ls.params) - 1)], 0.0)
+            falling = np.where((self.lstring.nparams[self.leaf_module] >= 3) & ~is_unit(ls, self.leaf_module),
+                               ls.params[np.minimum(off + 2, len(ls.params) - 1)], 0.0)
             dynamic |= (now - self.leaf_birth < YOUNG * self.const["TAU"]) | (falling > 0)
         leaf_order = np.concatenate([np.flatnonzero(~dynamic), np.flatnonzero(dynamic)])
         self.leaves.data = self.leaves.data[leaf_order]

@@ -27,6 +27,7 @@ from arbor.engine.geometry.turtle import (
     set_radii,
     subtree_sums,
 )
+from arbor.engine.life.form import shoot_units
 from arbor.engine.lsystem import brackets
 from arbor.engine.lsystem.lstring import LString, params_where, replace_modules
 from arbor.engine.lsystem.lsys import load_lsystem
@@ -129,19 +130,46 @@ def leaf_keep(birth: np.ndarray, wilt: float) -> np.ndarray:
 
 
 def leaf_sizes(ls: LString, idx: np.ndarray, now: float, const: dict[str, float]) -> np.ndarray:
-    """Leaf length without wilt: unfolding from zero, times its vigour, withering once it falls."""
+    """Leaf length without wilt: unfolding from zero, times its vigour, withering once it falls. For a shoot
+    unit among ``idx`` (its leaves' module), the length of the leaves it bears (engine/life/form/shoot_units.py)."""
     off, count = ls.offsets[idx], ls.nparams[idx]
-    birth = ls.params[off]
-    vigour = np.where(count >= 2, ls.params[np.where(count >= 2, off + 1, off)], 1.0)
-    falling = np.where(count >= 3, ls.params[np.where(count >= 3, off + 2, off)], 0.0)
+    unit = shoot_units.is_unit(ls, idx)
+    birth = ls.params[np.where(unit, off + shoot_units.LEAF_BIRTH, off)] if len(idx) else np.zeros(0)
+    vigour_at = np.where(unit, off + shoot_units.LEAF_SIZE, np.where(count >= 2, off + 1, off))
+    vigour = np.where(unit | (count >= 2), ls.params[vigour_at] if len(idx) else 0.0, 1.0)
+    falling = np.where(~unit & (count >= 3), ls.params[np.where(count >= 3, off + 2, off)] if len(idx) else 0.0, 0.0)
     wither = np.where(falling > 0, np.clip(1.0 - (now - falling) / const["LFADE"], 0.0, 1.0), 1.0)
     return const["LS"] * vigour * saturate(now - birth, const["TAU"]) * wither
 
 
+def leaf_birth(ls: LString, idx: np.ndarray) -> np.ndarray:
+    """When each leaf of modules ``idx`` (leaf modules or shoot units) last unfolded."""
+    unit = shoot_units.is_unit(ls, idx)
+    if len(ls.params) == 0:
+        return np.zeros(len(idx))
+    at = np.where(unit, ls.offsets[idx] + shoot_units.LEAF_BIRTH, ls.offsets[idx])
+    return ls.params[np.minimum(at, len(ls.params) - 1)]
+
+
 def leaf_area(ls: LString, now: float, const: dict[str, float]) -> float:
-    """Area (scene units²) of the leaf clusters of ``ls`` at length time ``now``, wilt ignored (no turtle needed)."""
+    """Area (scene units²) of the leaf clusters of ``ls`` at length time ``now``, wilt ignored (no turtle needed):
+    its leaf modules' and the leaves its shoot units bear."""
     idx = np.flatnonzero((ls.sym == LEAF) & (ls.nparams >= 1))
-    return float((CLUSTER_AREA * LEAF_ASPECT * leaf_sizes(ls, idx, now, const) ** 2).sum())
+    units = shoot_units.unit_modules(ls)
+    row, _, bears = shoot_units.sites(ls, units)
+    borne = np.bincount(row[bears], minlength=len(units))
+    sizes = np.concatenate([leaf_sizes(ls, idx, now, const), np.repeat(leaf_sizes(ls, units, now, const), borne)])
+    return float((CLUSTER_AREA * LEAF_ASPECT * sizes ** 2).sum())
+
+
+def add_unit_leaves(ls: LString, turtle: TurtleResult, clocks: Clocks, const: dict[str, float]) -> TurtleResult:
+    """``turtle`` (of ``ls``'s view) with the leaves its shoot units bear, sized as leaf modules of theirs
+    would be at these clocks (wilt included)."""
+    units = turtle.segments.module[shoot_units.is_unit(ls, turtle.segments.module)]
+    if len(units) == 0:
+        return turtle
+    sizes = leaf_sizes(ls, units, clocks.length_time, const) * leaf_keep(leaf_birth(ls, units), clocks.wilt)
+    return shoot_units.with_unit_leaves(ls, turtle, sizes)
 
 
 def render_view(ls: LString, clocks: Clocks, const: dict[str, float]) -> LString:
@@ -237,7 +265,7 @@ def grown_turtle(ls: LString, clocks: Clocks, const: dict[str, float]) -> Turtle
     """The growing tree's segments (with their continuous radii) and leaf clusters, without meshes: what
     measuring a tree needs (the lab samples it), for a fraction of the cost of :func:`grow_geometry`."""
     view = render_view(ls, clocks, const)
-    turtle = interpret(view, turtle_config(const))
+    turtle = add_unit_leaves(ls, interpret(view, turtle_config(const)), clocks, const)
     segs = turtle.segments
     if len(segs):
         set_radii(segs, radii(ls, segs, clocks, const))

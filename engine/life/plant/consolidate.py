@@ -28,7 +28,7 @@ YAW, PITCH, ROLL = ord("+"), ord("^"), ord("/")
 def consolidated(ls: LString, now: float, tau: float) -> tuple[LString, int]:
     """``ls`` with its old straight bare runs merged (see the module docstring); returns the new string
     and how many modules it saved."""
-    node = np.flatnonzero((ls.sym == INTERNODE) & (ls.nparams >= 5))
+    node = np.flatnonzero((ls.sym == INTERNODE) & (ls.nparams >= 5) & (ls.nparams <= 6))  # (not shoot units)
     if len(node) < 2:
         return ls, 0
     params, off = ls.params, ls.offsets

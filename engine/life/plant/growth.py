@@ -36,6 +36,7 @@ from arbor.engine.geometry.turtle import (
     subtree_ends,
     subtree_sums,
 )
+from arbor.engine.life.form import shoot_units
 from arbor.engine.life.form.interpret import (
     APEX,
     BUD,
@@ -45,6 +46,7 @@ from arbor.engine.life.form.interpret import (
     LEAF_ASPECT,
     LEAF_BUD,
     Clocks,
+    add_unit_leaves,
     grow_geometry,
     interpretation_constants,
     leaf_area,
@@ -57,6 +59,7 @@ from arbor.engine.life.plant.carbon import Economy
 from arbor.engine.life.plant.collide import Obstacles, avoidance
 from arbor.engine.life.plant.consolidate import consolidated
 from arbor.engine.life.plant.light import memory_weight
+from arbor.engine.life.plant.units import form_units
 from arbor.engine.life.plant.vigour import borchert_honda
 from arbor.engine.lsystem import brackets
 from arbor.engine.lsystem.derive import Deriver, StepReport
@@ -177,13 +180,15 @@ class GrowingTree:
     def drop_leaves(self) -> int:
         """Winter: every leaf still on the tree falls (the renderer has faded them out through autumn)
         and leaves a leaf bud V where it was, which the spring flush opens again. Returns how many fell."""
-        ls = self.lstring
+        ls, fell = shoot_units.bare(self.lstring)
         leaves = ls.sym == LEAF
-        count = int(leaves.sum())
-        if count:
+        count = int(leaves.sum()) + fell
+        self.lstring = ls
+        if leaves.any():
             sym = np.where(leaves, LEAF_BUD, ls.sym).astype(ls.sym.dtype)
             self.lstring = LString.from_arrays(sym, np.where(leaves, 0, ls.nparams), ls.params[~np.repeat(leaves,
                                                                                                          ls.nparams)])
+        self.lstring, _ = form_units(self.lstring, self.last_rewrite_T, self.geometry_constants)  # (all bare now)
         return count
 
     def leaf_area(self, now: float) -> float:
@@ -203,7 +208,7 @@ class GrowingTree:
         ls, const = self.lstring, self.geometry_constants
         view = render_view(ls, Clocks(clocks.length_time, clocks.girth_time, 0.0), const)
         probes = np.flatnonzero(((ls.sym == APEX) & (ls.nparams == 6)) | ((ls.sym == BUD) & (ls.nparams == 3)))
-        turtle = interpret(view, turtle_config(const), probes=probes)
+        turtle = add_unit_leaves(ls, interpret(view, turtle_config(const), probes=probes), clocks, const)
         ends = turtle.segments.end
         self.height = float(ends[:, 1].max()) if len(ends) else 0.0
         leaves = turtle.leaves
@@ -326,7 +331,8 @@ class GrowingTree:
             got_above = subtree_sums(ls, segs, got, ends)  # the view keeps the string's module positions
             # Light income against what the branch must feed: a full leaf cluster's area per internode
             # it carries. A long branch with a few lit leaves at its tip starves like a shaded one.
-            need = np.where(grown, CLUSTER_AREA * LEAF_ASPECT * const["LS"] ** 2, 0.0)
+            pieces = params_where(params, grown & (ls.nparams[segs.module] >= 6), ls.offsets[segs.module] + 5, 1.0)
+            need = np.where(grown, CLUSTER_AREA * LEAF_ASPECT * const["LS"] ** 2 * pieces, 0.0)
             need_above = subtree_sums(ls, segs, need, ends)
             # In sugar, not in shares of the sky: the same share of a weak day's light earns less.
             earns = economy.daylight ** SHADE_EARNING if economy is not None else 1.0

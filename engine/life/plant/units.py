@@ -1,0 +1,298 @@
+"""Shoot units made: a finished run of bare leafy nodes on one axis becomes one module that keeps its drawing.
+
+A node of the living tree costs about ten modules for as long as it lives: its turns and internode
+``+(h)^(u)/(r)I(...)`` and its leaf bracket ``[/(roll)&(pitch)L(...)]`` (a leaf bud ``V`` in winter, opened
+again every spring). Once the nodes of a run on one axis are old (``OLD_TAUS`` elongation time constants:
+fully grown) and bear nothing but their leaf (no bud, no branch, no blossom: only the run's last node may
+carry those), the run becomes one shoot unit (engine/life/form/shoot_units.py: its parameters) between two
+sets of turns: ``+(a)^(b)/(c)I(unit...)+(a')^(b')/(c')``. The first set turns the frame before the run onto
+the run's chord, the second from the chord back to the frame the run ended in, so everything after the run
+(its last node's branches, the rest of the axis) stands exactly where it stood. The unit is drawn along the
+chord with its leaves where its nodes stood; a run bent so that a node stands further than ``STRAIGHT`` of its
+length from the chord is split in halves until none does. Runs are made in winter, when every leaf site
+holds a bud (the units' leaves then open with the spring flush, as the buds would). Vectorised: a few numpy
+passes and one turtle pass over the string.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from arbor.engine.geometry.turtle import interpret, set_radii
+from arbor.engine.life.form import shoot_units
+from arbor.engine.life.form.interpret import Clocks, radii, render_view, saturate, turtle_config
+from arbor.engine.lsystem import brackets
+from arbor.engine.lsystem.lstring import LString
+
+OLD_TAUS = 6.0  # an internode this many elongation time constants old is fully grown (99.75 %)
+TAIL_GROUPS = 0  # groups besides its leaf a unit's nodes may carry (a branch's foot stays a node: girth steps)
+MAX_SITES = 12  # nodes a unit holds at most
+STRAIGHT = 0.03  # a unit's nodes stand at most this share of its length from the chord it is drawn along
+INTERNODE, LEAF_BUD = ord("I"), ord("V")
+YAW, PITCH, ROLL, DOWN = ord("+"), ord("^"), ord("/"), ord("&")
+UNIT_TURNS = np.array([YAW, PITCH, ROLL], np.uint8)
+
+
+def form_units(ls: LString, now: float, const: dict[str, float]) -> tuple[LString, int]:
+    """``ls`` with its old bare runs of leafy nodes made into shoot units (module docstring), at length time
+    ``now``; returns the new string and how many modules it saved."""
+    nodes = _nodes(ls, now, const)
+    if nodes is None:
+        return ls, 0
+    joins = _joins(nodes)
+    if not joins.any():
+        return ls, 0
+    states = _states(ls, nodes, joins, now, const)
+    head, tail = _straight_runs(joins, states)
+    if len(head) == 0:
+        return ls, 0
+    params = _unit_params(ls, nodes, states, head, tail, now, const)
+    out = _rebuilt(ls, nodes, head, tail, params)
+    return out, len(ls) - len(out)
+
+
+def _nodes(ls: LString, now: float, const: dict[str, float]) -> dict[str, np.ndarray] | None:
+    """Every plain internode with its turns before it and its bracket groups after it: where its turns
+    start, where its groups end, its one bare leaf group (open bracket and leaf bud), and whether it may
+    be part of a unit."""
+    sym, npar, off, params = ls.sym, ls.nparams, ls.offsets, ls.params
+    node = np.flatnonzero((sym == INTERNODE) & (npar == 5))
+    if len(node) < 2:
+        return None
+    pad = 6
+    psym = np.concatenate([sym, np.zeros(pad, sym.dtype)])
+    pnpar = np.concatenate([npar, np.zeros(pad, npar.dtype)])
+    rolled = (node >= 3) & (psym[node - 1] == ROLL) & (pnpar[node - 1] == 1)
+    start = np.where(rolled, node - 3, node - 2)
+    ok = start >= 0
+    s = np.maximum(start, 0)
+    ok &= (psym[s] == YAW) & (pnpar[s] == 1) & (psym[s + 1] == PITCH) & (pnpar[s + 1] == 1)
+    match = np.concatenate([brackets.match(sym), np.full(pad, -1)])
+    cur = node + 1
+    leafy_groups, other_groups = np.zeros(len(node), np.int64), np.zeros(len(node), np.int64)
+    leaf_open, leaf_bud = np.full(len(node), -1), np.full(len(node), -1)
+    for _ in range(12):
+        is_open = psym[cur] == brackets.OPEN
+        if not is_open.any():
+            break
+        c = np.where(is_open, cur, 0)
+        close = np.where(is_open, match[c], 0)
+        inner = close - c - 1
+        a = c + 1
+        two = is_open & (inner == 2) & (psym[a] == DOWN) & (pnpar[a] == 1) & (psym[a + 1] == LEAF_BUD)
+        two &= pnpar[a + 1] == 0
+        three = is_open & (inner == 3) & (psym[a] == ROLL) & (pnpar[a] == 1) & (psym[a + 1] == DOWN)
+        three &= (pnpar[a + 1] == 1) & (psym[a + 2] == LEAF_BUD) & (pnpar[a + 2] == 0)
+        leafy = two | three
+        leaf_open = np.where(leafy, c, leaf_open)
+        leaf_bud = np.where(two, a + 1, np.where(three, a + 2, leaf_bud))
+        leafy_groups += leafy
+        other_groups += is_open & ~leafy
+        cur = np.where(is_open, close + 1, cur)
+    ok &= psym[cur] != brackets.OPEN  # (a node with more groups than looked at stays as it is)
+    old = now - params[off[node]] > OLD_TAUS * const["TAU"]
+    ok &= old & (leafy_groups == 1)
+    return {"node": node, "start": start, "end": cur, "ok": ok, "other": other_groups, "leaf_open": leaf_open,
+            "leaf_bud": leaf_bud, "order": params[off[node] + 2]}
+
+
+def _heads(joins: np.ndarray) -> np.ndarray:
+    """For every node, the index (in the node list) of the first node of its run."""
+    return np.maximum.accumulate(np.where(~joins, np.arange(len(joins)), 0))
+
+
+def _joins(nodes: dict[str, np.ndarray]) -> np.ndarray:
+    """Per node: whether it joins the node before it into a run (both may be in a unit, on one axis, the one
+    before bearing nothing but its leaf), at most MAX_SITES nodes a run."""
+    ok, start, end, other = nodes["ok"], nodes["start"], nodes["end"], nodes["other"]
+    order = nodes["order"]
+    joins = ok & (other <= TAIL_GROUPS) & np.concatenate([[False], ok[:-1] & (other[:-1] == 0) & (end[:-1] == start[1:])
+                                 & (order[:-1] == order[1:])])
+    pos = np.arange(len(joins)) - _heads(joins)
+    return joins & (pos % MAX_SITES != 0)
+
+
+def _states(ls: LString, nodes: dict[str, np.ndarray], joins: np.ndarray, now: float,
+            const: dict[str, float]) -> dict[str, np.ndarray]:
+    """The turtle's state going into each node's turns, its internode, what follows it and its leaf bud
+    (one pass; rows of the node list, only for the nodes of runs)."""
+    member = joins | np.concatenate([joins[1:], [False]])
+    rows = np.flatnonzero(member)
+    where = [nodes["start"][rows], nodes["node"][rows], nodes["node"][rows] + 1, nodes["leaf_bud"][rows]]
+    view = render_view(ls, Clocks(now, now, 0.0), const)
+    turtle = interpret(view, turtle_config(const), probes=np.concatenate(where))
+    probes, segs = turtle.probes, turtle.segments
+    set_radii(segs, radii(ls, segs, Clocks(now, now, 0.0), const))
+    seg = np.searchsorted(segs.module, nodes["node"])
+    r0, r1 = segs.radius[seg], segs.radius_end[seg]
+    piece = np.linalg.norm(segs.end[seg] - segs.start[seg], axis=1)
+    carries = np.zeros(len(segs) + 1, bool)
+    carries[segs.parent[segs.continues]] = True
+    parent = np.where(segs.continues[seg], segs.parent[seg], -1)  # the piece whose taper ends at this one
+    p = np.maximum(parent, 0)
+    below = np.where(parent >= 0, np.linalg.norm(segs.end[p] - segs.start[p], axis=1), 0.0)
+    child = np.full(len(segs) + 1, -1)
+    child[segs.parent[segs.continues]] = np.flatnonzero(segs.continues)
+    k, out = len(rows), {"volume": np.pi * piece * (r0 * r0 + r0 * r1 + r1 * r1) / 3.0, "radius_end": r1,
+                         "tapers": carries[seg], "foot": r0, "below": below, "below_foot": segs.radius[p],
+                         "seg": seg, "parent_seg": parent, "child_seg": child[seg]}
+    for j, name in enumerate(("turns", "node", "after", "leaf")):
+        pos, frame = np.zeros((len(joins), 3)), np.zeros((len(joins), 3, 3))
+        pos[rows], frame[rows] = probes.position[j * k:(j + 1) * k], probes.frame[j * k:(j + 1) * k]
+        out[name], out[name + "_frame"] = pos, frame
+    return out
+
+
+def _straight_runs(joins: np.ndarray, states: dict[str, np.ndarray]) -> tuple[np.ndarray, np.ndarray]:
+    """First and last node (rows of the node list) of every run that becomes a unit: at least two nodes,
+    each node's start within STRAIGHT of the run's length from the chord it is drawn along (a run that
+    bends more is split in halves until it does not)."""
+    joins = joins.copy()
+    for _ in range(6):
+        head = _heads(joins)
+        size = np.bincount(head, minlength=len(joins))
+        last = head + size[head] - 1
+        a, b = states["node"][head], states["after"][last]
+        chord = b - a
+        length = np.maximum(np.linalg.norm(chord, axis=1), 1e-12)
+        off = np.linalg.norm(np.cross(states["node"] - a, chord), axis=1) / length
+        bent = joins & (off > STRAIGHT * length)
+        if not bent.any():
+            break
+        split = np.flatnonzero(np.bincount(head[bent], minlength=len(joins)) > 0)
+        joins[split + size[split] // 2] = False
+    head = _heads(joins)
+    size = np.bincount(head, minlength=len(joins))
+    first = np.flatnonzero(size >= 2)
+    return first, first + size[first] - 1
+
+
+def _frames_between(before: np.ndarray, after: np.ndarray) -> np.ndarray:
+    """Turns +(a)^(b)/(c) (degrees, (k, 3)) that take turtle frames ``before`` to ``after`` (k, 3, 3; columns
+    H, L, U): the turtle turns a frame F to F Rz(a) Ry(-b) Rx(c)."""
+    m = np.einsum("kji,kjl->kil", before, after)
+    a = np.degrees(np.arctan2(m[:, 1, 0], m[:, 0, 0]))
+    b = np.degrees(np.arcsin(np.clip(m[:, 2, 0], -1.0, 1.0)))
+    c = np.degrees(np.arctan2(m[:, 2, 1], m[:, 2, 2]))
+    return np.stack([a, b, c], axis=1)
+
+
+def _onto(frames: np.ndarray, heading: np.ndarray) -> np.ndarray:
+    """``frames`` turned the shortest way so that their H lies along ``heading`` (unit vectors)."""
+    h = frames[:, :, 0]
+    axis = np.cross(h, heading)
+    sin = np.linalg.norm(axis, axis=1)
+    cos = np.einsum("ki,ki->k", h, heading)
+    k = axis / np.maximum(sin, 1e-12)[:, None]
+    out = np.empty_like(frames)
+    for col in range(3):
+        v = frames[:, :, col]
+        out[:, :, col] = (v * cos[:, None] + np.cross(k, v) * sin[:, None]
+                          + k * np.einsum("ki,ki->k", k, v)[:, None] * (1.0 - cos)[:, None])
+    return out
+
+
+def _wrap(deg: np.ndarray) -> np.ndarray:
+    return (deg + 180.0) % 360.0 - 180.0
+
+
+def _unit_params(ls: LString, nodes: dict[str, np.ndarray], states: dict[str, np.ndarray], head: np.ndarray,
+                 tail: np.ndarray, now: float, const: dict[str, float]) -> np.ndarray:
+    """Per run: its two sets of turns and its unit's 13 parameters, (runs, 19)."""
+    node = nodes["node"]
+    size = tail - head + 1
+    member = np.repeat(head, size) + np.arange(int(size.sum())) - np.repeat(np.cumsum(size) - size, size)
+    run = np.repeat(np.arange(len(head)), size)
+    r = len(head)
+    before, first, last = states["turns_frame"][head], states["node_frame"][head], states["after_frame"][tail]
+    chord = states["after"][tail] - states["node"][head]
+    length = np.linalg.norm(chord, axis=1)
+    along = _onto(first, chord / np.maximum(length, 1e-12)[:, None])
+    m = np.einsum("kji,kjl->kil", along[run], states["leaf_frame"][member])
+    roll = np.degrees(np.arctan2(m[:, 1, 0], -m[:, 2, 0]))
+    i = (member - head[run] + 1).astype(float)
+    step = _circular_mean(_wrap(np.diff(roll)), run[1:], run[1:] == run[:-1], r)
+    roll0 = _circular_mean(_wrap(roll - i * step[run]), run, np.ones(len(run), bool), r)
+    pitch = np.bincount(run, ls.params[ls.offsets[nodes["leaf_bud"][member] - 1]], minlength=r) / size
+    params, off = ls.params, ls.offsets[node[head]]
+    order = params[off + 2]
+    full = const["IL"] * const["IO"] ** order * saturate(now - params[off], const["TAU"])
+    wood = _woods(states, head, tail, np.bincount(run, states["volume"][member], minlength=r), length)
+    unit = np.stack([params[off], params[off + 1], order, params[off + 3], wood,
+                     length / np.maximum(full, 1e-12), size.astype(float), np.full(r, now), np.ones(r),
+                     np.zeros(r), roll0, step, pitch], axis=1)
+    return np.concatenate([_frames_between(before, along), unit, _frames_between(along, last)], axis=1)
+
+
+def _wood(volume: np.ndarray, length: np.ndarray, end: np.ndarray, tapers: np.ndarray, below: np.ndarray,
+          below_foot: np.ndarray, foot: np.ndarray) -> np.ndarray:
+    """The wood cross-section at a unit's foot that keeps its run's wood ``volume`` over ``length``: a frustum
+    tapering to the radius ``end`` of the piece after it (a cylinder where nothing continues it), with the
+    piece below it (``below`` long, ``below_foot`` its foot radius, 0 long where there is none), whose taper
+    ends at the unit's foot (``foot`` before)."""
+    end = np.where(tapers, end, 0.0)
+    same = ~tapers  # a cylinder: its end is its foot
+    a = np.where(same, 3.0 * length, length) + below
+    b = length * end + below * below_foot
+    c = length * end * end + below * below_foot * below_foot
+    target = 3.0 * volume / np.pi + below * (below_foot ** 2 + below_foot * foot + foot ** 2)
+    r = (-b + np.sqrt(np.maximum(b * b - 4.0 * a * (c - target), 0.0))) / (2.0 * np.maximum(a, 1e-12))
+    return r * r
+
+
+def _woods(states: dict[str, np.ndarray], head: np.ndarray, tail: np.ndarray, volume: np.ndarray,
+           length: np.ndarray) -> np.ndarray:
+    """Each unit's foot cross-section (:func:`_wood`), where units follow one another on an axis solved
+    together: a unit's taper ends at the next unit's new foot, and a unit below another keeps its own volume
+    (a few sweeps settle it)."""
+    seg = states["seg"]
+    where = np.full(int(seg.max(initial=0)) + 2, -1)
+    where[seg[head]] = np.arange(len(head))
+    after = where[np.maximum(states["child_seg"][tail], 0)]
+    after = np.where(states["child_seg"][tail] >= 0, after, -1)
+    tails = np.full(len(where), -1)
+    tails[seg[tail]] = np.arange(len(head))
+    below_unit = np.where(states["parent_seg"][head] >= 0, tails[np.maximum(states["parent_seg"][head], 0)], -1)
+    below = np.where(below_unit >= 0, 0.0, states["below"][head])
+    wood = np.zeros(len(head))
+    for _ in range(12):
+        foot = np.sqrt(wood)
+        end = np.where(after >= 0, foot[np.maximum(after, 0)], states["radius_end"][tail])
+        wood = _wood(volume, length, end, states["tapers"][tail], below, states["below_foot"][head],
+                     states["foot"][head])
+        if after.max(initial=-1) < 0:
+            break
+    return wood
+
+
+def _circular_mean(deg: np.ndarray, group: np.ndarray, use: np.ndarray, count: int) -> np.ndarray:
+    """Per group, the circular mean (degrees) of ``deg`` where ``use``."""
+    rad = np.radians(deg[use])
+    s = np.bincount(group[use], np.sin(rad), minlength=count)
+    c = np.bincount(group[use], np.cos(rad), minlength=count)
+    return np.degrees(np.arctan2(s, c))
+
+
+def _rebuilt(ls: LString, nodes: dict[str, np.ndarray], head: np.ndarray, tail: np.ndarray,
+             unit: np.ndarray) -> LString:
+    """``ls`` with each run's modules (its nodes' turns, internodes and leaf groups) replaced by its unit
+    between its two sets of turns; the last node's other groups stay after them."""
+    first, last = nodes["start"][head], nodes["node"][tail]
+    leaf_open = nodes["leaf_open"][tail]
+    leaf_close = brackets.match(ls.sym)[leaf_open]
+    delta = np.zeros(len(ls) + 1, np.int64)
+    np.add.at(delta, first, 1)
+    np.add.at(delta, last + 1, -1)
+    np.add.at(delta, leaf_open, 1)
+    np.add.at(delta, leaf_close + 1, -1)
+    keep = np.cumsum(delta[:-1]) == 0
+    kept = ls.select(keep)
+    at = np.cumsum(keep)[first]  # kept modules before each run's first module (itself not kept)
+    block_sym = np.concatenate([UNIT_TURNS, [INTERNODE], UNIT_TURNS]).astype(ls.sym.dtype)
+    block_npar = np.array([1, 1, 1, shoot_units.UNIT_PARAMS, 1, 1, 1], dtype=ls.nparams.dtype)
+    r = len(head)
+    sym = np.insert(kept.sym, np.repeat(at, 7), np.tile(block_sym, r))
+    npar = np.insert(kept.nparams, np.repeat(at, 7), np.tile(block_npar, r))
+    param_at = np.where(at < len(kept), kept.offsets[np.minimum(at, max(len(kept) - 1, 0))], len(kept.params))
+    params = np.insert(kept.params, np.repeat(param_at, unit.shape[1]), unit.ravel())
+    return LString.from_arrays(sym, npar, params)
