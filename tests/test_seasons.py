@@ -216,3 +216,30 @@ def test_the_gardener_sees_ripe_fruit_come_and_go_as_the_tree_changes(year):
         ripe -= 1
     s.length_time += 1000.0  # the clock moves on: the green ones ripen on the same L-string
     assert gardener._ripe(world) == ripe_fruit(world) == world.tree.lstring.count("O")
+
+
+def test_a_birthday_keeps_the_trees_height_and_crown_width_through_a_save(year, tmp_path):
+    """Each winter survived, the journal keeps how tall and wide the tree begins its year (its wood and
+    leaves, in m); a save keeps them, and sizes a hostile file made up are dropped."""
+    from arbor.engine.life.keep.save import SavedGarden, read_garden, write_garden
+    from arbor.engine.life.plant.journal import Journal, crown_size
+
+    world, _ = year
+    years = [v for _, k, v in world.journal.entries if k == "season"]
+    assert years and sorted(world.journal.sizes) == years
+    height, width = world.journal.sizes[years[0]]
+    now_height, now_width = crown_size(world)
+    assert 0.05 < height <= now_height + 1e-6 and 0.05 < width <= 1.5 * now_width  # (a tree grows on after it)
+    path = tmp_path / "garden.arbor"
+    write_garden(SavedGarden.of(Garden([world]), "game_tree.lsys"), path)
+    assert read_garden(path, world.rules).world.journal.sizes == world.journal.sizes
+    journal = Journal(entries=[(0.0, "season", 1.0)])
+    bad = [[1, 2.0], [2, 1.0, 1.0], [1, -1.0, 1.0], [1, 1.0, float("inf")], [1, True, 1.0], "x", [1, 3.0, 2.5]]
+    assert journal.read_sizes(bad) == 6 and journal.sizes == {1.0: (3.0, 2.5)}
+
+
+def test_the_journal_page_tells_a_birthday_with_the_trees_size():
+    from arbor.game.screens.coach import describe
+
+    assert describe("season", 3.0, (3.14, 2.58)) == "lived through winter 3: 3.1 m tall, its crown 2.6 m wide"
+    assert describe("season", 3.0) == "lived through winter 3"

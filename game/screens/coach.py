@@ -69,7 +69,9 @@ class Coach:
             fresh = [e for e in entries[first:] if e[1] != "planted"]
             self.seen[id(world)] = len(entries)
             if fresh:
-                self.state.say(text("journal.announce", what=describe(*fresh[-1][1:])), 6)
+                kind, value = fresh[-1][1:]
+                size = world.journal.sizes.get(value) if kind == "season" else None
+                self.state.say(text("journal.announce", what=describe(kind, value, size)), 6)
 
     def reminder(self) -> str:
         """One line about what is worth doing now, or ''."""
@@ -97,11 +99,15 @@ class Coach:
         entries = world.journal.entries[-JOURNAL_SHOWN:]
         if not entries:
             return [text("journal.empty")]
-        return [text("journal.line", day=day_of(world, t), what=describe(kind, value)) for t, kind, value in entries]
+        return [text("journal.line", day=day_of(world, t),
+                     what=describe(kind, value, world.journal.sizes.get(value) if kind == "season" else None))
+                for t, kind, value in entries]
 
 
-def describe(kind: str, value: float) -> str:
-    """A milestone in words."""
+def describe(kind: str, value: float, size: tuple[float, float] | None = None) -> str:
+    """A milestone in words (a birthday with the tree's ``size``, height and crown width in m, when kept)."""
+    if kind == "season" and size is not None:
+        return text("journal.birthday", value=value, height=size[0], width=size[1])
     return text(f"journal.{kind}", value=value)
 
 

@@ -152,6 +152,7 @@ def _tree_lines(world: World, lsystem_name: str) -> list[str]:
                      "last_sense_length": tree.last_sense_length, "last_sense_girth": tree.last_sense_girth,
                      "roots_rewrite": world.roots.last_rewrite}, GROWTH_FIELDS)
     journal, _ = Journal.from_rows(world.journal.to_rows())  # what the reader keeps, nothing else
+    journal.read_sizes(world.journal.size_rows())
     lines = [
         "[[trees]]",
         f"seed = {fit(world.seed, *TREE_FIELDS['seed'])}",
@@ -173,6 +174,7 @@ def _tree_lines(world: World, lsystem_name: str) -> list[str]:
         "[trees.journal]",
         "entries = [" + ", ".join(f"[{format_number(tm)}, {_toml_string(k)}, {format_number(v)}]"
                                   for tm, k, v in journal.entries) + "]",
+        "sizes = [" + ", ".join(f"[{', '.join(format_number(x) for x in row)}]" for row in journal.size_rows()) + "]",
         "",
         "[trees.growth]",
         *(f"{key} = {format_number(growth[key])}" for key in ("last_rewrite_T", "mean_light")),
@@ -443,12 +445,19 @@ def _load_tree(data: dict, where: Where, rules: Rules, budget_slack: float) -> W
         lineage = new_lineage(seed, 0.0, species_of(name))
     parts = Parts(sim=Simulation(rules, state), tree=tree, genome=traits, roots=_restore_roots(growth, where, seed),
                   carbon=carbon_budget(data.get("carbon") if "carbon" in data else None, where),
-                  journal=Journal.from_rows(table(data, "journal", where, required=False).get("entries", []))[0],
+                  journal=_journal(table(data, "journal", where, required=False)),
                   lineage=lineage, rng=rng, steps=value(data, "steps", *TREE_FIELDS["steps"], where),
                   last_light=value(growth, "last_light", *GROWTH_FIELDS["last_light"], where, default=float("-inf")),
                   dropped_lineage=dropped, crown=crown)
     position = tuple(vector(data, "position", 2, where, [0.0, 0.0], limit=POSITION_LIMIT))
     return World(system, rules, seed=seed, position=position, parts=parts)
+
+
+def _journal(data: dict) -> Journal:
+    """A saved journal: its entries and its birthdays' sizes (what cannot be trusted is dropped)."""
+    journal = Journal.from_rows(data.get("entries", []))[0]
+    journal.read_sizes(data.get("sizes", []))
+    return journal
 
 
 def _restore_growth(system, seed: int, growth: dict, where: Where, budget_slack: float) -> GrowingTree:
