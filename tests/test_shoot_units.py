@@ -50,7 +50,7 @@ def _wood_volume(turtle) -> float:
     return float((np.pi * length * (s.radius ** 2 + s.radius * s.radius_end + s.radius_end ** 2) / 3).sum())
 
 
-def _silhouette(turtle, axes: list[int], lo: np.ndarray, hi: np.ndarray, n: int = 500) -> np.ndarray:
+def _silhouette(turtle, axes: list[int], lo: np.ndarray, hi: np.ndarray, n: int = 400) -> np.ndarray:
     """Pixels covered by the wood seen along the remaining axis (tapered tubes)."""
     s = turtle.segments
     a, b = s.start[:, axes], s.end[:, axes]
