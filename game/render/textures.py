@@ -141,6 +141,11 @@ CLUSTERS = {  # per species' look (game/render/species.py): leaves along the ste
               (0.66, 1, 0.28), (0.74, 0, 0.28)], (0.20, 0.50, 0.13), 0.0),
     "deltoid": ([(0.10, -1, 0.27), (0.26, 1, 0.29), (0.42, -1, 0.28), (0.56, 1, 0.27), (0.70, 0, 0.28)],
                 (0.30, 0.56, 0.15), 0.22),
+    # a spruce's shoot: short stiff needles all along it, dark blue-green
+    "needle": ([(0.06 + 0.045 * k, (-1) ** k, 0.17) for k in range(17)], (0.10, 0.30, 0.16), 0.0),
+    # a willow's spray: long narrow lance-shaped leaves, yellow-green
+    "lance": ([(0.10, -1, 0.42), (0.22, 1, 0.44), (0.34, -1, 0.43), (0.46, 1, 0.42), (0.58, -1, 0.38),
+               (0.70, 0, 0.30)], (0.34, 0.55, 0.14), 0.0),
 }
 
 
@@ -150,6 +155,10 @@ def _blade(along: np.ndarray, across: np.ndarray, shape: str) -> np.ndarray:
     a = np.clip(along, 0, 1)
     if shape == "deltoid":
         half = 0.42 * np.sin(np.pi * 0.5 * np.minimum(a / 0.3, 1.0)) ** 0.6 * (1 - a) ** 1.15
+    elif shape == "needle":
+        half = 0.05 * np.sin(np.pi * a) ** 0.3
+    elif shape == "lance":
+        half = 0.085 * np.sin(np.pi * a) ** 0.8
     else:
         half = 0.23 * np.sin(np.pi * a) ** 0.75 * (1 - 0.3 * along)
     return (along > 0) & (along < 1) & (np.abs(across) < half)
@@ -157,9 +166,10 @@ def _blade(along: np.ndarray, across: np.ndarray, shape: str) -> np.ndarray:
 
 def leaf_cluster_rgba(size: int = 128, seed: int = 11, shape: str = "oval") -> np.ndarray:
     """A spray of leaves on one stem for a leaf card (alpha outside), each leaf its own shade and size:
-    seven oval leaves (the game tree) or five broad triangular ones on long stalks (the poplar), see
-    CLUSTERS. The card is half as wide as it is long, so the drawing is made in the card's own
-    proportions (x across -0.25..0.25, y along 0..1) and squeezed into the square texture."""
+    seven oval leaves (the game tree), five broad triangular ones on long stalks (the poplar, the birch),
+    needles (the spruce) or long narrow leaves (the willow), see CLUSTERS. The card is half as wide as it
+    is long, so the drawing is made in the card's own proportions (x across -0.25..0.25, y along 0..1)
+    and squeezed into the square texture."""
     leaves, green0, petiole = CLUSTERS[shape]
     rng = np.random.default_rng(seed)
     u, v = _grid(size)
@@ -197,13 +207,15 @@ def _to_bytes(rgb: np.ndarray, alpha: np.ndarray | None) -> np.ndarray:
 
 
 def save_all(folder: Path = TEXTURES) -> None:
-    """Write leaf.png, leaf_cluster.png (and leaf_cluster_deltoid.png, the poplar's), blossom.png, bark.png,
+    """Write leaf.png, leaf_cluster.png (and leaf_cluster_deltoid, _needle and _lance.png), blossom.png, bark.png,
     bark_normal.png, rock.png and rock_normal.png (rows top to bottom = v from 1 to 0)."""
     import pygame
 
     folder.mkdir(parents=True, exist_ok=True)
     for name, img in (("leaf", leaf_rgba()), ("leaf_cluster", leaf_cluster_rgba()),
                       ("leaf_cluster_deltoid", leaf_cluster_rgba(seed=13, shape="deltoid")),
+                      ("leaf_cluster_needle", leaf_cluster_rgba(seed=17, shape="needle")),
+                      ("leaf_cluster_lance", leaf_cluster_rgba(seed=19, shape="lance")),
                       ("blossom", blossom_rgba()), ("bark", bark_rgb()), ("bark_normal", bark_normal_rgb()),
                       ("rock", rock_rgb()), ("rock_normal", rock_normal_rgb())):
         img = np.ascontiguousarray(img[::-1])
