@@ -50,10 +50,10 @@ def _load_texture(ctx: moderngl.Context, name: str, repeat: bool) -> moderngl.Te
     import pygame
 
     surf = pygame.image.load(str(ASSETS / "textures" / f"{name}.png"))
-    has_alpha = surf.get_bitsize() == 32 or surf.get_alpha() is not None
-    fmt = "RGBA" if has_alpha else "RGB"
-    data = pygame.image.tobytes(surf, fmt, True)
-    tex = ctx.texture(surf.get_size(), len(fmt), data)
+    # every texture RGBA (opaque ones with alpha 1): a software GL builds mipmaps with a shader it compiles
+    # once per format, and a second format cost a start another compile (76 ms of CPU on llvmpipe)
+    data = pygame.image.tobytes(surf, "RGBA", True)
+    tex = ctx.texture(surf.get_size(), 4, data)
     tex.build_mipmaps()
     tex.filter = (moderngl.LINEAR_MIPMAP_LINEAR, moderngl.LINEAR)
     tex.repeat_x = tex.repeat_y = repeat
