@@ -21,11 +21,13 @@ import numpy as np
 from arbor.engine.geometry.turtle import INITIAL_FRAME, unit
 from arbor.engine.lsystem import brackets
 from arbor.engine.lsystem.lstring import concat, parse_lstring
+from arbor.engine.modeling.crown_style import CrownStyle
 from arbor.engine.modeling.lobes import Crossings, Lobe
 from arbor.engine.modeling.modeler import DRAWN, F_PARAMS, Modeler
 from arbor.engine.modeling.skeleton import Skeleton, skeleton_lstrings
 
 ALPHA, BETA = 0.8, -0.3
+FINE = CrownStyle(twig=0.12)  # grow_crown's default style: short pieces (no module budget to mind)
 GRAVITY = np.array([0.0, -1.0, 0.0])
 STALL = 3  # growth steps without coming closer after which an attractor retires
 OUT_REACH = 1.5  # steps: wood outside the lobes farther than this from them does not sprout
@@ -57,6 +59,8 @@ class LobeGrowth:
     stop: float = 0.15  # nodes inside a lobe this close to its surface stop
     iterations: int = 30  # growth steps at most
     max_nodes: int = 8000  # the skeleton's nodes at most (its budget)
+    alpha: float = ALPHA  # the weight of a branch's own heading in V_A
+    beta: float = BETA  # the weight of gravity in V_A (negative: up)
 
 
 def grow_into_lobes(skeleton: Skeleton, lobes: list[Lobe], attractors: np.ndarray, how: LobeGrowth = LobeGrowth(),
@@ -103,7 +107,7 @@ def grow_into_lobes(skeleton: Skeleton, lobes: list[Lobe], attractors: np.ndarra
         if len(remaining) == 0:
             break
         nodes, directions, lengths, lobe_of = _grow_pieces(skeleton, remaining, active, owner_local, to_surface, t,
-                                                         step, labels)
+                                                         step, labels, how)
         new_pos = skeleton.position[nodes] + directions * lengths[:, None]
         new_inside = crossings.inside(new_pos) >= 0
         stays = new_inside | ~inside[nodes]
@@ -190,7 +194,8 @@ def _grow_step(skeleton: Skeleton, points, active, owner_local, to_surface, t, s
     return _grow_pieces(skeleton, points, active, owner_local, to_surface, t, step, np.zeros(len(points), np.int64))[:3]
 
 
-def _grow_pieces(skeleton: Skeleton, points, active, owner_local, to_surface, t, step, labels):
+def _grow_pieces(skeleton: Skeleton, points, active, owner_local, to_surface, t, step, labels,
+                 how: LobeGrowth = LobeGrowth()):
     """_grow_step's pieces and the lobe of each piece's attractors (the lobe most of them belong to)."""
     base = skeleton.position[active][owner_local]
     vec = points - base
@@ -223,7 +228,7 @@ def _grow_pieces(skeleton: Skeleton, points, active, owner_local, to_surface, t,
     node_local = keys // (4096 * 4096)
     nodes = active[node_local]
     v_cluster = weighted / np.maximum(total, 1e-12)[:, None]
-    directions = unit(v_cluster + ALPHA * skeleton.heading[nodes] + BETA * GRAVITY)
+    directions = unit(v_cluster + how.alpha * skeleton.heading[nodes] + how.beta * GRAVITY)
     lengths = np.minimum(step, SURFACE_SHARE * to_surface[node_local] + 0.02)
     votes = np.zeros((len(keys), int(labels.max()) + 1))
     np.add.at(votes, (group, labels), 1.0)
@@ -231,24 +236,24 @@ def _grow_pieces(skeleton: Skeleton, points, active, owner_local, to_surface, t,
 
 
 def grow_crown(modeler: Modeler, lobes: list[Lobe], rng: np.random.Generator, per_lobe: int = 1500,
-               max_nodes: int = 6000, tip: str = "", step_fraction: float = 0.12,
-               reach_fraction: float | None = None) -> int:
+               max_nodes: int = 6000, tip: str = "", style: CrownStyle = FINE) -> int:
     """Grow the modeled tree into ``lobes`` (Zhang et al. section 5) and commit the branches to its
     L-string (undoable). Every node of the tree, drawn or grown, may grow toward the attractors of the
     lobes (each attractor joins its nearest node), so every lobe fills from the branches nearest to it;
     a lobe with no wood near it is first reached by an axis grown straight to it from the nearest node
     (where nothing is drawn yet, a trunk from the base into the lowest lobe). When ``max_nodes`` binds,
     the lobes share it by unfilled volume. ``tip`` ends every new branch (a leaf in the game). Branch
-    pieces are ``step_fraction`` of a lobe's size long, so a crown looks alike at any scale. Returns the
-    number of branch pieces added."""
+    pieces are ``style.twig`` of a lobe's size long, so a crown looks alike at any scale; ``style`` also
+    gives the fork angle, straightness and rise (engine/modeling/crown_style.py). Returns the number of
+    branch pieces added."""
     inside = [lobe.sample_inside(per_lobe, rng) for lobe in lobes]
     attractors = np.concatenate([lobe.vertices for lobe in lobes] + inside)
     labels = np.concatenate([np.full(len(lobe.vertices), k) for k, lobe in enumerate(lobes)]
                             + [np.full(len(p), k) for k, p in enumerate(inside)]).astype(np.int64)
-    step = step_fraction * float(np.mean([np.ptp(lobe.vertices, axis=0).max() for lobe in lobes]))
-    size = step / step_fraction
-    kill = step / 2 if reach_fraction is None else reach_fraction * size
-    how = LobeGrowth(step=step, kill=kill, stop=step / 4)
+    step = style.twig * float(np.mean([np.ptp(lobe.vertices, axis=0).max() for lobe in lobes]))
+    size = step / style.twig
+    kill = step / 2 if style.reach is None else style.reach * size
+    how = LobeGrowth(t_deg=style.fork, step=step, kill=kill, stop=step / 4, alpha=style.straight, beta=-style.rise)
     segs = modeler.segments() if len(modeler.lstring) else None
     if segs is None or len(segs) == 0:  # nothing drawn yet: a trunk from the base into the lowest lobe
         lowest = min(lobes, key=lambda lobe: lobe.vertices[:, 1].min())

@@ -9,6 +9,7 @@ each lobe's volume lying within a tenth of the lobe's size from the wood (any dr
 from __future__ import annotations
 
 from collections.abc import Callable
+from dataclasses import replace
 
 import numpy as np
 from scipy.spatial import cKDTree
@@ -16,6 +17,7 @@ from scipy.spatial import cKDTree
 from arbor.engine.geometry.turtle import Segments
 from arbor.engine.lsystem.lstring import LString
 from arbor.engine.modeling.crown import grow_crown
+from arbor.engine.modeling.crown_style import DEFAULT_STYLE, CrownStyle
 from arbor.engine.modeling.lobes import Lobe
 from arbor.engine.modeling.modeler import Modeler
 
@@ -28,18 +30,19 @@ FILL_REACH = 0.1  # of a lobe's size: a place this close to the wood counts as f
 
 def grow_within(base: LString, lobes: list[Lobe], room: int, seed: int,
                 segments_of: Callable[[LString], Segments] | None = None, tip: str = "", per_lobe: int = 250,
-                step_fraction: float = 0.2, tries: int = 5) -> tuple[LString, int, bool]:
+                style: CrownStyle = DEFAULT_STYLE, tries: int = 5) -> tuple[LString, int, bool]:
     """The crown grown from ``base`` into ``lobes`` adding at most ``room`` modules: a try that is too
     big is grown again with longer pieces, and at last with proportionally fewer nodes (at most
-    ``tries``). Returns the L-string, the branch pieces added and whether the budget limited them."""
+    ``tries``); ``style`` is how it grows (its first try's pieces ``style.twig`` of a lobe's size long).
+    Returns the L-string, the branch pieces added and whether the budget limited them."""
     room = min(room, MAX_CROWN_MODULES)
-    nodes, step, reach = MAX_CROWN_MODULES // 4, step_fraction, step_fraction / 2
+    nodes, step, reach = MAX_CROWN_MODULES // 4, style.twig, style.twig / 2
     for k in range(tries):
         if room <= 0 or nodes < 2 or not lobes:
             break
         scratch = Modeler(lstring=base, segments_of=segments_of)
-        added = grow_crown(scratch, lobes, np.random.default_rng(seed), per_lobe=per_lobe, step_fraction=step,
-                           reach_fraction=reach, max_nodes=nodes, tip=tip)
+        added = grow_crown(scratch, lobes, np.random.default_rng(seed), per_lobe=per_lobe, max_nodes=nodes, tip=tip,
+                           style=replace(style, twig=step, reach=reach))
         extra = len(scratch.lstring) - len(base)
         if extra <= room:
             return scratch.lstring, added, added >= nodes - 2 or nodes < MAX_CROWN_MODULES // 4

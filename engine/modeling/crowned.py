@@ -7,6 +7,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from arbor.engine.lsystem.lstring import LString
+from arbor.engine.modeling.crown_style import CrownStyle
 from arbor.engine.modeling.lobes import Lobe
 
 MAX_LOBES = 16  # lobes of one crown (what a save keeps: engine/life/keep/save_crown.py)
@@ -29,11 +30,13 @@ def too_big(lobes: tuple[Lobe, ...] | list[Lobe]) -> str | None:
 @dataclass(frozen=True, eq=False)
 class CrownRecord:
     """The lobes a crown grew into, ``base`` the tree before that crown (None when it is not known: a
-    tree saved after it grew on) and ``grown`` the L-string the crown made (None: not known)."""
+    tree saved after it grew on), ``grown`` the L-string the crown made (None: not known) and ``style``
+    how it grew."""
 
     lobes: tuple[Lobe, ...]
     base: LString | None = None
     grown: LString | None = None
+    style: CrownStyle | None = None  # how it grew (the crown panel; None: the defaults; not saved yet)
 
     def base_for(self, ls: LString) -> LString:
         """What a lobe edit regrows the crown from on the tree ``ls``: the tree before the crown while

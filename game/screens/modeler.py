@@ -35,6 +35,7 @@ from arbor.game.screens.state import GameState
 from arbor.game.strings import text
 from arbor.game.tools.choice import ToolChoice
 from arbor.game.tools.crown import CrownTool
+from arbor.game.tools.crown_panel import CrownPanel
 from arbor.game.tools.prune import PruneTool
 from arbor.game.tools.region import RegionTool
 from arbor.game.tools.told import HistoryTold, counted
@@ -91,6 +92,7 @@ class ModelingMode(ToolChoice, HistoryTold):
         self.region_tool = RegionTool(self)
         self.shaping = False  # drags reshape the crown's lobes
         self.crown_tool = CrownTool(self)
+        self.crown_panel = CrownPanel(self)  # the crown's presets and options (the Crown tool's option)
         self.edit = EDIT_SETS[0]
         self.edit_sets = load_edit_sets(ASSETS / "edits")
         self.bar = ToolBar(size)

@@ -66,6 +66,11 @@ class ModelerScreen(Screen):
         pid, x, y = pointer_id(e), e.x, e.y
         if self._stroke(e.kind, pid, x, y, e.t):
             return None
+        if e.kind == DOWN and self.modeling.crown_panel.over(x, y):  # the crown panel's buttons act on the press
+            self.bar_pointers.add(pid)
+            self.menu.hide()
+            self.modeling.crown_panel.press(x, y)
+            return None
         if e.kind == DOWN and self.modeling.bar.over(x, y):  # (a press there closes the menu)
             self.bar_pointers.add(pid)
             for action in [*self.menu.hide(), *self.modeling.bar.press(x, y)]:
@@ -133,7 +138,7 @@ class ModelerScreen(Screen):
         """One pointer draws; a second pointer turns the stroke into a camera gesture. True: taken."""
         modeling = self.modeling
         if kind == DOWN and self.stroke_pointer is None and not self.gestures.pointers:
-            if modeling.bar.over(x, y):
+            if modeling.bar.over(x, y) or modeling.crown_panel.over(x, y):
                 return False
             self.stroke_pointer, self.stroke_start = pid, (x, y, now)
             modeling.begin2d(x, y, now, self.camera())
@@ -171,7 +176,8 @@ class ModelerScreen(Screen):
         self.modeling.draw_outline(canvas.surface, canvas.project)
         self.modeling.draw_symbols(canvas.surface, canvas.camera, small, canvas.project)
         self.modeling.bar.draw(canvas.surface, font)
+        self.modeling.crown_panel.draw(canvas.surface, font, small)
 
     def key(self) -> tuple:
         """What the tool bar shows."""
-        return self.modeling.bar.key()
+        return self.modeling.bar.key(), self.modeling.crown_panel.key()

@@ -1,9 +1,9 @@
 """The modeler's tools as one choice: one tool in use at a time (Draw, Crown, Shape, Prune, Symbols), lit on the
 tool bar (game/render/ui.py ToolBar), told by the hint line (what a drag does with it), with the option of
-the tool in use (Shape's lobe operation, Prune's branch edit: cut, width, angle or length; Symbols' region
-edit). A tool stays in use until another is chosen; Draw, entering the modeler, leaving it and a new
-sapling are back to the draw tool with no overlay left (lobe rings, regions, the joint marker, a picked
-branch).
+the tool in use (Crown's style panel, Shape's lobe operation, Prune's branch edit: cut, width, angle or
+length; Symbols' region edit). A tool stays in use until another is chosen; Draw, entering the modeler,
+leaving it and a new sapling are back to the draw tool with no overlay left (lobe rings, regions, the
+joint marker, a picked branch, the style panel).
 """
 
 from __future__ import annotations
@@ -32,6 +32,7 @@ class ToolChoice:
         self.region_tool.labels = []
         self.crown_tool.clear()
         self.prune_tool.clear()
+        self.crown_panel.visible = False
         self.cancel()
         self.show_bar()
 
@@ -49,6 +50,7 @@ class ToolChoice:
         if name != "draw":
             setattr(self, name, True)
         self.region_tool.clear()
+        self.crown_panel.visible = self.crown_panel.visible and name == "crown"
         self.cancel()
         self.show_bar()
         if quiet:
@@ -61,7 +63,7 @@ class ToolChoice:
     def show_bar(self) -> None:
         """The tool bar as the tools are now: shown in the modeler, the tool in use lit, its option."""
         tool = self.current_tool
-        self.bar.show(self.active, tool, self.option_label() if tool in ("shape", "prune", "symbols") else "")
+        self.bar.show(self.active, tool, self.option_label() if tool in ("crown", "shape", "prune", "symbols") else "")
 
     def hint(self) -> str:
         """The hint line in the modeler: what a drag does with the tool in use."""
@@ -74,6 +76,8 @@ class ToolChoice:
         """The menu option button's label: the lobe operation with the shape tool, else the region edit."""
         if self.shaping:
             return text("menu.shape_op", op=text(f"shapes.{self.crown_tool.op}"))
+        if self.crown:
+            return text("menu.crown_style_close" if self.crown_panel.visible else "menu.crown_style")
         if self.pruning:
             return text("menu.branch_op", op=text(f"branch_ops.{self.prune_tool.op}"))
         return text("menu.edit", name=text(f"edits.{self.edit}"))
@@ -83,6 +87,8 @@ class ToolChoice:
         edit. Returns the button's new label."""
         if self.shaping:
             self.crown_tool.next_op()
+        elif self.crown:
+            self.crown_panel.visible = not self.crown_panel.visible
         elif self.pruning:
             self.prune_tool.next_op()
             self.state.say(self.hint())

@@ -22,6 +22,7 @@ import pygame
 
 from arbor.engine.life.world.commands import Crown
 from arbor.engine.lsystem.lstring import LString
+from arbor.engine.modeling.crown_style import CrownStyle
 from arbor.engine.modeling.lobes import Lobe, lobe_from_loops, lobe_from_outline
 from arbor.game.render.camera import OrbitCamera, project_points, unproject_to_plane
 from arbor.game.render.ui import draw_polyline
@@ -78,6 +79,7 @@ class CrownTool:
         self.states: dict[int, tuple[LString, CrownState]] = {}
         self.op = SHAPE_OPS[0]
         self.drag: _Drag | None = None
+        self.style: CrownStyle | None = None  # how the first crown grows (the crown panel's choice)
 
     def clear(self) -> None:
         """A new modeling session: rings being drawn are dropped (the tree's lobes stay with the tree)."""
@@ -97,7 +99,8 @@ class CrownTool:
             return CrownState(ls)
         return CrownState(crown.base_for(ls), list(crown.lobes))
 
-    def _remember(self, ls: LString, state: CrownState) -> None:
+    def remember(self, ls: LString, state: CrownState) -> None:
+        """The crown step ``state`` stands with the tree ``ls`` (undo and redo to it find it again); bounded."""
         self.states[id(ls)] = (ls, state)
         while len(self.states) > MAX_CROWN_STATES:  # bounded: the oldest crown steps are forgotten
             del self.states[next(iter(self.states))]
@@ -118,7 +121,7 @@ class CrownTool:
                 state = replace(state, rings=[], arches=[])
             rings = [*state.rings, points]
             if len(rings) < 2:
-                self._remember(self.mode.modeler.lstring, replace(state, rings=rings))
+                self.remember(self.mode.modeler.lstring, replace(state, rings=rings))
                 self.mode.state.say(text("messages.crown_ring_new" if away else "messages.crown_ring"))
                 return
             lobe = lobe_from_loops(rings, open_strokes=state.arches)
@@ -139,13 +142,14 @@ class CrownTool:
         changed, whose crown alone regrows); one undoable step."""
         start = time.perf_counter()
         world = self.mode.state.world
-        grown = world.apply(Crown(state.base, tuple(state.lobes), only))
+        style = None if world.crown is not None else self.style  # (a crown standing keeps its own style)
+        grown = world.apply(Crown(state.base, tuple(state.lobes), only, style))
         if grown.refused is not None:  # (nothing grew: the lobes stay as they were)
             self.mode.state.say(text("messages.crown_refused", why=grown.refused))
             return
         added, limited = grown.added, grown.limited
         ms = (time.perf_counter() - start) * 1e3
-        self._remember(world.tree.lstring, state)  # (the view stays: F frames the crown and its lobes)
+        self.remember(world.tree.lstring, state)  # (the view stays: F frames the crown and its lobes)
         if added == 0:
             key = "messages.crown_none"
         elif limited:

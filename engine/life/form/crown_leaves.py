@@ -65,10 +65,10 @@ def room_scales(bases: np.ndarray, offsets: np.ndarray, owner: np.ndarray, count
 
 
 def fit_crown_leaves(ls: LString, clocks: Clocks, const: dict[str, float], lobes: list[Lobe],
-                     birth: float) -> LString:
+                     birth: float, size: float = 1.0) -> LString:
     """``ls`` with the leaves a crown just grew (one parameter, ``L(birth)``, after a pitch ``&``) as
     ``L(birth, size)``, each turned (one of PITCHES off its twig) and sized so that it is as large as its
-    lobes leave room for when fully grown (see module docstring)."""
+    lobes leave room for when fully grown, at most ``size`` times the species' leaf (see module docstring)."""
     idx = np.flatnonzero((ls.sym == LEAF) & (ls.nparams == 1))
     idx = idx[np.isclose(ls.params[ls.offsets[idx]], birth, rtol=1e-12, atol=1e-9)]
     idx = idx[(idx > 0) & (ls.sym[idx - 1] == PITCH) & (ls.nparams[idx - 1] == 1)]
@@ -84,10 +84,10 @@ def fit_crown_leaves(ls: LString, clocks: Clocks, const: dict[str, float], lobes
         at = np.minimum(np.searchsorted(idx, found.module), len(idx) - 1)
         ours = idx[at] == found.module
         leaves = Leaves(found.position[ours], found.frame[ours], found.size[ours], found.module[ours])
-        bases, offsets, module = blade_corners(leaves, const["LS"])
+        bases, offsets, module = blade_corners(leaves, const["LS"] * size)
         fit = room_scales(bases, offsets, np.searchsorted(idx, module), len(idx), crossings)
         better = fit > scale + 1e-9
         scale[better], pitch[better] = fit[better], angle
-    out = replace_modules(ls, idx, LEAF, np.column_stack([np.full(len(idx), birth), scale]))
+    out = replace_modules(ls, idx, LEAF, np.column_stack([np.full(len(idx), birth), scale * size]))
     out.params[out.offsets[idx - 1]] = pitch
     return out

@@ -35,6 +35,7 @@ from arbor.engine.modeling.strokes import Stroke as StrokePoints
 
 if TYPE_CHECKING:
     from arbor.engine.life.world.world import World
+    from arbor.engine.modeling.crown_style import CrownStyle
     from arbor.engine.modeling.lobes import Lobe
     from arbor.engine.modeling.modeler import Modeler, StrokeResult
 
@@ -256,16 +257,19 @@ class Crown:
     """Regrow the crown from ``base`` (the tree before any crown) into ``lobes`` (Zhang et al.), within
     the module budget; one undoable step. ``only``: the one lobe an edit changed (its index): while the
     tree is as its crown grew, only that lobe's crown is regrown and the others' stay as they are
-    (engine/modeling/crown_edit.py). Result: a :class:`CrownResult`."""
+    (engine/modeling/crown_edit.py). ``style``: how it grows and its leaves (the crown panel's
+    engine/modeling/crown_style.py). Result: a :class:`CrownResult`."""
 
     base: LString
     lobes: tuple[Lobe, ...]
     only: int | None = None
+    style: CrownStyle | None = None  # how it grows (None: as the crown standing grew, else the defaults)
 
     def run(self, world: World) -> CrownResult:
         """Grow the crown and commit it."""
         from arbor.engine.life.form.crown_leaves import fit_crown_leaves
         from arbor.engine.modeling.crown_fill import MAX_CROWN_MODULES, grow_within
+        from arbor.engine.modeling.crown_style import DEFAULT_STYLE
 
         editor = world.editing()
         if too_big(self.lobes):  # (a crown the tree could not keep in its save is not grown)
@@ -274,16 +278,17 @@ class Crown:
         room = MAX_CROWN_MODULES if budget is None else budget - len(self.base)
         base, lobes = self.base, list(self.lobes)
         record = world.crown
+        style = self.style or (record.style if record is not None and record.style is not None else DEFAULT_STYLE)
         if (self.only is not None and record is not None and record.base is not None and record.grown is editor.lstring
                 and len(record.lobes) == len(lobes) and 0 <= self.only < len(lobes)):
             base, lobes, room = _one_lobe(world, record, lobes, self.only, room)
         born = format_number(world.born_visible())
         grown, added, limited = grow_within(base, lobes, room, int(editor.rng.integers(2**31)), world.drawn_segments,
-                                            tip=f"[&(45)L({born})]")
+                                            tip=style.tip(born), style=style)
         if added:  # each leaf as large as its lobe leaves room for (the foliage keeps to the outline)
             grown = fit_crown_leaves(grown, world.clocks(), world.tree.geometry_constants, list(self.lobes),
-                                     float(born))
-        world.crown = CrownRecord(tuple(self.lobes), self.base, grown) if self.lobes else None
+                                     float(born), style.leaf_size)
+        world.crown = CrownRecord(tuple(self.lobes), self.base, grown, style) if self.lobes else None
         _commit(world, grown)
         return CrownResult(added, limited)
 
