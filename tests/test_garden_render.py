@@ -358,3 +358,24 @@ def test_a_heavy_tree_is_drawn_over_frames_at_full_resolution_and_looks_as_drawn
     assert game.renderer.last_layered and pictures.front.size == SIZE  # a picture at full resolution
     assert pictures.version >= shown + 2 and sum(into for _, into in pictures.shown.steps) >= 3  # drawn in steps
     assert np.abs(over_frames - at_once).max() <= 2
+
+
+def test_a_coarse_level_covers_the_crown_as_the_finest_does(game, monkeypatch):
+    """A coarse level draws a share of the leaves, grown to cover for the rest, and leaves out sub-pixel
+    twigs: the tree's silhouette must stay the finest level's (its area within 20 %, most of it shared)."""
+    from arbor.game.render import garden
+
+    game.rules.wind.strength = 0.0
+    monkeypatch.setattr(garden, "LAYER_COST", float("inf"))  # (each frame drawn whole: its own level)
+    frame(game)
+    background = frame_without_trees(game)
+    buffers = game.renderer.placed[0].buffers
+    shapes = []
+    for lod in range(4):
+        level = Detail.of(buffers, lod, 0.0, LEAF_KEPT[lod])
+        monkeypatch.setattr(game.renderer, "_detail", lambda *a, level=level: level)
+        shapes.append(np.abs(frame(game) - background).sum(axis=2) > 30)
+    full = shapes[0]
+    assert full.sum() > 3000  # (a crown on screen)
+    for shape in shapes[1:]:  # (measured: area 1.04-1.14x, shared 0.56-0.71 of the union; not grown to cover, 0.73x)
+        assert 0.8 < shape.sum() / full.sum() < 1.25 and (shape & full).sum() / (shape | full).sum() > 0.45
