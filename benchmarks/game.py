@@ -16,7 +16,8 @@ steps + record updates + 3D render + HUD, timed to ctx.finish(): wall time and C
 all its threads: llvmpipe's too), the load average printed first and last. Beside every figure: the
 tree's leaf clusters, and the level of detail, segments and leaves the renderer drew, and whether it drew
 the trees whole or as a layer's picture over frames (game/render/garden.py: LAYER_COST) and in how many
-shares of leaves. Then a growing tree's cost per frame: a full rebuild of its records against the
+shares of leaves; after each home pace tree, what a rewrite of it costs the frame it shows in (its records
+built anew and sorted for upload). Then a growing tree's cost per frame: a full rebuild of its records against the
 incremental update of the same growth (the parts that grew since the last rewrite), per tree size.
 """
 
@@ -185,6 +186,22 @@ def _home_trees(game, ctx, fbo, n: int, tick, folder: Path | None) -> None:
         finally:
             garden.LAYER_COST = kept
         _zooms(game, ctx, fbo, n, tick, name)
+        _rebuild(world)
+
+
+def _rebuild(world) -> None:
+    """What a rewrite of ``world``'s tree costs the frame it shows in: its records built anew and sorted
+    for upload (median CPU ms of 5)."""
+    from arbor.engine.life.form.growth_view import GrowthView
+    from arbor.game.render.instanced import prepare_upload
+
+    costs = []
+    for _ in range(5):
+        start = time.process_time()
+        prepare_upload(GrowthView(world.tree.lstring, world.clocks(), world.tree.geometry_constants))
+        costs.append(time.process_time() - start)
+    print(f"  a rewrite's records ({len(world.tree.lstring):,} modules): built and sorted in "
+          f"{np.median(costs) * 1e3:.1f} ms CPU", flush=True)
 
 
 def main() -> None:

@@ -5,8 +5,10 @@ Costs are kept where they must be: the shadow map (1024 texels) is redrawn only 
 tree changed enough; trees far away or small on screen use fewer sides per ring, leave out sub-pixel
 twigs and draw fewer, larger leaves; the sky is a dome of vertices. Multisampling (4x) is resolved into
 the target framebuffer. On a software GL (no multisampling) each tree keeps to a vertex budget, sky and
-ground are drawn once and copied while nothing they show changes, and a crown whose leaves would
-cover the screen many times over is drawn at a lower resolution (game/render/layer.py).
+ground are drawn once and copied while nothing they show changes, and trees costly to draw (LAYER_COST:
+their leaves' pixels and their segments) are drawn as a layer's picture, a share of their leaves a frame
+while the camera holds still, and smoothed once per picture: at the frame's resolution, or lower for a
+crown whose leaves would cover the screen many times over (game/render/layer.py).
 """
 
 from __future__ import annotations
