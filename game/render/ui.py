@@ -55,7 +55,7 @@ class Widget:
 # the modeler's tools, settings and the journal are one tap further.
 PAGES = {
     "care": [["orbit_height"], ["sun_speed"], ["water", "speed"], ["garden", "tools", "settings", "journal"]],
-    "garden": [["plant", "sow"], ["cross", "family"], ["next", "replant"], ["rock", "import", "back"]],
+    "garden": [["plant", "species"], ["sow", "cross"], ["family", "next"], ["replant", "rock"], ["import", "back"]],
     "tools": [["modeler", "crown", "shape"], ["prune", "symbols", "edit"], ["undo", "redo", "back"]],
     "settings": [["save", "load", "share"], ["restore", "roots", "devices"], ["volume"], ["away", "gardener"],
                  ["mute", "back"]],
@@ -89,8 +89,10 @@ class Menu:
             Widget("water", text("menu.water"), "button", hold=True, icon="can"),
             Widget("speed", text("menu.speed", speed="1"), "button", icon="clock"),
             *(Widget(name, text(f"menu.{name}"), "button", page_of.get(name, "care"), ICONS.get(name, ""))
-              for name in sorted(names - {"orbit_height", "sun_speed", "volume", "water", "speed", "edit", "sow"})),
+              for name in sorted(names - {"orbit_height", "sun_speed", "volume", "water", "speed", "edit", "sow",
+                                          "species"})),
             Widget("sow", text("menu.sow", count=0), "button", "garden", "seed"),
+            Widget("species", text("menu.species", name=text("menu.species_own")), "button", "garden", "sapling"),
             Widget("edit", text("menu.edit", name=text("edits.add_leaves")), "button", "tools"),
         ]
         self.active: Widget | None = None

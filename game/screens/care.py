@@ -24,6 +24,7 @@ from arbor.game.screens.family import FamilyScreen
 from arbor.game.screens.modeler import ModelingMode
 from arbor.game.screens.restoring import Restorer
 from arbor.game.screens.saves import SaveKeeper
+from arbor.game.screens.species_choice import SpeciesChoice
 from arbor.game.screens.state import GameState
 from arbor.game.strings import text
 
@@ -63,6 +64,7 @@ class CareActions:
         self.crossing = None  # the mother of a cross, while the player picks the father
         self.replant_asked, self.replant_at = None, 0.0  # the tree a first Replant press asked about, and when
         self.restoring = Restorer(state, self.keeper, self.wall_clock, self.sync_sliders)
+        self.species = SpeciesChoice(self.system)  # Garden -> Species: what Plant a tree plants
         state.on_halt.append(self.sync_sliders)
         tool = lambda switch: pressed(lambda: self._tool(switch))  # noqa: E731
         self.handlers: dict[Action, Handler] = {
@@ -72,6 +74,7 @@ class CareActions:
             Action.GO_ON: pressed(self.go_on),
             Action.SAVE: pressed(self._save), Action.LOAD: pressed(self._load),
             Action.RESTORE: pressed(self.restore), Action.PLANT: pressed(self.plant),
+            Action.SPECIES: pressed(lambda: (state.say(self.species.next(), 6), self.sync_sliders())),
             Action.SOW: pressed(self.sow), Action.CROSS: pressed(self.start_cross),
             Action.FAMILY: pressed(family.open), Action.ROCK: pressed(self.place_rock),
             Action.ROOTS: pressed(self._roots), Action.NEXT: pressed(self._next_tree),
@@ -196,7 +199,7 @@ class CareActions:
         if state.garden.full:
             state.say(text("messages.garden_full", count=MAX_GARDEN), 5)
             return
-        state.garden.plant(self.system, self.rules, now=self.wall_clock())
+        state.garden.plant(self.species.system(), self.rules, now=self.wall_clock())
         state.remember()
         state.say(text("messages.garden_planted", count=len(state.garden.worlds)), 4)
 
@@ -282,6 +285,7 @@ class CareActions:
         label = text("menu.paused") if speed == 0 else text("menu.speed", speed=f"{speed:g}")
         menu.widget("speed").label = text("menu.go_on", speed=f"{state.resume_speed:g}") if state.halted else label
         menu.widget("sow").label = text("menu.sow", count=len(state.garden.seeds))
+        menu.widget("species").label = text("menu.species", name=self.species.name())
         menu.widget("roots").label = text("menu.roots_hide" if state.cutaway else "menu.roots")
         menu.widget("modeler").label = text("menu.modeler_done" if self.modeling.active else "menu.modeler")
         menu.lit = {self.modeling.current_tool} if self.modeling.active else set()  # (the tools page lights it too)

@@ -25,6 +25,7 @@ class Action(Enum):
     LOAD = "load"
     RESTORE = "restore"  # bring back an earlier autosave (each press one generation further back)
     PLANT = "plant"
+    SPECIES = "species"  # the next species of the collection for Plant a tree (Garden)
     SOW = "sow"
     CROSS = "cross"
     FAMILY = "family"
