@@ -7,6 +7,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from arbor.engine.life.form.shoot_units import bud_count, leaf_count, node_count
 from arbor.engine.life.keep.away import away_seconds, live_away, tree_height
 from arbor.engine.life.keep.save import SavedGarden, read_garden, write_garden
 from arbor.engine.life.plant import seasons
@@ -31,8 +32,8 @@ def careful(world: World, until_turns: float, snaps: dict | None = None, every: 
         world.step(0.5)
         if snaps is not None and s.sun_turns >= next_snap:
             ls = world.tree.lstring
-            snaps[round(s.sun_turns, 2)] = (world.sim.season().name, ls.count("L"), ls.count("K"), ls.count("O"),
-                                            ls.count("V"), s.length_time, world.tree.shed_total, ls.count("I"))
+            snaps[round(s.sun_turns, 2)] = (world.sim.season().name, leaf_count(ls), ls.count("K"), ls.count("O"),
+                                            bud_count(ls), s.length_time, world.tree.shed_total, node_count(ls))
             next_snap += every
 
 

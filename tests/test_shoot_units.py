@@ -120,3 +120,18 @@ def test_a_unit_opens_sheds_and_loses_leaves_as_its_nodes_would(tree, name):
     lost_nodes = np.mean([leaf_count(_season(nodes, system, dry, 25, NOW + 1, seed)) for seed in range(4)])
     lost_units = leaf_count(_season(units, system, dry, 25, NOW + 1))
     assert lost_units == pytest.approx(lost_nodes, rel=0.12) and lost_units < 0.8 * summer
+
+
+def test_leafy_nodes_in_summer_become_units_with_their_leaves(tree):
+    system = load_lsystem(assets_dir() / "lsystems" / "game_tree.lsys")
+    const = reference_constants()
+    leafy = _season(tree, system, {"SF": 3.0}, 1, NOW)  # every bud open: leaves born at NOW + 1
+    later = NOW + 40
+    units, saved = form_units(leafy, later, const, runs=False)
+    assert saved > 0.4 * len(leafy) and np.count_nonzero(units.sym == ord("L")) < 10
+    assert leaf_count(units) == leaf_count(leafy)
+    assert leaf_area(units, later, const) == pytest.approx(leaf_area(leafy, later, const), rel=1e-12)
+    clocks = Clocks(later, later, 0.0)
+    before, after = grown_turtle(leafy, clocks, const), grown_turtle(units, clocks, const)
+    np.testing.assert_allclose(np.sort(after.leaves.position, axis=0), np.sort(before.leaves.position, axis=0),
+                               atol=1e-9)  # a one-site unit's leaf stands where its node's stood

@@ -117,3 +117,17 @@ def bare(ls: LString) -> tuple[LString, int]:
     params = ls.params.copy()
     params[ls.offsets[units] + KEPT] = 0.0
     return LString(ls.sym, ls.nparams, ls.offsets, params), fell
+
+
+def bud_count(ls: LString) -> int:
+    """Leaf buds on the tree: its leaf bud modules and its shoot units' sites that bear no leaf now."""
+    units = unit_modules(ls)
+    own = int(np.count_nonzero(ls.sym == ord("V")))
+    return own + (int(np.count_nonzero(~sites(ls, units)[2])) if len(units) else 0)
+
+
+def node_count(ls: LString) -> int:
+    """Internodes the tree's wood stands for: its internode modules, each shoot unit counting its sites."""
+    node = ls.sym == INTERNODE
+    units = unit_modules(ls)
+    return int(np.count_nonzero(node)) + int(np.maximum(np.rint(ls.params[ls.offsets[units] + SITES]) - 1, 0).sum())

@@ -67,6 +67,7 @@ from arbor.engine.lsystem.lstring import LString, params_where
 from arbor.engine.lsystem.lsys import LSystem
 
 CONSOLIDATE_AT = 0.5  # share of the module budget in use from which old wood is consolidated
+UNITS_EVERY = 2.0  # elongation time constants between makings of one-site shoot units in the growing season
 FALL_KEEP = 40.0  # physiological time a shed branch stays in `fallen` for the game to show its fall
 # A branch's light counts in sugar: x (remembered daylight / the norm) to this power (1: all of the day's
 # strength; 0.5 keeps a weak light's young tree from shedding every branch that is not in the sun)
@@ -133,6 +134,7 @@ class GrowingTree:
     last_report: StepReport | None = None
     confine: object | None = None  # a region (engine/modeling/regions.py): rewrites only inside it ...
     confine_left: int = 0  # ... for this many more rewrites (Onishi et al. 2003 Fig. 11's region-limited growth)
+    units_T: float = 0.0  # noqa: N815 (T of the last making of one-site shoot units, engine/life/plant/units.py)
 
     def __post_init__(self) -> None:
         self.deriver = Deriver(self.system, seed=self.seed, budget=self.budget)
@@ -174,6 +176,9 @@ class GrowingTree:
         self.lstring = remove_empty_branches(new)
         if self.budget_used > CONSOLIDATE_AT:  # old wood merged so the budget goes to the living crown
             self.lstring, _ = consolidated(self.lstring, length_time, self.geometry_constants["TAU"])
+        if length_time - self.units_T >= UNITS_EVERY * self.geometry_constants["TAU"]:  # old leafy nodes as units
+            self.lstring, _ = form_units(self.lstring, length_time, self.geometry_constants, runs=False)
+            self.units_T = length_time
         self.last_rewrite_T = length_time
         return self.last_report
 

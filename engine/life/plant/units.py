@@ -30,15 +30,16 @@ OLD_TAUS = 6.0  # an internode this many elongation time constants old is fully 
 TAIL_GROUPS = 0  # groups besides its leaf a unit's nodes may carry (a branch's foot stays a node: girth steps)
 MAX_SITES = 12  # nodes a unit holds at most
 STRAIGHT = 0.03  # a unit's nodes stand at most this share of its length from the chord it is drawn along
-INTERNODE, LEAF_BUD = ord("I"), ord("V")
+INTERNODE, LEAF, LEAF_BUD = ord("I"), ord("L"), ord("V")
 YAW, PITCH, ROLL, DOWN = ord("+"), ord("^"), ord("/"), ord("&")
 UNIT_TURNS = np.array([YAW, PITCH, ROLL], np.uint8)
 
 
-def form_units(ls: LString, now: float, const: dict[str, float]) -> tuple[LString, int]:
-    """``ls`` with its old bare runs of leafy nodes made into shoot units (module docstring), at length time
-    ``now``; returns the new string and how many modules it saved."""
-    out = _runs_made(ls, now, const)
+def form_units(ls: LString, now: float, const: dict[str, float], runs: bool = True) -> tuple[LString, int]:
+    """``ls`` with its old runs of leafy nodes made into shoot units (module docstring), at length time
+    ``now`` (``runs`` False: units of one site only, no turtle pass); returns the new string and how many
+    modules it saved."""
+    out = _runs_made(ls, now, const) if runs else ls
     out = _singles_made(out, now, const)
     return out, len(ls) - len(out)
 
@@ -72,7 +73,7 @@ def _singles_made(ls: LString, now: float, const: dict[str, float]) -> LString:
     roll = np.where(rolled, ls.params[ls.offsets[np.where(rolled, opened + 1, node)]], 0.0)
     pitch = ls.params[ls.offsets[bud - 1]]
     k = len(ok)
-    leaf = np.stack([np.ones(k), np.ones(k), np.full(k, now), np.ones(k), np.zeros(k), roll, np.zeros(k), pitch],
+    leaf = np.stack([np.ones(k), np.ones(k), *_unit_leaves(nodes["leaf_state"][ok], now), roll, np.zeros(k), pitch],
                     axis=1)  # pieces, sites, leaves' birth and vigour, share in leaf, roll, roll step, pitch
     delta = np.zeros(len(ls) + 1, np.int64)
     np.add.at(delta, opened, 1)
@@ -112,10 +113,9 @@ def _nodes(ls: LString, now: float, const: dict[str, float]) -> dict[str, np.nda
         close = np.where(is_open, match[c], 0)
         inner = close - c - 1
         a = c + 1
-        two = is_open & (inner == 2) & (psym[a] == DOWN) & (pnpar[a] == 1) & (psym[a + 1] == LEAF_BUD)
-        two &= pnpar[a + 1] == 0
+        two = is_open & (inner == 2) & (psym[a] == DOWN) & (pnpar[a] == 1) & _site(psym, pnpar, params, off, a + 1)
         three = is_open & (inner == 3) & (psym[a] == ROLL) & (pnpar[a] == 1) & (psym[a + 1] == DOWN)
-        three &= (pnpar[a + 1] == 1) & (psym[a + 2] == LEAF_BUD) & (pnpar[a + 2] == 0)
+        three &= (pnpar[a + 1] == 1) & _site(psym, pnpar, params, off, a + 2)
         leafy = two | three
         leaf_open = np.where(leafy, c, leaf_open)
         leaf_bud = np.where(two, a + 1, np.where(three, a + 2, leaf_bud))
@@ -126,7 +126,28 @@ def _nodes(ls: LString, now: float, const: dict[str, float]) -> dict[str, np.nda
     old = now - params[off[node]] > OLD_TAUS * const["TAU"]
     ok &= old & (leafy_groups == 1)
     return {"node": node, "start": start, "end": cur, "ok": ok, "other": other_groups, "leaf_open": leaf_open,
-            "leaf_bud": leaf_bud, "order": params[off[node] + 2]}
+            "leaf_bud": leaf_bud, "order": params[off[node] + 2],
+            "leaf_state": _leaf_state(ls, np.maximum(leaf_bud, 0))}
+
+
+def _site(sym: np.ndarray, npar: np.ndarray, params: np.ndarray, off: np.ndarray, at: np.ndarray) -> np.ndarray:
+    """Per index ``at`` (of the padded symbols): a leaf site a unit can take, a leaf bud ``V`` or a leaf on
+    the tree that is not falling ``L(birth, vigour, 0)``."""
+    bud = (sym[at] == LEAF_BUD) & (npar[at] == 0)
+    leaf = (sym[at] == LEAF) & (npar[at] == 3)
+    last = len(off) - 1
+    falling = params[np.minimum(off[np.minimum(at, last)] + 2 * leaf, len(params) - 1)] if len(params) else 0.0
+    return bud | (leaf & (falling == 0))
+
+
+def _leaf_state(ls: LString, leaf: np.ndarray) -> np.ndarray:
+    """Per leaf site (module indices): its leaves' birth, vigour and share in leaf: (birth, vigour, 1) for a
+    leaf, (0, 1, 0) for a leaf bud; (k, 3)."""
+    on = ls.sym[leaf] == LEAF
+    at = ls.offsets[leaf]
+    birth = np.where(on, ls.params[np.where(on, at, 0)], 0.0)
+    vigour = np.where(on, ls.params[np.where(on, at + 1, 0)], 1.0)
+    return np.stack([birth, vigour, on.astype(float)], axis=1)
 
 
 def _heads(joins: np.ndarray) -> np.ndarray:
@@ -139,8 +160,10 @@ def _joins(nodes: dict[str, np.ndarray]) -> np.ndarray:
     before bearing nothing but its leaf), at most MAX_SITES nodes a run."""
     ok, start, end, other = nodes["ok"], nodes["start"], nodes["end"], nodes["other"]
     order = nodes["order"]
+    state = nodes["leaf_state"]
+    same = np.all(state[1:] == state[:-1], axis=1)  # (their leaves unfold and fall as one)
     joins = ok & (other <= TAIL_GROUPS) & np.concatenate([[False], ok[:-1] & (other[:-1] == 0) & (end[:-1] == start[1:])
-                                 & (order[:-1] == order[1:])])
+                                                          & (order[:-1] == order[1:]) & same])
     pos = np.arange(len(joins)) - _heads(joins)
     return joins & (pos % MAX_SITES != 0)
 
@@ -252,8 +275,8 @@ def _unit_params(ls: LString, nodes: dict[str, np.ndarray], states: dict[str, np
     full = const["IL"] * const["IO"] ** order * saturate(now - params[off], const["TAU"])
     wood = _woods(states, head, tail, np.bincount(run, states["volume"][member], minlength=r), length)
     unit = np.stack([params[off], params[off + 1], order, params[off + 3], wood,
-                     length / np.maximum(full, 1e-12), size.astype(float), np.full(r, now), np.ones(r),
-                     np.zeros(r), roll0, step, pitch], axis=1)
+                     length / np.maximum(full, 1e-12), size.astype(float),
+                     *_unit_leaves(nodes["leaf_state"][head], now), roll0, step, pitch], axis=1)
     return np.concatenate([_frames_between(before, along), unit, _frames_between(along, last)], axis=1)
 
 
@@ -296,6 +319,13 @@ def _woods(states: dict[str, np.ndarray], head: np.ndarray, tail: np.ndarray, vo
         if after.max(initial=-1) < 0:
             break
     return wood
+
+
+def _unit_leaves(state: np.ndarray, now: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """A unit's leaves' birth, vigour and share in leaf from its first site's state (:func:`_leaf_state`):
+    a bare site's leaves are born at the next flush (``now`` until then)."""
+    leafy = state[:, 2] > 0
+    return np.where(leafy, state[:, 0], now), state[:, 1], state[:, 2]
 
 
 def _circular_mean(deg: np.ndarray, group: np.ndarray, use: np.ndarray, count: int) -> np.ndarray:
