@@ -132,3 +132,22 @@ def test_a_sweep_stopped_at_any_moment_says_how_to_resume(tmp_path, monkeypatch)
     said.clear()
     assert command.run_sweep(path, tmp_path / "out", workers=1, plots=False, echo=said.append) == 0
     assert "2 already done" in said[0] and (tmp_path / "out" / "tidy.csv").is_file()
+
+
+def test_a_lab_duration_in_game_days_needs_one_day_for_all_its_trees(tmp_path):
+    """A lab's "3 days" is three turns of its trees' sun; trees whose suns turn at other speeds have no one
+    game day, so only seconds are taken (one line at the value says what is)."""
+    import math
+
+    text = ('title = "Days"\nduration = "3 days"\nsample_every = 30\n'
+            '[[tree]]\nname = "a"\n{0}\n[[tree]]\nname = "b"\n')
+    path = tmp_path / "days.toml"
+    path.write_text(text.format("sun_speed = 0.1"), encoding="utf-8")
+    with pytest.raises(ExperimentError, match="'duration' in days or years needs one game day") as caught:
+        load_experiment(path, ASSETS / "lsystems")
+    assert (caught.value.line, caught.value.col) == (2, 12)
+    path.write_text(text.format(""), encoding="utf-8")
+    experiment = load_experiment(path, ASSETS / "lsystems")
+    from arbor.engine.life.rules.rules import load_rules
+
+    assert experiment.duration == pytest.approx(3 * 2 * math.pi / load_rules(ASSETS / "rules.toml", "demo").sun.speed)

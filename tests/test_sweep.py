@@ -238,3 +238,31 @@ def test_one_definition_of_the_same_experiment(sweep_file):
     longer = dataclasses.replace(sweep, duration=sweep.duration * 1.005, species="game_poplar.lsys")
     assert differences(sweep, longer) == ["duration", "species"]
     assert differences(sweep, longer, within=0.01) == ["species"]
+
+
+def test_a_duration_in_game_days_or_years(tmp_path):
+    """duration and sample_every take "N days" or "N years" (game days at the base's sun speed, a year of
+    seasons.year_days); a text that is neither, or more than the limit, is one line at the value."""
+    import math
+
+    from arbor.engine.base.errors import SweepError
+    from arbor.engine.life.rules.rules import load_rules
+
+    rules = load_rules(ASSETS / "rules.toml", "demo")
+    day = 2 * math.pi / rules.sun.speed
+    text = ('title = "Years"\nduration = "{0}"\nsample_every = "{1}"\nseeds = 2\nresponses = ["height"]\n'
+            '[base]\n{2}\n[[factor]]\nname = "Drain"\nkey = "water.drain_rate"\nlevels = [0.004]\n')
+    path = tmp_path / "years.toml"
+    path.write_text(text.format("2 years", "7 days", ""), encoding="utf-8")
+    sweep = load_sweep(path, ASSETS / "lsystems")
+    assert sweep.duration == pytest.approx(2 * rules.seasons.year_days * day) and sweep.sample_every == 7 * day
+    path.write_text(text.format("1.5 years", "1 day", "sun_speed = 0.1"), encoding="utf-8")  # its own days
+    sweep = load_sweep(path, ASSETS / "lsystems")
+    assert sweep.duration == pytest.approx(1.5 * rules.seasons.year_days * 2 * math.pi / 0.1)
+    path.write_text(text.format("2 weeks", "1 day", ""), encoding="utf-8")
+    with pytest.raises(SweepError, match="'duration' must be a number of s of game time, or a text such as") as e:
+        load_sweep(path, ASSETS / "lsystems")
+    assert (e.value.line, e.value.col) == (2, 12)
+    path.write_text(text.format("1000 years", "30 days", ""), encoding="utf-8")
+    with pytest.raises(SweepError, match="'duration' must be above 0 and at most 604800 s of game time"):
+        load_sweep(path, ASSETS / "lsystems")

@@ -21,6 +21,7 @@ import numpy as np
 
 from arbor.engine.base.errors import SweepError
 from arbor.engine.base.reader import read_user_text
+from arbor.engine.life.experiment.lab import calendar
 from arbor.engine.life.experiment.measure import UNITS
 from arbor.engine.life.experiment.sweep import (
     STATS,
@@ -124,8 +125,7 @@ def _tasks(sweep: Sweep, todo: list, keep: str = "first") -> list[Task]:
 
 def day_seconds(sweep: Sweep) -> float:
     """How long a game day (one turn of the sun) lasts in the sweep's base regime, in game seconds."""
-    speed = sweep.base.sun_speed or load_rules(ASSETS / "rules.toml", sweep.pace).sun.speed
-    return 2 * math.pi / speed
+    return calendar(sweep.pace, sweep.base)[0]  # (the pace was checked when the sweep was read)
 
 
 def write_outputs(sweep: Sweep, store: RunStore, everything: list, plots: bool = True,

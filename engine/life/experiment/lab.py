@@ -23,14 +23,15 @@ import math
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 
-from arbor.engine.base.errors import ExperimentError
+from arbor.engine.base.assets import assets_dir
+from arbor.engine.base.errors import ExperimentError, LSysError
 from arbor.engine.base.reader import read_user_toml
 from arbor.engine.base.units import METRE
 from arbor.engine.life.experiment import schema
 from arbor.engine.life.experiment.measure import METRICS, Meters, crown_shape, measure
 from arbor.engine.life.experiment.schema import Reader
 from arbor.engine.life.lineage.lineage import new_lineage, species_of
-from arbor.engine.life.rules.rules import Rules, check_rules, set_rule
+from arbor.engine.life.rules.rules import Rules, check_rules, load_rules, set_rule
 from arbor.engine.life.world.actions import Action
 from arbor.engine.life.world.commands import Prune
 from arbor.engine.life.world.world import World, step_together
@@ -132,11 +133,27 @@ def load_experiment(path: str | Path, lsystem_dir: Path) -> Experiment:
     if spacing is not None:
         check_shared_sun(reader, regimes, trees)
     get = lambda key, default: reader.value(data, key, schema.EXPERIMENT[key], (), default)  # noqa: E731
+    pace = pace_value(reader, data)
+    if all(calendar(pace, r) == calendar(pace, regimes[0]) for r in regimes):  # (else days: s only)
+        reader.calendar = calendar(pace, regimes[0])
     return Experiment(
         title=str(get("title", path.stem)), seed=get("seed", 0), duration=reader.value(
             data, "duration", schema.EXPERIMENT["duration"], ()), sample_every=get("sample_every", 30.0),
         regimes=regimes, lsystem=lsystem_dir / species_name(reader, data, "lab", lsystem_dir), file=file,
-        pace=pace_value(reader, data), seasons=get("seasons", True), spacing=spacing, notes=reader.notes)
+        pace=pace, seasons=get("seasons", True), spacing=spacing, notes=reader.notes)
+
+
+def calendar(pace: str, regime: Regime) -> tuple[float, float] | None:
+    """(s of game time a game day lasts, game days a year) for a tree of ``regime`` at ``pace``: what a
+    file's "14 days" or "30 years" mean (None when rules.toml has no such pace: its own error says so)."""
+    try:
+        rules = load_rules(assets_dir() / "rules.toml", pace)
+    except LSysError:
+        return None
+    for key, value in regime.rules.items():
+        set_rule(rules, key, value)
+    speed = regime.sun_speed or rules.sun.speed
+    return 2 * math.pi / speed, rules.seasons.year_days
 
 
 def save_stem(name: str) -> str:

@@ -91,8 +91,10 @@ TREE = {
 BASE = {k: v for k, v in TREE.items() if k != "name"}
 COMMON = {
     "title": Key("text", "the title of the figures"),
-    "duration": Key("number", "how long the trees grow", "s of game time", 0.0, WEEK, above=True),
-    "sample_every": Key("number", "time between two samples", "s of game time", 0.0, WEEK, above=True),
+    "duration": Key("duration", "how long the trees grow: s of game time, or a text \"14 days\" or \"30 years\"",
+                    "s of game time", 0.0, WEEK, above=True),
+    "sample_every": Key("duration", "time between two samples: s of game time, or a text \"1 day\"",
+                        "s of game time", 0.0, WEEK, above=True),
     "species": Key("text", "the .lsys file in assets/lsystems the trees grow from"),
     "pace": Key("text", "the pace of rules.toml the rules are read at (demo or home)"),
     "seasons": Key("flag", "false: an endless summer"),
@@ -205,6 +207,9 @@ class Locator:
         return line, start + 1
 
 
+DURATION_TEXT = re.compile(r"\s*(\d+(?:\.\d*)?|\.\d+)\s*(days?|years?)\s*")
+
+
 def _element(text: str, start: int, item: int) -> int | None:
     """The index in ``text`` where element ``item`` of the list opening at ``start`` begins (the list on one
     line; strings and nested lists skipped), or None."""
@@ -247,6 +252,7 @@ class Reader:
     def __init__(self, file: str, text: str, error: type[LSysError]) -> None:
         self.file, self.error, self.locator = file, error, Locator(text)
         self.notes: list[str] = []
+        self.calendar: tuple[float, float] | None = None  # (s of game time a game day, game days a year)
 
     def fail(self, message: str, path: tuple, value: bool = False, item: int | None = None) -> LSysError:
         """The error for ``message`` at the key ``path`` (with ``value``: at its value, the ``item``-th
@@ -295,6 +301,8 @@ class Reader:
         at the value."""
         if spec.kind in ("number", "whole"):
             return self._number(value, key, spec, path, item)
+        if spec.kind == "duration":
+            return self._number(self._seconds(value, key, path), key, spec, path, item)
         kinds = {"text": str, "flag": bool, "table": dict, "tables": list, "list": list}
         want = kinds.get(spec.kind)
         if want is not None and not isinstance(value, want):
@@ -302,6 +310,21 @@ class Reader:
                      "tables": f"[[{key}]] tables", "list": "a list [...]"}
             raise self.fail(f"{key!r} must be {words[spec.kind]}", path, value=True, item=item)
         return value
+
+    def _seconds(self, value, key: str, path: tuple):
+        """A duration's value in s of game time: a number as it is, a text "N days" or "N years" by the
+        file's calendar (game days: turns of the sun at its speed; a year: seasons.year_days of them)."""
+        if not isinstance(value, str):
+            return value
+        match = DURATION_TEXT.fullmatch(value)
+        if match is None:
+            raise self.fail(f"{key!r} must be a number of s of game time, or a text such as \"14 days\" or "
+                            f"\"30 years\" (not {value[:40]!r})", path, value=True)
+        if self.calendar is None:
+            raise self.fail(f"{key!r} in days or years needs one game day for every tree (their suns turn at "
+                            "different speeds here): give it in s of game time", path, value=True)
+        day, year_days = self.calendar
+        return float(match.group(1)) * day * (year_days if match.group(2).startswith("year") else 1.0)
 
     def _number(self, value, key: str, spec: Key, path: tuple, item: int | None) -> float | int:
         if isinstance(value, bool) or not isinstance(value, int | float) or not math.isfinite(value):

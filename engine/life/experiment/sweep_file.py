@@ -27,7 +27,14 @@ from pathlib import Path
 from arbor.engine.base.errors import SweepError
 from arbor.engine.base.reader import read_user_toml
 from arbor.engine.life.experiment import schema
-from arbor.engine.life.experiment.lab import check_noon, check_species, pace_value, parse_regime, species_name
+from arbor.engine.life.experiment.lab import (
+    calendar,
+    check_noon,
+    check_species,
+    pace_value,
+    parse_regime,
+    species_name,
+)
 from arbor.engine.life.experiment.schema import Reader
 from arbor.engine.life.experiment.sweep import (
     MAX_FACTORS,
@@ -55,13 +62,14 @@ def load_sweep(path: str | Path, lsystem_dir: Path) -> Sweep:
     reader = Reader(file, source, SweepError)
     reader.table(data, schema.SWEEP, (), "the sweep")
     get = lambda key, default=None: reader.value(data, key, schema.SWEEP[key], (), default)  # noqa: E731
+    varied = tuple(t["key"] for t in data.get("factor", []) if isinstance(t, dict) and isinstance(t.get("key"), str))
+    # (only names: a table or list given as a key is reported by _factors at its line, not a TypeError here)
+    base = parse_regime(reader, get("base", {}), ("base",), schema.BASE, factors=varied)
+    reader.calendar = calendar(pace_value(reader, data), base)  # (days and years: at the base's sun speed)
     duration, every = get("duration"), get("sample_every", 60.0)
     if duration / every > MAX_SAMPLES:
         raise reader.fail(f"'sample_every' gives more than {MAX_SAMPLES} samples per run: take a larger one",
                           ("sample_every",))
-    varied = tuple(t["key"] for t in data.get("factor", []) if isinstance(t, dict) and isinstance(t.get("key"), str))
-    # (only names: a table or list given as a key is reported by _factors at its line, not a TypeError here)
-    base = parse_regime(reader, get("base", {}), ("base",), schema.BASE, factors=varied)
     species = _species_file(reader, species_name(reader, data, "sweep"), lsystem_dir, ("species",))
     factors = _factors(reader, data, lsystem_dir)
     _check_place(reader, base, factors)
