@@ -24,11 +24,12 @@ from arbor.engine.life.plant.sim import sun_angle_at
 from arbor.engine.life.rules.rules import Rules
 from arbor.engine.life.world.commands import SunAt
 from arbor.engine.life.world.garden import MAX_GARDEN, Garden
+from arbor.engine.life.world.status import water_due
 from arbor.engine.life.world.world import World
 from arbor.engine.lsystem.lsys import LSystem
 from arbor.game.screens.config import GameConfig
 from arbor.game.screens.state import GameState
-from arbor.game.strings import text
+from arbor.game.strings import duration, text
 from arbor.game.watchdog import reading
 
 LEGACY_FOLDER = "older-trees"  # beside the autosave: older garden-*.arbor files the garden had no room for
@@ -90,7 +91,8 @@ class SaveKeeper:
         if saved.dropped:
             self.state.say(text("messages.lineage_dropped", count=saved.dropped, name=path.name), 8)
         self.last_summary, self.saved_at = summary, saved.saved_at
-        self.start_message = away_message(summary) if summary.anything else ""
+        said = [away_message(summary) if summary.anything else "", next_care(garden.world) if catch_up else ""]
+        self.start_message = " ".join(line for line in said if line)
         if self.start_message:
             self.state.say(self.start_message, 10)
         return garden
@@ -207,6 +209,17 @@ def _free_name(path: Path) -> Path:
     while path.with_name(f"{path.stem}{'' if n == 1 else f'-{n}'}{path.suffix}").exists():
         n += 1
     return path.with_name(f"{path.stem}{'' if n == 1 else f'-{n}'}{path.suffix}")
+
+
+def next_care(world: World) -> str:
+    """The line at a player's return that says when the cared-for tree will next want water (now, in about
+    how long, or not for days); '' for a dead tree."""
+    due = water_due(world)
+    if not world.sim.state.alive:
+        return ""
+    if due is None:
+        return text("messages.water_later")
+    return text("messages.water_now") if due <= 0 else text("messages.water_due", when=duration(due))
 
 
 def away_message(summary: AwaySummary) -> str:

@@ -9,7 +9,8 @@ growth hold) and the tree (its fruit, the light its leaves catch) and returns th
     not earned yet) > resting (only under a dark sky) > needs_light (leaves in the shade, by day) > growing.
 
 Beside it, the lines the HUD shows only while they are true: :func:`water_low` (the can's hint: the water
-meter down to the need line, the can not pouring), :func:`sun_low` (the sun's hint, likewise) and
+meter down to the need line, the can not pouring; :func:`water_due` says when it will be, for the line at
+a player's return), :func:`sun_low` (the sun's hint, likewise) and
 :func:`need_line` (where a thirst is worth a word: the guardian's stop and the warning it says are about water
 below it, never above it). The HUD and the kiosk (which plays the game's HUD) both take their status from
 here.
@@ -17,6 +18,8 @@ here.
 
 from __future__ import annotations
 
+import copy
+import math
 from typing import TYPE_CHECKING
 
 from arbor.engine.life.rules.rules import Rules
@@ -42,6 +45,26 @@ def water_low(world: World) -> bool:
     can is not pouring."""
     s = world.sim.state
     return s.alive and not s.watering and s.water_meter <= need_line(world.rules)
+
+
+def water_due(world: World, days: float = 3.0, steps: int = 2000) -> float | None:
+    """Game seconds until the water meter falls to the need line if nobody waters (the simulation run ahead
+    on a copy, in ``steps`` steps: the sun, the season and the showers as they will come), 0 when it is
+    there already, None when not within ``days`` days of the sun (or the tree is dead)."""
+    if not world.sim.state.alive:
+        return None
+    line = need_line(world.rules)
+    if world.sim.state.water_meter <= line:
+        return 0.0
+    sim = copy.deepcopy(world.sim)
+    sim.state.watering = False
+    horizon = days * 2 * math.pi / max(sim.state.sun_speed, 1e-9)
+    step = horizon / steps
+    for k in range(1, steps + 1):
+        sim.step(step)
+        if sim.state.water_meter <= line:
+            return k * step
+    return None
 
 
 def sun_low(world: World) -> bool:
