@@ -153,7 +153,7 @@ class CrownTool:
         if added == 0:
             key = "messages.crown_none"
         elif limited:
-            key = "messages.crown_full"
+            key = "messages.shaped_full" if key == "messages.shaped" else "messages.crown_full"
         lobes = counted(len(state.lobes), "lobe")
         self.mode.state.say(text(key, count=added, ms=ms, lobes=lobes, **extra))
 

@@ -31,6 +31,7 @@ from arbor.engine.modeling.bend import bend_region
 from arbor.engine.modeling.crowned import CrownRecord, too_big
 from arbor.engine.modeling.edits import apply_edit, prune_region
 from arbor.engine.modeling.regions import prune as prune_branch
+from arbor.engine.modeling.regions import seed_in_region
 from arbor.engine.modeling.strokes import Stroke as StrokePoints
 
 if TYPE_CHECKING:
@@ -402,6 +403,10 @@ class RegionEdit:
             axis = new_axis_text(tree.system, now, clocks.girth_time) if self.edit == "grow" else None
             new, changed, held = apply_edit(ls, world.module_positions(ls), self.region, self.system, extern,
                                             new_axis=axis, budget=tree.deriver.budget)
+            if axis is not None and changed == 0 and not held and len(ls) < (tree.deriver.budget or len(ls) + 1):
+                # nothing in the region could grow (it was pruned bare): a new axis there, as in an empty
+                # one, so Grow always shows and undoes (it did nothing and made no step)
+                new, changed = seed_in_region(ls, axis, self.region.center), -1
         if changed:
             _commit(world, new)
         if self.edit == "grow":
