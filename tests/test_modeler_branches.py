@@ -97,6 +97,7 @@ def test_a_drag_on_a_branch_picks_it_and_cut_still_cuts(game):
     assert "Branch length x1.32" in game.hud_info().message
     assert len(game.modeling.segments(game.world.tree.lstring)) == len(segs0)
     press_bar(game, "edit")
+    press_bar(game, "edit")  # (brush, then cut)
     assert game.modeling.prune_tool.op == "cut"
     touch(game, DOWN, 0, x + 20, y - 27)
     touch(game, UP, 0, x + 20, y - 27)
@@ -135,3 +136,29 @@ def test_an_angle_edit_turns_the_branch_rigidly_about_its_base():
         kept = refreshed(new, turned)
         rows = kept.params[kept.offsets[turned.module][:, None] + np.arange(1, 7)]
         assert np.allclose(rows, np.c_[turned.start, turned.frame[:, :, 0]])
+
+
+def test_the_width_brush_widens_the_branches_it_passes_over(game):
+    for _ in range(4):
+        press_bar(game, "edit")
+    assert game.modeling.prune_tool.op == "brush" and "Width brush" in game.modeling.hint()
+    tree = game.world.tree.lstring
+    segs0 = game.modeling.segments(tree)
+    x, y = game.branch_pixel
+    touch(game, DOWN, 0, x - 60, y - 40)  # a stroke across the drawn branch
+    for i in range(1, 13):
+        game.clock_box[0] += 0.03
+        touch(game, MOVE, 0, x - 60 + 10 * i, y - 40 + 7 * i)
+    touch(game, UP, 0, x + 60, y + 44)
+    assert "Width brush: 1 branch made x1.25 as wide" in game.hud_info().message
+    segs1 = game.modeling.segments(game.world.tree.lstring)
+    ratio = segs1.radius / segs0.radius
+    widened = ratio > 1.01
+    assert widened.sum() >= 10 and np.allclose(ratio[widened], 1.25) and np.allclose(ratio[~widened], 1.0)
+    touch(game, DOWN, 0, x, y)  # a tap brushes the branch again
+    touch(game, UP, 0, x, y)
+    ratio = game.modeling.segments(game.world.tree.lstring).radius / segs0.radius
+    assert np.allclose(ratio[widened], 1.25**2)
+    game.modeling.undo()
+    game.modeling.undo()
+    assert game.world.tree.lstring.equals(tree)

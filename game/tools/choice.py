@@ -68,6 +68,8 @@ class ToolChoice:
     def hint(self) -> str:
         """The hint line in the modeler: what a drag does with the tool in use."""
         tool = self.current_tool
+        if tool == "prune" and self.prune_tool.op == "brush":
+            return text("hints.modeler_brush")
         if tool == "prune" and self.prune_tool.op != "cut":
             return text("hints.modeler_branch", op=text(f"branch_ops.{self.prune_tool.op}"))
         return text(f"hints.modeler_{tool}", op=text(f"shapes.{self.crown_tool.op}"), edit=text(f"edits.{self.edit}"))

@@ -3,14 +3,16 @@ tools) chooses what it does. Cut: a tap on a branch cuts it and everything growi
 base stays). Width, angle, length: a tap picks the branch under it (shown lit) and an up or down drag
 then changes it, shown live as the drag goes (drag up: wider, further from its parent's axis, longer),
 committed as one undoable step when the pointer is let go; a drag that starts on a branch picks it and
-changes it at once (engine/modeling/branch_edit.py, the world's BranchEdit command)."""
+changes it at once (engine/modeling/branch_edit.py, the world's BranchEdit command). Brush: a drag over
+the tree widens every branch it passes over x1.25 (the width brush: one undoable step per drag; a branch
+inside another brushed one widens with it, once; the world's WidthBrush command)."""
 
 from __future__ import annotations
 
 import numpy as np
 
 from arbor.engine.base.units import METRE
-from arbor.engine.life.world.commands import BranchEdit, Cut
+from arbor.engine.life.world.commands import BranchEdit, Cut, WidthBrush
 from arbor.engine.modeling.branch_edit import LIMITS, branch_of, branch_span, edited
 from arbor.game.render.camera import OrbitCamera, project_points
 from arbor.game.render.ui import draw_polyline
@@ -18,7 +20,8 @@ from arbor.game.strings import text
 from arbor.game.tools.told import counted
 
 PICK_PIXELS = 18.0  # how close a tap must be to a branch to cut or pick it
-BRANCH_OPS = ("cut", "width", "angle", "length")
+BRANCH_OPS = ("cut", "width", "angle", "length", "brush")
+BRUSH_FACTOR = 1.25  # one pass of the width brush widens the branches it touched this much
 PIXELS_PER_DOUBLING = 150.0  # a drag this far up doubles a width or a length
 DEGREES_PER_PIXEL = 0.3  # an angle drag: degrees per pixel
 
@@ -30,8 +33,10 @@ class PruneTool:
         self.mode = mode
         self.op = BRANCH_OPS[0]
         self.picked: tuple[object, int] | None = None  # (the L-string it was picked on, its first module)
+        self.camera: OrbitCamera | None = None  # the view a brush drag is made in
         self.drag: tuple[float, float] | None = None  # where an edit drag started (pixels)
         self.amount: float | None = None  # the edit the drag shows
+        self.brushed: list[int] = []  # the pieces (modules) the width brush passed over in this drag
 
     def next_op(self) -> str:
         """The next of cut, width, angle, length (the option button)."""
@@ -41,7 +46,7 @@ class PruneTool:
 
     def clear(self) -> None:
         """No branch picked, no drag."""
-        self.picked, self.drag, self.amount = None, None, None
+        self.picked, self.drag, self.amount, self.brushed = None, None, None, []
 
     def _segment_at(self, x: float, y: float, camera: OrbitCamera):
         """The tree's segments and the one under pixel (x, y) (None: no branch within PICK_PIXELS)."""
@@ -64,6 +69,10 @@ class PruneTool:
         segs, k = self._segment_at(x, y, camera)
         if k is None:
             return False
+        if self.op == "brush":  # (a tap is a brush over one branch)
+            self.brushed = [int(segs.module[k])]
+            self._brushed()
+            return True
         if self.op != "cut":
             self._pick(segs, k)
             return True
@@ -103,6 +112,10 @@ class PruneTool:
         if self.op == "cut":
             return
         segs, k = self._segment_at(x, y, camera)
+        if self.op == "brush":
+            self.drag, self.camera, self.brushed = (x, y), camera, []
+            self._brush(x, y)
+            return
         if k is not None:
             self.picked = (self.mode.modeler.lstring, int(segs.module[branch_of(segs, k)]))
         self.drag, self.amount = (x, y), None
@@ -110,6 +123,9 @@ class PruneTool:
     def move(self, x: float, y: float) -> None:
         """The drag moved: the picked branch as it would be, shown (not yet committed)."""
         if self.drag is None or self.mode.modeler is None:
+            return
+        if self.op == "brush":
+            self._brush(x, y)
             return
         segs = self.mode.segments(self.mode.modeler.lstring)
         first = self._first(segs)
@@ -127,6 +143,9 @@ class PruneTool:
         mode.preview = None
         if drag is None or mode.modeler is None:
             return
+        if self.op == "brush":
+            self._brushed()
+            return
         if self._first(mode.segments(mode.modeler.lstring)) is None:
             mode.state.say(text("messages.branch_none"))
             return
@@ -142,10 +161,30 @@ class PruneTool:
         mode.state.say(text(key, op=text(f"branch_ops.{self.op}"), amount=result.amount,
                             pieces=counted(result.pieces, "piece"), note=note))
 
+    def _brush(self, x: float, y: float) -> None:
+        """The width brush passed over pixel (x, y): the piece there (if any) is brushed."""
+        segs, k = self._segment_at(x, y, self.camera)
+        if k is not None and int(segs.module[k]) not in self.brushed:
+            self.brushed.append(int(segs.module[k]))
+
+    def _brushed(self) -> None:
+        """The brush let go: the branches it passed over widened, one undoable step."""
+        brushed, self.brushed = self.brushed, []
+        if not brushed:
+            self.mode.state.say(text("messages.brush_none"))
+            return
+        count = self.mode.state.world.apply(WidthBrush(tuple(brushed), BRUSH_FACTOR))
+        self.mode.state.say(text("messages.brushed", branches=counted(count, "branch"), factor=BRUSH_FACTOR))
+
     def draw(self, surface, project) -> None:
         """The picked branch lit over the scene (as the drag shows it)."""
         mode = self.mode
         if self.op == "cut" or mode.modeler is None:
+            return
+        if self.op == "brush":
+            segs = mode.segments(mode.modeler.lstring)
+            for k in np.flatnonzero(np.isin(segs.module, self.brushed)):
+                draw_polyline(surface, project, np.stack([segs.start[k], segs.end[k]]), (255, 230, 90, 230), False, 4)
             return
         ls = mode.preview if mode.preview is not None else mode.modeler.lstring
         segs = mode.segments(mode.modeler.lstring)

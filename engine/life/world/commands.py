@@ -369,6 +369,34 @@ class BranchEdit:
                             int(segs.module[first]) + len(new) - len(ls))
 
 
+@dataclass(frozen=True)
+class WidthBrush:
+    """The width brush: every branch the brush passed over (``modules``: a piece of each) made ``factor``
+    times as wide, one undoable step; a branch inside another brushed one is widened with it, once.
+    Result: the branches widened."""
+
+    modules: tuple[int, ...]
+    factor: float
+
+    def run(self, world: World) -> int:
+        """Widen the branches and commit them."""
+        from arbor.engine.modeling.branch_edit import branch_of, branch_span, edited, refreshed
+
+        editor = world.editing()
+        ls = editor.lstring
+        segs = world.drawn_segments(ls)
+        rows = np.flatnonzero(np.isin(segs.module, np.asarray(self.modules, np.int64)))
+        firsts = sorted({branch_of(segs, int(k)) for k in rows}, key=lambda k: -int(segs.module[k]))
+        spans = {k: branch_span(ls, segs, k) for k in firsts}
+        outer = [k for k in firsts if not any(o != k and spans[o][0] <= spans[k][0] < spans[o][1] for o in firsts)]
+        new = ls
+        for k in outer:  # from the last in the string back: the earlier ones' modules stay where they are
+            new = edited(new, segs, k, "width", self.factor)
+        if outer:
+            _commit(world, refreshed(new, world.drawn_segments(new)))
+        return len(outer)
+
+
 @dataclass
 class EditResult:
     """What a region edit did: modules changed (negative: a new axis was started), modules the budget
