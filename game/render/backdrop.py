@@ -20,6 +20,7 @@ SKY_HORIZON = (0.78, 0.87, 0.95)
 NIGHT_ZENITH = (0.05, 0.08, 0.22)  # nights are dark blue, never black, lighter toward the horizon
 NIGHT_HORIZON = (0.27, 0.31, 0.50)
 MOON = (0.80, 0.84, 0.92)
+MOONLIGHT = (0.30, 0.34, 0.46)  # the full moon's light on the trees at night (cool, about a third of the sun's)
 MOONLIT = (0.03, 0.05, 0.09)  # what the moon adds to the ground at night
 STARS = 1500  # points over the sky (a few thousand vertices: nothing for any GL)
 CLOUDS = 11  # cards in the sky, drifting with the wind
@@ -103,6 +104,22 @@ def sky_colors(sun: np.ndarray) -> tuple[tuple, tuple, float]:
     zenith = tuple(n + (d - n) * day for n, d in zip(NIGHT_ZENITH, SKY_ZENITH, strict=True))
     horizon = tuple(n + (d - n) * day for n, d in zip(NIGHT_HORIZON, SKY_HORIZON, strict=True))
     return zenith, horizon, day
+
+
+def lamp(sun: np.ndarray) -> tuple[np.ndarray, tuple[float, float, float]]:
+    """What the trees are lit by, direction and colour: the sun while it is up (warmer and dimmer as it sinks,
+    nothing at the horizon), the moon (drawn opposite the sun) while it is down, MOONLIGHT as strong as the
+    night is dark and the moon high (nothing at the horizon either: no jump as one gives way to the other)."""
+    sun = np.asarray(sun, float)
+    if sun[1] >= 0.0:
+        elevation = float(sun[1])
+        strength = min(elevation * 4.0, 1.0)
+        return sun, (1.05 * (0.4 + 0.6 * elevation) * strength, 0.98 * (0.4 + 0.6 * elevation) * strength,
+                     0.85 * strength)
+    moon = -sun
+    _, _, day = sky_colors(sun)
+    strength = min(float(moon[1]) * 4.0, 1.0) * (1.0 - day)
+    return moon, tuple(c * strength for c in MOONLIGHT)
 
 
 def ground_color(sun: np.ndarray, ground: tuple[float, float, float]) -> tuple[float, float, float]:

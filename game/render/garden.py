@@ -20,7 +20,7 @@ from dataclasses import dataclass, replace
 import moderngl
 import numpy as np
 
-from arbor.game.render.backdrop import CLOUD_DRIFT, CLOUD_STEP, Backdrop, sky_colors
+from arbor.game.render.backdrop import CLOUD_DRIFT, CLOUD_STEP, Backdrop, lamp, sky_colors
 from arbor.game.render.camera import OrbitCamera, look_at, orthographic
 from arbor.game.render.fxaa import Fxaa
 from arbor.game.render.grass import Grass
@@ -157,7 +157,7 @@ class GardenRenderer:
         game's), which on a software GL may show a change of the backdrop the camera did not make a few
         frames late, drawn a part a frame (kept.py); else (a picture alone) everything is drawn as it is."""
         sun = np.asarray(sun_dir, float) / np.linalg.norm(sun_dir)
-        light = self.light_matrix(sun)
+        light = self.light_matrix(lamp(sun)[0])  # (by night the moon casts the shadows)
         vp = camera.projection(size[0] / size[1]) @ camera.view()
         details = [self._detail(p.buffers, p.offset, camera, size[1]) if p.buffers.view else Detail(3)
                    for p in self.placed]
@@ -272,18 +272,15 @@ class GardenRenderer:
 
     def _lit_uniforms(self, mvp: bytes, light: bytes, sun: np.ndarray, day: float) -> dict:
         zenith, _, _ = sky_colors(sun)
-        elevation = max(float(sun[1]), 0.0)
-        strength = min(elevation * 4.0, 1.0)
-        sun_color = (1.05 * (0.4 + 0.6 * elevation) * strength, 0.98 * (0.4 + 0.6 * elevation) * strength,
-                     0.85 * strength)
+        toward, sun_color = lamp(sun)  # (the sun by day, the moon by night: backdrop.lamp)
         centre, radius = self._scene_bounds()
         return {"u_mvp": mvp, "u_light_mvp": light, "u_shadow": 1, "u_shadow_texel": 1.0 / SHADOW_SIZE,
-                "u_sun_dir": tuple(sun), "u_sun_color": sun_color,
+                "u_sun_dir": tuple(toward), "u_sun_color": sun_color,
                 "u_sky_color": tuple(c * (1.0 + 1.2 * (1.0 - day)) for c in zenith),  # moonlit: always visible
                 "u_ground_color": tuple(c * max(day, 0.35) for c in (0.30, 0.28, 0.18)),
                 "u_crown_center": tuple(centre + np.array([0.0, radius * 0.25, 0.0])), "u_crown_radius": radius,
                 "u_wind": (*self.wind, self.time), "u_autumn": self.autumn, "u_keep": self.leaf_keep,
-                "u_relief": self.relief, "u_translucency": self.translucency,
+                "u_relief": self.relief, "u_translucency": self.translucency * (0.35 + 0.65 * day),  # (moon: less)
                 "tints": (self.bark_tint, self.leaf_tint, self.blossom_tint)}
 
     def _shadow_steps(self, light: np.ndarray, sun: np.ndarray, details: list[Detail],
