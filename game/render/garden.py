@@ -35,7 +35,7 @@ from arbor.game.render.instanced import (
     TreeBuffers,
     cover_grow,
 )
-from arbor.game.render.layer import MIN_SCALE, Pictures, Step, screen_rect
+from arbor.game.render.layer import MIN_SCALE, REUSE_PIXELS, Pictures, Step, moved, screen_rect
 from arbor.game.render.renderer import _gl, _load_texture
 from arbor.game.render.shadows import SHADOW_SIZE, ShadowMaps
 from arbor.game.render.species import CLUSTERS, GAME_TREE, SpeciesLook
@@ -101,6 +101,7 @@ class GardenRenderer:
         self.pictures = Pictures(ctx)
         self.last_scale = 1.0
         self.last_layered = False  # whether the last frame showed the trees as a layer's picture (layer.py)
+        self.last_vp: np.ndarray | None = None  # the last frame's view-projection (did the camera move?)
         self.leaf_steps = LEAF_STEPS[0]  # shares of the leaves a picture drawn over frames draws them in
         self.shadow_waited = 0  # frames a due shadow map has waited (see SHADOW_WAIT)
 
@@ -165,7 +166,11 @@ class GardenRenderer:
         leaf_pixels = self._leaf_pixels(details, camera, size[1])
         self.last_scale = scale = self._scale(leaf_pixels)
         cost = sum(leaf_pixels) + SEGMENT_PIXELS * sum(d.tubes for d in details)
-        layered = self.samples <= 1 and (scale < 1.0 or cost > LAYER_COST)
+        # (a camera that moves gets no picture drawn over frames: the trees are drawn whole, and without
+        # the layer's composite and copies, unless they must be drawn smaller)
+        still = self.last_vp is not None and moved(self.last_vp, vp, self._corners(), size) <= REUSE_PIXELS
+        self.last_vp = vp
+        layered = self.samples <= 1 and (scale < 1.0 or (cost > LAYER_COST and still))
         self.last_layered = layered
         self.leaf_steps = min(max(math.ceil(sum(leaf_pixels) * scale**2 / STEP_COST), LEAF_STEPS[0]), LEAF_STEPS[1])
         grow_grass(self.grass, self.placed)
@@ -205,6 +210,13 @@ class GardenRenderer:
             self.post.smooth(fbo, size, screen_rect(camera, size, boxes, margin=0.15))
         elif target is not fbo:
             self.ctx.copy_framebuffer(fbo, target)
+
+    def _corners(self) -> np.ndarray:
+        """The corners of the placed trees' boxes (scene units), for how far the camera moved."""
+        boxes = [(np.asarray(p.buffers.view.lo) + p.offset, np.asarray(p.buffers.view.hi) + p.offset)
+                 for p in self.placed if p.buffers.view is not None] or [(np.zeros(3), np.zeros(3))]
+        return np.array([[x, y, z] for lo, hi in boxes for x in (lo[0], hi[0]) for y in (lo[1], hi[1])
+                         for z in (lo[2], hi[2])])
 
     def _render_layered(self, target: moderngl.Framebuffer, size: tuple[int, int], scene: Scene,
                         details: list[Detail], uniforms: dict, scale: float, smooth: bool = False) -> None:

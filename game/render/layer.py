@@ -119,11 +119,11 @@ class Pictures:
         key = (size, scale, key)
         shown = self.shown
         if (shown is None or shown.key[0] != size or self.frame - shown.start > MAX_AGE
-                or _moved(shown.vp, vp, points, size) > REUSE_PIXELS):
+                or moved(shown.vp, vp, points, size) > REUSE_PIXELS):
             self._run(_Cycle(key, vp, steps(True), self.frame, scene), size, scale, whole=True)
             return
         cycle = self.cycle
-        if cycle is None or cycle.key != key or _moved(cycle.vp, vp, points, size) > REUSE_PIXELS:
+        if cycle is None or cycle.key != key or moved(cycle.vp, vp, points, size) > REUSE_PIXELS:
             cycle = self.cycle = _Cycle(key, vp, steps(False), self.frame, scene)
         self._run(cycle, size, scale, whole=False)
 
@@ -155,7 +155,7 @@ class Pictures:
         self.cycle = self.shown = None
 
 
-def _moved(old: np.ndarray, new: np.ndarray, points: np.ndarray, size: tuple[int, int]) -> float:
+def moved(old: np.ndarray, new: np.ndarray, points: np.ndarray, size: tuple[int, int]) -> float:
     """How far (pixels) any of ``points`` lies from where the view-projection ``old`` put it."""
     if old is new or np.array_equal(old, new):
         return 0.0
