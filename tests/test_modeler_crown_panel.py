@@ -77,3 +77,29 @@ def test_a_strict_reader_for_the_panels_file(tmp_path):
     bad.write_text("[options\n")
     with pytest.raises(SettingsError, match=r"crowns.toml:1"):
         load_styles(bad)
+
+
+def test_the_crown_style_is_kept_in_the_save(modeler_game, tmp_path):
+    """A crown grown with a preset keeps its style through a save (format 3's [trees.crown] crown_style);
+    a style out of its range is refused with the key's line."""
+    import re
+
+    from arbor.engine.life.keep.save import read_garden
+    from arbor.engine.life.keep.save_check import SaveError
+
+    game = modeler_game(seed=3)
+    press_menu(game, "crown")
+    x0, y0 = base_pixel(game)
+    draw(game, [(x0 + 110 * np.cos(t), y0 - 300 + 90 * np.sin(t)) for t in np.linspace(0, 2 * np.pi, 48)])
+    press_bar(game, "edit")
+    press(game, game.modeling.crown_panel.buttons[("preset", "")].rect)
+    style = game.world.crown.style
+    press_bar(game, "modeler")
+    assert game.save()
+    path = tmp_path / "autosave.arbor"
+    assert "crown_style = {" in path.read_text()
+    assert read_garden(path).world.crown.style == style
+    path.write_text(re.sub(r"leaf_size = [\d.]+", "leaf_size = 99", path.read_text()))
+    with pytest.raises(SaveError, match=r"leaf_size must be a number from 0\.3 to 2") as err:
+        read_garden(path)
+    assert ":" in str(err.value).split("autosave.arbor")[1]  # file:line:column

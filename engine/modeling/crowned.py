@@ -36,7 +36,7 @@ class CrownRecord:
     lobes: tuple[Lobe, ...]
     base: LString | None = None
     grown: LString | None = None
-    style: CrownStyle | None = None  # how it grew (the crown panel; None: the defaults; not saved yet)
+    style: CrownStyle | None = None  # how it grew (the crown panel; None: the defaults; saved as crown_style)
 
     def base_for(self, ls: LString) -> LString:
         """What a lobe edit regrows the crown from on the tree ``ls``: the tree before the crown while

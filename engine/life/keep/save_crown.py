@@ -1,8 +1,8 @@
 """A tree's crown lobes in its save (``[trees.crown]``, format 3; older saves have none and load without
 lobes): each lobe's mesh as text (its vertices and triangles as space-separated numbers, one string per
-lobe), its stroke rings' layout, and the tree before the crown (``crown_base``, an L-string, written only
-while the tree is as the crown grew it: a lobe edit after loading then regrows the crown from it, as in
-the session that drew it).
+lobe), its stroke rings' layout, how it grew (``crown_style``, the crown panel's options) and the tree before
+the crown (``crown_base``, an L-string, written only while the tree is as the crown grew it: a lobe edit
+after loading then regrows the crown from it, as in the session that drew it).
 
 The save is untrusted: at most MAX_LOBES lobes of at most MAX_LOBE_VERTICES vertices and
 MAX_LOBE_FACES triangles, every number finite and within POSITION_LIMIT, every triangle's corners
@@ -18,11 +18,13 @@ from arbor.engine.base.errors import LSysError
 from arbor.engine.life.keep.save_check import POSITION_LIMIT, SaveError, Where, lstring_sane
 from arbor.engine.lsystem.lstring import LString, parse_lstring
 from arbor.engine.lsystem.text import format_number
+from arbor.engine.modeling.crown_style import CrownStyle, load_styles
 from arbor.engine.modeling.crowned import MAX_LOBE_FACES, MAX_LOBE_VERTICES, MAX_LOBES, CrownRecord
 from arbor.engine.modeling.lobes import Lobe
 
 NUMBER_CHARACTERS = 32  # characters a saved number may take (with its space)
 KEYS = ("lobe_vertices", "lobe_faces", "lobe_rings", "lobe_ring_sizes")
+STYLE_KEYS = ("twig", "fork", "straight", "rise", "leaf_size", "leaves")  # the crown panel's (crown_style.py)
 
 
 def crown_lines(crown: CrownRecord | None, tree: LString, lstring_text) -> list[str]:
@@ -40,6 +42,9 @@ def crown_lines(crown: CrownRecord | None, tree: LString, lstring_text) -> list[
              "lobe_faces = [" + ", ".join(f'"{f}"' for f in faces) + "]",
              f"lobe_rings = [{', '.join(str(int(lobe.rings)) for lobe in lobes)}]",
              f"lobe_ring_sizes = [{', '.join(str(int(lobe.ring_size)) for lobe in lobes)}]"]
+    if crown.style is not None:
+        values = ", ".join(f"{name} = {format_number(float(getattr(crown.style, name)))}" for name in STYLE_KEYS)
+        lines.append(f"crown_style = {{{values}}}")
     if crown.base is not None and crown.grown is tree:
         lines.append(f"crown_base = {lstring_text(crown.base)}")
     return [*lines, ""]
@@ -103,7 +108,21 @@ def read_crown(data: dict, where: Where, tree: LString, limit: int) -> CrownReco
         raise where.error("[trees.crown]'s lobe lists must be the same length (one entry per lobe)", "lobe_faces")
     lobes = tuple(_lobe(crown, k, where) for k in range(count))
     base = _base(crown, where, limit) if "crown_base" in crown else None
-    return CrownRecord(lobes, base, tree if base is not None else None) if lobes else None
+    style = _style(crown["crown_style"], where) if "crown_style" in crown else None
+    return CrownRecord(lobes, base, tree if base is not None else None, style) if lobes else None
+
+
+def _style(values, where: Where) -> CrownStyle:
+    """How the crown grew (the crown panel's options), each a number within its range (assets/crowns.toml)."""
+    options, _ = load_styles()
+    if not isinstance(values, dict) or not set(values) <= set(options):
+        raise where.error(f"'crown_style' must be a table of {', '.join(sorted(options))}", "crown_style")
+    for name, value in values.items():
+        option = options[name]
+        if isinstance(value, bool) or not isinstance(value, int | float) or not option.low <= value <= option.high:
+            raise where.error(f"'crown_style' {name} must be a number from {option.low:g} to {option.high:g}",
+                              "crown_style")
+    return CrownStyle(**{name: float(value) for name, value in values.items()})
 
 
 def _base(crown: dict, where: Where, limit: int) -> LString:
