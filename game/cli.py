@@ -129,6 +129,8 @@ def _cmd_export(args: argparse.Namespace) -> int:
     if fmt not in ("glb", "obj"):
         raise UserError(f"cannot export as {fmt or 'a file without a suffix'!r}: use --out NAME.glb or NAME.obj "
                         "(or --format glb|obj)")
+    if args.lods and fmt != "glb":
+        raise UserError("--lods writes every level of detail into one GLB: use --out NAME.glb")
     args.format = fmt
     with Progress(f"export {args.out.name}", 1.0, unit="s") as bar:
         geometry, _ = tree_geometry(_source(args), args.lod, roots=True, progress=bar,
@@ -138,12 +140,16 @@ def _cmd_export(args: argparse.Namespace) -> int:
         if args.height is not None and height <= 0:
             raise UserError("--height needs a tree with some height: this one has none (more --steps?)")
         metres = args.height / height if args.height is not None else args.scale or scene_metres(_source(args))
+        coarser = tuple(tree_geometry(_source(args), lod, roots=True, most=render_modules((0, 0), lod))[0].mesh
+                        for lod in range(args.lod + 1, MAX_LOD + 1)) if args.lods else ()
         with bar.timed(f"writing {fmt.upper()}", geometry.mesh.n_triangles * PER_TRIANGLE[fmt]):
-            files = export_tree(geometry.mesh, args.out, ASSETS / "textures", args.format, metres, height=height)
+            files = export_tree(geometry.mesh, args.out, ASSETS / "textures", args.format, metres, height=height,
+                                coarser=coarser)
     warning = size_warning(height * metres)
     if warning:
         print(warning, file=sys.stderr)
-    say(f"{args.out}: {geometry.mesh.n_triangles:,} triangles (lod {args.lod}), {height * metres:.2f} m tall "
+    lods = f"lod {args.lod}; with lods up to {MAX_LOD} in one GLB" if args.lods else f"lod {args.lod}"
+    say(f"{args.out}: {geometry.mesh.n_triangles:,} triangles ({lods}), {height * metres:.2f} m tall "
         f"(top of the wood); wrote {len(files)} file(s)")
     return 0
 
@@ -356,6 +362,8 @@ def build_parser() -> argparse.ArgumentParser:
     _add_growth_args(export, saves=True)
     export.add_argument("--format", choices=("glb", "obj"), default=None, help="default: from --out's suffix")
     export.add_argument("--lod", type=_bounded(0, MAX_LOD, "--lod"), default=0, help="level of detail 0-3")
+    export.add_argument("--lods", action="store_true", help="every level of detail in one GLB, from --lod to 3 "
+                        "(nodes NAME_LOD0, NAME_LOD1, ...: the suffix engines group levels by)")
     export.add_argument("--out", type=Path, default=Path("tree.glb"), metavar="FILE",
                         help="NAME.glb, or NAME.obj (with NAME.mtl and NAME_bark.png ... beside it; default tree.glb)")
     size = export.add_mutually_exclusive_group()

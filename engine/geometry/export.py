@@ -63,6 +63,23 @@ def tree_scene(tree: TreeMesh, textures: Path, metres: float = 1.0) -> trimesh.S
     return scene
 
 
+def lod_scene(levels: list[TreeMesh], textures: Path, metres: float, name: str) -> trimesh.Scene:
+    """Every level of detail of a tree in one scene: a node ``NAME_LOD0`` (the finest), ``NAME_LOD1``, ...
+    per level (the suffix engines such as Unity and Blender's LOD add-ons group by), each holding that
+    level's parts (``wood_LOD1`` ...); the levels share their materials and textures."""
+    scene = trimesh.Scene()
+    materials = {tex: _material(textures / f"{tex}.png", masked, tex) for _, tex, masked in PARTS}
+    for k, tree in enumerate(levels):
+        group = f"{name}_LOD{k}"
+        scene.graph.update(frame_from=scene.graph.base_frame, frame_to=group)
+        for attr, tex, _ in PARTS:
+            mesh: Mesh = getattr(tree, attr)
+            if mesh.n_triangles:
+                scene.add_geometry(_trimesh(mesh, materials[tex], metres), node_name=f"{attr}_LOD{k}",
+                                   geom_name=f"{attr}_LOD{k}", parent_node_name=group)
+    return scene
+
+
 def wood_top(tree: TreeMesh) -> float:
     """The top of a mesh's wood (scene units; of its other parts when it has no wood): the height of a
     tree whose turtle is not at hand (the caller's ``tree_height`` is the definition)."""
@@ -116,21 +133,26 @@ def _targets(tree: dict) -> None:
 
 
 def export_tree(tree: TreeMesh, path: str | Path, textures: Path, file_format: str | None = None,
-                metres: float = 1.0, name: str | None = None, height: float | None = None) -> list[Path]:
+                metres: float = 1.0, name: str | None = None, height: float | None = None,
+                coarser: tuple[TreeMesh, ...] = ()) -> list[Path]:
     """Write ``tree`` to ``path`` as 'glb' or 'obj' (OBJ also writes .mtl and texture files beside it),
     ``metres`` per scene unit (the game's trees: 1 / METRE, so they arrive in Blender at their height);
     ``name`` names the tree's root node (default: the file's stem); ``height`` (scene units, the top of the
     wood: engine.geometry.tree.tree_height) goes into the GLB's asset block (default: the mesh's wood top).
+    ``coarser``: the tree's coarser levels of detail, written with it into one GLB (:func:`lod_scene`).
 
     Returns the files written. The main file is written to a temp name and renamed, so an existing
     export is never left half-written.
     """
     path = Path(path)
     fmt = (file_format or path.suffix.lstrip(".")).lower()
+    if coarser and fmt != "glb":
+        raise ValueError("several levels of detail go in a GLB only")
     if fmt == "glb":
         finish = _finish(name or path.stem, metres, wood_top(tree) if height is None else height)
-        data = trimesh.exchange.gltf.export_glb(tree_scene(tree, textures, metres), include_normals=True,
-                                                tree_postprocessor=finish)
+        scene = lod_scene([tree, *coarser], textures, metres, name or path.stem) if coarser else tree_scene(
+            tree, textures, metres)
+        data = trimesh.exchange.gltf.export_glb(scene, include_normals=True, tree_postprocessor=finish)
         atomic_write(path, data)
         return [path]
     if fmt == "obj":
