@@ -62,3 +62,35 @@ def test_a_start_s_catch_up_is_told_after_the_title(gl_ctx, tmp_path):
     assert game.state.shown_message() != told
     game.title.handle(InputEvent(KEY_DOWN, clock.t, key=32))
     assert game.state.shown_message() == told
+
+
+def test_a_glance_at_a_save_is_what_reading_it_gives_without_growing_its_trees(tmp_path, monkeypatch):
+    """Restore's preview glances at each kept autosave: the same time, cared-for tree and state as reading
+    it, and no tree is built (a 30-year garden's preview costs its parse alone)."""
+    import pytest
+
+    from arbor.engine.life.keep import save
+    from arbor.engine.life.keep.save import SavedGarden, peek_garden, read_garden, write_garden
+    from arbor.engine.life.keep.save_check import SaveError
+    from arbor.engine.life.rules.rules import load_rules
+    from arbor.engine.life.world.garden import Garden
+    from arbor.engine.life.world.world import World
+    from arbor.engine.lsystem.lsys import load_lsystem
+    from arbor.game.paths import ASSETS
+
+    rules = load_rules(ASSETS / "rules.toml", pace="demo")
+    system = load_lsystem(ASSETS / "lsystems" / "game_tree.lsys")
+    worlds = [World(system, rules, seed=k) for k in (1, 2)]
+    worlds[1].sim.state.water_meter, worlds[1].sim.state.time = 0.31, 500.0
+    garden = Garden(worlds)
+    garden.current = 1
+    path = tmp_path / "garden.arbor"
+    write_garden(SavedGarden.of(garden, "game_tree.lsys", saved_at=1.7e9), path)
+    read = read_garden(path, rules)
+    monkeypatch.setattr(save, "_load_tree", None)  # (a glance that built a tree would fail here)
+    glance = peek_garden(path)
+    assert (glance.saved_at, glance.current) == (read.saved_at, read.current) == (1.7e9, 1)
+    assert glance.state == read.world.sim.state and glance.state.water_meter == pytest.approx(0.31)
+    path.write_text(path.read_text().replace("current = 1", "current = 7"))
+    with pytest.raises(SaveError, match="current"):  # (checked as reading checks it)
+        peek_garden(path)

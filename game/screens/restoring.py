@@ -71,5 +71,5 @@ class Restorer:
                 items.append(text("messages.restore_unreadable", n=n))
                 continue
             items.append(text("messages.restore_item", n=n, when=self.age(saved.saved_at),
-                              tree=tree_line(saved.current, saved.world.sim.state)))
+                              tree=tree_line(saved.current, saved.state)))
         return text("messages.restore_preview", items="; ".join(items), next=self.restored % len(kept) + 1)

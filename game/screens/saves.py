@@ -19,7 +19,7 @@ from arbor.engine.base.errors import LSysError
 from arbor.engine.base.files import atomic_write, remove_stale_temp_files, set_aside
 from arbor.engine.life.keep.away import AwaySummary, away_seconds, live_away
 from arbor.engine.life.keep.generations import rotate
-from arbor.engine.life.keep.save import SavedGarden, garden_text, read_garden, write_garden
+from arbor.engine.life.keep.save import Glance, SavedGarden, garden_text, peek_garden, read_garden, write_garden
 from arbor.engine.life.plant.sim import sun_angle_at
 from arbor.engine.life.rules.rules import Rules
 from arbor.engine.life.world.commands import SunAt
@@ -97,12 +97,12 @@ class SaveKeeper:
             self.state.say(self.start_message, 10)
         return garden
 
-    def peek(self, path: Path) -> SavedGarden | None:
-        """The save at ``path`` as it was saved, for a preview (no catch-up, nothing set aside; None when
-        it cannot be read: Restore then says so when it is chosen)."""
+    def peek(self, path: Path) -> Glance | None:
+        """A glance at the save at ``path`` as it was saved, for a preview (its trees not grown, no catch-up,
+        nothing set aside; None when it cannot be read: Restore then says so when it is chosen)."""
         try:
             with reading(path):
-                return read_garden(path, self.rules)
+                return peek_garden(path)
         except Exception:  # (a preview never breaks the game: the restore itself reports the error)
             return None
 

@@ -57,7 +57,7 @@ from arbor.engine.life.plant import genome
 from arbor.engine.life.plant.growth import GrowingTree
 from arbor.engine.life.plant.journal import Journal
 from arbor.engine.life.plant.roots import Roots
-from arbor.engine.life.plant.sim import Rules, Simulation
+from arbor.engine.life.plant.sim import Rules, SimState, Simulation
 from arbor.engine.life.rules.rules import clamp_orbit
 from arbor.engine.life.world.garden import MAX_ROCKS, MAX_SEEDS, Garden, Seed
 from arbor.engine.life.world.world import Parts, World
@@ -522,6 +522,39 @@ def read_garden(path: str | Path, rules: Rules | None = None, budget_slack: floa
     return _garden(*_read(path), path, rules, budget_slack)
 
 
+@dataclass
+class Glance:
+    """What a save says of itself without growing its trees (a Restore's preview): when it was saved (NaN
+    when unreadable), which tree is cared for and that tree's simulation state (alive, age, meters)."""
+
+    saved_at: float
+    current: int
+    state: SimState
+
+
+def peek_garden(path: str | Path) -> Glance:
+    """A :class:`Glance` at the save ``path``: read and checked as :func:`read_garden` reads it, up to the
+    cared-for tree's ``sim`` table (its species, L-string and the rest are not built: a preview of a
+    30-year garden costs the file's parse alone). A save that does not load may still be glanced at."""
+    path = Path(path)
+    data, text = _read(path)
+    data, parts, saved_at, current = _head(data, text, path)
+    tree, part = parts[current]
+    return Glance(saved_at, current, sim_state(table(tree, "sim", part), part))
+
+
+def _head(data: dict, text: str, path: Path) -> tuple[dict, list[tuple[dict, Where]], float, int]:
+    """A save's parsed TOML upgraded to today's layout, its trees' tables, when it was saved (lenient: NaN
+    when unreadable, which only means no time away) and which tree is cared for."""
+    where = Where(path, text)
+    data = _upgraded(data, where)
+    parts = _tree_parts(data, path, text)
+    saved_at = data.get("saved_at")
+    if isinstance(saved_at, bool) or not isinstance(saved_at, int | float) or not math.isfinite(saved_at):
+        saved_at = float("nan")
+    return data, parts, float(saved_at), value(data, "current", "int", 0, len(parts) - 1, where, default=0)
+
+
 def read_garden_bytes(raw: bytes, label: str | Path, rules: Rules | None = None) -> SavedGarden:
     """A save carried inside another file (a postcard PNG): the same checks as :func:`read_garden`, with
     ``label`` naming the carrier in every error."""
@@ -531,13 +564,7 @@ def read_garden_bytes(raw: bytes, label: str | Path, rules: Rules | None = None)
 
 def _garden(data: dict, text: str, path: Path, rules: Rules | None, budget_slack: float) -> SavedGarden:
     """The checked garden of a save's parsed TOML ``data`` and its ``text`` (for line numbers)."""
-    where = Where(path, text)
-    data = _upgraded(data, where)
-    parts = _tree_parts(data, path, text)
-    saved_at = data.get("saved_at")  # lenient: a clock that cannot be read only means no time away
-    if isinstance(saved_at, bool) or not isinstance(saved_at, int | float) or not math.isfinite(saved_at):
-        saved_at = float("nan")
-    current = value(data, "current", "int", 0, len(parts) - 1, where, default=0)
+    data, parts, saved_at, current = _head(data, text, path)
     _check_sources(parts, path)
     worlds = [_load_tree(tree, part, rules or Rules(), budget_slack) for tree, part in parts]
     family, dropped = Family.from_rows(data.get("family", []))
