@@ -408,3 +408,32 @@ def test_a_tree_drawn_over_frames_sways_a_picture_later(game, monkeypatch):
         shots.append(frame(game))
     assert game.renderer.last_layered and pictures.version >= shown + 2
     assert (np.abs(shots[0] - shots[-1]).sum(axis=2) > 40).sum() > 300  # the twigs moved
+
+
+def test_a_coarse_level_keeps_its_thickest_segments_round_and_draws_every_other(game, monkeypatch):
+    """At a coarse level the thickest grown segments (``fine``) are drawn with level 0's sides and the rest
+    from the next record on at the level's: all of the wood is there, and the fine ones are level 0's."""
+    from arbor.game.render import garden
+
+    game.rules.wind.strength = 0.0
+    monkeypatch.setattr(garden, "LAYER_COST", float("inf"))
+    frame(game)
+    background = frame_without_trees(game)
+    n = game.renderer.placed[0].buffers.parts["tube"].count
+
+    def wood(lod: int, fine: int) -> np.ndarray:
+        monkeypatch.setattr(game.renderer, "_detail", lambda *a: Detail(lod, n, 0, 0.3, 1.0, 0.0, fine))
+        return frame(game)
+
+    finest, coarse, half, every = wood(0, 0), wood(3, 0), wood(3, n // 2), wood(3, n)
+    shape = np.abs(finest - background).sum(axis=2) > 30
+    half_shape = np.abs(half - background).sum(axis=2) > 30
+    differs = lambda a, b: (np.abs(a - b).sum(axis=2) > 30).sum()  # noqa: E731
+    records = game.renderer.placed[0].buffers.parts["tube"].records
+    trunk = (records[0, 0:3] + records[0, 9:12]) / 2  # the thickest segment's middle
+    x, y = project_points(game.camera(), SIZE, trunk[None])[0].astype(int)
+    near = (slice(y - 4, y + 5), slice(x - 4, x + 5))
+    assert differs(coarse[near], finest[near]) > 0  # (a 3-sided trunk shows)
+    assert differs(every[near], finest[near]) == 0 and differs(half[near], finest[near]) == 0  # round
+    assert shape.sum() > 500 and (half_shape & shape).sum() > 0.95 * shape.sum()  # and no segment missing
+    assert differs(half, coarse) > 0

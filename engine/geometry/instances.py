@@ -22,7 +22,7 @@ from arbor.engine.geometry.mesh import wood_rings
 from arbor.engine.geometry.turtle import Leaves, Segments
 
 COLLAR = 1.3  # a branch's start ring is this much wider than the branch: the collar where it leaves its parent
-FLARE = (1.3, 1.9)  # and the trunk's foot this much wider than the trunk, a sapling's to an old tree's
+FLARE = (1.3, 1.7)  # and the trunk's foot this much wider than the trunk, a sapling's to an old tree's
 FLARE_AGED = (0.01 * METRE, 0.15 * METRE)  # trunk radius (scene units) of a sapling and of an old tree
 FLARE_REACH = 0.8  # the flare falls off e-fold every this many trunk radii up
 TUBE_FLOATS = 26  # c0 t0 x0 c1 t1 x1 (18), r0 r1, v0 v1, flex0 flex1, cap, order

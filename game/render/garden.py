@@ -43,6 +43,7 @@ from arbor.game.render.stage import Scene, Stage
 
 LOD_PIXELS = (520, 260, 120)  # on-screen height (px) above which a tree gets level 0, 1, 2 (else 3)
 TWIG_PIXELS = (0.0, 0.1, 0.2, 0.35)  # per level: grown segments of a smaller radius (px) are left out
+FINE_PIXELS = 2.5  # grown segments at least this thick (radius, px) keep level 0's sides at any level
 LEAF_PIXELS = 1_000_000  # leaf area (pixels, all layers) above which a software GL draws trees smaller
 SEGMENT_PIXELS = 130  # a grown segment costs a software GL about as much as this many pixels of leaves
 LAYER_COST = 100_000  # cost (leaf pixels, all layers, and segments) above which a software GL draws trees as a picture
@@ -146,6 +147,11 @@ class GardenRenderer:
             detail = Detail.of(buffers, lod, TWIG_PIXELS[lod] * per_pixel, LEAF_KEPT[lod])
         if detail.vertices(buffers) > self.vertex_budget:
             detail = squeezed(buffers, detail, self.vertex_budget)
+        # (a coarse level's few thick segments, trunk and limbs, stay round: a 3-sided trunk is a prism;
+        # within the budget's room)
+        room = (self.vertex_budget - detail.vertices(buffers)) // max(TEMPLATE_VERTICES[0] - TEMPLATE_VERTICES[
+            detail.lod], 1)
+        detail = replace(detail, fine=min(buffers.tubes_at_least(FINE_PIXELS * per_pixel), max(room, 0)))
         if self.samples > 1:
             return detail
         natural = buffers.leaf_area * detail.leaf_share / per_pixel**2  # pixels of the drawn leaves, life size

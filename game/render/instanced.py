@@ -55,6 +55,7 @@ class Detail:
     leaf_share: float = 1.0
     leaf_grow: float = 1.0  # how much larger than life the drawn leaves are (length and width)
     thinnest: float = 0.0  # growing segments thinner than the grown ones drawn are left out too
+    fine: int = 0  # the thickest grown segments drawn at level 0 whatever the level (a trunk stays round)
 
     @classmethod
     def of(cls, tree: TreeBuffers, lod: int, thinnest: float = 0.0, leaf_share: float = 1.0) -> Detail:
@@ -66,12 +67,18 @@ class Detail:
     def vertices(self, tree: TreeBuffers) -> int:
         """Vertices this detail makes the GL shade for ``tree`` (the cost on a software GL)."""
         tubes, quads = self._drawn(tree)
-        return TEMPLATE_VERTICES[self.lod] * tubes + 4 * quads
+        fine = self._fine()
+        return TEMPLATE_VERTICES[self.lod] * (tubes - fine) + TEMPLATE_VERTICES[0] * fine + 4 * quads
 
     def triangles(self, tree: TreeBuffers) -> int:
         """Triangles drawn for ``tree`` (3 per side of a segment, 2 per leaf)."""
         tubes, quads = self._drawn(tree)
-        return 3 * SIDES[self.lod] * tubes + 2 * quads
+        fine = self._fine()
+        return 3 * SIDES[self.lod] * (tubes - fine) + 3 * SIDES[0] * fine + 2 * quads
+
+    def _fine(self) -> int:
+        """Grown segments drawn at level 0 (the thickest, see ``fine``)."""
+        return min(self.fine, self.tubes) if self.lod > 0 else 0
 
     def _drawn(self, tree: TreeBuffers) -> tuple[int, int]:
         """Segments and quads (leaves, blossoms, fruit) drawn: the grown prefixes and every young one."""
@@ -162,6 +169,17 @@ class _Part:
         self.buffer.release()
         if self.quads is not None:
             self.quads.release()
+
+
+@dataclass
+class _From:
+    """A vertex array whose record attributes start ``first`` records into their buffer."""
+
+    vao: moderngl.VertexArray
+    first: int = -1
+
+    def release(self) -> None:
+        self.vao.release()
 
 
 @dataclass
@@ -257,6 +275,26 @@ class InstancedTrees:
             vao = part.vaos[key] = self.ctx.vertex_array(prog, content, tris, skip_errors=True)
         return vao
 
+    def _tubes_from(self, part: _Part, pass_: str, lod: int, first: int) -> moderngl.VertexArray:
+        """A vertex array of ``part``'s tubes at level ``lod`` whose instances begin at record ``first`` (its
+        record attributes bound that far into the buffer: GL 3.3 has no base instance)."""
+        key = ("tube_from", pass_, lod)
+        prog = self.programs[("tube", pass_)]
+        entry = part.vaos.get(key)
+        if entry is None:
+            verts, cap, tris = self.templates[lod]
+            vao = self.ctx.vertex_array(prog, [(verts, "4f", "in_ring"), (cap, "1f", "in_cap")], tris,
+                                        skip_errors=True)
+            entry = part.vaos[key] = _From(vao)
+        if entry.first != first:
+            stride, offset = part.records.shape[1] * 4, first * part.records.shape[1] * 4
+            for name, size in zip(TUBE_LAYOUT[1], (3, 3, 3, 3, 3, 3, 2, 2, 2, 1), strict=True):
+                if name in prog:
+                    entry.vao.bind(prog[name].location, "f", part.buffer, f"{size}f", offset, stride, 1)
+                offset += size * 4
+            entry.first = first
+        return entry.vao
+
     def draw(self, tree: TreeBuffers, pass_: str, detail: Detail, uniforms: dict, textures: dict,
              piece: Piece = WHOLE) -> None:
         """Draw one tree's wood, leaves, blossoms and fruit in ``pass_`` ('lit' or 'shadow') at
@@ -297,7 +335,13 @@ class InstancedTrees:
             if kind == 0:
                 if pass_ == "lit" and self.cull_wood:
                     self.ctx.enable(moderngl.CULL_FACE)
-                vao.render(instances=count)
+                fine = detail._fine() if name == "tube" and pass_ == "lit" else 0
+                if fine:  # the thickest at level 0, the rest at the level's (records from the fine-th on)
+                    self._vao(part, shape, pass_, 0).render(instances=fine)
+                    if count > fine:
+                        self._tubes_from(part, pass_, lod, fine).render(instances=count - fine)
+                else:
+                    vao.render(instances=count)
                 self.ctx.disable(moderngl.CULL_FACE)
             else:
                 vao.render(vertices=6 * (count - first), first=6 * first)
