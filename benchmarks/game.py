@@ -66,7 +66,8 @@ def _report(name: str, times: tuple[np.ndarray, np.ndarray], note: str = "") -> 
 def _drawn(game) -> str:
     """The cared-for tree's leaf clusters, and what the renderer drew of it in the last frame."""
     world = game.world
-    leaves = int(np.count_nonzero(world.tree.lstring.sym == ord("L")))
+    entry = game.view.views.get(id(world))  # (its leaf records: shoot units hold leaves no L module shows)
+    leaves = len(entry[1].leaves) if entry is not None else int(np.count_nonzero(world.tree.lstring.sym == ord("L")))
     details = game.renderer.last_details
     if not details:
         return f"({leaves:,} leaf clusters; nothing drawn)"
