@@ -53,6 +53,7 @@ def test_grown_alike_the_species_differ_in_form(collection):
     ('[oak]\nbase = "../secret.lsys"\n', "base must name a game .lsys", 2),
     ('[oak]\nbase = "game_tree.lsys"\ndefines = { BA = nan }\n', "finite number", 3),
     ('[Oak]\nbase = "game_tree.lsys"\n', "lower-case", 1),
+    ('[oak]\nbase = "game_tree.lsys"\nunlock = "never"\n', "unlock must be one of", 3),
 ])
 def test_a_bad_collection_is_refused_at_its_line(tmp_path, text, words, line):
     path = tmp_path / "species.toml"

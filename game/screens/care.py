@@ -64,7 +64,8 @@ class CareActions:
         self.crossing = None  # the mother of a cross, while the player picks the father
         self.replant_asked, self.replant_at = None, 0.0  # the tree a first Replant press asked about, and when
         self.restoring = Restorer(state, self.keeper, self.wall_clock, self.sync_sliders)
-        self.species = SpeciesChoice(self.system)  # Garden -> Species: what Plant a tree plants
+        self.species = SpeciesChoice(self.system, lambda: state.garden, *(  # Garden -> Species
+            (sound.unlocked, sound.unlock) if sound is not None else ()))
         state.on_halt.append(self.sync_sliders)
         tool = lambda switch: pressed(lambda: self._tool(switch))  # noqa: E731
         self.handlers: dict[Action, Handler] = {

@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import logging
 import os
+import re
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -50,6 +51,7 @@ class Preferences:
     muted: bool = False
     away: bool = False
     gardener: bool = False  # at 10x and 100x the gardener tends the garden (engine/life/world/guardian.py)
+    unlocked: str = ""  # the species of the collection the player has opened by milestones (keys, comma-separated)
 
 
 def check_volume(volume: float, file: str, text: str, key: str = "volume") -> None:
@@ -86,7 +88,8 @@ def write_preferences(prefs: Preferences, path: Path) -> None:
     text = ("# Arbor's own settings (Settings in the game's menu); the garden is in autosave.arbor.\n"
             f"volume = {round(prefs.volume, 3)!r}\nmuted = {str(prefs.muted).lower()}\n"
             f"away = {str(prefs.away).lower()}  # the garden is watered while you are away\n"
-            f"gardener = {str(prefs.gardener).lower()}  # the gardener cares while you skip (10x, 100x)\n")
+            f"gardener = {str(prefs.gardener).lower()}  # the gardener cares while you skip (10x, 100x)\n"
+            f"unlocked = \"{re.sub(r'[^a-z0-9_,]', '', prefs.unlocked)}\"  # species your trees opened\n")
     atomic_write(path, text.encode("utf-8"))
 
 
@@ -128,6 +131,17 @@ class PlayerSettings:
         self.prefs.away = not self.prefs.away
         self._changed()
         return self.prefs.away
+
+    def unlocked(self) -> set[str]:
+        """The species the player has opened by milestones (kept in settings.toml)."""
+        return {key for key in self.prefs.unlocked.split(",") if key}
+
+    def unlock(self, keys: set[str]) -> None:
+        """Keep ``keys`` among the opened species (written with the other settings)."""
+        every = self.unlocked() | set(keys)
+        if every != self.unlocked():
+            self.prefs.unlocked = ",".join(sorted(every))
+            self._changed()
 
     def toggle_gardener(self) -> bool:
         """The Gardener button: at 10x and 100x the gardener tends the garden, or the guardian stops time

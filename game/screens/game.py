@@ -107,7 +107,7 @@ class Game:
         self.gestures.pinch_target = self.modeling.pinch
         self.view = GameView(state, self.renderer, self.modeling, self.rules, size)
         self.coach = Coach(state, self.view.views)
-        self.menu.journal_source = self.coach.journal_lines
+        self.menu.journal_source = lambda: self.coach.journal_lines() + self.care.species.goals()
         self.family = FamilyScreen(state, self.menu, size, self.screens, (self.font, self.small_font))
         self.care = CareActions(state, self.rules, CareParts(self.menu, self.modeling, self.keeper, self.family,
                                                              self.coach, self.system, self.wall_clock, self.sound))

@@ -20,7 +20,8 @@ from arbor.engine.base.errors import LSysError
 from arbor.engine.base.reader import read_user_toml
 from arbor.engine.lsystem.lsys import LSystem, load_lsystem, parse_lsystem
 
-KEYS = ("name", "about", "base", "defines")
+KEYS = ("name", "about", "base", "defines", "unlock")
+UNLOCKS = ("start", "branch", "fruit", "winter", "cross")  # the milestones that open a species (see species.toml)
 MAX_SPECIES = 32  # species in one collection at most
 
 
@@ -31,13 +32,15 @@ class SpeciesError(LSysError):
 @dataclass(frozen=True)
 class Species:
     """One species of the collection: ``key`` (its lineage's species name), the ``name`` and ``about``
-    shown to the player, its ``base`` .lsys file name and the ``defines`` it changes."""
+    shown to the player, its ``base`` .lsys file name, the ``defines`` it changes and the milestone that
+    ``unlock``s it (one of UNLOCKS)."""
 
     key: str
     name: str
     about: str
     base: str
     defines: dict[str, float] = field(default_factory=dict)
+    unlock: str = "start"
 
 
 def load_collection(path: str | Path, lsystems: str | Path) -> list[Species]:
@@ -60,8 +63,12 @@ def load_collection(path: str | Path, lsystems: str | Path) -> list[Species]:
                 or not (Path(lsystems) / base).is_file():
             raise SpeciesError(f"[{key}] base must name a game .lsys of {lsystems}", file,
                                *toml_position(text, key, "base"))
+        unlock = row.get("unlock", "start")
+        if unlock not in UNLOCKS:
+            raise SpeciesError(f"[{key}] unlock must be one of {', '.join(UNLOCKS)}", file,
+                               *toml_position(text, key, "unlock"))
         species = Species(key, str(row.get("name", key)), str(row.get("about", "")), base,
-                          _defines(row.get("defines", {}), key, file, text))
+                          _defines(row.get("defines", {}), key, file, text), unlock)
         declared = load_lsystem(Path(lsystems) / base).constants
         unknown = sorted(set(species.defines) - set(declared))
         if unknown:
