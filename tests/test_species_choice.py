@@ -17,7 +17,11 @@ def test_the_player_chooses_among_the_species_the_garden_has_opened(gl_ctx, tmp_
     assert game.menu.widget("species").label == "Species: Maple"  # (only the two open from the start)
     goals = game.care.species.goals()
     assert len(goals) == 4 and any("the Oak (a tree's first fruit)" in line for line in goals)
+    game.update(1.0)
     game.world.journal.write(game.world.sim.state.time, "fruit", 1.0)  # the garden's first fruit
+    game.fake_clock.t += 1.0
+    game.update(1.0)
+    assert "A new species to plant: the Oak!" in game.state.shown_message()  # (said once, as it opens)
     names = []
     for _ in range(3):
         game.act(Action.SPECIES, 1.0)

@@ -190,6 +190,10 @@ class Game:
         if problem:
             self.say(problem, 8)
         self.keeper.autosave_if_due()
+        if int(self.clock()) != int(self.clock() - real_seconds):  # (once a second: a new species opened?)
+            opened = self.care.species.watch()
+            if opened:
+                self.say(opened, 8)
 
     def clocks(self) -> Clocks:
         """Growth clocks to draw: interpolated between the last two sim states."""

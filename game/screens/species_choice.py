@@ -44,6 +44,7 @@ class SpeciesChoice:
         self.collection: list[Species] | None = None  # read at the first use
         self.index = -1  # -1: the game's own species (before any press)
         self.problem = ""
+        self._seen: set[str] | None = None  # the species open at the last watch (None: not looked yet)
 
     def species(self) -> list[Species]:
         """The collection (read once; [] when it cannot be read, and :attr:`problem` says why)."""
@@ -62,6 +63,13 @@ class SpeciesChoice:
         if fresh:
             self.keep(fresh)
         return open_now
+
+    def watch(self) -> str:
+        """The line that tells of species opened since the last look ('' when none): each is said once."""
+        seen, now = self._seen, {s.key for s in self.opened()}
+        self._seen = now
+        fresh = [s for s in self.species() if s.key in now - (seen if seen is not None else now)]
+        return text("messages.species_opened", names=", ".join(s.name for s in fresh)) if fresh else ""
 
     def next(self) -> str:
         """The next opened species; returns the line that says what it is (or why there is none)."""

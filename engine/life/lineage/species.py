@@ -49,7 +49,7 @@ def load_collection(path: str | Path, lsystems: str | Path) -> list[Species]:
     text, data = read_user_toml(path, SpeciesError)
     if not data or len(data) > MAX_SPECIES:
         raise SpeciesError(f"a collection holds 1 to {MAX_SPECIES} species", file, 1, 1)
-    out = []
+    out, declared_by = [], {}  # (each base parsed once)
     for key, row in data.items():
         where = toml_position(text, key)
         if not isinstance(row, dict) or not re.fullmatch(r"[a-z][a-z0-9_]{0,39}", key):
@@ -69,7 +69,9 @@ def load_collection(path: str | Path, lsystems: str | Path) -> list[Species]:
                                *toml_position(text, key, "unlock"))
         species = Species(key, str(row.get("name", key)), str(row.get("about", "")), base,
                           _defines(row.get("defines", {}), key, file, text), unlock)
-        declared = load_lsystem(Path(lsystems) / base).constants
+        if base not in declared_by:
+            declared_by[base] = load_lsystem(Path(lsystems) / base).constants
+        declared = declared_by[base]
         unknown = sorted(set(species.defines) - set(declared))
         if unknown:
             raise SpeciesError(f"[{key}] {base} declares no {', '.join(unknown)}", file,
