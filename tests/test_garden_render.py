@@ -361,6 +361,12 @@ def test_a_heavy_tree_is_drawn_over_frames_at_full_resolution_and_looks_as_drawn
     assert game.renderer.last_layered and pictures.front.size == SIZE  # a picture at full resolution
     assert pictures.version >= shown + 2 and sum(into for _, into in pictures.shown.steps) >= 3  # drawn in steps
     assert np.abs(over_frames - at_once).max() <= 2
+    monkeypatch.setattr(garden, "STEP_COST", 1)  # the most shares of leaves and of wood
+    for _ in range(16):
+        over_frames = frame(game)
+    assert game.renderer.leaf_steps == garden.LEAF_STEPS[1] and game.renderer.wood_steps == garden.WOOD_STEPS
+    assert sum(into for _, into in pictures.shown.steps) == garden.LEAF_STEPS[1] + garden.WOOD_STEPS
+    assert np.abs(over_frames - at_once).max() <= 2
 
 
 def _form(shape: np.ndarray) -> np.ndarray:

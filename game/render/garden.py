@@ -49,6 +49,7 @@ SEGMENT_PIXELS = 130  # a grown segment costs a software GL about as much as thi
 LAYER_COST = 100_000  # cost (leaf pixels, all layers, and segments) above which a software GL draws trees as a picture
 STEP_COST = 120_000  # a picture drawn over frames draws its leaves in shares of about this many pixels
 LEAF_STEPS = (2, 6)  # and in at least, at most so many shares
+WOOD_STEPS = 4  # and its wood in shares of about STEP_COST too (grown segments at SEGMENT_PIXELS), at most so many
 LEAVES = Piece(frozenset({"leaf", "leaf_young", "blossom", "fruit"}))
 WOOD = Piece(frozenset({"tube", "tube_young", "stone"}))
 BARK = (1.4, 1.36, 1.3)  # (near grey: the sun's warm light does the rest)
@@ -104,6 +105,7 @@ class GardenRenderer:
         self.last_layered = False  # whether the last frame showed the trees as a layer's picture (layer.py)
         self.last_vp: np.ndarray | None = None  # the last frame's view-projection (did the camera move?)
         self.leaf_steps = LEAF_STEPS[0]  # shares of the leaves a picture drawn over frames draws them in
+        self.wood_steps = 1  # and of its wood
         self.shadow_waited = 0  # frames a due shadow map has waited (see SHADOW_WAIT)
 
     def place(self, placed: list[Placed], lo: np.ndarray, hi: np.ndarray) -> None:
@@ -179,6 +181,8 @@ class GardenRenderer:
         layered = self.samples <= 1 and (scale < 1.0 or (cost > LAYER_COST and still))
         self.last_layered = layered
         self.leaf_steps = min(max(math.ceil(sum(leaf_pixels) * scale**2 / STEP_COST), LEAF_STEPS[0]), LEAF_STEPS[1])
+        self.wood_steps = min(max(math.ceil(SEGMENT_PIXELS * sum(d.tubes for d in details) / STEP_COST), 1),
+                              WOOD_STEPS)
         grow_grass(self.grass, self.placed)
         self.backdrop.drift = int(self.time * CLOUD_DRIFT / CLOUD_STEP)
         self.backdrop.soft = (self.soft_shadows, 1.0 / SHADOW_SIZE)
@@ -242,12 +246,16 @@ class GardenRenderer:
                        whole: bool) -> list[Step]:
         """What a picture of the trees takes, frame by frame (see layer.Pictures): the shadow map when it
         is due, then shares of the grown leaves (``leaf_steps`` of them, the last with the young leaves,
-        blossoms and fruit), then the wood, and a frame for showing it (the backdrop keeps itself up to
+        blossoms and fruit), then of the wood (``wood_steps``, the last with the young segments and the
+        rocks), and a frame for showing it (the backdrop keeps itself up to
         date, a part a frame: stage.Stage.layered)."""
-        shadows = self._shadow_steps(scene.light, scene.sun, details, [WHOLE] if whole else [LEAVES, WOOD])
-        n = self.leaf_steps
-        shares = [Piece(frozenset({"leaf"}), k / n, (k + 1) / n) for k in range(n - 1)]
-        pieces = [WHOLE] if whole else [*shares, Piece(LEAVES.names, (n - 1) / n), WOOD]
+        n, m = self.leaf_steps, self.wood_steps
+        leaves = [Piece(frozenset({"leaf"}), k / n, (k + 1) / n) for k in range(n - 1)]
+        wood = [*(Piece(frozenset({"tube"}), k / m, (k + 1) / m) for k in range(m - 1)), Piece(WOOD.names, (m - 1) / m)]
+        halves = [Piece(frozenset({"leaf"}), 0.0, 0.5), Piece(LEAVES.names, 0.5), *wood]  # (the shadow map's)
+        shadows = self._shadow_steps(scene.light, scene.sun, details, [WHOLE] if whole else halves)
+        last = [Piece(LEAVES.names, (n - 1) / n), *wood]
+        pieces = [WHOLE] if whole else [*leaves, *last]
         trees = [self._trees_step(details, dict(uniforms), p) for p in pieces]
         show = [] if whole else [(lambda: None, False)]  # the new picture is shown in a frame of its own
         return [(step, False) for step in shadows] + trees + show

@@ -90,7 +90,7 @@ class Detail:
 @dataclass(frozen=True)
 class Piece:
     """A share of a tree's drawing, for pictures drawn over several frames: the parts named, and of
-    the grown leaves a level draws only those from share ``lo`` to ``hi`` of them."""
+    the grown leaves and grown segments a level draws only those from share ``lo`` to ``hi`` of them."""
 
     names: frozenset[str] = frozenset(name for name, _ in PARTS)
     lo: float = 0.0
@@ -306,8 +306,9 @@ class InstancedTrees:
                 continue
             count = min(detail.tubes if name == "tube" else detail.leaves if name == "leaf" else part.count,
                         part.count)
-            first = round(count * piece.lo) if name == "leaf" else 0
-            count = round(count * piece.hi) if name == "leaf" else count
+            shared = name in ("leaf", "tube")  # (the grown leaves and wood a piece may draw a share of)
+            first = round(count * piece.lo) if shared else 0
+            count = round(count * piece.hi) if shared else count
             if count <= first:
                 continue
             shape = "tube" if kind == 0 else "card" if kind == 1 and pass_ == "lit" else "leaf"
@@ -336,12 +337,11 @@ class InstancedTrees:
                 if pass_ == "lit" and self.cull_wood:
                     self.ctx.enable(moderngl.CULL_FACE)
                 fine = detail._fine() if name == "tube" and pass_ == "lit" else 0
-                if fine:  # the thickest at level 0, the rest at the level's (records from the fine-th on)
-                    self._vao(part, shape, pass_, 0).render(instances=fine)
-                    if count > fine:
-                        self._tubes_from(part, pass_, lod, fine).render(instances=count - fine)
-                else:
-                    vao.render(instances=count)
+                # the thickest at level 0, the rest at the level's, each from its first record drawn on
+                for level, start, end in ((0, first, min(count, fine)), (lod, max(first, fine), count)):
+                    if end > start:
+                        drawn = vao if start == 0 and level == lod else self._tubes_from(part, pass_, level, start)
+                        drawn.render(instances=end - start)
                 self.ctx.disable(moderngl.CULL_FACE)
             else:
                 vao.render(vertices=6 * (count - first), first=6 * first)

@@ -15,7 +15,8 @@ from arbor.game.render.camera import OrbitCamera, project_points
 
 MIN_SCALE = 0.5  # never coarser than half the frame's resolution
 REUSE_PIXELS = 1.5  # a picture is shown while the camera keeps every corner of the trees this close
-MAX_AGE = 16  # frames: a picture begun longer ago is redrawn whole (when restarts keep a new one from finishing)
+MAX_AGE = 16  # frames (or four times a picture's steps): one begun longer ago is redrawn whole (when restarts
+# keep a new one from finishing)
 Step = tuple[Callable[[], None], bool]  # something to draw, and whether it draws into the picture
 
 
@@ -118,7 +119,8 @@ class Pictures:
         self.frame += 1
         key = (size, scale, key)
         shown = self.shown
-        if (shown is None or shown.key[0] != size or self.frame - shown.start > MAX_AGE
+        # (a picture of many steps is older when the next is shown: its age is counted in pictures' lengths)
+        if (shown is None or shown.key[0] != size or self.frame - shown.start > max(MAX_AGE, 4 * len(shown.steps))
                 or moved(shown.vp, vp, points, size) > REUSE_PIXELS):
             self._run(_Cycle(key, vp, steps(True), self.frame, scene), size, scale, whole=True)
             return
