@@ -52,6 +52,7 @@ class Preferences:
     away: bool = False
     gardener: bool = False  # at 10x and 100x the gardener tends the garden (engine/life/world/guardian.py)
     unlocked: str = ""  # the species of the collection the player has opened by milestones (keys, comma-separated)
+    remind: bool = True  # a thirsty tree while the game's window is elsewhere flashes it (game/screens/bell.py)
 
 
 def check_volume(volume: float, file: str, text: str, key: str = "volume") -> None:
@@ -89,7 +90,8 @@ def write_preferences(prefs: Preferences, path: Path) -> None:
             f"volume = {round(prefs.volume, 3)!r}\nmuted = {str(prefs.muted).lower()}\n"
             f"away = {str(prefs.away).lower()}  # the garden is watered while you are away\n"
             f"gardener = {str(prefs.gardener).lower()}  # the gardener cares while you skip (10x, 100x)\n"
-            f"unlocked = \"{re.sub(r'[^a-z0-9_,]', '', prefs.unlocked)}\"  # species your trees opened\n")
+            f"unlocked = \"{re.sub(r'[^a-z0-9_,]', '', prefs.unlocked)}\"  # species your trees opened\n"
+            f"remind = {str(prefs.remind).lower()}  # a thirsty tree flashes the window while you are elsewhere\n")
     atomic_write(path, text.encode("utf-8"))
 
 

@@ -25,6 +25,7 @@ import pygame
 from arbor.engine.life.form.interpret import Clocks
 from arbor.engine.life.rules.rules import load_rules
 from arbor.engine.life.world.actions import Action
+from arbor.engine.life.world.status import water_low
 from arbor.engine.life.world.world import World
 from arbor.engine.lsystem.lsys import load_lsystem
 from arbor.game.audio.sounds import Audio, soundscape
@@ -35,6 +36,7 @@ from arbor.game.render.camera import OrbitCamera
 from arbor.game.render.garden import GardenRenderer
 from arbor.game.render.renderer import Overlay
 from arbor.game.render.ui import HudInfo, Menu
+from arbor.game.screens.bell import NeedBell
 from arbor.game.screens.care import CareActions, CareParts
 from arbor.game.screens.coach import Coach
 from arbor.game.screens.config import GameConfig, PlayerSettings
@@ -74,6 +76,7 @@ class Game:
         self.renderer = GardenRenderer(ctx)
         self.audio = Audio()
         self.sound = PlayerSettings(self.audio, self.config.saves, clock)  # (volume, mute and Away)
+        self.bell = NeedBell()  # (a thirsty tree while the window is elsewhere: its taskbar entry flashes)
         self.overlay = Overlay(ctx, size)
         pygame.font.init()
         self.font = pygame.font.Font(None, 32)
@@ -194,6 +197,8 @@ class Game:
             opened = self.care.species.watch()
             if opened:
                 self.say(opened, 8)
+            if self.sound.prefs.remind:  # (a thirsty tree while the window is elsewhere: screens/bell.py)
+                self.bell.update(water_low(self.world))
 
     def clocks(self) -> Clocks:
         """Growth clocks to draw: interpolated between the last two sim states."""
