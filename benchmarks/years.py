@@ -1,11 +1,13 @@
-"""Three simulated years at the home pace: does the crown stay full and shapely as the tree ages?
+"""Years at the home pace: does the crown keep getting grander, shaped by light and never by the budget?
 
-Run: python -m benchmarks.years [YEARS] [OUTDIR]
+Run: python -m benchmarks.years [YEARS] [OUTDIR]   (default 3 years; the issue's run is 30)
 The home-pace player of benchmarks.home_pace (the can twice a day, nothing else) raises one tree for YEARS
 years of 28 days. One row per season (at its last day, 13:00): height and crown width (m), width/height,
-the most leaf clusters the season saw, modules (the most, against the budget), the carbon pool and the
-days of the growing seasons (spring, summer) on which the tree did not grow. With OUTDIR, the tree's save
-at every summer's end and every year's end (`summer_N.arbor`, `winter_N.arbor`: `arbor render` them).
+the trunk's diameter at breast height (1.3 m, or at its foot while shorter; cm), the most leaf clusters the
+season saw, modules (the most, against the budget), the carbon pool and the days of the growing seasons
+(spring, summer) on which the tree did not grow. With OUTDIR, the tree's save at every summer's end and
+every year's end (`summer_N.arbor`, `winter_N.arbor`: `arbor render` them) and OUTDIR/years.png: every
+summer's tree side by side at one scale, six a row, each with a metre bar.
 """
 
 from __future__ import annotations
@@ -18,7 +20,7 @@ import numpy as np
 
 from arbor.engine.base.units import METRE
 from arbor.engine.life.form.shoot_units import leaf_count
-from arbor.engine.life.keep.save import SavedGarden, write_garden
+from arbor.engine.life.keep.save import SavedGarden, read_garden, write_garden
 from arbor.engine.life.plant.sim import sun_angle_at
 from arbor.engine.life.rules.rules import load_rules
 from arbor.engine.life.world.garden import Garden
@@ -26,16 +28,23 @@ from arbor.engine.life.world.world import World
 from arbor.engine.lsystem.lsys import load_lsystem
 from benchmarks.home_pace import ASSETS, STEP, water
 
+BREAST = 1.3  # m: where a trunk's diameter is measured (d.b.h.)
 
-def crown(world: World) -> tuple[float, float]:
-    """(height, crown width) in metres from the tree's geometry now; unlike the lab's crown_shape (leaves only)
-    the width spans wood and leaves, so a bare winter crown has one."""
+
+def crown(world: World) -> tuple[float, float, float]:
+    """(height m, crown width m, trunk diameter at breast height cm) from the tree's geometry now; unlike the
+    lab's crown_shape (leaves only) the width spans wood and leaves, so a bare winter crown has one."""
     turtle = world.tree.geometry(world.clocks()).turtle
-    if not len(turtle.segments):
-        return 0.0, 0.0
-    pts = np.concatenate([turtle.segments.end, turtle.leaves.position]) if len(turtle.leaves) else turtle.segments.end
+    segs = turtle.segments
+    if not len(segs):
+        return 0.0, 0.0, 0.0
+    pts = np.concatenate([segs.end, turtle.leaves.position]) if len(turtle.leaves) else segs.end
     width = float(np.max(pts[:, [0, 2]].max(axis=0) - pts[:, [0, 2]].min(axis=0)))
-    return float(turtle.segments.end[:, 1].max()) / METRE, width / METRE
+    trunk = np.flatnonzero(segs.order == 0)
+    at = min(BREAST * METRE, float(segs.end[trunk, 1].max()) * 0.5)
+    spans = trunk[(segs.start[trunk, 1] <= at) & (segs.end[trunk, 1] >= at)]
+    radius = float(segs.radius[spans[0]]) if len(spans) else float(segs.radius[trunk[0]])
+    return float(segs.end[:, 1].max()) / METRE, width / METRE, 200.0 * radius / METRE
 
 
 def main(years: int = 3, out: Path | None = None) -> None:
@@ -44,16 +53,16 @@ def main(years: int = 3, out: Path | None = None) -> None:
     world = World(load_lsystem(ASSETS / "lsystems" / "game_tree.lsys"), rules, seed=3)
     world.sim.state.sun_angle = sun_angle_at(0.0)
     garden, budget = Garden([world]), world.tree.deriver.budget
-    print(f"{'year':>4} {'season':>7} {'height':>6} {'width':>6} {'w/h':>5} {'leaves':>6} {'modules':>8} "
-          f"{'pool g':>8} {'still days':>10}")
+    print(f"{'year':>4} {'season':>7} {'height':>6} {'width':>6} {'w/h':>5} {'dbh cm':>6} {'leaves':>6} "
+          f"{'modules':>8} {'pool g':>8} {'still days':>10}")
     start, peak_leaves, peak_modules, still, leaves_now = time.perf_counter(), 0, 0, 0, 0
     names, year, current = ("spring", "summer", "autumn", "winter"), 1, world.sim.season().index
     for _ in range(years * int(rules.seasons.year_days) + 1):
         season = world.sim.season().index  # the season this day begins in
         if season != current:  # a season has ended: its row
-            h, w = crown(world)
-            print(f"{year:4d} {names[current]:>7} {h:6.2f} {w:6.2f} {w / max(h, 1e-9):5.2f} {peak_leaves:6d} "
-                  f"{peak_modules:8,d} {world.carbon.pool:8.0f} {still:10d}", flush=True)
+            h, w, dbh = crown(world)
+            print(f"{year:4d} {names[current]:>7} {h:6.2f} {w:6.2f} {w / max(h, 1e-9):5.2f} {dbh:6.2f} "
+                  f"{peak_leaves:6d} {peak_modules:8,d} {world.carbon.pool:8.0f} {still:10d}", flush=True)
             if out is not None and current == 1:
                 out.mkdir(parents=True, exist_ok=True)
                 write_garden(SavedGarden.of(garden, "game_tree.lsys"), out / f"summer_{year}.arbor")
@@ -73,6 +82,45 @@ def main(years: int = 3, out: Path | None = None) -> None:
                 write_garden(SavedGarden.of(garden, "game_tree.lsys"), out / f"winter_{year}.arbor")
         still += season in (0, 1) and (world.sim.state.length_time, world.sim.state.girth_time) == before
     print(f"{years} years in {time.perf_counter() - start:.0f} s; budget {budget:,}; alive {world.sim.state.alive}")
+    if out is not None:
+        print(f"{strip(out, years)}: each summer's end at one scale (the bar at the left of each)")
+
+
+def _extent(geometry) -> float:
+    """A tree's height, or its crown's reach from the trunk x 1.3 if more (m): what a frame must hold (a tile
+    is 1.6 x as wide as high: it shows 0.8 frames either side of the trunk)."""
+    ends = geometry.turtle.segments.end
+    reach = float(np.abs(ends[:, [0, 2]]).max()) if len(ends) else 0.0
+    return max(float(ends[:, 1].max(initial=0.0)), 1.3 * reach) / METRE
+
+
+def strip(out: Path, years: int, tile: tuple[int, int] = (400, 250), per_row: int = 6) -> Path:
+    """``out``/years.png: the tree at each summer's end (its save ``summer_N.arbor``), side by side at one
+    scale (the frame of the tallest or widest), six a row, each with its metre bar and its year."""
+    import moderngl
+    import pygame
+
+    from arbor.game.render.renderer import save_png
+    from arbor.game.render.scale_bar import frame_for, render_to_scale
+
+    worlds = [read_garden(out / f"summer_{y}.arbor").world for y in range(1, years + 1)]
+    geometries = [w.tree.geometry(w.clocks()) for w in worlds]
+    frame = frame_for(max(_extent(g) for g in geometries))  # (the tallest, or the widest, fits)
+    ctx = moderngl.create_standalone_context(backend="egl")
+    pygame.font.init()
+    font = pygame.font.Font(None, 28)
+    rows = -(-years // per_row)
+    picture = np.full((rows * tile[1], min(years, per_row) * tile[0], 3), 255, np.uint8)
+    for k, geometry in enumerate(geometries):
+        pixels = render_to_scale(geometry.mesh, tile, frame, ctx=ctx)
+        label = pygame.surfarray.array3d(font.render(f"year {k + 1}", True, (20, 20, 20), (235, 235, 235)))
+        label = label.swapaxes(0, 1)
+        pixels[4:4 + label.shape[0], tile[0] - label.shape[1] - 4:tile[0] - 4] = label
+        r, c = divmod(k, per_row)
+        picture[r * tile[1]:(r + 1) * tile[1], c * tile[0]:(c + 1) * tile[0]] = pixels
+    ctx.release()
+    save_png(picture, out / "years.png")
+    return out / "years.png"
 
 
 if __name__ == "__main__":
