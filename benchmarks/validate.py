@@ -100,7 +100,7 @@ def leaf_rows(species: dict[str, dict[str, float]]) -> list[Row]:
             sucros = t.amax * (1 - math.exp(-t.quantum * ppfd / t.amax))
             rows.append(Row(f"{name}: gross assimilation at {ppfd:.0f} µmol/m²/s", "µmol CO2/m²/s", model, sucros,
                             sucros, "SUCROS negative exponential, Goudriaan & van Laar 1994"))
-        tolerant = constants.get("RDS", 0.07) < 0.07
+        tolerant = name == "game_tree"  # (the shade-tolerant species; the poplar is the pioneer)
         low, high = (5, 20) if tolerant else (20, 50)
         rows.append(Row(f"{name}: light compensation point", "µmol/m²/s", t.dark / t.quantum, low, high,
                         f"{'shade-tolerant' if tolerant else 'pioneer'} tree leaves, Lambers, Chapin & Pons 2008, "
@@ -144,6 +144,12 @@ PLANT = {  # quantity: (unit, tolerant range, pioneer range, source)
 }
 
 
+def dry_matter(world: World) -> float:
+    """Dry matter (g) the tree made since planting: what it built (leaves, wood, roots) and the sugar its pool
+    gained (non-structural carbohydrate is dry matter too; the seed's reserve was not made by the leaves)."""
+    return world.carbon.built + world.carbon.pool - world.rules.carbon.seed_reserve
+
+
 def plant_rows(species: dict[str, object], days: float) -> list[Row]:
     """Both species' quantities after ``days`` of the default care, against PLANT's ranges."""
     rows = []
@@ -154,7 +160,7 @@ def plant_rows(species: dict[str, object], days: float) -> list[Row]:
         leaf = world.carbon.leaf_area * world.rules.carbon.leaf_mass / 1000.0
         values = {"height": m["height"], "biomass": m["biomass"] * 1000, "root_shoot": root_shoot(world.carbon),
                   "h_d": m["height"] / max(m["girth"] / 100, 1e-9), "leaf_share": 100 * leaf / max(m["biomass"], 1e-9),
-                  "lue": world.carbon.built / max(caught, 1e-9),
+                  "lue": dry_matter(world) / max(caught, 1e-9),
                   "wood_density": float(system.constants.get("WD", world.rules.carbon.wood_density / 1000))}
         for key, (unit, tol, pio, source) in PLANT.items():
             low, high = tol if tolerant else pio

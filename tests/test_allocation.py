@@ -20,11 +20,12 @@ def test_the_balance_rises_with_the_crown_s_need_and_falls_with_the_soil_s_suppl
     assert root_balance(1.0, 1.0, rules) == pytest.approx(1.0)
     assert root_balance(1.0, 0.4, rules) > root_balance(1.0, 0.8, rules) > root_balance(0.5, 0.8, rules)
     assert root_balance(2.0, 0.0, rules) == rules.carbon.root_most
-    budget = CarbonBudget(built=130.0, roots_built=30.0)  # 100 g of shoot, 30 g of roots
-    assert root_demand(budget, rules, 1e9, 1.0) == pytest.approx(0.0)  # at the target (0.3): nothing wanted
-    assert root_demand(budget, rules, 1e9, 2.0) == pytest.approx(30.0)  # the target doubled: the gap
+    roots = 100.0 * rules.carbon.root_shoot
+    budget = CarbonBudget(built=100.0 + roots, roots_built=roots)  # 100 g of shoot, its roots at the target
+    assert root_demand(budget, rules, 1e9, 1.0) == pytest.approx(0.0)  # at the target: nothing wanted
+    assert root_demand(budget, rules, 1e9, 2.0) == pytest.approx(roots)  # the target doubled: the gap
     half = rules.carbon.root_catch_up / 2
-    assert root_demand(budget, rules, half, 2.0) == pytest.approx(15.0)  # closed over root_catch_up
+    assert root_demand(budget, rules, half, 2.0) == pytest.approx(roots / 2)  # closed over root_catch_up
 
 
 def grown(system, below: float, until: float, shade: float = 0.0, days: float = 6) -> float:
@@ -51,10 +52,13 @@ def test_root_shoot_is_a_young_tree_s_and_rises_in_drought_and_falls_in_shade(ls
 
 
 def test_the_roots_grow_as_fast_as_the_balance_asks_up_to_the_rule_root_most(lsys_dir):
-    """World.settle lets the roots grow at the balance's need over supply, capped once, by carbon.root_most."""
+    """A reading pays the roots' due and World.settle lets them grow at the balance's need over supply, capped once,
+    by carbon.root_most."""
     rules = load_rules("assets/rules.toml", pace="demo")
     world = World(load_lsystem(lsys_dir / "game_tree.lsys"), rules, seed=3)
     world.carbon.pool, world.carbon.built = 1e6, 10.0  # a full pool and a shoot to balance
     world.sim.state.water_meter, world.sim.state.daylight = 0.02, 1.0  # a dry soil under a bright crown
+    world.economy(10.0, 0.0).rest(0.0)  # (a reading at night: upkeep, then the roots' due)
     world.settle(10.0)
+    assert world.carbon.roots_built > 0
     assert world.sim.root_vigour == pytest.approx(rules.carbon.root_most)

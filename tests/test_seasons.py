@@ -43,7 +43,7 @@ def year():
     world = World(load_lsystem(ASSETS / "lsystems" / "game_tree.lsys"), load_rules(RULES, pace="demo"), seed=3)
     world.sim.state.sun_meter = world.sim.state.water_meter = 0.9
     snaps: dict = {}
-    careful(world, 31.0, snaps)
+    careful(world, 32.0, snaps)
     return world, snaps
 
 

@@ -28,7 +28,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from arbor.engine.base.units import METRE
-from arbor.engine.life.form.interpret import APEX, BLOSSOM, CLUSTER_AREA, FRUIT, INTERNODE, LEAF, LEAF_ASPECT
+from arbor.engine.life.form.interpret import APEX, BLOSSOM, CLUSTER_AREA, FRUIT, LEAF, LEAF_ASPECT
 from arbor.engine.life.plant import photosynthesis, solar
 from arbor.engine.life.plant.photosynthesis import LeafTraits
 from arbor.engine.life.rules.rules import Rules
@@ -36,6 +36,9 @@ from arbor.engine.lsystem.lstring import LString
 
 AREA = 1.0 / METRE**2  # m² per scene unit²
 VOLUME = 1.0 / METRE**3  # m³ per scene unit³
+# m³ of wood per scene unit of length x pipe "area": the pipe model's areas are squared radii (the turtle draws
+# a radius of their square root), so a piece's cross-section is pi x that
+WOOD = math.pi * VOLUME
 
 
 @dataclass
@@ -79,9 +82,11 @@ class CarbonBudget:
         return rules.carbon.reserve_time * self.upkeep_rate(rules)
 
     def upkeep_rate(self, rules: Rules, activity: float = 1.0) -> float:
-        """Maintenance respiration (g per s) of the leaves and sapwood last measured, at ``activity`` (0..1)."""
+        """Maintenance respiration (g per s) of the leaves and sapwood last measured and of the roots built, at
+        ``activity`` (0..1)."""
         leaf = self.leaf_cost or float(photosynthesis.grams(photosynthesis.leaf_traits({}, rules).dark, rules))
-        return (leaf * self.leaf_area + rules.carbon.wood_respiration * self.sapwood) * activity
+        roots = float(photosynthesis.grams(rules.carbon.root_respiration * 1e-3, rules)) * self.roots_built
+        return (leaf * self.leaf_area + rules.carbon.wood_respiration * self.sapwood + roots) * activity
 
     def live(self, rules: Rules, seconds: float, shine: float, stomata: float, activity: float,
              canopy: Canopy | None = None, bare_starves: bool = False, traits: LeafTraits | None = None) -> float:
@@ -126,21 +131,44 @@ class CarbonBudget:
         """Sugar that may be spent on growth: the pool above what is kept for upkeep (``keep_time`` of it)."""
         return max(self.pool - rules.carbon.keep_time * self.upkeep_rate(rules), 0.0)
 
-    def share(self, rules: Rules, demand: float) -> float:
-        """The share 0..1 of growth that would cost ``demand`` g at full speed the pool can pay now."""
-        return min(self.spare(rules) / demand, 1.0) if demand > 0 else 1.0
+    def drive(self, rules: Rules) -> float:
+        """How fast the pool lets the tree build, against the clock's pace (extern C): the pool's fill (its spare
+        sugar over its capacity) over ``growth_fill``: 1 at that fill, in proportion below it (an empty pool
+        builds nothing), up to ``growth_most`` above it (a full pool builds more). Growth is set by the carbon
+        the leaves earn, not by the clock (Thornley 1972's substrate-driven growth)."""
+        c = rules.carbon
+        capacity = self.capacity(rules) * c.growth_fill
+        spare = self.spare(rules)
+        return min(spare / capacity, c.growth_most) if capacity > 0 else (c.growth_most if spare > 0 else 0.0)
 
-    def fund(self, rules: Rules, demand: float) -> float:
-        """Spend on growth that would cost ``demand`` g at full speed: returns the share 0..1 the pool pays
-        (and takes it)."""
-        share = self.share(rules, demand)
-        self.spend(share * max(demand, 0.0))
+    def shoots_share(self, rules: Rules, demand: float, roots_due: float) -> float:
+        """Extern C: how fast the shoots grow against the clock's pace, for ``demand`` g of dry mass at that pace:
+        the pool's :meth:`drive`, and no more than the spare sugar left once the roots' due (``roots_due`` g) is
+        kept for them (``growth_cost`` g of sugar a gram)."""
+        cost = rules.carbon.growth_cost
+        spare = max(self.spare(rules) - roots_due * cost, 0.0)
+        return min(self.drive(rules), spare / max(demand * cost, 1e-12))
+
+    def share(self, rules: Rules, demand: float) -> float:
+        """The share 0..1 of growth that would build ``demand`` g of dry mass at full speed the pool pays now: the
+        pool's :meth:`drive` (at most 1), and no more than its spare sugar (``growth_cost`` g a gram)."""
+        cost = demand * rules.carbon.growth_cost
+        return min(self.spare(rules) / cost, self.drive(rules), 1.0) if cost > 0 else 1.0
+
+    def fund(self, rules: Rules, demand: float, driven: bool = True) -> float:
+        """Spend on growth that would build ``demand`` g of dry mass at full speed: returns the share 0..1 the
+        pool pays (and takes it); ``driven``: no more than the pool's :meth:`drive` (else as far as its spare
+        sugar goes: the roots' functional balance)."""
+        share = self.share(rules, demand) if driven else min(self.spare(rules) / max(
+            demand * rules.carbon.growth_cost, 1e-12), 1.0)
+        self.spend(rules, share * max(demand, 0.0))
         return share
 
-    def spend(self, grams: float) -> None:
-        """Take what was built (leaves, shoots, wood, roots) out of the pool."""
+    def spend(self, rules: Rules, grams: float) -> None:
+        """Take what was built (``grams`` of dry mass in leaves, shoots, wood, roots) out of the pool: its sugar
+        and the respiration that built it, ``growth_cost`` g of sugar a gram."""
         grams = max(grams, 0.0)
-        self.pool = max(self.pool - grams, 0.0)
+        self.pool = max(self.pool - grams * rules.carbon.growth_cost, 0.0)
         self.built += grams
 
 
@@ -178,7 +206,7 @@ def canopy(leaf_area: np.ndarray, leaf_light: np.ndarray, pipe_area: np.ndarray,
     grown internodes' pipe areas (units²) and lengths (units)."""
     areas = np.asarray(leaf_area, float) * AREA
     lights = np.clip(np.asarray(leaf_light, float), 0.0, 1.0)
-    return Canopy(float(areas.sum()), float((areas * lights).sum()), float((pipe_area * seg_length).sum()) * VOLUME,
+    return Canopy(float(areas.sum()), float((areas * lights).sum()), float((pipe_area * seg_length).sum()) * WOOD,
                   areas, lights)
 
 
@@ -197,21 +225,42 @@ class Economy:
     in_leaf: bool = True  # a season in which the tree should have leaves (a bare tree then starves)
     daylight: float = 1.0  # the remembered daylight against daylight_full (Simulation.light_growth): what light earns
     traits: LeafTraits | None = None  # the species' leaves (None: the rules' default leaf)
+    root_balance: float = 0.0  # the functional balance's need over supply (root_balance): what the roots are due
+    root_paid: float = 0.0  # the share of the roots' due the pool paid at this reading
 
     def book(self, measured: Canopy) -> float:
-        """Photosynthesis and upkeep since the last reading, for the canopy measured now; the net (g)."""
-        return self.budget.live(self.rules, self.seconds, self.shine, self.stomata, self.activity, measured,
-                                self.in_leaf, self.traits)
+        """Photosynthesis and upkeep since the last reading, for the canopy measured now, then the roots' due;
+        the net (g)."""
+        net = self.budget.live(self.rules, self.seconds, self.shine, self.stomata, self.activity, measured,
+                               self.in_leaf, self.traits)
+        self._grow_roots()
+        return net
 
     def rest(self, leaf_area: float) -> float:
         """A reading at night: nothing is fixed, upkeep goes on for ``leaf_area`` scene units² of leaves
         (counted from the string: no light reading is taken at night) and the sapwood last measured."""
         dark = Canopy(leaf_area * AREA, 0.0, self.budget.sapwood)
-        return self.budget.live(self.rules, self.seconds, 0.0, 0.0, self.activity, dark, self.in_leaf, self.traits)
+        net = self.budget.live(self.rules, self.seconds, 0.0, 0.0, self.activity, dark, self.in_leaf, self.traits)
+        self._grow_roots()
+        return net
+
+    def _grow_roots(self) -> None:
+        """The roots take their due by the functional balance (root_demand) first, as far as the pool's spare sugar
+        goes: a balance, not the leftovers of the shoots' wood (a drier soil or a brighter crown gets more roots)."""
+        demand = root_demand(self.budget, self.rules, self.seconds, self.root_balance)
+        self.root_paid = self.budget.fund(self.rules, demand, driven=False)
+        self.budget.roots_built += self.root_paid * demand
 
     def wood_share(self, volume: float) -> float:
-        """The share (0..1) of ``volume`` scene units³ of new wood the pool pays for now (and takes)."""
-        return self.budget.fund(self.rules, volume * VOLUME * self.wood_density)
+        """The share (0..1) of ``volume`` (scene units of length x pipe area) of new rings the pool pays for now
+        (and takes)."""
+        return self.budget.fund(self.rules, volume * WOOD * self.wood_density)
+
+    def pay_pipes(self, volume: float) -> None:
+        """The pipe wood the new leaves need (``volume``: scene units of length x pipe area, the pipe model's
+        cross-section grown since the last reading): a leaf cannot be without it, so it is built, and paid for,
+        whatever the pool holds."""
+        self.budget.spend(self.rules, volume * WOOD * self.wood_density)
 
 
 def wood_density(constants: dict[str, float], rules: Rules) -> float:
@@ -223,7 +272,7 @@ def node_cost(order: np.ndarray, const: dict[str, float], rules: Rules, density:
     """What one new node costs at each branch ``order`` (g): a full-grown leaf cluster and the internode
     under it (its pipe for one leaf)."""
     leaf = CLUSTER_AREA * LEAF_ASPECT * const["LS"] ** 2 * AREA * rules.carbon.leaf_mass
-    wood = const["IL"] * const["IO"] ** order * const["TIP"] ** 2 * VOLUME * density
+    wood = const["IL"] * const["IO"] ** order * const["TIP"] ** 2 * WOOD * density
     return leaf + wood
 
 
@@ -241,21 +290,19 @@ def shoot_demand(ls: LString, dt: float, const: dict[str, float], rules: Rules, 
     return float((nodes * node_cost(order, const, rules, density)).sum())
 
 
-def built_cost(ls: LString, born: float, const: dict[str, float], rules: Rules, density: float) -> float:
-    """Sugar (g) of the organs born at physiological time ``born`` (the last rewrite): new internodes and
-    the leaves on them at their full size, blossoms that opened and fruit that set."""
+def built_cost(ls: LString, born: float, const: dict[str, float], rules: Rules) -> float:
+    """Dry mass (g) of the organs born at physiological time ``born`` (the last rewrite): the leaves on the new
+    internodes at their full size, blossoms that opened and fruit that set. (The new internodes' wood is the
+    pipe model's: paid at the next light reading as the pipes grow, :meth:`Economy.pay_pipes`.)"""
     if len(ls.params) == 0:
         return 0.0
     first = np.where(ls.nparams > 0, ls.params[np.where(ls.nparams > 0, ls.offsets, 0)], np.nan)
     new = first == born
-    internodes = np.flatnonzero(new & (ls.sym == INTERNODE) & (ls.nparams >= 3))
     leaves = int(np.count_nonzero(new & (ls.sym == LEAF)))
     flowers = rules.carbon.blossom_cost * np.count_nonzero(new & (ls.sym == BLOSSOM))
     fruit = rules.carbon.fruit_cost * np.count_nonzero(new & (ls.sym == FRUIT))
-    order = ls.params[ls.offsets[internodes] + 2]
-    wood = const["IL"] * const["IO"] ** order * const["TIP"] ** 2 * VOLUME * density
     leaf = CLUSTER_AREA * LEAF_ASPECT * const["LS"] ** 2 * AREA * rules.carbon.leaf_mass
-    return float(wood.sum()) + leaves * leaf + float(flowers + fruit)
+    return leaves * leaf + float(flowers + fruit)
 
 
 def root_balance(light: float, supply: float, rules: Rules) -> float:

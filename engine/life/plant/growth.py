@@ -327,6 +327,7 @@ class GrowingTree:
         if economy is not None:
             length = np.linalg.norm(segs.end - segs.start, axis=1)[grown]
             economy.book(carbon.canopy(scene.leaf_area, leaf_light, pipes, length))
+            economy.pay_pipes(float((np.maximum(pipes - params[off + 4], 0.0) * length).sum()))
             rings = rings * economy.wood_share(float((rings * length).sum()))
         params[off + 4] = np.maximum(params[off + 4], pipes) + rings
         if count and dt > 0:

@@ -163,7 +163,7 @@ SCHEMA: tuple[Rule, ...] = (
          "of the sun)", "time"),
     Rule("carbon.keep_time", 126.0, 0.0, 1e8, "s", "this long of upkeep is kept in the pool for nights and winter, "
          "never spent on growth", "time"),
-    Rule("carbon.seed_reserve", 2.0, 0.0, 1e6, "g", "a new sapling's reserve (in its seed and roots)"),
+    Rule("carbon.seed_reserve", 8.0, 0.0, 1e6, "g", "a new sapling's reserve (in its seed and roots)"),
     Rule("carbon.starve_time", 40.0, 0.0, 1e8, "s", "upkeep unpaid (or no leaf at all in a leafy season) for this "
          "long wilts the tree", "time"),
     Rule("carbon.blossom_cost", 0.3, 0.0, 1000.0, "g", "what a blossom costs when it opens (blossoms open, and fruit "
@@ -209,11 +209,24 @@ SCHEMA: tuple[Rule, ...] = (
          source="the exponential soil-water response of Jarvis 1976, The interpretation of the variations in leaf "
          "water potential and stomatal conductance found in canopies in the field"),
     # Allocation to roots by a functional balance (carbon.root_demand); issue 43.
-    Rule("carbon.root_shoot", 0.3, 0.05, 2.0, "g of root per g of shoot", "the root:shoot the functional balance "
+    Rule("carbon.root_shoot", 0.35, 0.05, 2.0, "g of root per g of shoot", "the root:shoot the functional balance "
          "aims at with the crown's light at the norm (daylight_full) and a moist soil: more light (the crown's water "
          "need) raises it, a drier soil (less supply per root) raises it, shade lowers it",
          source="Brouwer 1963, Functional equilibrium; Poorter et al. 2012, Biomass allocation to leaves, stems and "
          "roots: meta-analyses of interspecific variation and environmental control (young trees 0.2-0.5)"),
+    Rule("carbon.growth_cost", 1.4, 1.1, 2.0, "g of sugar per g of dry mass", "what building costs: the sugar "
+         "built into a gram of leaf, wood or root and the growth respiration that builds it (the pool pays this "
+         "much for every gram built)", source="Penning de Vries, Brunsting & van Laar 1974, Products, requirements "
+         "and efficiency of biosynthesis: a quantitative approach (1.2-1.5 g glucose per g for leaves and wood)"),
+    Rule("carbon.growth_fill", 0.5, 0.05, 1.0, "share of the pool's capacity", "the pool's fill at which the "
+         "tree builds at its clock's pace (extern C = 1): in proportion to the fill below it, so growth is set by "
+         "the sugar the leaves earn", source="growth driven by the reserve's substrate (Thornley 1972, A balanced "
+         "quantitative model for root:shoot ratios in vegetative plants)"),
+    Rule("carbon.growth_most", 2.0, 1.0, 10.0, "x the clock's pace", "a pool fuller than growth_fill builds up to "
+         "this much faster than the clock's pace (a full pool builds more)"),
+    Rule("carbon.root_respiration", 3.0, 1.0, 40.0, "nmol CO2 per g of root per s", "the roots' upkeep (a real "
+         "rate, made the game's by the declared time scale)", source="Reich et al. 2008, Scaling of respiration to "
+         "nitrogen in leaves, stems and roots of higher land plants (fine roots about 5-20 at 20-25 °C)"),
     Rule("carbon.root_most", 4.0, 1.0, 20.0, "x root_shoot", "the balance's need over supply at most (a dry soil's)"),
     Rule("carbon.root_catch_up", 125.66667, 1.0, 1e7, "s", "the roots close their gap to the balance's target over "
          "about this long (a day of the sun), as far as the pool pays", "time"),

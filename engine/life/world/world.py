@@ -89,6 +89,7 @@ class World:
     crown_steps: dict = field(default_factory=dict, init=False, repr=False)  # id(L-string) -> (it, its lobes)
     light_every: float | None = field(default=None, init=False)  # s between light readings, if not the rules'
     _segments: tuple | None = field(default=None, init=False, repr=False)  # (key, L-string, its drawn segments)
+    last_economy: Economy | None = field(default=None, init=False, repr=False, compare=False)  # the last reading's
     # 1 when the save this tree was read from held a lineage that could not be trusted (so it starts a
     # line of its own): told to the player by the loader, never written back
     dropped_lineage: int = field(default=0, init=False)
@@ -180,31 +181,38 @@ class World:
         const = {**tree.system.constants, **tree.geometry_constants}
         density = carbon.wood_density(tree.system.constants, rules)
         demand = carbon.shoot_demand(tree.lstring, s.length_time - tree.last_rewrite_T, const, rules, density)
-        vigour = self.carbon.share(rules, demand)
+        vigour = self.carbon.shoots_share(rules, demand, self._roots_due())
         self.carbon.vigour = vigour
         tree.rewrite(s.length_time, s.girth_time, self.sim.resources(), self.sim.leaf_vigour(),
                      {**self.sim.season_externs(s.length_time), "LG": self.sim.light_growth()}, vigour)
-        self.carbon.spend(carbon.built_cost(tree.lstring, s.length_time, const, rules, density))
+        self.carbon.spend(rules, carbon.built_cost(tree.lstring, s.length_time, const, rules))
+
+    def _roots_due(self) -> float:
+        """Dry mass (g) the roots are due by the functional balance until the next light reading (kept from the
+        shoots: the roots are paid first, so a drier soil or a brighter crown gets more roots)."""
+        balance = self.last_economy.root_balance if self.last_economy is not None else 0.0
+        return carbon.root_demand(self.carbon, self.rules, self.rules.light.interval, balance)
 
     def economy(self, seconds: float, shine: float) -> Economy:
         """This tree's dealings with its carbon budget for a light reading ``seconds`` after the last."""
         s, rules = self.sim.state, self.rules
         drowned = self.sim.drowned()
         activity = min(max(seasons.growth_factor(s.sun_turns, rules), rules.carbon.dormant), 1.0)
-        return Economy(self.carbon, rules, seconds, shine, carbon.stomata(s.water_meter, drowned, rules), activity,
-                       carbon.wood_density(self.tree.system.constants, rules), seasons.leafy(s.sun_turns, rules),
-                       self.sim.light_growth(), photosynthesis.leaf_traits(self.tree.system.constants, rules))
+        supply = carbon.stomata(s.water_meter, False, rules)  # (what moist soil gives each root; drowning aside)
+        need = self.sim.light_growth() / max(supply, 0.05)  # the crown's water need: its light on open leaves
+        self.last_economy = Economy(
+            self.carbon, rules, seconds, shine, carbon.stomata(s.water_meter, drowned, rules), activity,
+            carbon.wood_density(self.tree.system.constants, rules), seasons.leafy(s.sun_turns, rules),
+            self.sim.light_growth(), photosynthesis.leaf_traits(self.tree.system.constants, rules),
+            carbon.root_balance(need, supply, rules))
+        return self.last_economy
 
     def settle(self, seconds: float) -> None:
-        """After a reading: the roots get their share of the pool by a functional balance (carbon.root_demand:
-        more in drought and in bright light, less in shade) and the simulation hears whether the tree is starving."""
-        rules, s = self.rules, self.sim.state
-        supply = carbon.stomata(s.water_meter, False, rules)  # (what moist soil gives each root; drowning aside)
-        balance = carbon.root_balance(self.sim.light_growth(), supply, rules)
-        demand = carbon.root_demand(self.carbon, rules, seconds, balance)
-        paid = self.carbon.fund(rules, demand)
-        self.carbon.roots_built += paid * demand
-        self.sim.root_vigour = paid * balance  # (at most carbon.root_most: root_balance caps it)
+        """After a reading: the roots grow as far as the pool paid their due at it (a functional balance,
+        carbon.root_demand: more in drought and in bright light, less in shade; Economy books it) and the
+        simulation hears whether the tree is starving."""
+        e = self.last_economy
+        self.sim.root_vigour = e.root_paid * e.root_balance if e is not None else 0.0  # (at most carbon.root_most)
         self.sim.starving = self.carbon.starving
         self.sim.remember_light(self.light_caught(), seconds)
 
