@@ -91,6 +91,10 @@ class GrowthView:
         off = ls.offsets[module]
         self.birth = params_where(ls.params, grown, off, -np.inf)
         self.order = params_where(ls.params, grown, off + 2)
+        # (an internode split where a stroke joined it, or a run of several, is that many pieces long, as
+        # render_view draws it: without it a young half grew to a whole internode, and a branch drawn
+        # from it stood above where it was pressed)
+        self.pieces = params_where(ls.params, grown & (ls.nparams[module] >= 6), off + 5, 1.0)
         young = grown & (clocks.length_time - self.birth < YOUNG * const["TAU"])
         level = np.full(m, -1, dtype=np.int64)
         frontier = np.flatnonzero(young & ((self.parent < 0) | ~young[np.maximum(self.parent, 0)]))
@@ -158,7 +162,7 @@ class GrowthView:
         const, now = self.const, clocks.length_time
         data = self.tubes.data
         if len(self.young):
-            full = const["IL"] * const["IO"] ** self.order
+            full = const["IL"] * const["IO"] ** self.order * self.pieces
             for level in self.levels:
                 par = self.parent[level]
                 base = np.where((par >= 0)[:, None], self.end[np.maximum(par, 0)], 0.0)
