@@ -76,6 +76,7 @@ class SaveKeeper:
     def load(self, path: Path, catch_up: bool = True) -> Garden | None:
         """A saved garden, grown by the time away; None (and the file kept as .broken) if unreadable.
         ``catch_up=False`` (Restore): the garden exactly as it was saved, none of the time since lived."""
+        said_before = self.state.message, self.state.message_until
         try:
             with reading(path):  # (a watchdog sets aside the file a crash loop died reading)
                 saved = read_garden(path, self.rules)
@@ -91,7 +92,9 @@ class SaveKeeper:
         if saved.dropped:
             self.state.say(text("messages.lineage_dropped", count=saved.dropped, name=path.name), 8)
         self.last_summary, self.saved_at = summary, saved.saved_at
-        said = [away_message(summary) if summary.anything else "", next_care(garden.world) if catch_up else ""]
+        told = (self.state.message, self.state.message_until) != said_before  # (a line said while loading)
+        said = [self.state.message if told else "", away_message(summary) if summary.anything else "",
+                next_care(garden.world) if catch_up else ""]
         self.start_message = " ".join(line for line in said if line)
         if self.start_message:
             self.state.say(self.start_message, 10)
