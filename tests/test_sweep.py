@@ -259,6 +259,9 @@ def test_a_duration_in_game_days_or_years(tmp_path):
     path.write_text(text.format("1.5 years", "1 day", "sun_speed = 0.1"), encoding="utf-8")  # its own days
     sweep = load_sweep(path, ASSETS / "lsystems")
     assert sweep.duration == pytest.approx(1.5 * rules.seasons.year_days * 2 * math.pi / 0.1)
+    path.write_text(text.format("1 year", "1 day", 'rules = { "sun.speed" = 0.1, "seasons.year_days" = 10 }'),
+                    encoding="utf-8")  # (the rules the trees grow under)
+    assert load_sweep(path, ASSETS / "lsystems").duration == pytest.approx(10 * 2 * math.pi / 0.1)
     path.write_text(text.format("2 weeks", "1 day", ""), encoding="utf-8")
     with pytest.raises(SweepError, match="'duration' must be a number of s of game time, or a text such as") as e:
         load_sweep(path, ASSETS / "lsystems")

@@ -145,13 +145,14 @@ def load_experiment(path: str | Path, lsystem_dir: Path) -> Experiment:
 
 def calendar(pace: str, regime: Regime) -> tuple[float, float] | None:
     """(s of game time a game day lasts, game days a year) for a tree of ``regime`` at ``pace``: what a
-    file's "14 days" or "30 years" mean (None when rules.toml has no such pace: its own error says so)."""
+    file's "14 days" or "30 years" mean (None when rules.toml has no such pace or an override is out of
+    range: their own errors say so)."""
     try:
         rules = load_rules(assets_dir() / "rules.toml", pace)
-    except LSysError:
+        for key, value in regime.rules.items():
+            set_rule(rules, key, value, "rules")
+    except LSysError:  # (an override out of range: the lab's own check names it at its line)
         return None
-    for key, value in regime.rules.items():
-        set_rule(rules, key, value)
     speed = regime.sun_speed or rules.sun.speed
     return 2 * math.pi / speed, rules.seasons.year_days
 
