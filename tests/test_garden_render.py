@@ -443,3 +443,19 @@ def test_a_coarse_level_keeps_its_thickest_segments_round_and_draws_every_other(
     assert differs(every[near], finest[near]) == 0 and differs(half[near], finest[near]) == 0  # round
     assert shape.sum() > 500 and (half_shape & shape).sum() > 0.95 * shape.sum()  # and no segment missing
     assert differs(half, coarse) > 0
+
+
+def test_a_jump_in_how_the_trees_are_coloured_shows_at_once_in_a_picture_over_frames(game, monkeypatch):
+    """A picture over frames shows a slow change of colour a picture late, but a jump (every leaf fallen at
+    once, as after time away) is drawn whole in the very frame."""
+    from arbor.game.render import garden
+
+    game.rules.wind.strength = 0.0
+    monkeypatch.setattr(garden, "LAYER_COST", 0)
+    for _ in range(6):
+        leafy = frame(game)
+    monkeypatch.setattr(game.view, "_season_look", lambda: setattr(game.renderer, "leaf_keep", 0.0))
+    bare = frame(game)
+    assert game.renderer.last_layered and np.abs(bare - leafy).max() > 30
+    monkeypatch.setattr(garden, "LAYER_COST", float("inf"))
+    assert np.abs(bare - frame(game)).max() <= 2  # what drawing it whole shows

@@ -237,8 +237,9 @@ class GardenRenderer:
                             for z in (lo[2], hi[2])]).reshape(-1, 3)
         # the trees a picture shows (falling branches are new buffers every frame: counted only)
         views = (len(self.placed), tuple(id(p.buffers.view) for p in self.placed if p.version >= 0))
+        look = (self.autumn, self.leaf_keep, *self.leaf_tint, *self.bark_tint)
         self.pictures.draw(size, scale, scene.vp, corners, views,
-                           lambda whole: self._picture_steps(scene, details, uniforms, size, whole), scene)
+                           lambda whole: self._picture_steps(scene, details, uniforms, size, whole), scene, look)
         post = (lambda into, rect: self.post.smooth(into, size, rect)) if smooth else None
         self.stage.layered(target, size, self.pictures.shown.scene, self.pictures, post)
 

@@ -17,6 +17,7 @@ MIN_SCALE = 0.5  # never coarser than half the frame's resolution
 REUSE_PIXELS = 1.5  # a picture is shown while the camera keeps every corner of the trees this close
 MAX_AGE = 16  # frames (or four times a picture's steps): one begun longer ago is redrawn whole (when restarts
 # keep a new one from finishing)
+LOOK_JUMP = 0.1  # a number of how the trees are coloured that moves more than this redraws a picture at once
 Step = tuple[Callable[[], None], bool]  # something to draw, and whether it draws into the picture
 
 
@@ -92,6 +93,7 @@ class _Cycle:
     steps: list[Step]
     start: int  # the frame it was begun in
     scene: object = None  # the caller's state it shows (camera, sun...)
+    look: tuple = ()  # how it colours the trees (the caller's numbers: a jump in one redraws it at once)
     done: int = 0
 
 
@@ -110,23 +112,25 @@ class Pictures:
         self.version = 0  # counts the pictures shown
 
     def draw(self, size: tuple[int, int], scale: float, vp: np.ndarray, points: np.ndarray, key: tuple,
-             steps: Callable[[bool], list[Step]], scene: object = None) -> None:
+             steps: Callable[[bool], list[Step]], scene: object = None, look: tuple = ()) -> None:
         """Advance the back picture by a step, or draw a whole picture now when the front one does not
         fit this frame. ``points``: the trees' box corners (to measure how far the camera moved);
         ``key``: what the picture shows (a change starts it again); ``steps(whole)``: the steps of a
         picture from this frame's state (``whole``: all of them in this frame), ``scene`` that state
-        (kept with the picture: ``shown.scene``)."""
+        (kept with the picture: ``shown.scene``); ``look``: numbers of how the trees are coloured (autumn,
+        leaves still on, tints): one that moved more than LOOK_JUMP since the front picture's has the picture
+        drawn whole now (a season or a wilt changes slowly while played, but jumps after time away)."""
         self.frame += 1
         key = (size, scale, key)
         shown = self.shown
         # (a picture of many steps is older when the next is shown: its age is counted in pictures' lengths)
         if (shown is None or shown.key[0] != size or self.frame - shown.start > max(MAX_AGE, 4 * len(shown.steps))
-                or moved(shown.vp, vp, points, size) > REUSE_PIXELS):
-            self._run(_Cycle(key, vp, steps(True), self.frame, scene), size, scale, whole=True)
+                or moved(shown.vp, vp, points, size) > REUSE_PIXELS or _jumped(shown.look, look)):
+            self._run(_Cycle(key, vp, steps(True), self.frame, scene, look), size, scale, whole=True)
             return
         cycle = self.cycle
         if cycle is None or cycle.key != key or moved(cycle.vp, vp, points, size) > REUSE_PIXELS:
-            cycle = self.cycle = _Cycle(key, vp, steps(False), self.frame, scene)
+            cycle = self.cycle = _Cycle(key, vp, steps(False), self.frame, scene, look)
         self._run(cycle, size, scale, whole=False)
 
     def _run(self, cycle: _Cycle, size: tuple[int, int], scale: float, whole: bool) -> None:
@@ -155,6 +159,11 @@ class Pictures:
         self.front.release()
         self.back.release()
         self.cycle = self.shown = None
+
+
+def _jumped(old: tuple, new: tuple) -> bool:
+    """Whether a number of a picture's look moved more than LOOK_JUMP (see Pictures.draw)."""
+    return len(old) != len(new) or any(abs(a - b) > LOOK_JUMP for a, b in zip(old, new, strict=True))
 
 
 def moved(old: np.ndarray, new: np.ndarray, points: np.ndarray, size: tuple[int, int]) -> float:
