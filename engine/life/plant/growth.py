@@ -67,6 +67,8 @@ from arbor.engine.lsystem.lstring import LString, params_where
 from arbor.engine.lsystem.lsys import LSystem
 
 CONSOLIDATE_AT = 0.5  # share of the module budget in use from which old wood is consolidated
+GROWTH_PER_LIGHT = 0.2  # apex vigour (fully lit apices' worth) one fully lit leaf cluster's light sustains
+FREE_VIGOUR = 2.0  # ... beyond which the apices share this much whatever the leaves catch (a seedling's leader grows)
 UNITS_EVERY = 2.0  # elongation time constants between makings of one-site shoot units in the growing season
 FALL_KEEP = 40.0  # physiological time a shed branch stays in `fallen` for the game to show its fall
 # A branch's light counts in sugar: x (remembered daylight / the norm) to this power (1: all of the day's
@@ -134,7 +136,6 @@ class GrowingTree:
     last_report: StepReport | None = None
     confine: object | None = None  # a region (engine/modeling/regions.py): rewrites only inside it ...
     confine_left: int = 0  # ... for this many more rewrites (Onishi et al. 2003 Fig. 11's region-limited growth)
-    units_T: float = 0.0  # noqa: N815 (T of the last making of one-site shoot units, engine/life/plant/units.py)
 
     def __post_init__(self) -> None:
         self.deriver = Deriver(self.system, seed=self.seed, budget=self.budget)
@@ -176,9 +177,9 @@ class GrowingTree:
         self.lstring = remove_empty_branches(new)
         if self.budget_used > CONSOLIDATE_AT:  # old wood merged so the budget goes to the living crown
             self.lstring, _ = consolidated(self.lstring, length_time, self.geometry_constants["TAU"])
-        if length_time - self.units_T >= UNITS_EVERY * self.geometry_constants["TAU"]:  # old leafy nodes as units
+        every = UNITS_EVERY * self.geometry_constants["TAU"]  # old leafy nodes as units, at whole multiples of
+        if length_time // every > self.last_rewrite_T // every:  # this period of T (a saved tree continues alike)
             self.lstring, _ = form_units(self.lstring, length_time, self.geometry_constants, runs=False)
-            self.units_T = length_time
         self.last_rewrite_T = length_time
         return self.last_report
 
@@ -249,7 +250,9 @@ class GrowingTree:
         k, m = len(scene.leaf_idx), len(scene.probe_idx)
         leaf_light, probe_light, around = light[:k], light[k:k + m], light[k + m:]
         if weight > 0:  # buds and apices remember the light they really got: a low sun gives less
-            self._remember_light(ls, params, scene, probe_light * min(shine, 1.0), weight)
+            income = float((leaf_light * scene.leaf_area).sum()) / (CLUSTER_AREA * LEAF_ASPECT
+                                                                     * self.geometry_constants["LS"] ** 2)
+            self._remember_light(ls, params, scene, probe_light * min(shine, 1.0), weight, income)
             mean = np.asarray(sun, float) / max(float(np.linalg.norm(sun)), 1e-12)
             self.light_dir = _unit(self.light_dir + weight * (mean - self.light_dir))
             self._turn_apices(ls, params, scene, around, memory_weight(dt, shine, memory / 4), obstacles)
@@ -263,12 +266,18 @@ class GrowingTree:
         return SenseReport(shed, self.mean_light)
 
     def _remember_light(self, ls: LString, params: np.ndarray, scene: LightScene, light: np.ndarray,
-                        weight: float) -> None:
+                        weight: float, income: float = np.inf) -> None:
         """Buds remember the light they catch; apices the vigour the Borchert-Honda sharing gives them from
-        the whole tree's light (plant/vigour.py: at the species' BHL 0.5 that is their own light)."""
+        the whole tree's light (plant/vigour.py: at the species' BHL 0.5 that is their own light), all of
+        them together no more than the tree's light ``income`` (fully lit leaf clusters' worth) sustains:
+        GROWTH_PER_LIGHT each, and FREE_VIGOUR more (Palubicki et al. 2009: the resource the base collects is
+        what the buds share, so a crown grows with the light it catches, not with the number of its buds)."""
         apex = ls.sym[scene.probe_idx] == APEX
         light = light.copy()
         light[apex] = borchert_honda(ls.sym, scene.probe_idx[apex], light[apex], self.geometry_constants["BHL"])
+        total, cap = float(light[apex].sum()), GROWTH_PER_LIGHT * income + FREE_VIGOUR
+        if total > cap:
+            light[apex] *= cap / total
         at = ls.offsets[scene.probe_idx] + np.where(apex, 3, 2)
         params[at] += weight * (light - params[at])
 
