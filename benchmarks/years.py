@@ -1,6 +1,7 @@
 """Years at the home pace: does the crown keep getting grander, shaped by light and never by the budget?
 
-Run: python -m benchmarks.years [YEARS] [OUTDIR]   (default 3 years; the issue's run is 30)
+Run: python -m benchmarks.years [YEARS] [OUTDIR] [SPECIES]   (default 3 years of game_tree.lsys; the issue's
+run is 30; SPECIES another of assets/lsystems, e.g. game_poplar.lsys)
 The home-pace player of benchmarks.home_pace (the can twice a day, nothing else) raises one tree for YEARS
 years of 28 days. One row per season (at its last day, 13:00): height and crown width (m), width/height,
 the trunk's diameter at breast height (1.3 m, or at its foot while shorter; cm), the most leaf clusters the
@@ -47,10 +48,10 @@ def crown(world: World) -> tuple[float, float, float]:
     return float(segs.end[:, 1].max()) / METRE, width / METRE, 200.0 * radius / METRE
 
 
-def main(years: int = 3, out: Path | None = None) -> None:
+def main(years: int = 3, out: Path | None = None, species: str = "game_tree.lsys") -> None:
     """Play ``years`` years and print the season table."""
     rules = load_rules(ASSETS / "rules.toml", pace="home")
-    world = World(load_lsystem(ASSETS / "lsystems" / "game_tree.lsys"), rules, seed=3)
+    world = World(load_lsystem(ASSETS / "lsystems" / species), rules, seed=3)
     world.sim.state.sun_angle = sun_angle_at(0.0)
     garden, budget = Garden([world]), world.tree.deriver.budget
     print(f"{'year':>4} {'season':>7} {'height':>6} {'width':>6} {'w/h':>5} {'dbh cm':>6} {'leaves':>6} "
@@ -65,7 +66,7 @@ def main(years: int = 3, out: Path | None = None) -> None:
                   f"{peak_leaves:6d} {peak_modules:8,d} {world.carbon.pool:8.0f} {still:10d}", flush=True)
             if out is not None and current == 1:
                 out.mkdir(parents=True, exist_ok=True)
-                write_garden(SavedGarden.of(garden, "game_tree.lsys"), out / f"summer_{year}.arbor")
+                write_garden(SavedGarden.of(garden, species), out / f"summer_{year}.arbor")
             year += current == 3
             current, peak_leaves, peak_modules, still = season, leaves_now, 0, 0
         before = (world.sim.state.length_time, world.sim.state.girth_time)
@@ -79,7 +80,7 @@ def main(years: int = 3, out: Path | None = None) -> None:
             peak_leaves = max(peak_leaves, leaves_now)
             if out is not None and current == 3:  # the bare crown on the year's last day (rewritten daily)
                 out.mkdir(parents=True, exist_ok=True)
-                write_garden(SavedGarden.of(garden, "game_tree.lsys"), out / f"winter_{year}.arbor")
+                write_garden(SavedGarden.of(garden, species), out / f"winter_{year}.arbor")
         still += season in (0, 1) and (world.sim.state.length_time, world.sim.state.girth_time) == before
     print(f"{years} years in {time.perf_counter() - start:.0f} s; budget {budget:,}; alive {world.sim.state.alive}")
     if out is not None:
@@ -124,4 +125,5 @@ def strip(out: Path, years: int, tile: tuple[int, int] = (400, 250), per_row: in
 
 
 if __name__ == "__main__":
-    main(int(sys.argv[1]) if len(sys.argv) > 1 else 3, Path(sys.argv[2]) if len(sys.argv) > 2 else None)
+    main(int(sys.argv[1]) if len(sys.argv) > 1 else 3, Path(sys.argv[2]) if len(sys.argv) > 2 else None,
+         sys.argv[3] if len(sys.argv) > 3 else "game_tree.lsys")
