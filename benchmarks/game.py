@@ -16,7 +16,8 @@ steps + record updates + 3D render + HUD, timed to ctx.finish(): wall time and C
 all its threads: llvmpipe's too), the load average printed first and last. Beside every figure: the
 tree's leaf clusters, and the level of detail, segments and leaves the renderer drew, and whether it drew
 the trees whole or as a layer's picture over frames (game/render/garden.py: LAYER_COST) and in how many
-shares of leaves; after each home pace tree, what a rewrite of it costs the frame it shows in (its records
+shares of leaves; after each home pace tree, its frames while the camera turns round it and what a rewrite
+of it costs the frame it shows in (its records
 built anew and sorted for upload). Then a growing tree's cost per frame: a full rebuild of its records against the
 incremental update of the same growth (the parts that grew since the last rewrite), per tree size.
 """
@@ -187,7 +188,23 @@ def _home_trees(game, ctx, fbo, n: int, tick, folder: Path | None) -> None:
         finally:
             garden.LAYER_COST = kept
         _zooms(game, ctx, fbo, n, tick, name)
+        _turning(game, ctx, fbo, n, tick, name)
         _rebuild(world)
+
+
+def _turning(game, ctx, fbo, n: int, tick, name: str) -> None:
+    """The tree at the default zoom while the camera turns round it (0.6 degrees a frame: a slow drag), where
+    no picture is reused: sky, ground and trees drawn anew every frame."""
+    game.control.distance = 1.0
+    game.state.remember()
+
+    def turn(i: int) -> None:
+        tick(i)
+        game.control.yaw += 0.6
+
+    yaw = game.control.yaw
+    _report(f"{name}, default zoom, camera turning", _frames(game, ctx, fbo, n, turn), _drawn(game))
+    game.control.yaw = yaw
 
 
 def _rebuild(world) -> None:
