@@ -51,6 +51,7 @@ from arbor.engine.life.keep.save_check import (
     value,
     vector,
 )
+from arbor.engine.life.keep.save_confine import confine_lines, read_confine
 from arbor.engine.life.keep.save_crown import crown_lines, read_crown
 from arbor.engine.life.lineage.lineage import Family, Lineage, lineage_from_row, new_lineage, species_of
 from arbor.engine.life.plant import genome
@@ -196,6 +197,7 @@ def _tree_lines(world: World, lsystem_name: str) -> list[str]:
         f"lstring = {_toml_lstring(ls)}",
         "",
         *crown_lines(world.crown, tree.lstring, _toml_lstring),
+        *confine_lines(tree.confine, tree.confine_left),
     ]
     return lines
 
@@ -435,6 +437,7 @@ def _load_tree(data: dict, where: Where, rules: Rules, budget_slack: float) -> W
     expressed = genome.expressed(system, traits)
     tree = _restore_growth(expressed, seed, growth, where, budget_slack)
     crown = read_crown(data, where, tree.lstring, int((expressed.budget or 10**6) * 2 * budget_slack))
+    tree.confine, tree.confine_left = read_confine(data, where)  # (a Grow edit's hold on the growth)
     rng = np.random.Generator(np.random.PCG64(seed))
     restore_rng(rng, text_value(growth, "rng_world", where, 4096), "rng_world", where)
     saved = data.get("lineage")
