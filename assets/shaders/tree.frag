@@ -3,10 +3,10 @@
 // hemisphere ambient, and an ambient-occlusion term that darkens the inside of the crown. Bark has relief
 // from a tangent-space normal map (x around the branch, y along it) and darkens and coarsens with age (its
 // radius: deeper relief, darker furrows between lighter ridges);
-// leaves vary in shade card by card and let the sun through when it is behind them (u_translucency; 0 =
-// an opaque card). In autumn (u_autumn 0..1) leaves turn yellow, orange and red, each at its own time
-// (by its hash); fruit is a lit ball, green while it ripens and red when it is ripe; a rock (4) is a
-// grey, lumpy ball.
+// leaves vary in shade and hue card by card, are lighter on the crown's sunlit side and let the sun
+// through when it is behind them (u_translucency; 0 = an opaque card). In autumn (u_autumn 0..1) leaves
+// turn yellow, orange and red, each at its own time (by its hash); fruit is a lit ball, green while it
+// ripens and red when it is ripe; a rock (4) is a grey, lumpy ball.
 uniform sampler2D u_tex;
 uniform sampler2DShadow u_shadow;
 uniform sampler2D u_normal_map;
@@ -93,7 +93,8 @@ void main() {
     } else if (u_kind != 0) {
         if (tex.a < 0.5) discard;
         if (dot(n, u_eye - v_pos) < 0.0) n = -n;  // the side facing the eye (a card's winding says nothing)
-        if (u_kind == 1) albedo = autumn_leaf(albedo * (0.8 + 0.4 * fract(v_extra * 5.3)));
+        // each card its own green: darker blue-greens to lighter yellow-greens
+        if (u_kind == 1) albedo = autumn_leaf(albedo * mix(vec3(0.84, 0.8, 0.96), vec3(1.16, 1.2, 0.78), fract(v_extra * 5.3)));
     } else {
         n = bark_normal(n, uv);
         if (v_extra >= 0.0) albedo *= mix(vec3(1.1, 1.1, 0.92), vec3(0.66, 0.62, 0.58), smoothstep(0.03, 0.6, v_extra));
@@ -106,9 +107,13 @@ void main() {
     vec3 hemi = mix(u_ground_color, u_sky_color, 0.5 + 0.5 * n.y);
     if (u_kind >= 2) hemi = mix(hemi, vec3(dot(hemi, vec3(0.333))), 0.7);  // blossoms and fruit keep their colour
     float depth = length(v_pos - u_crown_center) / max(u_crown_radius, 1e-4);
-    float ao = (u_kind == 0 || u_kind >= 3) ? 1.0 : mix(0.42, 1.0, smoothstep(0.15, 1.0, depth));
+    float ao = (u_kind == 0 || u_kind >= 3) ? 1.0 : mix(0.5, 1.05, smoothstep(0.15, 1.0, depth));
+    // leaves on the crown's sunlit side brighter, those on its far side a little darker (light through
+    // the crown from outside in, on top of the AO's outside-in)
+    float side = u_kind == 1 ? dot(v_pos - u_crown_center, u_sun_dir) / max(u_crown_radius, 1e-4) : 0.0;
     float sun = u_shadowed > 0.5 ? sun_visibility() : 0.8;
     vec3 color = albedo * (hemi * ao * (u_kind == 0 ? 1.1 : 0.95) + u_sun_color * diffuse * sun);
+    color *= 1.0 + 0.5 * clamp(side * 1.6, 0.0, 1.0) - 0.1 * clamp(-side * 1.6, 0.0, 1.0);  // (crown: 0.6 of the bounds)
     if (u_kind == 1 || u_kind == 2) {  // light through the leaf: from behind it, most when looking into the sun
         float behind = max(-ndl, 0.0);
         float into_sun = pow(max(dot(normalize(v_pos - u_eye), u_sun_dir), 0.0), 4.0);

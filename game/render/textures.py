@@ -167,36 +167,47 @@ def _blade(along: np.ndarray, across: np.ndarray, shape: str) -> np.ndarray:
 def leaf_cluster_rgba(size: int = 128, seed: int = 11, shape: str = "oval") -> np.ndarray:
     """A spray of leaves on one stem for a leaf card (alpha outside), each leaf its own shade and size:
     seven oval leaves (the game tree), five broad triangular ones on long stalks (the poplar, the birch),
-    needles (the spruce) or long narrow leaves (the willow), see CLUSTERS. The card is half as wide as it
-    is long, so the drawing is made in the card's own proportions (x across -0.25..0.25, y along 0..1)
-    and squeezed into the square texture."""
+    needles (the spruce) or long narrow leaves (the willow), see CLUSTERS. Behind the spray a second,
+    darker layer of the same leaves, turned further out, fills the gaps between them (a card reads as a
+    full, layered clump, not a sparse fan); the whole card is darker at its base (the twig, inside the
+    crown) than at its tip (outside, in the light). The card is half as wide as it is long, so the
+    drawing is made in the card's own proportions (x across -0.25..0.25, y along 0..1) and squeezed into
+    the square texture."""
     leaves, green0, petiole = CLUSTERS[shape]
     rng = np.random.default_rng(seed)
     u, v = _grid(size)
     x, y = (u - 0.5) * 0.5, v
     rgb = np.zeros((size, size, 3))
     alpha = np.zeros((size, size))
-    stem = (np.abs(x) < 0.006) & (y < 0.8)
-    rgb[stem], alpha[stem] = (0.32, 0.42, 0.16), 1.0
-    for at, sideways, length in leaves:
-        angle = sideways * (0.7 + 0.2 * rng.random())
-        axis = np.array([np.sin(angle), np.cos(angle)])
-        dx, dy = x - 0.0, y - at
-        along = (dx * axis[0] + dy * axis[1]) / length
-        across = (dx * axis[1] - dy * axis[0]) / length
-        if petiole:  # the stalk out to the blade, then the blade on the rest of the length
-            stalk = (along > 0) & (along < petiole) & (np.abs(across) < 0.012)
-            rgb[stalk], alpha[stalk] = (0.40, 0.45, 0.18), 1.0
-            along = (along - petiole) / (1 - petiole)
-        inside = _blade(along, across, shape)
-        tone = 0.85 + 0.3 * rng.random()
-        shade = tone * (0.82 + 0.18 * np.cos(across * 14)) * (0.9 + 0.1 * along)
-        green = np.array([green0[0] + 0.06 * rng.random(), green0[1] + 0.08 * rng.random(), green0[2]])
-        color = green[None, None, :] * shade[..., None]
-        vein = np.abs(across) < 0.012
-        color[vein] = color[vein] * 1.25 + 0.04
-        rgb[inside], alpha[inside] = color[inside], 1.0
+    back = [(at + 0.05, -sideways or 1, length * 0.92) for at, sideways, length in leaves[:-1]]
+    for layer, (spray, spread, dark) in enumerate(((back, 1.25, 0.8), (leaves, 0.7, 1.0))):
+        if layer == 1:
+            stem = (np.abs(x) < 0.006) & (y < 0.8)
+            rgb[stem], alpha[stem] = (0.32, 0.42, 0.16), 1.0
+        for at, sideways, length in spray:
+            angle = sideways * (spread + 0.2 * rng.random())
+            _leaf(rgb, alpha, x, y - at, angle, length, shape, petiole, green0, dark, rng)
+    rgb *= (0.86 + 0.3 * y)[..., None]  # the twig's end (inside the crown) darker, the tips lit
     return _to_bytes(rgb, alpha)
+
+
+def _leaf(rgb, alpha, dx, dy, angle, length, shape, petiole, green0, dark, rng) -> None:
+    """Draw one leaf of a spray (over what is drawn), at ``dx, dy`` from its base, turned by ``angle``."""
+    axis = np.array([np.sin(angle), np.cos(angle)])
+    along = (dx * axis[0] + dy * axis[1]) / length
+    across = (dx * axis[1] - dy * axis[0]) / length
+    if petiole:  # the stalk out to the blade, then the blade on the rest of the length
+        stalk = (along > 0) & (along < petiole) & (np.abs(across) < 0.012)
+        rgb[stalk], alpha[stalk] = (0.40, 0.45, 0.18), 1.0
+        along = (along - petiole) / (1 - petiole)
+    inside = _blade(along, across, shape)
+    tone = dark * (0.85 + 0.3 * rng.random())
+    shade = tone * (0.82 + 0.18 * np.cos(across * 14)) * (0.9 + 0.1 * along)
+    green = np.array([green0[0] + 0.06 * rng.random(), green0[1] + 0.08 * rng.random(), green0[2]])
+    color = green[None, None, :] * shade[..., None]
+    vein = np.abs(across) < 0.012
+    color[vein] = color[vein] * 1.25 + 0.04
+    rgb[inside], alpha[inside] = color[inside], 1.0
 
 
 def _to_bytes(rgb: np.ndarray, alpha: np.ndarray | None) -> np.ndarray:
