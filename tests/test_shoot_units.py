@@ -135,17 +135,3 @@ def test_leafy_nodes_in_summer_become_units_with_their_leaves(tree):
     before, after = grown_turtle(leafy, clocks, const), grown_turtle(units, clocks, const)
     np.testing.assert_allclose(np.sort(after.leaves.position, axis=0), np.sort(before.leaves.position, axis=0),
                                atol=1e-9)  # a one-site unit's leaf stands where its node's stood
-
-
-@pytest.mark.parametrize("name", ["game_tree.lsys", "game_poplar.lsys"])
-def test_a_unit_whose_shoot_stood_in_deep_shade_opens_no_leaves(tree, name):
-    system = load_lsystem(assets_dir() / "lsystems" / name)
-    merged, _ = form_units(tree, NOW, reference_constants())
-    units = unit_modules(merged)
-    shaded = merged.params.copy()
-    shaded[merged.offsets[units[::2]] + 3] = system.constants["SHED"]  # every other unit: a season in deep shade
-    dark = merged.__class__(merged.sym, merged.nparams, merged.offsets, shaded)
-    spring = _season(dark, system, {"SF": 3.0}, 1, NOW)
-    sites = spring.params[spring.offsets[unit_modules(spring)] + 6]
-    assert (sites[::2] == 0).all() and (sites[1::2] > 0).all()  # its buds died; the lit ones opened
-    assert leaf_count(spring) < leaf_count(_season(merged, system, {"SF": 3.0}, 1, NOW))
