@@ -252,7 +252,8 @@ class GrowingTree:
         if weight > 0:  # buds and apices remember the light they really got: a low sun gives less
             income = float((leaf_light * scene.leaf_area).sum()) / (CLUSTER_AREA * LEAF_ASPECT
                                                                      * self.geometry_constants["LS"] ** 2)
-            self._remember_light(ls, params, scene, probe_light * min(shine, 1.0), weight, income)
+            remember_light(ls, params, scene, probe_light * min(shine, 1.0), weight, self.geometry_constants["BHL"],
+                           income)
             mean = np.asarray(sun, float) / max(float(np.linalg.norm(sun)), 1e-12)
             self.light_dir = _unit(self.light_dir + weight * (mean - self.light_dir))
             self._turn_apices(ls, params, scene, around, memory_weight(dt, shine, memory / 4), obstacles)
@@ -264,22 +265,6 @@ class GrowingTree:
         self.lstring = LString(ls.sym, ls.nparams, ls.offsets, params)
         shed = self._shed(scene, grown, params, now)
         return SenseReport(shed, self.mean_light)
-
-    def _remember_light(self, ls: LString, params: np.ndarray, scene: LightScene, light: np.ndarray,
-                        weight: float, income: float = np.inf) -> None:
-        """Buds remember the light they catch; apices the vigour the Borchert-Honda sharing gives them from
-        the whole tree's light (plant/vigour.py: at the species' BHL 0.5 that is their own light), all of
-        them together no more than the tree's light ``income`` (fully lit leaf clusters' worth) sustains:
-        GROWTH_PER_LIGHT each, and FREE_VIGOUR more (Palubicki et al. 2009: the resource the base collects is
-        what the buds share, so a crown grows with the light it catches, not with the number of its buds)."""
-        apex = ls.sym[scene.probe_idx] == APEX
-        light = light.copy()
-        light[apex] = borchert_honda(ls.sym, scene.probe_idx[apex], light[apex], self.geometry_constants["BHL"])
-        total, cap = float(light[apex].sum()), GROWTH_PER_LIGHT * income + FREE_VIGOUR
-        if total > cap:
-            light[apex] *= cap / total
-        at = ls.offsets[scene.probe_idx] + np.where(apex, 3, 2)
-        params[at] += weight * (light - params[at])
 
     def _turn_apices(self, ls: LString, params: np.ndarray, scene: LightScene, around: np.ndarray,
                      weight: float, obstacles: Obstacles | None = None) -> None:
@@ -388,6 +373,23 @@ class GrowingTree:
 
 
 
+
+
+def remember_light(ls: LString, params: np.ndarray, scene: LightScene, light: np.ndarray, weight: float,
+                   bhl: float, income: float = np.inf) -> None:
+    """Buds remember the light they catch; apices the vigour the Borchert-Honda sharing gives them from
+    the whole tree's light (plant/vigour.py: at the species' BHL 0.5 that is their own light), all of
+    them together no more than the tree's light ``income`` (fully lit leaf clusters' worth) sustains:
+    GROWTH_PER_LIGHT each, and FREE_VIGOUR more (Palubicki et al. 2009: the resource the base collects is
+    what the buds share, so a crown grows with the light it catches, not with the number of its buds)."""
+    apex = ls.sym[scene.probe_idx] == APEX
+    light = light.copy()
+    light[apex] = borchert_honda(ls.sym, scene.probe_idx[apex], light[apex], bhl)
+    total, cap = float(light[apex].sum()), GROWTH_PER_LIGHT * income + FREE_VIGOUR
+    if total > cap:
+        light[apex] *= cap / total
+    at = ls.offsets[scene.probe_idx] + np.where(apex, 3, 2)
+    params[at] += weight * (light - params[at])
 
 
 def fallen_pieces(scene: LightScene, removed: np.ndarray, now: float) -> Fallen:
