@@ -3,8 +3,10 @@
 // hash). Each leaf card (a spray of leaves in one texture) gets its own size and tilt by its hash. Leaves flutter in the wind on top of their twig's sway; at coarse levels of detail a share of
 // them (by hash) is dropped and the rest grow by u_grow to cover for them; in autumn a share (by another
 // hash) has fallen (u_keep). Fruit and lit blossoms (u_ball = 1) are a quad turned to the eye round the
-// record's base (a fruit's width slot holds its ripeness). Blossoms and fruit are never drawn smaller than
-// u_min_pixels across (the size of a pixel at unit distance is u_pixel; 0 in the shadow pass).
+// record's base (a fruit's width slot holds its ripeness; a blossom is a cluster of flowers u_grow times
+// its size, moved u_forward of its width toward the eye, out of the leaves). Blossoms and fruit are never
+// drawn smaller than u_min_pixels across (the size of a pixel at unit distance is u_pixel; 0 in the shadow
+// pass).
 uniform mat4 u_mvp;
 uniform mat4 u_light_mvp;
 uniform vec3 u_offset;
@@ -15,6 +17,7 @@ uniform float u_keep = 1.0;
 uniform int u_ball = 0;
 uniform float u_pixel = 0.0;
 uniform float u_min_pixels = 0.0;
+uniform float u_forward = 0.0;  // a ball: moved toward the eye by this share of its width
 in vec2 in_corner;
 in vec3 i_base;
 in vec3 i_axis;
@@ -39,7 +42,8 @@ void main() {
         vec3 to_eye = normalize(u_eye - centre);
         vec3 right = normalize(cross(vec3(0.0, 1.0, 0.0), to_eye));
         vec3 up = cross(to_eye, right);
-        float across = max(i_size.x, u_min_pixels * u_pixel * distance(centre, u_eye));
+        float across = max(i_size.x * u_grow, u_min_pixels * u_pixel * distance(centre, u_eye));
+        centre += to_eye * across * u_forward;
         p = centre + (right * (in_corner.x - 0.5) + up * (in_corner.y - 0.5)) * across;
         v_normal = to_eye;
         v_tangent = up;

@@ -107,7 +107,7 @@ void main() {
     vec3 hemi = mix(u_ground_color, u_sky_color, 0.5 + 0.5 * n.y);
     if (u_kind >= 2) hemi = mix(hemi, vec3(dot(hemi, vec3(0.333))), 0.7);  // blossoms and fruit keep their colour
     float depth = length(v_pos - u_crown_center) / max(u_crown_radius, 1e-4);
-    float ao = (u_kind == 0 || u_kind >= 3) ? 1.0 : mix(0.5, 1.05, smoothstep(0.15, 1.0, depth));
+    float ao = u_kind != 1 ? 1.0 : mix(0.5, 1.05, smoothstep(0.15, 1.0, depth));  // (blossoms sit out of the leaves)
     // leaves on the crown's sunlit side brighter, those on its far side a little darker (light through
     // the crown from outside in, on top of the AO's outside-in)
     float side = u_kind == 1 ? dot(v_pos - u_crown_center, u_sun_dir) / max(u_crown_radius, 1e-4) : 0.0;

@@ -39,7 +39,9 @@ LENGTH = 9  # column of a leaf record's length (its width next)
 LEAF_LAYOUT = ("2f 3f 3f 3f 3f 1f", ("i_base", "i_axis", "i_normal", "i_size", "i_hash"))  # a corner, then the record
 CORNERS = np.array([[0, 0], [1, 0], [1, 1], [0, 1]], "f4")  # of a leaf's quad (four vertices per leaf: a
 QUAD = np.array([0, 1, 2, 0, 2, 3], "u4")  # software GL draws them faster than one instance per leaf)
-MIN_PIXELS = (0.0, 0.0, 9.0, 6.5, 0.0)  # per kind: blossoms and fruit are drawn at least this many pixels across
+MIN_PIXELS = (0.0, 0.0, 26.0, 6.5, 0.0)  # per kind: blossoms and fruit are drawn at least this many pixels across
+BLOSSOM_GROW = 2.4  # a blossom record is drawn as a cluster of flowers (blossom.png), this much wider than one
+BLOSSOM_FORWARD = 0.35  # and moved toward the eye by this share of its width (out of the leaves it sits among)
 BARK_UV = (2.0, 1.0)  # the bark texture twice around a branch (u), once per growth step along it (v)
 
 
@@ -316,7 +318,9 @@ class InstancedTrees:
             set_uniforms(prog, {k: v for k, v in uniforms.items() if k != "tints"})
             textures[("bark", "leaf_cluster", "blossom", "blossom", "rock")[kind]].use(location=0)
             per_part = {"u_tex": 0, "u_fraction": share if kind == 1 else 1.0, "u_min_pixels": MIN_PIXELS[kind],
-                        "u_grow": detail.leaf_grow if kind == 1 else 1.0, "u_thinnest": detail.thinnest,
+                        "u_grow": detail.leaf_grow if kind == 1 else BLOSSOM_GROW if kind == 2 else 1.0,
+                        "u_forward": BLOSSOM_FORWARD if kind == 2 and pass_ == "lit" else 0.0,
+                        "u_thinnest": detail.thinnest,
                         "u_min_radius": TWIG_RADIUS[lod],
                         "u_keep": uniforms.get("u_keep", 1.0) if kind == 1 else 1.0,
                         # fruit is a ball and a lit blossom a flower, both turned to the eye (a small flower

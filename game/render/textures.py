@@ -36,16 +36,29 @@ def leaf_rgba(size: int = 128) -> np.ndarray:
     return _to_bytes(rgb, alpha)
 
 
+BLOSSOMS = ((-0.42, -0.44, 0.42), (0.46, -0.4, 0.42), (-0.5, 0.36, 0.4), (0.5, 0.4, 0.4),
+            (0.0, 0.02, 0.5))  # a spur's flowers (x, y, radius across the texture's -1..1), back to front
+
+
 def blossom_rgba(size: int = 128) -> np.ndarray:
-    """A five-petalled pale pink blossom with a yellow centre."""
+    """A cluster of five five-petalled flowers (as an apple's spur carries them), pale pink petals deeper
+    pink at their base and rimmed darker (so that each flower reads apart from the next), yellow
+    centres; the flowers behind a little darker. One blossom record of the tree draws one cluster."""
     u, v = _grid(size)
     x, y = (u - 0.5) * 2, (v - 0.5) * 2
-    r, a = np.hypot(x, y), np.arctan2(y, x)
-    petal_r = 0.55 + 0.4 * np.abs(np.cos(2.5 * a))
-    inside = r < petal_r
-    rgb = np.stack([np.full_like(r, 0.98), 0.78 + 0.15 * r, 0.86 + 0.1 * r], axis=-1)
-    rgb[r < 0.18] = (0.98, 0.85, 0.25)
-    return _to_bytes(rgb, inside.astype(float))
+    rgb, alpha = np.zeros((size, size, 3)), np.zeros((size, size))
+    for k, (cx, cy, radius) in enumerate(BLOSSOMS):
+        r, a = np.hypot(x - cx, y - cy) / radius, np.arctan2(y - cy, x - cx) + 0.7 * k
+        petal = 0.55 + 0.45 * np.abs(np.cos(2.5 * a)) ** 0.7
+        inside = r < petal
+        depth = r / petal  # 0 at the centre .. 1 at a petal's edge
+        pale = np.stack([np.full_like(r, 1.0), 0.74 + 0.24 * depth, 0.84 + 0.14 * depth], axis=-1)
+        pale[depth > 0.88] = (0.93, 0.6, 0.74)  # the rim
+        pale[r < 0.24] = (0.98, 0.84, 0.26)
+        pale[(r < 0.3) & (np.cos(a * 9) > 0.7) & (r > 0.2)] = (0.7, 0.55, 0.15)  # stamens
+        pale *= 0.86 + 0.14 * k / (len(BLOSSOMS) - 1)
+        rgb[inside], alpha[inside] = pale[inside], 1.0
+    return _to_bytes(rgb, alpha)
 
 
 def periodic_noise(size: int, cycles: tuple[float, float], seed: int) -> np.ndarray:
