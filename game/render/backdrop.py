@@ -27,6 +27,8 @@ CLOUDS = 11  # cards in the sky, drifting with the wind
 CLOUD_DRIFT = 0.002  # radians of azimuth a second
 CLOUD_STEP = 0.004  # drift between redraws of the sky's picture on a software GL (about 3 px at 720 px)
 GRASS = (0.33, 0.50, 0.22)
+FAR_HAZE = 0.3  # far away the ground takes this share of the horizon's colour (aerial haze), and no more:
+# faded all the way into the sky's pale horizon it was a grey fog band under a sharp sky line
 SOIL = (0.36, 0.26, 0.17)  # the cut-away view: the ground as soil
 # The ground disc's mesh: few, large triangles (a software GL pays per triangle, also for the ones
 # clipped behind the camera: 64 x 24 cost 3-5 ms more per frame than 24 x 10 on llvmpipe)
@@ -129,6 +131,13 @@ def ground_color(sun: np.ndarray, ground: tuple[float, float, float]) -> tuple[f
     return tuple(c * light + m * (1.0 - day) for c, m in zip(ground, MOONLIT, strict=True))
 
 
+def far_ground(sun: np.ndarray, ground: tuple[float, float, float]) -> tuple[float, float, float]:
+    """The colour the ground fades into far away and the dome shows below the horizon: the ground's own
+    (``ground`` under ``sun``, see :func:`ground_color`) hazed FAR_HAZE of the way to the horizon's."""
+    _, horizon, _ = sky_colors(sun)
+    return tuple(g + (h - g) * FAR_HAZE for g, h in zip(ground_color(sun, ground), horizon, strict=True))
+
+
 def _stars(count: int = STARS, seed: int = 29) -> np.ndarray:
     """``count`` stars: unit directions spread evenly over the upper sky and a brightness (most faint)."""
     rng = np.random.default_rng(seed)
@@ -182,9 +191,10 @@ def speckle_texture(ctx: moderngl.Context) -> moderngl.Texture:
 
 def _dome(rings: int = 14, sectors: int = 48) -> tuple[np.ndarray, np.ndarray]:
     """Unit directions of a dome from straight down to the zenith, and its triangles: below the horizon it
-    is the horizon's colour, so where the ground disc ends (a camera close over a seedling sees past it)
-    the view fades into the horizon instead of showing the cleared, black framebuffer."""
-    elev = np.concatenate([[-math.pi / 2, -0.6, -0.15], np.linspace(0.0, math.pi / 2, rings)])
+    is the far ground's colour (:func:`far_ground`), so where the ground disc ends (a camera close over a
+    seedling sees past it) the view goes on into the far ground instead of showing the cleared, black
+    framebuffer; a ring just under the horizon makes the line between ground and sky a sharp one."""
+    elev = np.concatenate([[-math.pi / 2, -0.6, -0.15, -0.003], np.linspace(0.0, math.pi / 2, rings)])
     az = np.linspace(0.0, 2 * math.pi, sectors, endpoint=False)
     e, a = np.meshgrid(elev, az, indexing="ij")
     dirs = np.stack([np.cos(e) * np.cos(a), np.sin(e), np.cos(e) * np.sin(a)], axis=-1).reshape(-1, 3)
@@ -261,11 +271,10 @@ class Backdrop:
     def draw_ground(self, mvp: bytes, sun: np.ndarray, fade: tuple[float, float]) -> None:
         """The ground, lit by the sun, fading into the horizon from ``fade[0]`` to ``fade[1]`` (the
         trees' shadows go on it with :meth:`draw_shadows`)."""
-        _, horizon, _ = sky_colors(sun)
         self.noise.use(location=2)
         grass = ground_color(sun, self.ground_kind)
         set_uniforms(self.ground_prog, {
-            "u_mvp": mvp, "u_noise": 2, "u_grass": grass, "u_horizon": horizon,
+            "u_mvp": mvp, "u_noise": 2, "u_grass": grass, "u_horizon": far_ground(sun, self.ground_kind),
             "u_fade_start": fade[0], "u_fade_end": fade[1]})
         if self.ground is not None:
             self.ground.render()
@@ -313,6 +322,7 @@ class Backdrop:
         prog["u_eye"].value = tuple(eye)
         prog["u_radius"].value = radius
         prog["u_zenith"].value, prog["u_horizon"].value = zenith, horizon
+        prog["u_below"].value = far_ground(sun, self.ground_kind)
         prog["u_sun_dir"].value = tuple(sun)
         prog["u_glow"].value = tuple(c * day for c in (1.0, 0.85, 0.55))
         self.dome.render()
