@@ -25,7 +25,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from arbor.engine.life.experiment.measure import measure, place_day_par, root_shoot
-from arbor.engine.life.plant import photosynthesis, solar
+from arbor.engine.life.plant import carbon, photosynthesis, solar
 from arbor.engine.life.plant.carbon import full_ppfd
 from arbor.engine.life.rules.rules import Rules, load_rules
 from arbor.engine.life.world.actions import Action
@@ -33,6 +33,7 @@ from arbor.engine.life.world.world import World
 from arbor.engine.lsystem.lsys import load_lsystem
 from arbor.game.paths import ASSETS
 
+SHADE = 0.75  # the shade the plant rows' second run grows in (sun and shade leaves)
 MARKERS = ("<!-- validate-table -->\n", "<!-- /validate-table -->\n")
 FAO = "Allen et al. 1998, FAO-56 eq. 21 and 37"
 
@@ -112,11 +113,12 @@ def leaf_rows(species: dict[str, dict[str, float]]) -> list[Row]:
     return rows
 
 
-def grow(system, days: float, seed: int = 3) -> tuple[World, float]:
-    """A tree watered between 0.55 and 0.75 in an endless summer under the default sun for ``days``; returns the
-    world and the PAR its leaves intercepted (MJ, on the declared time scale)."""
+def grow(system, days: float, seed: int = 3, shade: float = 0.0) -> tuple[World, float]:
+    """A tree watered between 0.55 and 0.75 in an endless summer under the default sun (``shade`` of it removed) for
+    ``days``; returns the world and the PAR its leaves intercepted (MJ, on the declared time scale)."""
     rules = load_rules(ASSETS / "rules.toml", pace="demo")
     rules.seasons.enabled = False
+    rules.sun.shade = shade
     world = World(system, rules, seed=seed)
     world.apply(Action.ORBIT_HEIGHT, 0.35)
     world.sim.state.sun_meter = world.sim.state.water_meter = 0.9
@@ -157,7 +159,7 @@ def plant_rows(species: dict[str, object], days: float) -> list[Row]:
         world, caught = grow(system, days)
         m = measure(world)
         tolerant = name == "game_tree"
-        leaf = world.carbon.leaf_area * world.rules.carbon.leaf_mass / 1000.0
+        leaf = world.carbon.leaf_area * carbon.leaf_mass(world.rules, world.leaf_light()) / 1000.0
         values = {"height": m["height"], "biomass": m["biomass"] * 1000, "root_shoot": root_shoot(world.carbon),
                   "h_d": m["height"] / max(m["girth"] / 100, 1e-9), "leaf_share": 100 * leaf / max(m["biomass"], 1e-9),
                   "lue": dry_matter(world) / max(caught, 1e-9),
@@ -167,6 +169,11 @@ def plant_rows(species: dict[str, object], days: float) -> list[Row]:
             rows.append(Row(f"{name}: {key.replace('_', ' ')} after {days:g} game days "
                             f"({days * photosynthesis.real_days(world.rules):.0f} real)", unit, values[key], low,
                             high, source))
+        shaded, _ = grow(system, days, shade=SHADE)
+        sla = carbon.leaf_mass(world.rules, world.leaf_light()) / carbon.leaf_mass(shaded.rules, shaded.leaf_light())
+        rows.append(Row(f"{name}: specific leaf area of new leaves, {SHADE:.0%} shade over full sun", "m²/g / m²/g",
+                        sla, 1.3, 2.0, "leaves grown in deep shade have about half to two thirds of a sun leaf's mass "
+                        "per area (Poorter et al. 2009, Causes and consequences of variation in leaf mass per area)"))
     return rows
 
 

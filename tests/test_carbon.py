@@ -199,3 +199,19 @@ def test_the_pool_pays_for_all_the_wood_and_leaves_drawn_and_sets_how_fast_the_t
     paid = budget.built * rules.carbon.growth_cost + budget.pool + budget.respired
     assert paid == pytest.approx(budget.fixed + rules.carbon.seed_reserve, rel=0.05)  # nothing made, little lost
     assert budget.pool < 0.8 * budget.capacity(rules)  # a full pool would build more
+
+
+def test_shade_leaves_are_thinner_so_the_same_sugar_buys_more_leaf_in_shade():
+    """carbon.shade_lma and carbon.sun_leaf_light (Poorter et al. 2009): a leaf's mass per area falls from a sun
+    leaf's in bright light to shade_lma of it in the dark; the new leaves of a shaded tree cost that much less."""
+    from arbor.engine.life.plant.carbon import built_cost, leaf_mass
+    from arbor.engine.lsystem.lstring import parse_lstring
+
+    rules = Rules()
+    c = rules.carbon
+    assert leaf_mass(rules, 1.0) == leaf_mass(rules, c.sun_leaf_light) == pytest.approx(c.leaf_mass)
+    assert leaf_mass(rules, 0.0) == pytest.approx(c.shade_lma * c.leaf_mass)
+    assert leaf_mass(rules, 0.0) < leaf_mass(rules, 0.1) < leaf_mass(rules, 0.3) < leaf_mass(rules, 1.0)
+    const = {"IL": 1.0, "IO": 0.75, "TIP": 0.012, "LS": 1.2}
+    leaves = parse_lstring("I(5,0,0,0,0)L(5,1,0)L(5,1,0)")
+    assert built_cost(leaves, 5.0, const, rules, 0.1) < 0.7 * built_cost(leaves, 5.0, const, rules, 1.0)

@@ -20,9 +20,9 @@ def species(lsys_dir):
     return {name: load_lsystem(lsys_dir / f"{name}.lsys") for name in ("game_tree", "game_poplar")}
 
 
-def grown(system, shade: float, days: float = 7, seed: int = 3) -> float:
+def grown(system, shade: float, days: float = 7, seed: int = 3, shape: bool = False):
     """Above-ground biomass (kg) after ``days`` of an endless summer, watered, under the default sun with
-    ``shade`` of it removed."""
+    ``shade`` of it removed (``shape``: the crown's width over its height instead)."""
     rules = load_rules("assets/rules.toml", pace="demo")
     rules.seasons.enabled = False
     rules.sun.shade = shade
@@ -33,7 +33,8 @@ def grown(system, shade: float, days: float = 7, seed: int = 3) -> float:
         s = world.sim.state
         world.apply(Action.WATER, float(s.water_meter < 0.75 if s.watering else s.water_meter < 0.55))
         world.step(0.5)
-    return measure(world)["biomass"]
+    m = measure(world)
+    return m["width"] / m["height"] if shape else m["biomass"]
 
 
 def test_the_leaves_of_a_pioneer_earn_more_in_sun_and_less_in_deep_shade(species):
@@ -78,3 +79,12 @@ def test_a_flood_tolerant_species_drowns_later_everywhere_drowning_counts():
     tolerant, intolerant = worlds["game_poplar"].sim, worlds["game_tree"].sim
     assert tolerant.flood_tolerance > 2 and not tolerant.drowned() and intolerant.drowned()
     assert intolerant.growth_speeds() == (0.0, 0.0) and tolerant.growth_speeds()[0] > 0
+
+
+def test_the_tolerant_crown_flattens_in_shade(species):
+    """Under 75 % shade the shade-tolerant game tree spreads a flatter crown, as shade-tolerant saplings do (Canham
+    1988, Growth and canopy architecture of shade-tolerant trees: response to canopy gaps): its thinner shade leaves
+    (carbon.shade_lma) keep its side shoots paid for (with sun leaves' cost everywhere it grows taller for its
+    width in shade)."""
+    sun, shade = (grown(species["game_tree"], s, shape=True) for s in (0.0, 0.75))
+    assert shade > 1.05 * sun, (sun, shade)

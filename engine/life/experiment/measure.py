@@ -147,11 +147,12 @@ def root_shoot(budget: carbon.CarbonBudget) -> float:
 
 def biomass(world: World, segs) -> float:
     """Above-ground biomass (kg): the wood's volume (every segment a cylinder) x the species' wood density,
-    plus the leaf area x the leaf mass per area."""
+    plus the leaf area x the leaf mass per area of the leaves it grows in its light now (carbon.leaf_mass)."""
     length = np.linalg.norm(segs.end - segs.start, axis=1) if len(segs) else np.zeros(0)
     volume = float((np.pi * segs.radius**2 * length).sum()) / METRE**3 if len(segs) else 0.0
     density = carbon.wood_density(world.tree.system.constants, world.rules)
-    return (volume * density + world.carbon.leaf_area * world.rules.carbon.leaf_mass) / 1000.0
+    leaf = carbon.leaf_mass(world.rules, world.leaf_light())  # (g per m² of the leaves it grows now)
+    return (volume * density + world.carbon.leaf_area * leaf) / 1000.0
 
 
 def crown_shape(segs, leaves) -> dict:

@@ -268,15 +268,25 @@ def wood_density(constants: dict[str, float], rules: Rules) -> float:
     return float(constants["WD"]) * 1000.0 if "WD" in constants else rules.carbon.wood_density
 
 
-def node_cost(order: np.ndarray, const: dict[str, float], rules: Rules, density: float) -> np.ndarray:
+def leaf_mass(rules: Rules, light: float = 1.0) -> float:
+    """A new leaf's mass per area (g per m²) on a tree whose leaves get ``light``, the share of the open sky's light
+    (World.leaf_light): a sun leaf's ``carbon.leaf_mass`` from ``sun_leaf_light`` up, down to ``shade_lma`` of it in
+    the dark, in proportion between (shade leaves are thinner: their specific leaf area is higher)."""
+    c = rules.carbon
+    return c.leaf_mass * (c.shade_lma + (1.0 - c.shade_lma) * min(max(light / c.sun_leaf_light, 0.0), 1.0))
+
+
+def node_cost(order: np.ndarray, const: dict[str, float], rules: Rules, density: float,
+              light: float = 1.0) -> np.ndarray:
     """What one new node costs at each branch ``order`` (g): a full-grown leaf cluster and the internode
     under it (its pipe for one leaf)."""
-    leaf = CLUSTER_AREA * LEAF_ASPECT * const["LS"] ** 2 * AREA * rules.carbon.leaf_mass
+    leaf = CLUSTER_AREA * LEAF_ASPECT * const["LS"] ** 2 * AREA * leaf_mass(rules, light)
     wood = const["IL"] * const["IO"] ** order * const["TIP"] ** 2 * WOOD * density
     return leaf + wood
 
 
-def shoot_demand(ls: LString, dt: float, const: dict[str, float], rules: Rules, density: float) -> float:
+def shoot_demand(ls: LString, dt: float, const: dict[str, float], rules: Rules, density: float,
+                 daylight: float = 1.0) -> float:
     """Sugar (g) the growing apices would build into nodes in ``dt`` of physiological time at full speed:
     each apex makes a node every plastochron ``P`` while lit above ``QG``."""
     apex = np.flatnonzero((ls.sym == APEX) & (ls.nparams == 6))
@@ -287,10 +297,10 @@ def shoot_demand(ls: LString, dt: float, const: dict[str, float], rules: Rules, 
     qg = const.get("QG", 0.12)
     lit = np.clip((light - qg) / max(1.0 - qg, 1e-9), 0.0, 1.0)
     nodes = dt * lit / const.get("P", 4.0)
-    return float((nodes * node_cost(order, const, rules, density)).sum())
+    return float((nodes * node_cost(order, const, rules, density, daylight)).sum())
 
 
-def built_cost(ls: LString, born: float, const: dict[str, float], rules: Rules) -> float:
+def built_cost(ls: LString, born: float, const: dict[str, float], rules: Rules, light: float = 1.0) -> float:
     """Dry mass (g) of the organs born at physiological time ``born`` (the last rewrite): the leaves on the new
     internodes at their full size, blossoms that opened and fruit that set. (The new internodes' wood is the
     pipe model's: paid at the next light reading as the pipes grow, :meth:`Economy.pay_pipes`.)"""
@@ -301,7 +311,7 @@ def built_cost(ls: LString, born: float, const: dict[str, float], rules: Rules) 
     leaves = int(np.count_nonzero(new & (ls.sym == LEAF)))
     flowers = rules.carbon.blossom_cost * np.count_nonzero(new & (ls.sym == BLOSSOM))
     fruit = rules.carbon.fruit_cost * np.count_nonzero(new & (ls.sym == FRUIT))
-    leaf = CLUSTER_AREA * LEAF_ASPECT * const["LS"] ** 2 * AREA * rules.carbon.leaf_mass
+    leaf = CLUSTER_AREA * LEAF_ASPECT * const["LS"] ** 2 * AREA * leaf_mass(rules, light)
     return leaves * leaf + float(flowers + fruit)
 
 

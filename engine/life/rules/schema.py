@@ -226,7 +226,16 @@ SCHEMA: tuple[Rule, ...] = (
          "this much faster than the clock's pace (a full pool builds more)"),
     Rule("carbon.root_respiration", 3.0, 1.0, 40.0, "nmol CO2 per g of root per s", "the roots' upkeep (a real "
          "rate, made the game's by the declared time scale)", source="Reich et al. 2008, Scaling of respiration to "
-         "nitrogen in leaves, stems and roots of higher land plants (fine roots about 5-20 at 20-25 °C)"),
+         "nitrogen in leaves, stems and roots of higher land plants (fine roots about 5-20 at 20-25 °C; the "
+         "coarser roots that make most of a young tree's root mass respire far less)"),
+    Rule("carbon.shade_lma", 0.5, 0.2, 1.0, "share of a sun leaf's", "a leaf grown in deep shade has this share of "
+         "a sun leaf's mass per area (leaf_mass), a leaf in sun_leaf_light or more the whole of it, in proportion "
+         "between: shade leaves are thinner, their specific leaf area higher",
+         source="Poorter et al. 2009, Causes and consequences of variation in leaf mass per area (LMA): a meta-"
+         "analysis (LMA about halves from high light to deep shade)"),
+    Rule("carbon.sun_leaf_light", 0.5, 0.05, 1.0, "share of the open sky's light", "leaves that get this share of "
+         "the open sky's light or more grow as sun leaves (their mass per area saturates in bright light)",
+         source="Poorter et al. 2009, as above"),
     Rule("carbon.root_most", 4.0, 1.0, 20.0, "x root_shoot", "the balance's need over supply at most (a dry soil's)"),
     Rule("carbon.root_catch_up", 125.66667, 1.0, 1e7, "s", "the roots close their gap to the balance's target over "
          "about this long (a day of the sun), as far as the pool pays", "time"),

@@ -180,12 +180,13 @@ class World:
         s, tree, rules = self.sim.state, self.tree, self.rules
         const = {**tree.system.constants, **tree.geometry_constants}
         density = carbon.wood_density(tree.system.constants, rules)
-        demand = carbon.shoot_demand(tree.lstring, s.length_time - tree.last_rewrite_T, const, rules, density)
+        light = self.leaf_light()  # (shade leaves are thinner: carbon.leaf_mass)
+        demand = carbon.shoot_demand(tree.lstring, s.length_time - tree.last_rewrite_T, const, rules, density, light)
         vigour = self.carbon.shoots_share(rules, demand, self._roots_due())
         self.carbon.vigour = vigour
         tree.rewrite(s.length_time, s.girth_time, self.sim.resources(), self.sim.leaf_vigour(),
                      {**self.sim.season_externs(s.length_time), "LG": self.sim.light_growth()}, vigour)
-        self.carbon.spend(rules, carbon.built_cost(tree.lstring, s.length_time, const, rules))
+        self.carbon.spend(rules, carbon.built_cost(tree.lstring, s.length_time, const, rules, light))
 
     def _roots_due(self) -> float:
         """Dry mass (g) the roots are due by the functional balance until the next light reading (kept from the
@@ -215,6 +216,11 @@ class World:
         self.sim.root_vigour = e.root_paid * e.root_balance if e is not None else 0.0  # (at most carbon.root_most)
         self.sim.starving = self.carbon.starving
         self.sim.remember_light(self.light_caught(), seconds)
+
+    def leaf_light(self) -> float:
+        """The share of the open sky's light on the leaves: their mean light under the crowns (the last light
+        reading) less the rules' shade."""
+        return (1.0 - self.rules.sun.shade) * self.tree.mean_light
 
     def light_caught(self) -> float:
         """The light the leaves fixed sugar with at the last reading, 0..1 of what fully lit, open leaves of
