@@ -17,6 +17,7 @@ from arbor.game.render.falling import FALL_SECONDS, falling_view
 from arbor.game.render.garden import BARK, FALLING, GardenRenderer, Placed
 from arbor.game.render.instanced import Detail, TreeBuffers, prepare_upload
 from arbor.game.render.roots import rocks_view, roots_view
+from arbor.game.render.scenery import Spot, scale_of, scenery_view
 from arbor.game.render.species import look_of
 from arbor.game.screens.modeler import ModelingMode
 from arbor.game.screens.state import GameState
@@ -49,6 +50,7 @@ class GameView:
         self.root_buffers: dict[int, tuple[tuple, TreeBuffers]] = {}  # world id -> (key, GPU records)
         self.roots_bottom = 0.0  # lowest root of the cared-for tree (the cut-away view frames it)
         self.rock_buffers: tuple[tuple, TreeBuffers] | None = None
+        self.scenery: tuple[tuple, TreeBuffers] | None = None  # the garden's stones, shrubs and path
 
     def rebuild(self) -> None:
         """Bring every tree's records up to date: a full build when its L-string (or wilt) changed,
@@ -73,6 +75,7 @@ class GameView:
         placed += self._falling(here)
         placed += self._roots(here)
         placed += self._rocks(here)
+        placed += self._scenery(here)
         current = self.views[id(state.world)][1]
         renderer.place(placed, current.lo, current.hi)
         self._tints()
@@ -111,6 +114,21 @@ class GameView:
             self.renderer.trees.sync(buffers, rocks_view(rocks))
             self.rock_buffers = (key, buffers)
         return [Placed(self.rock_buffers[1], -here, -3)]
+
+    def _scenery(self, here: np.ndarray) -> list[Placed]:
+        """Edging stones, shrubs and a stepping-stone path placed with the trees (game/render/scenery.py),
+        rebuilt only when a tree moves, comes or goes, or grows past a step of its scale."""
+        spots = []
+        for world in self.state.garden.worlds:
+            view = self.views[id(world)][1]
+            spots.append(Spot(float(world.position[0]), float(world.position[1]),
+                              scale_of(float(view.hi[1] - view.lo[1]))))
+        key = tuple(spots)
+        if self.scenery is None or self.scenery[0] != key:
+            buffers = self.scenery[1] if self.scenery else TreeBuffers()
+            self.renderer.trees.sync(buffers, scenery_view(spots))
+            self.scenery = (key, buffers)
+        return [Placed(self.scenery[1], -here, -4)]
 
     def _view(self, world, shown, clocks, key: tuple) -> tuple:
         """The records for ``world``'s tree: rebuilt when ``key`` changed, else moved to ``clocks``. A

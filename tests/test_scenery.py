@@ -1,0 +1,73 @@
+"""A garden that looks like a place (issue 47, looks): edging stones round each tree's foot, shrubs
+beside it and stepping stones from tree to tree, cheap and the same at every start."""
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from arbor.game.render.scenery import EDGING, SHRUB_CARDS, SHRUBS, Spot, scale_of, scenery_view
+
+SIZE = (1280, 720)
+
+
+def test_stones_ring_each_tree_and_a_path_joins_them():
+    spots = [Spot(0.0, 0.0, 1.0), Spot(-15.0, 3.0, 1.0), Spot(18.0, -16.0, 0.67)]
+    view = scenery_view(spots)
+    stones = view.stones.data
+    assert len(view.leaves.data) == len(spots) * SHRUBS * SHRUB_CARDS
+    foot = np.stack([stones[:, 0], stones[:, 2]], axis=1)
+    near = [np.linalg.norm(foot - [s.x, s.z], axis=1) for s in spots]
+    for spot, d in zip(spots, near, strict=True):
+        ring = (d > 2.5 * spot.scale) & (d < 4.0 * spot.scale)
+        assert ring.sum() >= EDGING and d.min() > 2.5 * spot.scale  # a ring, none on the trunk
+    path = np.min(near, axis=0) > 4.2 * max(s.scale for s in spots)
+    assert path.sum() >= 10  # (15 + 24 units of path: stones every 2.4 units)
+    assert np.all(np.abs(stones[:, 1] - 0.35 * stones[:, 9] / 2) < 1e-6)  # (resting on the ground)
+    again = scenery_view(spots)
+    assert np.array_equal(again.stones.data, stones) and np.array_equal(again.leaves.data, view.leaves.data)
+
+
+def test_a_lone_tree_has_a_path_out_and_its_scenery_grows_with_it():
+    small, big = (scenery_view([Spot(0.0, 0.0, scale_of(height))]) for height in (3.0, 15.0))
+    assert 0.0 < np.abs(small.stones.data[:, [0, 2]]).max() < 0.5 * np.abs(big.stones.data[:, [0, 2]]).max()
+    assert scale_of(15.0) == 1.0 and scale_of(0.1) < scale_of(6.0) < 1.0 and scale_of(14.0) == scale_of(16.0)
+
+
+@pytest.fixture(scope="module")
+def frames(gl_ctx, tmp_path_factory):
+    """The game's frame at its default zoom by day on a summer tree, with and without its scenery."""
+    from arbor.game.screens import game_view
+    from arbor.game.screens.game import Game, GameConfig
+    from benchmarks.shots import _grow, summer_day
+
+    world = _grow(summer_day(), 3)
+    world.sim.state.sun_angle = 1.1  # (by day)
+    shots, triangles = [], []
+    placed = game_view.GameView._scenery
+    for scenery in (False, True):
+        game_view.GameView._scenery = placed if scenery else (lambda self, here: [])
+        try:
+            game = Game(gl_ctx, SIZE, GameConfig(saves=Path(tmp_path_factory.mktemp("s")), seed=3, resume=False),
+                        clock=lambda: 1000.0)
+            game.garden.worlds[0] = world
+            game.hud.draw = lambda camera: None
+            fbo = gl_ctx.framebuffer(color_attachments=[gl_ctx.renderbuffer(SIZE)],
+                                     depth_attachment=gl_ctx.depth_renderbuffer(SIZE))
+            game.draw(fbo)
+            shots.append(np.frombuffer(fbo.read(components=3), np.uint8).reshape(SIZE[1], SIZE[0], 3)[::-1].astype(int))
+            triangles.append(game.triangles)
+            game.renderer.release()
+        finally:
+            game_view.GameView._scenery = placed
+    return shots, triangles
+
+
+def test_the_game_shows_stones_and_shrubs_round_the_tree_at_little_cost(frames):
+    (bare, placed), (before, after) = frames
+    grey = lambda shot: (np.ptp(shot, axis=2) < 25) & (shot.mean(axis=2) > 60)  # noqa: E731 (stone, not grass)
+    ground = slice(SIZE[1] // 2, None)  # (below the horizon: not the clouds)
+    assert grey(placed[ground]).sum() > grey(bare[ground]).sum() + 1500  # stones on the grass
+    changed = np.abs(placed - bare).max(axis=2) > 30
+    assert changed[ground].sum() > 8000  # and shrubs
+    assert after - before < 0.05 * before  # (measured: 2,904 -> 2,976 triangles)
