@@ -30,7 +30,6 @@ def spring(gl_ctx, tmp_path_factory):
                              depth_attachment=gl_ctx.depth_renderbuffer(SIZE))
     game.draw(fbo)
     shot = np.frombuffer(fbo.read(components=3), np.uint8).reshape(SIZE[1], SIZE[0], 3)[::-1].astype(int)
-    game.renderer.release()
     return game, shot
 
 

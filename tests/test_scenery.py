@@ -57,7 +57,6 @@ def frames(gl_ctx, tmp_path_factory):
             game.draw(fbo)
             shots.append(np.frombuffer(fbo.read(components=3), np.uint8).reshape(SIZE[1], SIZE[0], 3)[::-1].astype(int))
             triangles.append(game.triangles)
-            game.renderer.release()
         finally:
             game_view.GameView._scenery = placed
     return shots, triangles

@@ -31,7 +31,6 @@ def test_the_title_has_a_sharp_horizon_not_a_fog_band(gl_ctx, tmp_path):
                              depth_attachment=gl_ctx.depth_renderbuffer(SIZE))
     game.draw(fbo)
     shot = np.frombuffer(fbo.read(components=3), np.uint8).reshape(SIZE[1], SIZE[0], 3)[::-1].astype(float)
-    game.renderer.release()
     sky, ground = kinds_of_rows(shot)
     rows = slice(SIZE[1] // 4, SIZE[1] * 3 // 4)  # (below the clouds, above the title's lines)
     assert sky[rows].any() and ground[rows].any()  # (the horizon is in these rows)

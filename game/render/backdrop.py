@@ -29,6 +29,8 @@ CLOUD_STEP = 0.004  # drift between redraws of the sky's picture on a software G
 GRASS = (0.33, 0.50, 0.22)
 FAR_HAZE = 0.3  # far away the ground takes this share of the horizon's colour (aerial haze), and no more:
 # faded all the way into the sky's pale horizon it was a grey fog band under a sharp sky line
+HORIZON_HAZE = 1.5  # toward the horizon the haze grows on to this many FAR_HAZEs (a gradient, not a flat slab)
+HORIZON_REACH = 25.0  # over a last ring of the ground this many times the disc's radius (near the horizon)
 SOIL = (0.36, 0.26, 0.17)  # the cut-away view: the ground as soil
 # The ground disc's mesh: few, large triangles (a software GL pays per triangle, also for the ones
 # clipped behind the camera: 64 x 24 cost 3-5 ms more per frame than 24 x 10 on llvmpipe)
@@ -131,11 +133,13 @@ def ground_color(sun: np.ndarray, ground: tuple[float, float, float]) -> tuple[f
     return tuple(c * light + m * (1.0 - day) for c, m in zip(ground, MOONLIT, strict=True))
 
 
-def far_ground(sun: np.ndarray, ground: tuple[float, float, float]) -> tuple[float, float, float]:
-    """The colour the ground fades into far away and the dome shows below the horizon: the ground's own
-    (``ground`` under ``sun``, see :func:`ground_color`) hazed FAR_HAZE of the way to the horizon's."""
+def far_ground(sun: np.ndarray, ground: tuple[float, float, float], haze: float = FAR_HAZE
+               ) -> tuple[float, float, float]:
+    """The colour the ground fades into far away: the ground's own (``ground`` under ``sun``, see
+    :func:`ground_color`) ``haze`` of the way to the horizon's (the dome below the horizon: HORIZON_HAZE
+    FAR_HAZEs, what the ground's last ring fades on to)."""
     _, horizon, _ = sky_colors(sun)
-    return tuple(g + (h - g) * FAR_HAZE for g, h in zip(ground_color(sun, ground), horizon, strict=True))
+    return tuple(g + (h - g) * haze for g, h in zip(ground_color(sun, ground), horizon, strict=True))
 
 
 def _stars(count: int = STARS, seed: int = 29) -> np.ndarray:
@@ -257,6 +261,7 @@ class Backdrop:
             return
         self.ground_radius = radius
         sectors, radii = GROUND_SECTORS, radius * (np.geomspace(1.0, 101.0, GROUND_RINGS) - 1.0) / 100.0
+        radii = np.append(radii, radius * HORIZON_REACH)  # (a last ring out toward the horizon, hazier)
         ang = np.linspace(0, 2 * np.pi, sectors, endpoint=False)
         rings = np.stack([np.outer(radii, np.cos(ang)), np.zeros((len(radii), sectors)),
                           np.outer(radii, np.sin(ang))], axis=-1).reshape(-1, 3).astype("f4")
@@ -275,7 +280,8 @@ class Backdrop:
         grass = ground_color(sun, self.ground_kind)
         set_uniforms(self.ground_prog, {
             "u_mvp": mvp, "u_noise": 2, "u_grass": grass, "u_horizon": far_ground(sun, self.ground_kind),
-            "u_fade_start": fade[0], "u_fade_end": fade[1]})
+            "u_fade_start": fade[0], "u_fade_end": fade[1], "u_haze_end": self.ground_radius * HORIZON_REACH,
+            "u_haze_more": HORIZON_HAZE - 1.0})
         if self.ground is not None:
             self.ground.render()
 
@@ -322,7 +328,7 @@ class Backdrop:
         prog["u_eye"].value = tuple(eye)
         prog["u_radius"].value = radius
         prog["u_zenith"].value, prog["u_horizon"].value = zenith, horizon
-        prog["u_below"].value = far_ground(sun, self.ground_kind)
+        prog["u_below"].value = far_ground(sun, self.ground_kind, FAR_HAZE * HORIZON_HAZE)
         prog["u_sun_dir"].value = tuple(sun)
         prog["u_glow"].value = tuple(c * day for c in (1.0, 0.85, 0.55))
         self.dome.render()

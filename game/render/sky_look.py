@@ -15,7 +15,7 @@ import math
 
 import numpy as np
 
-from arbor.game.render.backdrop import MOON, far_ground, ground_color, sky_colors
+from arbor.game.render.backdrop import FAR_HAZE, HORIZON_HAZE, MOON, far_ground, ground_color, sky_colors
 from arbor.game.render.camera import OrbitCamera
 
 LEVEL = 1.0  # a picture is stale once a colour it shows changed by this many 8-bit levels
@@ -38,7 +38,7 @@ def sky_look(dirs: np.ndarray, sectors: int, camera: OrbitCamera, vp: np.ndarray
     t = np.clip(dirs[:, 1], 0.0, 1.0) ** 0.6
     s = np.maximum(dirs @ sun, 0.0)
     dome = horizon + (zenith - horizon) * t[:, None] + np.outer(s**40 * 0.5 + s**5 * 0.1, np.array(GLOW) * day)
-    dome[dirs[:, 1] < -0.001] = far_ground(sun, ground)  # (below the horizon)
+    dome[dirs[:, 1] < -0.001] = far_ground(sun, ground, FAR_HAZE * HORIZON_HAZE)  # (below the horizon)
     seen, cells = _geometry(dirs, sectors, vp, eye, size)
     dome[~seen] = np.nan
     night = 1.0 - day if day < 0.999 else 0.0
