@@ -175,7 +175,7 @@ def test_shoots_grow_around_a_rock_not_into_it():
         world.apply(Action.ORBIT_HEIGHT, 0.9)
         garden = Garden([world])
         garden.rocks = [rock] if with_rock else []
-        grow(world, 7, garden)
+        grow(world, 10, garden)  # (a sapling paid by its sugar: tall enough to pass the rock by day 10)
         segs = world.tree.geometry(world.clocks()).turtle.segments
         gap, _ = rocks([rock]).gaps(np.concatenate([segs.end, (segs.start + segs.end) / 2]), 100.0)
         inside.append(int((gap < -0.05).sum()))

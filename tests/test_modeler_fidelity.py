@@ -26,7 +26,7 @@ def grown():
     rules.seasons.enabled = False
     world = World(load_lsystem(ASSETS / "lsystems" / "game_tree.lsys"), rules, seed=3)
     world.sim.state.sun_meter = world.sim.state.water_meter = 0.9
-    for _ in range(1500):
+    for _ in range(2500):  # (10 game days: a crown wide enough that a region holds only part of it)
         world.apply(Action.WATER, float(world.sim.state.water_meter < 0.6))
         world.step(0.5)
     return world
