@@ -37,16 +37,18 @@ def test_a_lone_tree_has_a_path_out_and_its_scenery_grows_with_it():
 @pytest.fixture(scope="module")
 def frames(gl_ctx, tmp_path_factory):
     """The game's frame at its default zoom by day on a summer tree, with and without its scenery."""
+    from arbor.game.render import scenery
     from arbor.game.screens import game_view
     from arbor.game.screens.game import Game, GameConfig
     from benchmarks.shots import _grow, summer_day
 
+    scenery.ON_SOFTWARE_GL = True  # (this machine's GL is llvmpipe)
     world = _grow(summer_day(), 3)
     world.sim.state.sun_angle = 1.1  # (by day)
     shots, triangles = [], []
     placed = game_view.GameView._scenery
-    for scenery in (False, True):
-        game_view.GameView._scenery = placed if scenery else (lambda self, here: [])
+    for shown in (False, True):
+        game_view.GameView._scenery = placed if shown else (lambda self, here: [])
         try:
             game = Game(gl_ctx, SIZE, GameConfig(saves=Path(tmp_path_factory.mktemp("s")), seed=3, resume=False),
                         clock=lambda: 1000.0)
@@ -59,7 +61,17 @@ def frames(gl_ctx, tmp_path_factory):
             triangles.append(game.triangles)
         finally:
             game_view.GameView._scenery = placed
+    scenery.ON_SOFTWARE_GL = False
     return shots, triangles
+
+
+def test_a_software_gl_leaves_the_scenery_out(gl_ctx, tmp_path):
+    from arbor.game.screens.game import Game, GameConfig
+
+    game = Game(gl_ctx, (320, 240), GameConfig(saves=tmp_path, seed=3, resume=False), clock=lambda: 1000.0)
+    game.draw(gl_ctx.framebuffer(color_attachments=[gl_ctx.renderbuffer((320, 240))],
+                                 depth_attachment=gl_ctx.depth_renderbuffer((320, 240))))
+    assert game.renderer.samples <= 1 and all(p.version != -4 for p in game.renderer.placed)
 
 
 def test_the_game_shows_stones_and_shrubs_round_the_tree_at_little_cost(frames):

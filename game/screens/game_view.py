@@ -12,6 +12,7 @@ import numpy as np
 from arbor.engine.life.form.growth_view import GrowthView
 from arbor.engine.life.plant import seasons
 from arbor.engine.life.rules.rules import Rules
+from arbor.game.render import scenery
 from arbor.game.render.camera import OrbitCamera, zoom_out
 from arbor.game.render.falling import FALL_SECONDS, falling_view
 from arbor.game.render.garden import BARK, FALLING, GardenRenderer, Placed
@@ -117,7 +118,10 @@ class GameView:
 
     def _scenery(self, here: np.ndarray) -> list[Placed]:
         """Edging stones, shrubs and a stepping-stone path placed with the trees (game/render/scenery.py),
-        rebuilt only when a tree moves, comes or goes, or grows past a step of its scale."""
+        rebuilt only when a tree moves, comes or goes, or grows past a step of its scale; on a software GL
+        only when scenery.ON_SOFTWARE_GL says so (its cost there, see game/render/scenery.py)."""
+        if self.renderer.samples <= 1 and not scenery.ON_SOFTWARE_GL:
+            return []
         spots = []
         for world in self.state.garden.worlds:
             view = self.views[id(world)][1]
