@@ -215,3 +215,42 @@ def test_shade_leaves_are_thinner_so_the_same_sugar_buys_more_leaf_in_shade():
     const = {"IL": 1.0, "IO": 0.75, "TIP": 0.012, "LS": 1.2}
     leaves = parse_lstring("I(5,0,0,0,0)L(5,1,0)L(5,1,0)")
     assert built_cost(leaves, 5.0, const, rules, 0.1) < 0.7 * built_cost(leaves, 5.0, const, rules, 1.0)
+
+
+def test_only_the_fine_roots_the_leaves_keep_respire_in_full():
+    """A tree's roots grow with its wood; the fine roots its leaves keep (carbon.fine_root_leaf g a g of leaf)
+    respire at root_respiration, the coarse rest at coarse_root_share of it, so an old tree's roots do not eat
+    its sugar (they did: 26 kg of roots respired 2.7 kg a day, three times its leaves, and it starved)."""
+    from arbor.engine.life.plant import photosynthesis
+
+    rules = Rules()
+    c = rules.carbon
+    per_gram = float(photosynthesis.grams(c.root_respiration * 1e-3, rules))
+    young = CarbonBudget(roots_built=100.0, leaf_area=4.0)  # fewer roots than the leaves keep: all fine
+    assert young.upkeep_rate(rules) - CarbonBudget(leaf_area=4.0).upkeep_rate(rules) == pytest.approx(100 * per_gram)
+    old = CarbonBudget(roots_built=26_000.0, leaf_area=29.0)
+    fine = c.fine_root_leaf * c.leaf_mass * 29.0
+    roots = old.upkeep_rate(rules) - CarbonBudget(leaf_area=29.0).upkeep_rate(rules)
+    assert roots == pytest.approx((fine + c.coarse_root_share * (26_000.0 - fine)) * per_gram)
+    assert roots < 0.25 * 26_000.0 * per_gram
+
+
+def test_autumn_and_winter_keep_stores_from_growth_for_the_spring():
+    """In autumn and winter growth may not spend the winter_keep more of upkeep the tree keeps for its winter
+    and for the spring before its new leaves pay (a 30-year tree starved every spring without it); half of it
+    in spring, none in summer."""
+    from arbor.engine.life.plant import seasons
+
+    rules = load_rules("assets/rules.toml", pace="demo")
+    world = World(load_lsystem("assets/lsystems/game_tree.lsys"), rules, seed=3)
+    year, shares = rules.seasons.year_days, {}
+    for name, quarter in (("spring", 0.1), ("summer", 0.35), ("autumn", 0.6), ("winter", 0.85)):
+        world.sim.state.sun_turns = (quarter - rules.seasons.start) % 1.0 * year
+        assert seasons.season_at(world.sim.state.sun_turns, rules).name == name
+        world.economy(1.0, 0.0)
+        shares[name] = world.carbon.stored / rules.carbon.winter_keep
+    assert shares == {"spring": 0.5, "summer": 0.0, "autumn": 1.0, "winter": 1.0}
+    budget = CarbonBudget(pool=1000.0, leaf_area=2.0, sapwood=0.001)
+    summer = budget.spare(rules)
+    budget.stored = rules.carbon.winter_keep
+    assert summer - budget.spare(rules) == pytest.approx(rules.carbon.winter_keep * budget.upkeep_rate(rules))

@@ -135,7 +135,7 @@ def test_the_schema_is_what_the_rules_and_paces_use():
     assert TIMES == ("growth.hold_time", "growth.deadline", "growth.penalty_time", "growth.daylight_memory",
                      "water.drown_time",
                      "health.death_time", "light.interval", "carbon.reserve_time", "carbon.keep_time",
-                     "carbon.starve_time", "carbon.root_catch_up")
+                     "carbon.winter_keep", "carbon.starve_time", "carbon.root_catch_up")
     assert "water.fill_rate" not in RATES and len(RATES) == 14  # the watering can is held for seconds at any pace
 
 

@@ -71,6 +71,7 @@ class CarbonBudget:
     # (not saved, set again at every reading: plain class attributes, not fields)
     leaf_cost = 0.0  # g per m² of leaf per s: its leaves' dark respiration (0: the rules' default leaf)
     full_rate = 0.0  # g per m² per s a fully lit, open leaf of the rules' reference leaf fixes under the zenith sun
+    stored = 0.0  # s of upkeep kept from growth beyond keep_time (the season's stores: seasons.stores)
 
     @classmethod
     def for_seedling(cls, rules: Rules) -> CarbonBudget:
@@ -82,11 +83,15 @@ class CarbonBudget:
         return rules.carbon.reserve_time * self.upkeep_rate(rules)
 
     def upkeep_rate(self, rules: Rules, activity: float = 1.0) -> float:
-        """Maintenance respiration (g per s) of the leaves and sapwood last measured and of the roots built, at
+        """Maintenance respiration (g per s) of the leaves and sapwood last measured and of the roots built (the
+        fine roots the leaves keep at root_respiration, the coarse ones at coarse_root_share of it), at
         ``activity`` (0..1)."""
+        c = rules.carbon
         leaf = self.leaf_cost or float(photosynthesis.grams(photosynthesis.leaf_traits({}, rules).dark, rules))
-        roots = float(photosynthesis.grams(rules.carbon.root_respiration * 1e-3, rules)) * self.roots_built
-        return (leaf * self.leaf_area + rules.carbon.wood_respiration * self.sapwood + roots) * activity
+        fine = min(self.roots_built, c.fine_root_leaf * c.leaf_mass * self.leaf_area)
+        living = fine + c.coarse_root_share * (self.roots_built - fine)  # (g of root respiring as fine roots)
+        roots = float(photosynthesis.grams(c.root_respiration * 1e-3, rules)) * living
+        return (leaf * self.leaf_area + c.wood_respiration * self.sapwood + roots) * activity
 
     def live(self, rules: Rules, seconds: float, shine: float, stomata: float, activity: float,
              canopy: Canopy | None = None, bare_starves: bool = False, traits: LeafTraits | None = None) -> float:
@@ -128,8 +133,9 @@ class CarbonBudget:
         return min(self.last_fixed_rate / full, 1.0) if full > 0 else 0.0
 
     def spare(self, rules: Rules) -> float:
-        """Sugar that may be spent on growth: the pool above what is kept for upkeep (``keep_time`` of it)."""
-        return max(self.pool - rules.carbon.keep_time * self.upkeep_rate(rules), 0.0)
+        """Sugar that may be spent on growth: the pool above what is kept for upkeep (``keep_time`` of it, and
+        the season's stores: ``stored``)."""
+        return max(self.pool - (rules.carbon.keep_time + self.stored) * self.upkeep_rate(rules), 0.0)
 
     def drive(self, rules: Rules) -> float:
         """How fast the pool lets the tree build, against the clock's pace (extern C): the pool's fill (its spare

@@ -55,6 +55,12 @@ def growth_factor(turns: float, rules: Rules) -> float:
     return _blended(turns, rules, (r.spring_growth, r.summer_growth, r.autumn_growth, r.winter_growth))
 
 
+def stores(turns: float, rules: Rules) -> float:
+    """How much of carbon.winter_keep the tree keeps from growth now: all of it in autumn and winter, half
+    in spring (its leaves are still unfolding), none in summer (none without seasons)."""
+    return _blended(turns, rules, (0.5, 0.0, 1.0, 1.0)) if rules.seasons.enabled else 0.0
+
+
 def water_factor(turns: float, rules: Rules) -> float:
     """How fast the water meter drains in this season (leafless in winter: slowly)."""
     return _blended(turns, rules, (1.0, 1.0, 1.0, rules.seasons.winter_water))

@@ -163,6 +163,10 @@ SCHEMA: tuple[Rule, ...] = (
          "of the sun)", "time"),
     Rule("carbon.keep_time", 126.0, 0.0, 1e8, "s", "this long of upkeep is kept in the pool for nights and winter, "
          "never spent on growth", "time"),
+    Rule("carbon.winter_keep", 252.0, 0.0, 1e8, "s", "in autumn and winter (and half of it in spring) this much "
+         "more upkeep is kept from growth: the stores a tree lays down for its winter and for the spring before its "
+         "new leaves pay", "time", source="Chapin, Schulze & Mooney 1990, The ecology and economics of storage in "
+         "plants"),
     Rule("carbon.seed_reserve", 8.0, 0.0, 1e6, "g", "a new sapling's reserve (in its seed and roots)"),
     Rule("carbon.starve_time", 40.0, 0.0, 1e8, "s", "upkeep unpaid (or no leaf at all in a leafy season) for this "
          "long wilts the tree", "time"),
@@ -228,6 +232,14 @@ SCHEMA: tuple[Rule, ...] = (
          "rate, made the game's by the declared time scale)", source="Reich et al. 2008, Scaling of respiration to "
          "nitrogen in leaves, stems and roots of higher land plants (fine roots about 5-20 at 20-25 °C; the "
          "coarser roots that make most of a young tree's root mass respire far less)"),
+    Rule("carbon.fine_root_leaf", 1.0, 0.1, 5.0, "g of fine root per g of leaf", "the fine roots a tree keeps for "
+         "its leaves (they respire at root_respiration; the rest of its roots is coarse)",
+         source="Vanninen & Mäkelä 1999, Fine root biomass of Scots pine stands differing in age and soil fertility "
+         "in southern Finland (fine root to foliage mass about 0.3-1, steady with age)"),
+    Rule("carbon.coarse_root_share", 0.1, 0.0, 1.0, "share of root_respiration", "a coarse root's upkeep per g "
+         "against a fine root's (a tree's roots grow with its wood; most of an old tree's are coarse)",
+         source="Desrochers, Landhäusser & Lieffers 2002, Coarse and fine root respiration in aspen (Populus "
+         "tremuloides) (coarse roots respire far less per g than fine roots)"),
     Rule("carbon.shade_lma", 0.5, 0.2, 1.0, "share of a sun leaf's", "a leaf grown in deep shade has this share of "
          "a sun leaf's mass per area (leaf_mass), a leaf in sun_leaf_light or more the whole of it, in proportion "
          "between: shade leaves are thinner, their specific leaf area higher",

@@ -199,6 +199,7 @@ class World:
         s, rules = self.sim.state, self.rules
         drowned = self.sim.drowned()
         activity = min(max(seasons.growth_factor(s.sun_turns, rules), rules.carbon.dormant), 1.0)
+        self.carbon.stored = rules.carbon.winter_keep * seasons.stores(s.sun_turns, rules)
         supply = carbon.stomata(s.water_meter, False, rules)  # (what moist soil gives each root; drowning aside)
         need = self.sim.light_growth() / max(supply, 0.05)  # the crown's water need: its light on open leaves
         self.last_economy = Economy(
