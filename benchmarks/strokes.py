@@ -6,7 +6,8 @@ trunk stroke on an empty tree, and for a branch stroke that snaps onto (and is c
 against) an already modeled tree of 8 strokes. Then the jitter figures (issue 48): a straight stroke
 with 1 % jitter (5 seeds: how much longer its path is, the median and 90th percentile turn between
 pieces; goal: length within 2 %, median turn <= 2 deg) and clean bent strokes (their length and
-farthest stray from the drawn curve; goal: within 0.3 %).
+farthest stray from the drawn curve; goal: within 0.3 %), and short mouse strokes of 60-200 px with a 1.5 px
+tremor (the same goals).
 """
 
 from __future__ import annotations
@@ -77,6 +78,25 @@ def jitter_figures(seeds: int = 5, points: int = 120, piece: float = 0.25) -> di
     return {"straight": straight, "bends": bends}
 
 
+def short_strokes(seeds: int = 5, piece: float = 0.25) -> dict[int, list[tuple[float, float]]]:
+    """Short mouse strokes with a 1.5 px tremor (issue 48: "up to +6.4 %, median turn 8.6 deg"): a straight
+    stroke of 60, 100 and 200 px (30, 40 and 60 points: a mouse's rate over half a second to a second) whose
+    points stray 1.5 px (one sigma) each way; per length, (how much longer its path is, median turn) a seed."""
+    from arbor.engine.modeling.modeler import smooth_path
+
+    out = {}
+    for pixels, points in ((60, 30), (100, 40), (200, 60)):
+        u = np.linspace(0, 1, points)
+        line = np.stack([0 * u, 4 * u, 0 * u], 1)
+        clean, _ = smooth_path(Stroke(line, u), piece)
+        out[pixels] = []
+        for seed in range(seeds):
+            shaky = line + np.random.default_rng(seed).normal(0, 1.5 / pixels * 4.0, line.shape)
+            path, _ = smooth_path(Stroke(shaky, u), piece)
+            out[pixels].append((path_length(path) / path_length(clean) - 1, float(np.median(turns(path)))))
+    return out
+
+
 def _remesh(modeler: Modeler) -> int:
     result = interpret(modeler.lstring, TurtleConfig(pipe_model=False, leaves_at_tips=0))
     return tree_mesh(result).n_triangles
@@ -117,6 +137,9 @@ def main() -> None:
               f"90th percentile {p90:.2f} deg (goal: within 2 %, median <= 2 deg)")
     for name, (longer, stray) in figures["bends"].items():
         print(f"clean {name}: length {longer:+.3%}, farthest stray {stray:.3%} of its length (goal: within 0.3 %)")
+    for pixels, runs in short_strokes().items():
+        print(f"short mouse stroke, {pixels} px, 1.5 px tremor: paths " + ", ".join(f"{a:+.2%}" for a, _ in runs)
+              + " longer, median turns " + ", ".join(f"{m:.1f}" for _, m in runs) + " deg (goal: within 2 %, <= 2 deg)")
 
 
 if __name__ == "__main__":
