@@ -40,7 +40,7 @@ def test_joint_rings_are_shared_so_branches_taper_without_steps(grown):
     cont = np.flatnonzero(segs.continues)
     child = np.array([row[int(segs.module[c])] for c in cont])
     parent = np.array([row[int(segs.module[segs.parent[c]])] for c in cont])
-    assert len(cont) > 50
+    assert len(cont) > 40  # (joints enough to judge: 48 on the tree the carbon budget pays for in 8 days)
     np.testing.assert_allclose(data[child, 0:9], data[parent, 9:18], atol=1e-6)  # centre, tangent, reference
     np.testing.assert_allclose(data[child, 18], data[parent, 19], atol=1e-7)  # radius: no width step
     tips = data[:, 24] > 0.5
@@ -193,7 +193,7 @@ def test_branches_fall_in_a_picture_drawn_over_frames(game, grown, monkeypatch):
     one landing mid-picture."""
     from arbor.game.render.falling import FALL_SECONDS
 
-    monkeypatch.setattr(game.renderer, "_scale", lambda *a: 0.5)
+    monkeypatch.setattr("arbor.game.render.garden.draw_scale", lambda *a: 0.5)
     game.world.tree.fallen = copy.deepcopy(grown.tree.fallen)
     game.world.tree.last_rewrite_T = max(f.at for f in game.world.tree.fallen)
     frame(game)
@@ -246,7 +246,7 @@ def test_big_leafy_trees_are_drawn_at_a_lower_resolution_and_laid_over_the_frame
     game.rules.wind.strength = 0.0
     full = frame(game)
     tree = np.abs(full - frame_without_trees(game)).sum(axis=2) > 30
-    monkeypatch.setattr(game.renderer, "_scale", lambda *a: 0.5)
+    monkeypatch.setattr("arbor.game.render.garden.draw_scale", lambda *a: 0.5)
     half = frame(game)
     assert game.renderer.last_scale == 0.5 and game.renderer.pictures.front.size == (SIZE[0] // 2, SIZE[1] // 2)
     assert tree.sum() > 2000
@@ -258,7 +258,7 @@ def test_a_picture_drawn_over_several_frames_is_the_picture_drawn_at_once(game, 
     """With the camera still, a layered frame draws only a step of the next picture (a share of the
     leaves, the wood, or the shadow map) and shows the last whole one: the result must not differ."""
     game.rules.wind.strength = 0.0
-    monkeypatch.setattr(game.renderer, "_scale", lambda *a: 0.5)
+    monkeypatch.setattr("arbor.game.render.garden.draw_scale", lambda *a: 0.5)
     pictures = game.renderer.pictures
     at_once = frame(game)  # the first picture is drawn whole
     first = pictures.shown
@@ -273,7 +273,7 @@ def test_the_trees_follow_the_camera_at_once(game, monkeypatch):
     """A picture drawn for one camera is not shown for another: when the camera turns, that frame
     draws the trees whole for it."""
     game.rules.wind.strength = 0.0
-    monkeypatch.setattr(game.renderer, "_scale", lambda *a: 0.5)
+    monkeypatch.setattr("arbor.game.render.garden.draw_scale", lambda *a: 0.5)
     for _ in range(4):
         frame(game)
     game.control.yaw += 20.0  # degrees

@@ -171,8 +171,8 @@ class GardenRenderer:
         details = [self._detail(p.buffers, p.offset, camera, size[1]) if p.buffers.view else Detail(3)
                    for p in self.placed]
         self.last_details = details
-        leaf_pixels = self._leaf_pixels(details, camera, size[1])
-        self.last_scale = scale = self._scale(leaf_pixels)
+        leaf_pixels = drawn_leaf_pixels(self.placed, details, camera, size[1])
+        self.last_scale = scale = draw_scale(self.samples, leaf_pixels)
         cost = sum(leaf_pixels) + SEGMENT_PIXELS * sum(d.tubes for d in details)
         # (a camera that moves gets no picture drawn over frames: the trees are drawn whole, and without
         # the layer's composite and copies, unless they must be drawn smaller)
@@ -283,20 +283,6 @@ class GardenRenderer:
             return self.textures
         return {**self.textures, "leaf_cluster": self.textures[look.cluster]}
 
-    def _leaf_pixels(self, details: list[Detail], camera: OrbitCamera, height_px: int) -> list[float]:
-        """Each placed tree's drawn leaves in pixels at the frame's resolution (all their layers together)."""
-        return [p.buffers.leaf_area * d.leaf_share * d.leaf_grow**2
-                / pixel_size(p.buffers, p.offset, camera, height_px) ** 2 if p.buffers.view is not None else 0.0
-                for p, d in zip(self.placed, details, strict=True)]
-
-    def _scale(self, leaf_pixels: list[float]) -> float:
-        """The resolution the trees are drawn at: the whole frame's, or on a software GL less when
-        their leaves (``leaf_pixels``, see :meth:`_leaf_pixels`) would cover the screen many times over
-        (their pixels are the frame's cost)."""
-        if self.samples > 1:
-            return 1.0
-        return min(max(math.sqrt(LEAF_PIXELS / max(sum(leaf_pixels), 1.0)), MIN_SCALE), 1.0)
-
     def _lit_uniforms(self, mvp: bytes, light: bytes, sun: np.ndarray, day: float) -> dict:
         zenith, _, _ = sky_colors(sun)
         toward, sun_color = lamp(sun)  # (the sun by day, the moon by night: backdrop.lamp)
@@ -335,6 +321,22 @@ class GardenRenderer:
         for placed in self.placed:
             placed.buffers.release()
         self.placed = []
+
+
+def drawn_leaf_pixels(placed: list[Placed], details: list[Detail], camera: OrbitCamera, height_px: int) -> list[float]:
+    """Each placed tree's drawn leaves in pixels at the frame's resolution (all their layers together)."""
+    return [p.buffers.leaf_area * d.leaf_share * d.leaf_grow**2
+            / pixel_size(p.buffers, p.offset, camera, height_px) ** 2 if p.buffers.view is not None else 0.0
+            for p, d in zip(placed, details, strict=True)]
+
+
+def draw_scale(samples: int, leaf_pixels: list[float]) -> float:
+    """The resolution the trees are drawn at: the whole frame's (always with multisampling: ``samples`` > 1),
+    or on a software GL less when their leaves (``leaf_pixels``, see :func:`drawn_leaf_pixels`) would cover the
+    screen many times over (their pixels are the frame's cost)."""
+    if samples > 1:
+        return 1.0
+    return min(max(math.sqrt(LEAF_PIXELS / max(sum(leaf_pixels), 1.0)), MIN_SCALE), 1.0)
 
 
 def squeezed(buffers: TreeBuffers, detail: Detail, budget: int) -> Detail:
