@@ -61,4 +61,4 @@ def test_the_roots_grow_as_fast_as_the_balance_asks_up_to_the_rule_root_most(lsy
     world.economy(10.0, 0.0).rest(0.0)  # (a reading at night: upkeep, then the roots' due)
     world.settle(10.0)
     assert world.carbon.roots_built > 0
-    assert world.sim.root_vigour == pytest.approx(rules.carbon.root_most)
+    assert world.sim.state.root_vigour == pytest.approx(rules.carbon.root_most)

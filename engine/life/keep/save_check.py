@@ -36,18 +36,19 @@ SIM_FIELDS = {
     "watering": ("bool", 0, 1), "length_time": ("float", 0.0, BIG), "girth_time": ("float", 0.0, BIG),
     "wilt": ("float", 0.0, 1.0), "drowning": ("float", 0.0, BIG), "dead_for": ("float", 0.0, BIG),
     "alive": ("bool", 0, 1), "sun_turns": ("float", 0.0, BIG), "weather_seed": ("int", 0, 2**63 - 1),
-    "root_time": ("float", 0.0, BIG), "daylight": ("float", 0.0, 1.0),
+    "root_time": ("float", 0.0, BIG), "daylight": ("float", 0.0, 1.0), "root_vigour": ("float", 0.0, 100.0),
 }
 # older saves have none (a tree from before the remembered daylight starts at the light that grows it at length_rate)
 OPTIONAL_SIM = {"sun_turns": 0.0, "weather_seed": 0, "root_time": 0.0,
-                "daylight": find_rule("growth.daylight_full").default}
+                "daylight": find_rule("growth.daylight_full").default, "root_vigour": 1.0}
 CYCLE_FIELDS = {"cycle": ("float", 0.0, BIG), "above": ("float", 0.0, BIG), "rate": ("float", 0.0, 1.0),
                 "earned": ("int", 0, 2**53)}
 CARBON_FIELDS = {  # [trees.carbon] (engine/life/plant/carbon.py); g, s, g per s, m², m³
     "pool": ("float", 0.0, BIG), "starving": ("float", 0.0, BIG), "fixed": ("float", 0.0, BIG),
     "respired": ("float", 0.0, BIG), "built": ("float", 0.0, BIG), "last_fixed_rate": ("float", 0.0, BIG),
-    "last_upkeep_rate": ("float", 0.0, BIG), "vigour": ("float", 0.0, 1.0), "leaf_area": ("float", 0.0, 1e8),
+    "last_upkeep_rate": ("float", 0.0, BIG), "vigour": ("float", 0.0, 10.0), "leaf_area": ("float", 0.0, 1e8),
     "sapwood": ("float", 0.0, 1e8), "fill_at_next_reading": ("bool", 0, 1), "roots_built": ("float", 0.0, BIG),
+    "stored": ("float", 0.0, 1e9), "root_balance": ("float", 0.0, 1e6),
 }
 TREE_FIELDS = {"seed": ("int", 0, 2**63 - 1), "steps": ("int", 0, 2**53)}  # [[trees]]
 GROWTH_FIELDS = {  # [trees.growth]
@@ -193,7 +194,7 @@ def carbon_budget(data: dict | None, where: Where) -> CarbonBudget:
     unknown = set(data) - set(CARBON_FIELDS)
     if unknown:
         raise where.error(f"unknown field '{sorted(unknown)[0]}' in [carbon]", sorted(unknown)[0])
-    optional = {"roots_built": 0.0}  # saves from before roots were counted apart
+    optional = {"roots_built": 0.0, "stored": 0.0, "root_balance": 0.0}  # (saves from before each was kept)
     return CarbonBudget(**{k: value(data, k, *spec, where, default=optional.get(k))
                            for k, spec in CARBON_FIELDS.items()})
 

@@ -68,10 +68,11 @@ class CarbonBudget:
     leaf_area: float = 0.0  # m² at the last reading
     sapwood: float = 0.0  # m³ at the last reading
     fill_at_next_reading: bool = False  # a tree from before the carbon budget: its pool starts full
+    stored: float = 0.0  # s of upkeep kept from growth beyond keep_time at the last reading (seasons.stores)
+    root_balance: float = 0.0  # the functional balance's need over supply at the last reading (root_balance)
     # (not saved, set again at every reading: plain class attributes, not fields)
     leaf_cost = 0.0  # g per m² of leaf per s: its leaves' dark respiration (0: the rules' default leaf)
     full_rate = 0.0  # g per m² per s a fully lit, open leaf of the rules' reference leaf fixes under the zenith sun
-    stored = 0.0  # s of upkeep kept from growth beyond keep_time (the season's stores: seasons.stores)
 
     @classmethod
     def for_seedling(cls, rules: Rules) -> CarbonBudget:

@@ -69,6 +69,7 @@ class SimState:
     sun_turns: float = 0.0  # days of the sun so far (turns of its orbit): the calendar of the seasons
     weather_seed: int = 0  # which days it rains (see engine/life/plant/seasons.py)
     root_time: float = 0.0  # the roots' clock: runs on water (engine/life/plant/roots.py)
+    root_vigour: float = 1.0  # how fast the carbon pool lets the roots grow (set by its World; 0 .. carbon.root_most)
     # the light the leaves fixed sugar with, remembered (0..1 of fully lit, open leaves); a sapling's is the norm
     daylight: float = find_rule("growth.daylight_full").default
     sun_cycle: GrowthCycle = field(default_factory=GrowthCycle)
@@ -95,7 +96,6 @@ class Simulation:
                              daylight=self.rules.growth.daylight_full)
         self.state = state
         self.root_share = 0.0  # how much of a full root system the tree has (set by its World)
-        self.root_vigour = 1.0  # how fast the carbon pool lets the roots grow (set by its World; 0 .. carbon.root_most)
         self.starving = 0.0  # s the tree's carbon pool has been empty with upkeep unpaid (set by its World)
         self.leaf_light = 1.0  # the share of the sun its leaves catch (0..1, set by its World at each step)
         self.flood_tolerance = self.rules.water.flood_tolerance  # its species' (set by its World when planted)
@@ -246,7 +246,7 @@ class Simulation:
             r = rules.roots
             wet = (min(max((s.water_meter - r.dry_level) / max(r.wet_level - r.dry_level, 1e-9), 0.0), 1.0)
                    if s.water_meter <= rules.water.drown_level else 0.0)
-            s.root_time += (rules.roots.growth_rate * wet * self.root_vigour * seasons.growth_factor(s.sun_turns, rules)
+            s.root_time += (rules.roots.growth_rate * wet * s.root_vigour * seasons.growth_factor(s.sun_turns, rules)
                             * dt)  # no roots grow in waterlogged soil
 
     def _health(self, dt: float) -> None:

@@ -191,8 +191,7 @@ class World:
     def _roots_due(self) -> float:
         """Dry mass (g) the roots are due by the functional balance until the next light reading (kept from the
         shoots: the roots are paid first, so a drier soil or a brighter crown gets more roots)."""
-        balance = self.last_economy.root_balance if self.last_economy is not None else 0.0
-        return carbon.root_demand(self.carbon, self.rules, self.rules.light.interval, balance)
+        return carbon.root_demand(self.carbon, self.rules, self.rules.light.interval, self.carbon.root_balance)
 
     def economy(self, seconds: float, shine: float) -> Economy:
         """This tree's dealings with its carbon budget for a light reading ``seconds`` after the last."""
@@ -207,6 +206,7 @@ class World:
             carbon.wood_density(self.tree.system.constants, rules), seasons.leafy(s.sun_turns, rules),
             self.sim.light_growth(), photosynthesis.leaf_traits(self.tree.system.constants, rules),
             carbon.root_balance(need, supply, rules))
+        self.carbon.root_balance = self.last_economy.root_balance  # (kept in the save: a loaded tree goes on alike)
         return self.last_economy
 
     def settle(self, seconds: float) -> None:
@@ -214,7 +214,7 @@ class World:
         carbon.root_demand: more in drought and in bright light, less in shade; Economy books it) and the
         simulation hears whether the tree is starving."""
         e = self.last_economy
-        self.sim.root_vigour = e.root_paid * e.root_balance if e is not None else 0.0  # (at most carbon.root_most)
+        self.sim.state.root_vigour = e.root_paid * e.root_balance if e is not None else 0.0  # (<= carbon.root_most)
         self.sim.starving = self.carbon.starving
         self.sim.remember_light(self.light_caught(), seconds)
 
