@@ -31,13 +31,19 @@ def prune_here(game, centre):
     return x, y
 
 
-def test_prune_here_asks_before_cutting_a_drawn_branch(modeler_game):
+def _a_drawn_branch(modeler_game):
+    """The game in the modeler with a branch drawn up from the sapling's foot: (game, tree, its segments)."""
     game = modeler_game(seed=3)
     press_menu(game, "modeler")
     x0, y0 = base_pixel(game)
     draw(game, [(x0 + 6 * i, y0 - 8 * i) for i in range(40)])
     tree = game.world.tree.lstring
     segs = game.modeling.segments(tree)
+    return game, tree, segs
+
+
+def test_prune_here_asks_before_cutting_a_drawn_branch(modeler_game):
+    game, tree, segs = _a_drawn_branch(modeler_game)
     branch = np.flatnonzero((tree.sym[segs.module] == ord("F")) & (tree.nparams[segs.module] == 11))
     x, y = prune_here(game, tuple(segs.start[branch[0]] + 0.3 * (segs.end[branch[3]] - segs.start[branch[0]])))
     tap(game, x, y)
@@ -53,12 +59,7 @@ def test_prune_here_asks_before_cutting_a_drawn_branch(modeler_game):
 
 
 def test_prune_here_of_a_little_grown_wood_is_done_at_once_and_of_much_asked(modeler_game):
-    game = modeler_game(seed=3)
-    press_menu(game, "modeler")
-    x0, y0 = base_pixel(game)
-    draw(game, [(x0 + 6 * i, y0 - 8 * i) for i in range(40)])
-    tree = game.world.tree.lstring
-    segs = game.modeling.segments(tree)
+    game, tree, segs = _a_drawn_branch(modeler_game)
     grown = np.flatnonzero(tree.sym[segs.module] == ord("I"))
     x, y = prune_here(game, tuple(segs.start[grown[np.argmax(segs.start[grown, 1])]]))  # the sapling's top piece
     tap(game, x, y)
