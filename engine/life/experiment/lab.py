@@ -134,8 +134,8 @@ def load_experiment(path: str | Path, lsystem_dir: Path) -> Experiment:
         check_shared_sun(reader, regimes, trees)
     get = lambda key, default: reader.value(data, key, schema.EXPERIMENT[key], (), default)  # noqa: E731
     pace = pace_value(reader, data)
-    if all(calendar(pace, r) == calendar(pace, regimes[0]) for r in regimes):  # (else days: s only)
-        reader.calendar = calendar(pace, regimes[0])
+    calendars = {calendar(pace, r) for r in regimes}
+    reader.calendar = calendars.pop() if len(calendars) == 1 else None  # (trees with other days: s only)
     return Experiment(
         title=str(get("title", path.stem)), seed=get("seed", 0), duration=reader.value(
             data, "duration", schema.EXPERIMENT["duration"], ()), sample_every=get("sample_every", 30.0),
