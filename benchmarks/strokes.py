@@ -59,14 +59,8 @@ def jitter_figures(seeds: int = 5, points: int = 120, piece: float = 0.25) -> di
     from arbor.engine.modeling.modeler import smooth_path
 
     u = np.linspace(0, 1, points)
-    line = np.stack([0 * u, 4 * u, 0 * u], 1)
-    clean, _ = smooth_path(Stroke(line, u), piece)
-    straight = []
-    for seed in range(seeds):
-        shaky = line + np.random.default_rng(seed).normal(0, 0.01 * 4.0, line.shape)
-        path, _ = smooth_path(Stroke(shaky, u), piece)
-        t = turns(path)
-        straight.append((path_length(path) / path_length(clean) - 1, float(np.median(t)), float(np.percentile(t, 90))))
+    straight = [(longer, float(np.median(t)), float(np.percentile(t, 90)))
+                for longer, t in shaky_lines(seeds, points, 0.01, piece)]
     bends = {}
     dense = np.linspace(0, 1, 4000)
     for name, curve in BENDS.items():
@@ -78,23 +72,27 @@ def jitter_figures(seeds: int = 5, points: int = 120, piece: float = 0.25) -> di
     return {"straight": straight, "bends": bends}
 
 
+def shaky_lines(seeds: int, points: int, jitter: float, piece: float) -> list[tuple[float, np.ndarray]]:
+    """A straight stroke of ``points`` points whose points stray ``jitter`` of its length (one sigma) each way,
+    smoothed, per seed: (how much longer its path is than the clean stroke's, the turns between its pieces)."""
+    from arbor.engine.modeling.modeler import smooth_path
+
+    u = np.linspace(0, 1, points)
+    line = np.stack([0 * u, 4 * u, 0 * u], 1)
+    clean, _ = smooth_path(Stroke(line, u), piece)
+    out = []
+    for seed in range(seeds):
+        path, _ = smooth_path(Stroke(line + np.random.default_rng(seed).normal(0, jitter * 4.0, line.shape), u), piece)
+        out.append((path_length(path) / path_length(clean) - 1, turns(path)))
+    return out
+
+
 def short_strokes(seeds: int = 5, piece: float = 0.25) -> dict[int, list[tuple[float, float]]]:
     """Short mouse strokes with a 1.5 px tremor (issue 48: "up to +6.4 %, median turn 8.6 deg"): a straight
     stroke of 60, 100 and 200 px (30, 40 and 60 points: a mouse's rate over half a second to a second) whose
     points stray 1.5 px (one sigma) each way; per length, (how much longer its path is, median turn) a seed."""
-    from arbor.engine.modeling.modeler import smooth_path
-
-    out = {}
-    for pixels, points in ((60, 30), (100, 40), (200, 60)):
-        u = np.linspace(0, 1, points)
-        line = np.stack([0 * u, 4 * u, 0 * u], 1)
-        clean, _ = smooth_path(Stroke(line, u), piece)
-        out[pixels] = []
-        for seed in range(seeds):
-            shaky = line + np.random.default_rng(seed).normal(0, 1.5 / pixels * 4.0, line.shape)
-            path, _ = smooth_path(Stroke(shaky, u), piece)
-            out[pixels].append((path_length(path) / path_length(clean) - 1, float(np.median(turns(path)))))
-    return out
+    return {pixels: [(longer, float(np.median(t))) for longer, t in shaky_lines(seeds, points, 1.5 / pixels, piece)]
+            for pixels, points in ((60, 30), (100, 40), (200, 60))}
 
 
 def _remesh(modeler: Modeler) -> int:

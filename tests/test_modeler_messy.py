@@ -6,26 +6,17 @@ import numpy as np
 from arbor.engine.modeling.modeler import smooth_path
 from arbor.engine.modeling.strokes import Stroke
 from benchmarks.lobes import game_cases
+from benchmarks.strokes import path_length, turns
 
 
-def _turns(path: np.ndarray) -> np.ndarray:
-    d = np.diff(path, axis=0)
-    d /= np.linalg.norm(d, axis=1)[:, None]
-    return np.degrees(np.arccos(np.clip(np.einsum("ij,ij->i", d[1:], d[:-1]), -1.0, 1.0)))
-
-
-def _length(path: np.ndarray) -> float:
-    return float(np.linalg.norm(np.diff(path, axis=0), axis=1).sum())
-
-
-def test_one_percent_jitter_gives_a_smooth_path_of_the_clean_length():
+def test_one_percent_jitter_gives_a_smooth_path_of_the_cleanpath_length():
     u = np.linspace(0, 1, 120)
     clean = np.stack([1.5 * np.sin(2 * u), 4 * u, 0.5 * u * u], 1)
     reference, _ = smooth_path(Stroke(clean, u), 0.25)
     for seed in range(5):
         shaky = clean + np.random.default_rng(seed).normal(0, 0.01 * 4.0, clean.shape)
         path, _ = smooth_path(Stroke(shaky, u), 0.25)
-        longer, turn = _length(path) / _length(reference) - 1, float(np.median(_turns(path)))
+        longer, turn = path_length(path) / path_length(reference) - 1, float(np.median(turns(path)))
         print(f"jitter seed {seed}: path {longer:+.1%} longer, median turn {turn:.1f} deg")
         assert longer <= 0.05 and turn <= 10.0
 
