@@ -22,6 +22,7 @@ import numpy as np
 from arbor.engine.base.units import METRE
 from arbor.engine.life.form.shoot_units import leaf_count
 from arbor.engine.life.keep.save import SavedGarden, read_garden, write_garden
+from arbor.engine.life.plant.journal import turtle_size
 from arbor.engine.life.plant.sim import sun_angle_at
 from arbor.engine.life.rules.rules import load_rules
 from arbor.engine.life.world.garden import Garden
@@ -34,18 +35,18 @@ BREAST = 1.3  # m: where a trunk's diameter is measured (d.b.h.)
 
 def crown(world: World) -> tuple[float, float, float]:
     """(height m, crown width m, trunk diameter at breast height cm) from the tree's geometry now; unlike the
-    lab's crown_shape (leaves only) the width spans wood and leaves, so a bare winter crown has one."""
+    lab's crown_shape (leaves only) the width spans wood and leaves (journal.turtle_size), so a bare winter
+    crown has one."""
     turtle = world.tree.geometry(world.clocks()).turtle
     segs = turtle.segments
     if not len(segs):
         return 0.0, 0.0, 0.0
-    pts = np.concatenate([segs.end, turtle.leaves.position]) if len(turtle.leaves) else segs.end
-    width = float(np.max(pts[:, [0, 2]].max(axis=0) - pts[:, [0, 2]].min(axis=0)))
+    height, width = turtle_size(turtle)
     trunk = np.flatnonzero(segs.order == 0)
     at = min(BREAST * METRE, float(segs.end[trunk, 1].max()) * 0.5)
     spans = trunk[(segs.start[trunk, 1] <= at) & (segs.end[trunk, 1] >= at)]
     radius = float(segs.radius[spans[0]]) if len(spans) else float(segs.radius[trunk[0]])
-    return float(segs.end[:, 1].max()) / METRE, width / METRE, 200.0 * radius / METRE
+    return height, width, 200.0 * radius / METRE
 
 
 def main(years: int = 3, out: Path | None = None, species: str = "game_tree.lsys") -> None:

@@ -100,13 +100,17 @@ class Journal:
 
 
 def crown_size(world) -> tuple[float, float]:
-    """(height, crown width) of ``world``'s tree now, in metres: the top of its wood, and the largest
-    horizontal extent of its wood and leaves (so a bare crown has one too)."""
-    turtle = world.tree.geometry(world.clocks()).turtle
+    """(height, crown width) of ``world``'s tree now, in metres to the millimetre (see :func:`turtle_size`)."""
+    height, width = turtle_size(world.tree.geometry(world.clocks()).turtle)
+    return round(height, 3), round(width, 3)
+
+
+def turtle_size(turtle) -> tuple[float, float]:
+    """(height, crown width) of a drawn tree, in metres: the top of its wood, and the largest horizontal extent
+    of its wood and leaves (so a bare crown has one too)."""
     if not len(turtle.segments):
         return 0.0, 0.0
     ends = turtle.segments.end
     points = np.concatenate([ends, turtle.leaves.position]) if len(turtle.leaves) else ends
     flat = points[:, [0, 2]]
-    width = float((flat.max(axis=0) - flat.min(axis=0)).max())
-    return round(float(ends[:, 1].max()) / METRE, 3), round(width / METRE, 3)
+    return float(ends[:, 1].max()) / METRE, float((flat.max(axis=0) - flat.min(axis=0)).max()) / METRE
