@@ -38,6 +38,7 @@ def _stop_and_time(proc, pid, err, sig=signal.SIGTERM):
         assert time.monotonic() < deadline, "the window never started"
         time.sleep(0.2)
     time.sleep(1.0)
+    assert proc.poll() is None, f"the game ended before the signal: {err.read_text()[-2000:]}"
     t0 = time.monotonic()
     os.kill(int(pid.read_text()), sig)
     try:
