@@ -53,7 +53,7 @@ def leaf_count(ls: LString) -> int:
     return own + (int(np.count_nonzero(sites(ls, units)[2])) if len(units) else 0)
 
 
-def _turns(frames: np.ndarray, axis: int, degrees: np.ndarray) -> np.ndarray:
+def turns(frames: np.ndarray, axis: int, degrees: np.ndarray) -> np.ndarray:
     """``frames`` (k, 3, 3; columns H, L, U) each turned about its own axis ``axis`` (0 H '/', 1 L '&')."""
     i, j = (axis + 1) % 3, (axis + 2) % 3
     c, s = np.cos(np.radians(degrees))[:, None], np.sin(np.radians(degrees))[:, None]
@@ -78,7 +78,7 @@ def unit_leaves(ls: LString, segs: Segments, sizes: np.ndarray | None = None) ->
     seg = on[row]
     position = segs.start[seg] + along * (segs.end[seg] - segs.start[seg])
     roll = ls.params[off + ROLL] + i * ls.params[off + ROLL_STEP]
-    frame = _turns(_turns(segs.frame[seg], 0, roll), 1, ls.params[off + LEAF_PITCH])
+    frame = turns(turns(segs.frame[seg], 0, roll), 1, ls.params[off + LEAF_PITCH])
     size = np.ones(len(on)) if sizes is None else sizes
     return Leaves(position, frame, size[row], module[row])
 

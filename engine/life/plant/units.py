@@ -33,6 +33,7 @@ STRAIGHT = 0.03  # a unit's nodes stand at most this share of its length from th
 INTERNODE, LEAF, LEAF_BUD = ord("I"), ord("L"), ord("V")
 YAW, PITCH, ROLL, DOWN = ord("+"), ord("^"), ord("/"), ord("&")
 UNIT_TURNS = np.array([YAW, PITCH, ROLL], np.uint8)
+KEEP, AXIS_END, FOLD = 0, 1, 2  # what follows a run: anything, the axis' end, a node's turns (_after_runs)
 
 
 def form_units(ls: LString, now: float, const: dict[str, float], runs: bool = True) -> tuple[LString, int]:
@@ -56,14 +57,41 @@ def _runs_made(ls: LString, now: float, const: dict[str, float]) -> LString:
     head, tail = _straight_runs(joins, states)
     if len(head) == 0:
         return ls
-    return _rebuilt(ls, nodes, head, tail, _unit_params(ls, nodes, states, head, tail, now, const))
+    unit, along = _unit_params(ls, nodes, states, head, tail, now, const)
+    kind, target = _after_runs(ls, nodes["end"][tail])
+    then = np.searchsorted(nodes["node"][head], target)  # a run that follows another: one set of turns between
+    then = np.minimum(then, len(head) - 1)
+    chained = (kind == FOLD) & (nodes["node"][head][then] == target)
+    unit[then[chained], :3] = _frames_between(along[chained], along[then[chained]])
+    kind[chained] = AXIS_END  # (its closing turns are in the next unit's opening ones)
+    fold = kind == FOLD
+    turns = np.zeros((len(head), 3))  # the turns a run's closing turns and the next node's make together
+    turns[fold] = _frames_between(along[fold], states["next_frame"][tail[fold]])
+    return _rebuilt(ls, nodes, head, tail, unit, kind, target, turns)
+
+
+def _after_runs(ls: LString, at: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """What follows runs whose last node's groups end at ``at``: KEEP (anything else: the unit's closing
+    turns stay), AXIS_END (the axis ends there: nothing needs the closing turns) or FOLD (a node's turns
+    ``+(h)^(u)`` or ``+(h)^(u)/(r)`` and its internode: the closing turns and these become one set); and per
+    run the index of that internode (``at`` where there is none)."""
+    pad = 4
+    sym = np.concatenate([ls.sym, np.zeros(pad, ls.sym.dtype)])
+    npar = np.concatenate([ls.nparams, np.zeros(pad, ls.nparams.dtype)])
+    axis_end = (at >= len(ls)) | (sym[at] == brackets.CLOSE)
+    turns = (sym[at] == YAW) & (npar[at] == 1) & (sym[at + 1] == PITCH) & (npar[at + 1] == 1)
+    rolled = (sym[at + 2] == ROLL) & (npar[at + 2] == 1)
+    target = at + 2 + rolled
+    turns &= sym[target] == INTERNODE
+    kind = np.where(axis_end, AXIS_END, np.where(turns, FOLD, KEEP))
+    return kind, np.where(turns, target, at)
 
 
 def _singles_made(ls: LString, now: float, const: dict[str, float]) -> LString:
     """``ls`` with every other node that may be in a unit made a unit of its own: its internode takes its
     leaf site (no turns change: the unit is the piece itself, its leaf at its end turned as its bracket
     turned it), whatever else it carries (a branch, a bud) stays after it."""
-    nodes = _nodes(ls, now, const)
+    nodes = _nodes(ls, now, const, units=False)
     if nodes is None or not nodes["ok"].any():
         return ls
     ok = np.flatnonzero(nodes["ok"])
@@ -85,14 +113,19 @@ def _singles_made(ls: LString, now: float, const: dict[str, float]) -> LString:
     return grown.select(np.cumsum(delta[:-1]) == 0)
 
 
-def _nodes(ls: LString, now: float, const: dict[str, float]) -> dict[str, np.ndarray] | None:
-    """Every plain internode with its turns before it and its bracket groups after it: where its turns
-    start, where its groups end, its one bare leaf group (open bracket and leaf bud), and whether it may
-    be part of a unit."""
+def _nodes(ls: LString, now: float, const: dict[str, float], units: bool = True) -> dict[str, np.ndarray] | None:
+    """Every old plain internode (and with ``units``, every old unit of one site) with its turns before it
+    and its bracket groups after it: where its turns start, where its groups end, its one bare leaf group
+    (open bracket and leaf bud), and whether it may be part of a unit."""
     sym, npar, off, params = ls.sym, ls.nparams, ls.offsets, ls.params
-    node = np.flatnonzero((sym == INTERNODE) & (npar == 5))
-    if len(node) < 2:
+    unit = (sym == INTERNODE) & (npar == shoot_units.UNIT_PARAMS) & units
+    unit[unit] = ((np.rint(params[off[unit] + shoot_units.SITES]) == 1)
+                  & (np.rint(params[off[unit] + shoot_units.PIECES]) == 1))
+    node = np.flatnonzero(((sym == INTERNODE) & (npar == 5)) | unit)
+    node = node[now - params[off[node]] > OLD_TAUS * const["TAU"]]  # (only old ones may be in a unit)
+    if len(node) < 1 + units:
         return None
+    single = unit[node]  # a unit of one site: its leaf site is in it, no leaf group after it
     pad = 6
     psym = np.concatenate([sym, np.zeros(pad, sym.dtype)])
     pnpar = np.concatenate([npar, np.zeros(pad, npar.dtype)])
@@ -123,11 +156,14 @@ def _nodes(ls: LString, now: float, const: dict[str, float]) -> dict[str, np.nda
         other_groups += is_open & ~leafy
         cur = np.where(is_open, close + 1, cur)
     ok &= psym[cur] != brackets.OPEN  # (a node with more groups than looked at stays as it is)
-    old = now - params[off[node]] > OLD_TAUS * const["TAU"]
-    ok &= old & (leafy_groups == 1)
+    state = _leaf_state(ls, np.maximum(leaf_bud, 0))
+    kept = params[off[node] + shoot_units.KEPT * single]
+    state[single] = np.where((kept[single] > 0)[:, None], np.stack(
+        [params[off[node[single]] + shoot_units.LEAF_BIRTH], params[off[node[single]] + shoot_units.LEAF_SIZE],
+         kept[single]], axis=1), [0.0, 1.0, 0.0])
+    ok &= np.where(single, (leafy_groups == 0) & ((kept == 0) | (kept == 1)), leafy_groups == 1)
     return {"node": node, "start": start, "end": cur, "ok": ok, "other": other_groups, "leaf_open": leaf_open,
-            "leaf_bud": leaf_bud, "order": params[off[node] + 2],
-            "leaf_state": _leaf_state(ls, np.maximum(leaf_bud, 0))}
+            "leaf_bud": leaf_bud, "order": params[off[node] + 2], "single": single, "leaf_state": state}
 
 
 def _site(sym: np.ndarray, npar: np.ndarray, params: np.ndarray, off: np.ndarray, at: np.ndarray) -> np.ndarray:
@@ -170,11 +206,14 @@ def _joins(nodes: dict[str, np.ndarray]) -> np.ndarray:
 
 def _states(ls: LString, nodes: dict[str, np.ndarray], joins: np.ndarray, now: float,
             const: dict[str, float]) -> dict[str, np.ndarray]:
-    """The turtle's state going into each node's turns, its internode, what follows it and its leaf bud
-    (one pass; rows of the node list, only for the nodes of runs)."""
+    """The turtle's state going into each node's turns, its internode, what follows it, its leaf bud and the
+    next node's internode (_after_runs; one pass; rows of the node list, only for the nodes of runs)."""
     member = joins | np.concatenate([joins[1:], [False]])
     rows = np.flatnonzero(member)
-    where = [nodes["start"][rows], nodes["node"][rows], nodes["node"][rows] + 1, nodes["leaf_bud"][rows]]
+    single = nodes["single"][rows]
+    after = _after_runs(ls, nodes["end"][rows])[1]
+    where = [nodes["start"][rows], nodes["node"][rows], nodes["node"][rows] + 1,
+             np.where(single, nodes["node"][rows], nodes["leaf_bud"][rows]), np.minimum(after, len(ls) - 1)]
     view = render_view(ls, Clocks(now, now, 0.0), const)
     turtle = interpret(view, turtle_config(const), probes=np.concatenate(where))
     probes, segs = turtle.probes, turtle.segments
@@ -192,10 +231,13 @@ def _states(ls: LString, nodes: dict[str, np.ndarray], joins: np.ndarray, now: f
     k, out = len(rows), {"volume": np.pi * piece * (r0 * r0 + r0 * r1 + r1 * r1) / 3.0, "radius_end": r1,
                          "tapers": carries[seg], "foot": r0, "below": below, "below_foot": segs.radius[p],
                          "seg": seg, "parent_seg": parent, "child_seg": child[seg]}
-    for j, name in enumerate(("turns", "node", "after", "leaf")):
+    for j, name in enumerate(("turns", "node", "after", "leaf", "next")):
         pos, frame = np.zeros((len(joins), 3)), np.zeros((len(joins), 3, 3))
         pos[rows], frame[rows] = probes.position[j * k:(j + 1) * k], probes.frame[j * k:(j + 1) * k]
         out[name], out[name + "_frame"] = pos, frame
+    at = ls.offsets[nodes["node"][rows[single]]]  # a unit's leaf: its frame turned as the unit turns it
+    rolled = shoot_units.turns(out["node_frame"][rows[single]], 0, ls.params[at + shoot_units.ROLL])
+    out["leaf_frame"][rows[single]] = shoot_units.turns(rolled, 1, ls.params[at + shoot_units.LEAF_PITCH])
     return out
 
 
@@ -254,7 +296,8 @@ def _wrap(deg: np.ndarray) -> np.ndarray:
 
 def _unit_params(ls: LString, nodes: dict[str, np.ndarray], states: dict[str, np.ndarray], head: np.ndarray,
                  tail: np.ndarray, now: float, const: dict[str, float]) -> np.ndarray:
-    """Per run: its two sets of turns and its unit's 13 parameters, (runs, 19)."""
+    """Per run: its two sets of turns and its unit's 13 parameters, (runs, 19), and the frame the unit is
+    drawn in (runs, 3, 3)."""
     node = nodes["node"]
     size = tail - head + 1
     member = np.repeat(head, size) + np.arange(int(size.sum())) - np.repeat(np.cumsum(size) - size, size)
@@ -269,7 +312,10 @@ def _unit_params(ls: LString, nodes: dict[str, np.ndarray], states: dict[str, np
     i = (member - head[run] + 1).astype(float)
     step = _circular_mean(_wrap(np.diff(roll)), run[1:], run[1:] == run[:-1], r)
     roll0 = _circular_mean(_wrap(roll - i * step[run]), run, np.ones(len(run), bool), r)
-    pitch = np.bincount(run, ls.params[ls.offsets[nodes["leaf_bud"][member] - 1]], minlength=r) / size
+    single = nodes["single"][member]
+    leaf_pitch = ls.params[np.where(single, ls.offsets[node[member]] + shoot_units.LEAF_PITCH,
+                                    ls.offsets[np.maximum(nodes["leaf_bud"][member] - 1, 0)])]
+    pitch = np.bincount(run, leaf_pitch, minlength=r) / size
     params, off = ls.params, ls.offsets[node[head]]
     order = params[off + 2]
     full = const["IL"] * const["IO"] ** order * saturate(now - params[off], const["TAU"])
@@ -277,7 +323,7 @@ def _unit_params(ls: LString, nodes: dict[str, np.ndarray], states: dict[str, np
     unit = np.stack([params[off], params[off + 1], order, params[off + 3], wood,
                      length / np.maximum(full, 1e-12), size.astype(float),
                      *_unit_leaves(nodes["leaf_state"][head], now), roll0, step, pitch], axis=1)
-    return np.concatenate([_frames_between(before, along), unit, _frames_between(along, last)], axis=1)
+    return np.concatenate([_frames_between(before, along), unit, _frames_between(along, last)], axis=1), along
 
 
 def _wood(volume: np.ndarray, length: np.ndarray, end: np.ndarray, tapers: np.ndarray, below: np.ndarray,
@@ -336,26 +382,35 @@ def _circular_mean(deg: np.ndarray, group: np.ndarray, use: np.ndarray, count: i
     return np.degrees(np.arctan2(s, c))
 
 
-def _rebuilt(ls: LString, nodes: dict[str, np.ndarray], head: np.ndarray, tail: np.ndarray,
-             unit: np.ndarray) -> LString:
-    """``ls`` with each run's modules (its nodes' turns, internodes and leaf groups) replaced by its unit
-    between its two sets of turns; the last node's other groups stay after them."""
+def _rebuilt(ls: LString, nodes: dict[str, np.ndarray], head: np.ndarray, tail: np.ndarray, unit: np.ndarray,
+             kind: np.ndarray, target: np.ndarray, turns: np.ndarray) -> LString:
+    """``ls`` with each run's modules (its nodes' turns, internodes and leaf groups) replaced by its unit after
+    its opening turns; its closing turns follow where ``kind`` is KEEP (the last node's other groups stay
+    after them), go where the axis ends, and where it is FOLD become one with the next node's turns
+    (``turns``, replacing those before the internode ``target``)."""
     first, last = nodes["start"][head], nodes["node"][tail]
-    leaf_open = nodes["leaf_open"][tail]
+    leaf_open = nodes["leaf_open"][tail][~nodes["single"][tail]]  # (a unit's leaf is in it)
     leaf_close = brackets.match(ls.sym)[leaf_open]
+    fold = kind == FOLD
     delta = np.zeros(len(ls) + 1, np.int64)
-    np.add.at(delta, first, 1)
-    np.add.at(delta, last + 1, -1)
-    np.add.at(delta, leaf_open, 1)
-    np.add.at(delta, leaf_close + 1, -1)
+    for lo, hi in ((first, last + 1), (leaf_open, leaf_close + 1), (nodes["end"][tail][fold], target[fold])):
+        np.add.at(delta, lo, 1)
+        np.add.at(delta, hi, -1)
     keep = np.cumsum(delta[:-1]) == 0
     kept = ls.select(keep)
-    at = np.cumsum(keep)[first]  # kept modules before each run's first module (itself not kept)
+    seen = np.concatenate([[0], np.cumsum(keep)])  # kept modules before each module
+    r, nfold = len(head), int(fold.sum())
+    closing = kind == KEEP
+    mods = np.arange(7) < np.where(closing, 7, 4)[:, None]  # (r, 7): the modules each run's block has
+    vals = np.arange(19) < np.where(closing, 19, 16)[:, None]
     block_sym = np.concatenate([UNIT_TURNS, [INTERNODE], UNIT_TURNS]).astype(ls.sym.dtype)
     block_npar = np.array([1, 1, 1, shoot_units.UNIT_PARAMS, 1, 1, 1], dtype=ls.nparams.dtype)
-    r = len(head)
-    sym = np.insert(kept.sym, np.repeat(at, 7), np.tile(block_sym, r))
-    npar = np.insert(kept.nparams, np.repeat(at, 7), np.tile(block_npar, r))
-    param_at = np.where(at < len(kept), kept.offsets[np.minimum(at, max(len(kept) - 1, 0))], len(kept.params))
-    params = np.insert(kept.params, np.repeat(param_at, unit.shape[1]), unit.ravel())
+    at = np.concatenate([np.repeat(seen[first], mods.sum(axis=1)), np.repeat(seen[target[fold]], 3)])
+    sym = np.insert(kept.sym, at, np.concatenate([np.tile(block_sym, (r, 1))[mods], np.tile(UNIT_TURNS, nfold)]))
+    npar = np.insert(kept.nparams, at, np.concatenate([np.tile(block_npar, (r, 1))[mods], np.ones(3 * nfold,
+                                                                                                  ls.nparams.dtype)]))
+    where = np.concatenate([seen[first], seen[target[fold]]])  # (np.insert keeps equal places in this order)
+    param_at = np.where(where < len(kept), kept.offsets[np.minimum(where, max(len(kept) - 1, 0))], len(kept.params))
+    count = np.concatenate([vals.sum(axis=1), np.full(nfold, 3)])
+    params = np.insert(kept.params, np.repeat(param_at, count), np.concatenate([unit[vals], turns[fold].ravel()]))
     return LString.from_arrays(sym, npar, params)
