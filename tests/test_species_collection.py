@@ -66,3 +66,20 @@ def test_a_bad_collection_is_refused_at_its_line(tmp_path, text, words, line):
 def test_a_species_source_is_its_base_with_its_defines():
     source = "#define BA 48        // branching angle\n#define BAX 1\np1: A -> B\n"
     assert species_source(source, {"BA": 62.0}) == source.replace("BA 48", "BA 62")
+
+
+def test_the_spruce_keeps_its_needles_through_winter(collection):
+    """An evergreen (EVERGREEN in its .lsys): in the first winter the spruce still has its needles, drawn
+    green and all there (the renderer neither turns nor hides them), while a broadleaf is bare."""
+    def leaves_in_winter(key):
+        species = next(s for s in collection if s.key == key)
+        world = World(species_system(species, LSYSTEMS), load_rules(ASSETS / "rules.toml", "demo"), seed=3)
+        world.sim.state.sun_meter = world.sim.state.water_meter = 0.9
+        while world.sim.state.sun_turns < 24.5:  # (the demo pace's first winter, after the leaf drop)
+            world.apply(Action.WATER, float(world.sim.state.water_meter < 0.6))
+            world.step(0.5)
+        assert world.sim.season().index == 3
+        return int((world.tree.lstring.sym == ord("L")).sum())
+
+    assert leaves_in_winter("spruce") > 50 and leaves_in_winter("birch") == 0
+    assert look_of("spruce").evergreen and not look_of("birch").evergreen

@@ -271,8 +271,9 @@ class GardenRenderer:
                 look = placed.look
                 tints = (tuple(a * b for a, b in zip(bark, look.bark, strict=True)),
                          tuple(a * b for a, b in zip(leaf, look.leaf, strict=True)), blossom)
+                season = {"u_autumn": 0.0, "u_keep": 1.0} if look.evergreen else {}  # (needles kept green)
                 self.trees.draw(placed.buffers, "lit", detail, {**uniforms, "u_offset": tuple(placed.offset),
-                                                                "tints": tints}, self._textures(look), piece)
+                                                                "tints": tints, **season}, self._textures(look), piece)
             if self.samples > 1 and "tube" in piece.names and not self.stage.backdrop.cutaway:  # (with the wood)
                 self.grass.draw(uniforms)
         return run, True
@@ -312,6 +313,7 @@ class GardenRenderer:
                 if tree.version == FALLING:
                     continue
                 uniforms["u_offset"] = tuple(tree.offset)
+                uniforms["u_keep"] = 1.0 if tree.look.evergreen else self.leaf_keep  # (needles kept all winter)
                 coarser = replace(detail, lod=min(detail.lod + 1, len(SIDES) - 1))
                 self.trees.draw(tree.buffers, "shadow", coarser, uniforms, self._textures(tree.look), piece)
         return self.shadows.steps(sun, versions, draw, pieces)

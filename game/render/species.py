@@ -14,11 +14,13 @@ from dataclasses import dataclass
 @dataclass(frozen=True)
 class SpeciesLook:
     """A species' look: ``bark`` and ``leaf`` multiply the renderer's tints (which carry the tree's
-    health and the season), ``cluster`` names its leaf-cluster texture in assets/textures."""
+    health and the season), ``cluster`` names its leaf-cluster texture in assets/textures; an ``evergreen``'s
+    leaves neither turn in autumn nor thin out in winter (its .lsys keeps them on: EVERGREEN)."""
 
     bark: tuple[float, float, float] = (1.0, 1.0, 1.0)
     leaf: tuple[float, float, float] = (1.0, 1.0, 1.0)
     cluster: str = "leaf_cluster"
+    evergreen: bool = False
 
 
 GAME_TREE = SpeciesLook()  # grey-brown furrowed bark, sprays of dark oval leaves
@@ -30,7 +32,8 @@ LOOKS = {
     # the collection's others (assets/species.toml): a spruce's red-brown scaly bark and blue-green needles,
     # a birch's white bark and light triangular leaves, a willow's grey-yellow bark and long narrow
     # yellow-green leaves, an oak's dark bark and deep green leaves
-    "spruce": SpeciesLook(bark=(0.95, 0.78, 0.68), leaf=(0.8, 0.92, 0.95), cluster="leaf_cluster_needle"),
+    "spruce": SpeciesLook(bark=(0.95, 0.78, 0.68), leaf=(0.8, 0.92, 0.95), cluster="leaf_cluster_needle",
+                          evergreen=True),
     "birch": SpeciesLook(bark=(1.75, 1.75, 1.7), leaf=(1.12, 1.14, 0.85), cluster="leaf_cluster_deltoid"),
     "willow": SpeciesLook(bark=(1.15, 1.08, 0.9), leaf=(1.1, 1.1, 0.85), cluster="leaf_cluster_lance"),
     "oak": SpeciesLook(bark=(0.8, 0.78, 0.74), leaf=(0.88, 1.0, 0.85)),

@@ -154,8 +154,9 @@ CLUSTERS = {  # per species' look (game/render/species.py): leaves along the ste
               (0.66, 1, 0.28), (0.74, 0, 0.28)], (0.20, 0.50, 0.13), 0.0),
     "deltoid": ([(0.10, -1, 0.27), (0.26, 1, 0.29), (0.42, -1, 0.28), (0.56, 1, 0.27), (0.70, 0, 0.28)],
                 (0.30, 0.56, 0.15), 0.22),
-    # a spruce's shoot: short stiff needles all along it, dark blue-green
-    "needle": ([(0.06 + 0.045 * k, (-1) ** k, 0.17) for k in range(17)], (0.10, 0.30, 0.16), 0.0),
+    # a spruce's shoot: a bottle-brush of short stiff needles close all along it, dark blue-green (thin
+    # sparse needles vanish at a distance: a card's cover of 0.16 read as a bare twig)
+    "needle": ([(0.04 + 0.028 * k, (-1) ** k, 0.22) for k in range(30)], (0.10, 0.30, 0.16), 0.0),
     # a willow's spray: long narrow lance-shaped leaves, yellow-green
     "lance": ([(0.10, -1, 0.42), (0.22, 1, 0.44), (0.34, -1, 0.43), (0.46, 1, 0.42), (0.58, -1, 0.38),
                (0.70, 0, 0.30)], (0.34, 0.55, 0.14), 0.0),
@@ -169,7 +170,7 @@ def _blade(along: np.ndarray, across: np.ndarray, shape: str) -> np.ndarray:
     if shape == "deltoid":
         half = 0.42 * np.sin(np.pi * 0.5 * np.minimum(a / 0.3, 1.0)) ** 0.6 * (1 - a) ** 1.15
     elif shape == "needle":
-        half = 0.05 * np.sin(np.pi * a) ** 0.3
+        half = 0.075 * np.sin(np.pi * a) ** 0.3
     elif shape == "lance":
         half = 0.085 * np.sin(np.pi * a) ** 0.8
     else:

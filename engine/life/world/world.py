@@ -163,10 +163,12 @@ class World:
 
     def grow(self) -> None:
         """Rewrite the L-string if T has passed one rewrite step since the last rewrite; in the first part
-        of winter (the rule seasons.leaf_drop) the leaves still on the tree fall (looked at once a day)."""
+        of winter (the rule seasons.leaf_drop) the leaves still on the tree fall (looked at once a day), unless
+        its .lsys is EVERGREEN."""
         s = self.sim.state
         season = self.sim.season()
-        if season.index == 3 and season.progress < self.rules.seasons.leaf_drop and self.bare_at != s.sun_turns // 1:
+        if season.index == 3 and season.progress < self.rules.seasons.leaf_drop and self.bare_at != s.sun_turns // 1 \
+                and self.tree.system.constants.get("EVERGREEN", 0.0) < 0.5:  # (an evergreen keeps its needles)
             self.bare_at = s.sun_turns // 1  # (looked at once a day of the sun)
             self.tree.drop_leaves()
         if self.roots.grow(s.root_time, self.rules.roots.step):
