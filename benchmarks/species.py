@@ -46,7 +46,7 @@ STRIP = 400  # pixels of the picture's width for each species
 def row(looks, placed: list, worlds: list, names: list[str]) -> np.ndarray:
     """Each tree drawn alone at the origin through one camera (framing the largest), its middle STRIP
     columns side by side, each named at its foot: the species at one scale under one sun."""
-    from PIL import ImageDraw
+    from PIL import ImageDraw, ImageFont
 
     from arbor.game.render.renderer import sun_direction
 
@@ -62,8 +62,8 @@ def row(looks, placed: list, worlds: list, names: list[str]) -> np.ndarray:
         looks.shot("species_one", camera, sun_direction(80.0, 40.0), [tree], world)
         pixels = np.asarray(Image.open(looks.paths[-1]))
         strip = Image.fromarray(pixels[:, (LOOK[0] - STRIP) // 2:(LOOK[0] + STRIP) // 2].copy())
-        ImageDraw.Draw(strip).text((12, LOOK[1] - 30), f"{name}, day {world.sim.state.sun_turns:.1f}",
-                                   fill=(255, 255, 255))
+        ImageDraw.Draw(strip).text((12, LOOK[1] - 44), f"{name}, day {world.sim.state.sun_turns:.1f}",
+                                   fill=(255, 255, 255), font=ImageFont.load_default(size=28))
         strips.append(np.asarray(strip))
     looks.paths[-1].unlink()
     return np.concatenate(strips, axis=1)
@@ -110,7 +110,8 @@ def main() -> None:
                   f"({time.perf_counter() - started:.1f} s to grow)")
         rows.append(row(looks, placed, worlds, names))
     out = args.out / "species.png"
-    Image.fromarray(np.concatenate(rows, axis=0)).save(out)
+    picture = Image.fromarray(np.concatenate(rows, axis=0))
+    picture.resize((picture.width // 2, picture.height // 2), Image.Resampling.LANCZOS).save(out)  # (half size)
     print(f"{out}: the species at {', '.join(f'{d:g}' for d in ages)} days, a row each at one scale, "
           "same camera and sun")
     looks.renderer.release()

@@ -15,7 +15,8 @@ from tests.test_look import SIZE, drawer
 
 # a card's leaf cover (share of its texels) at least: the single sprays covered 0.375, 0.223, 0.230, 0.105 (the
 # needles, 0.16 as a sparse spray, read as a bare twig: a bottle-brush now, 0.49)
-FULL = {"leaf_cluster": 0.48, "leaf_cluster_deltoid": 0.32, "leaf_cluster_lance": 0.28, "leaf_cluster_needle": 0.45}
+FULL = {"leaf_cluster": 0.48, "leaf_cluster_deltoid": 0.32, "leaf_cluster_lance": 0.28, "leaf_cluster_needle": 0.45,
+        "leaf_cluster_lobed": 0.5}
 
 
 def draw_once(gl_ctx, view: StaticView, camera: OrbitCamera, sun: np.ndarray) -> np.ndarray:

@@ -31,12 +31,12 @@ LOOKS = {
     "cross": SpeciesLook(bark=(1.15, 1.15, 1.16), leaf=(1.04, 1.05, 0.95)),  # between its parents
     # the collection's others (assets/species.toml): a spruce's red-brown scaly bark and blue-green needles,
     # a birch's white bark and light triangular leaves, a willow's grey-yellow bark and long narrow
-    # yellow-green leaves, an oak's dark bark and deep green leaves
+    # yellow-green leaves, an oak's dark bark and deep green lobed leaves
     "spruce": SpeciesLook(bark=(0.95, 0.78, 0.68), leaf=(0.8, 0.92, 0.95), cluster="leaf_cluster_needle",
                           evergreen=True),
     "birch": SpeciesLook(bark=(1.75, 1.75, 1.7), leaf=(1.12, 1.14, 0.85), cluster="leaf_cluster_deltoid"),
     "willow": SpeciesLook(bark=(1.15, 1.08, 0.9), leaf=(1.1, 1.1, 0.85), cluster="leaf_cluster_lance"),
-    "oak": SpeciesLook(bark=(0.8, 0.78, 0.74), leaf=(0.88, 1.0, 0.85)),
+    "oak": SpeciesLook(bark=(0.8, 0.78, 0.74), leaf=(0.88, 1.0, 0.85), cluster="leaf_cluster_lobed"),
 }
 CLUSTERS = sorted({look.cluster for look in LOOKS.values()})  # the textures the renderer loads
 

@@ -157,9 +157,13 @@ CLUSTERS = {  # per species' look (game/render/species.py): leaves along the ste
     # a spruce's shoot: a bottle-brush of short stiff needles close all along it, dark blue-green (thin
     # sparse needles vanish at a distance: a card's cover of 0.16 read as a bare twig)
     "needle": ([(0.04 + 0.028 * k, (-1) ** k, 0.22) for k in range(30)], (0.10, 0.30, 0.16), 0.0),
+    # an oak's spray: deep green leaves with rounded lobes, crowded toward the shoot's tip
+    "lobed": ([(0.14, -1, 0.30), (0.30, 1, 0.32), (0.44, -1, 0.34), (0.56, 1, 0.33), (0.66, -1, 0.30),
+               (0.74, 0, 0.30)], (0.15, 0.40, 0.09), 0.0),
     # a willow's spray: long narrow lance-shaped leaves, yellow-green
-    "lance": ([(0.10, -1, 0.42), (0.22, 1, 0.44), (0.34, -1, 0.43), (0.46, 1, 0.42), (0.58, -1, 0.38),
-               (0.70, 0, 0.30)], (0.34, 0.55, 0.14), 0.0),
+    # hanging close along the twig (a sparse spray of six read as bare brown twigs at a distance)
+    "lance": ([(0.06 + 0.07 * k, (-1) ** k, 0.42 - 0.012 * k) for k in range(10)] + [(0.76, 0, 0.26)],
+              (0.36, 0.62, 0.22), 0.0),
 }
 
 
@@ -171,8 +175,10 @@ def _blade(along: np.ndarray, across: np.ndarray, shape: str) -> np.ndarray:
         half = 0.42 * np.sin(np.pi * 0.5 * np.minimum(a / 0.3, 1.0)) ** 0.6 * (1 - a) ** 1.15
     elif shape == "needle":
         half = 0.075 * np.sin(np.pi * a) ** 0.3
+    elif shape == "lobed":  # (widest beyond the middle, three or four rounded lobes a side)
+        half = 0.3 * np.sin(np.pi * a ** 0.8) ** 0.7 * (0.4 + 0.6 * np.abs(np.sin(3.5 * np.pi * a)) ** 0.6)
     elif shape == "lance":
-        half = 0.085 * np.sin(np.pi * a) ** 0.8
+        half = 0.1 * np.sin(np.pi * a) ** 0.8
     else:
         half = 0.23 * np.sin(np.pi * a) ** 0.75 * (1 - 0.3 * along)
     return (along > 0) & (along < 1) & (np.abs(across) < half)
@@ -181,9 +187,9 @@ def _blade(along: np.ndarray, across: np.ndarray, shape: str) -> np.ndarray:
 def leaf_cluster_rgba(size: int = 128, seed: int = 11, shape: str = "oval") -> np.ndarray:
     """A spray of leaves on one stem for a leaf card (alpha outside), each leaf its own shade and size:
     seven oval leaves (the game tree), five broad triangular ones on long stalks (the poplar, the birch),
-    needles (the spruce) or long narrow leaves (the willow), see CLUSTERS. Behind the spray a second,
-    darker layer of the same leaves, turned further out, fills the gaps between them (a card reads as a
-    full, layered clump, not a sparse fan); the whole card is darker at its base (the twig, inside the
+    needles (the spruce), long narrow leaves (the willow) or lobed ones (the oak), see CLUSTERS. Behind
+    the spray a second, darker layer of the same leaves, turned further out, fills the gaps between them (a
+    card reads as a full, layered clump, not a sparse fan); the whole card is darker at its base (the twig, inside the
     crown) than at its tip (outside, in the light). The card is half as wide as it is long, so the
     drawing is made in the card's own proportions (x across -0.25..0.25, y along 0..1) and squeezed into
     the square texture."""
@@ -232,8 +238,8 @@ def _to_bytes(rgb: np.ndarray, alpha: np.ndarray | None) -> np.ndarray:
 
 
 def save_all(folder: Path = TEXTURES) -> None:
-    """Write leaf.png, leaf_cluster.png (and leaf_cluster_deltoid, _needle and _lance.png), blossom.png, bark.png,
-    bark_normal.png, rock.png and rock_normal.png (rows top to bottom = v from 1 to 0)."""
+    """Write leaf.png, leaf_cluster.png (and leaf_cluster_deltoid, _needle, _lance and _lobed.png), blossom.png,
+    bark.png, bark_normal.png, rock.png and rock_normal.png (rows top to bottom = v from 1 to 0)."""
     import pygame
 
     folder.mkdir(parents=True, exist_ok=True)
@@ -241,6 +247,7 @@ def save_all(folder: Path = TEXTURES) -> None:
                       ("leaf_cluster_deltoid", leaf_cluster_rgba(seed=13, shape="deltoid")),
                       ("leaf_cluster_needle", leaf_cluster_rgba(seed=17, shape="needle")),
                       ("leaf_cluster_lance", leaf_cluster_rgba(seed=19, shape="lance")),
+                      ("leaf_cluster_lobed", leaf_cluster_rgba(seed=23, shape="lobed")),
                       ("blossom", blossom_rgba()), ("bark", bark_rgb()), ("bark_normal", bark_normal_rgb()),
                       ("rock", rock_rgb()), ("rock_normal", rock_normal_rgb())):
         img = np.ascontiguousarray(img[::-1])

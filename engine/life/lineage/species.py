@@ -1,7 +1,7 @@
 """The game's collection of species (assets/species.toml): each a game L-system with the defines it changes.
 
 A species is named by its table (the name its trees' lineage and saves carry) and grown by a ``base``
-.lsys of the game (game_tree.lsys, game_poplar.lsys) with some of that file's ``#define`` values changed:
+.lsys of the game (game_tree.lsys, game_poplar.lsys, spruce.lsys) with some of that file's ``#define`` values changed:
 its source text is the base's with those lines rewritten, so a tree's save carries the species it grew
 by and two species can be crossed (they share the base's modules and host values). The file is read
 strictly: an unknown key, a define its base does not declare or a value that is not a finite number is a
