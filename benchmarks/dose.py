@@ -6,9 +6,15 @@ Run: python -m benchmarks.dose [--seeds 6] [--days 30] [--workers 2] [--only sun
    watered, an endless summer) with SEEDS seeds for DAYS game days: per level the mean height, leaf area,
    leaf clusters and width; then, for height and leaf area, the largest step between neighbouring levels
    against the mean step (goal: at most 2x) and whether the response rises with light at every step.
-2. The watering example sweep (sweep_watering.toml: a can of 5 s every 30 .. 240 s): per level the mean
-   height, leaf area, leaf clusters and share of trees alive, and which level is best (goal: an optimum
-   with drought and drowning both worse).
+2. The watering example sweep (sweep_watering.toml: a can of 5 s every 20 .. 120 s, six levels): per level
+   the mean height, leaf area, biomass and share of trees alive, which level is best (goal: an optimum with
+   waterlogging and drought both worse, growth falling graded on both sides: no step between neighbouring
+   levels larger than twice the mean step, steps taken by size on either side of the optimum).
+5. The day-length sweep (sweep_day_length.toml: 8 .. 18 hours of daylight, the noon sun at 60 degrees at
+   every one, kept watered): growth rises at every step, none larger than twice the mean step.
+6. Waterlogging: how long a tree lives in soil kept flooded, by the species' flood tolerance (FLOOD), in
+   game days and in real days of the declared time scale, at the demo and the home pace (the sun/water
+   simulation alone: the roots' oxygen dose, wilting and death; engine/life/plant/soil.py).
 3. The lab regimes, one seed each: a sun at orbit height 0.9 against -0.3 for 30 game days (height /
    width ratios: goal a difference of at least 20 %), and the examples light_and_water.toml (a low sun on
    one side: crown offset toward it at least 10 % of the height), sun_vs_shade.toml (the shaded tree:
@@ -35,7 +41,7 @@ from arbor.game.commands.sweep import _tasks
 from arbor.game.paths import ASSETS
 
 DAY = 125.66667  # game seconds per day of the sun at the demo pace
-SHOWN = ("height", "leaf_area", "leaves", "width", "modules", "shed")
+SHOWN = ("height", "leaf_area", "biomass", "leaves", "width", "modules", "shed")
 
 
 def shortened(name: str, days: float, seeds: int) -> Sweep:
@@ -68,7 +74,8 @@ def steps(means: list[float]) -> tuple[float, bool]:
 
 def table(sweep: Sweep, got: dict, columns: tuple[str, ...]) -> dict[str, list[float]]:
     """Print one row per level (means over seeds) and return the columns' means in level order."""
-    unit = {"height": "m", "leaf_area": "m²", "leaves": "", "width": "m", "alive": "share", "modules": "", "shed": ""}
+    unit = {"height": "m", "leaf_area": "m²", "biomass": "kg", "leaves": "", "width": "m", "alive": "share",
+            "modules": "", "shed": ""}
     print(f"{sweep.factors[0].name:>40} " + " ".join(f"{c + (' ' + unit[c] if unit[c] else ''):>13}"
                                                    for c in columns))
     means: dict[str, list[float]] = {c: [] for c in columns}
@@ -113,14 +120,77 @@ def species(days: float, seeds: int, workers: int) -> None:
                   f"{v['height'] / max(v['width'], 1e-9):6.2f} {v['leaves']:7.0f} {v['shed']:6.0f}")
 
 
+def graded(means: list[float]) -> tuple[float, int, bool]:
+    """(largest step / mean step, the best level's index, whether the response rises at every step up to the
+    best level and falls at every step after it) of a response over increasing levels; a step is taken by
+    its size, so a response with an optimum is judged on both sides alike."""
+    d = np.diff(np.asarray(means))
+    best = int(np.argmax(means))
+    shaped = bool((d[:best] > 0).all() and (d[best:] < 0).all())
+    return float(np.abs(d).max() / max(float(np.abs(d).mean()), 1e-12)), best, shaped
+
+
 def water(days: float, seeds: int, workers: int) -> None:
-    """Part 2: the watering sweep and its best level."""
+    """Part 2: the watering sweep, its best level and how graded it falls on either side."""
     sweep, means = swept("sweep_watering.toml", "watering", days, seeds, workers)
-    best = int(np.argmax(means["leaf_area"]))
     levels = sweep.factors[0].levels
-    inner = 0 < best < len(levels) - 1
-    print(f"most leaf area at every {levels[best]} s; an optimum inside the range (drowning and drought both "
-          f"worse): {inner}")
+    for name in ("leaf_area", "biomass", "height"):
+        ratio, best, shaped = graded(means[name])
+        inner = 0 < best < len(levels) - 1
+        print(f"{name}: best at every {levels[best]:g} s, an optimum inside the range (waterlogging and drought "
+              f"both worse): {inner}; rises to it and falls after it at every step: {shaped}; largest step / mean "
+              f"step {ratio:.2f} (goal <= 2)")
+
+
+def day_length(days: float, seeds: int, workers: int) -> None:
+    """Part 5: the day-length sweep at a fixed noon elevation and its steps."""
+    _, means = swept("sweep_day_length.toml", "day length", days, seeds, workers)
+    for name in ("leaf_area", "biomass", "height"):
+        ratio, rising = steps(means[name])
+        print(f"{name}: largest step / mean step {ratio:.2f} (goal <= 2), rises at every level: {rising}")
+
+
+def survival(rules, tolerance: float, limit_days: float = 400.0) -> float:
+    """Game days a tree of flood tolerance ``tolerance`` lives in soil kept waterlogged (the meter held at
+    full; the sun/water simulation alone, both meters' growth already earned)."""
+    from arbor.engine.life.plant.sim import Simulation
+
+    sim = Simulation(rules)
+    sim.flood_tolerance = tolerance
+    sim.state.sun_cycle.earned = sim.state.water_cycle.earned = 1
+    day = 2 * np.pi / rules.sun.speed
+    dt, t = day / 1000, 0.0
+    while sim.state.alive and t < limit_days * day:
+        sim.state.water_meter = 1.0
+        sim.step(dt)
+        t += dt
+    return t / day
+
+
+def flood(_days: float, _seeds: int, _workers: int) -> None:
+    """Part 6: survival in waterlogged soil by species, on the declared time scale."""
+    from arbor.engine.life.lineage.species import load_collection
+    from arbor.engine.life.plant.photosynthesis import real_days
+    from arbor.engine.life.rules.rules import species_trait
+
+    collection = load_collection(ASSETS / "species.toml", ASSETS / "lsystems")
+    print("waterlogged soil (Kozlowski 1997: flood-intolerant seedlings live 1-4 weeks, tolerant ones months)")
+    print(f"{'species':>10} {'FLOOD':>6} " + " ".join(f"{pace + ' game days':>16} {pace + ' real days':>15}"
+                                                   for pace in ("demo", "home")))
+    for species in collection:
+        defines = dict(species.defines)
+        if "FLOOD" not in defines:  # the base .lsys's own
+            text = (ASSETS / "lsystems" / species.base).read_text(encoding="utf-8")
+            found = [ln.split()[2] for ln in text.splitlines() if ln.startswith("#define FLOOD ")]
+            defines["FLOOD"] = float(found[0]) if found else None
+        cells = []
+        for pace in ("demo", "home"):
+            rules = load_rules(ASSETS / "rules.toml", pace)
+            rules.seasons.enabled = False
+            tolerance = species_trait(defines, "FLOOD", "water.flood_tolerance", rules.water.flood_tolerance)
+            lived = survival(rules, tolerance)
+            cells.append(f"{lived:16.2f} {lived * real_days(rules):15.0f}")
+        print(f"{species.name:>10} {tolerance:6.2g} " + " ".join(cells))
 
 
 HIGH_LOW = """title = "High and low sun"
@@ -177,7 +247,8 @@ def main() -> None:
     parser.add_argument("--seeds", type=int, default=6, help="seeds per level (default 6)")
     parser.add_argument("--days", type=float, default=30.0, help="game days of each run (default 30)")
     parser.add_argument("--workers", type=int, default=2, help="worker processes (default 2)")
-    parser.add_argument("--only", choices=("sun", "water", "lab", "species"), help="run one part only")
+    parser.add_argument("--only", choices=("sun", "water", "lab", "species", "daylength", "flood"),
+                        help="run one part only")
     args = parser.parse_args()
     one, five, _ = os.getloadavg()
     print(f"load average {one:.1f} {five:.1f} on {os.cpu_count()} cores")
@@ -189,6 +260,10 @@ def main() -> None:
         lab(args.days, args.seeds, args.workers)
     if args.only in (None, "species"):
         species(args.days, args.seeds, args.workers)
+    if args.only in (None, "daylength"):
+        day_length(args.days, args.seeds, args.workers)
+    if args.only in (None, "flood"):
+        flood(args.days, args.seeds, args.workers)
 
 
 if __name__ == "__main__":

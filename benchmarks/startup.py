@@ -9,7 +9,7 @@ close to the process's end.
 The cold run points NUMBA_CACHE_DIR at an empty folder; the warm runs reuse that folder.
 The game may write Python's bytecode cache (__pycache__) even when the calling shell says
 PYTHONDONTWRITEBYTECODE: a player's install has it from the first start on (without it every start compiled
-each Arbor module from source again: about 0.35 s more CPU).
+each Arbor module from source again: 0.2-0.35 s more CPU).
 """
 
 from __future__ import annotations

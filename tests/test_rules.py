@@ -133,10 +133,10 @@ def test_the_schema_is_what_the_rules_and_paces_use():
     assert {r.key for r in SCHEMA} == {f"{s}.{k}" for s, section in vars(Rules()).items()
                                        if not isinstance(section, str | float) for k in vars(section)}
     assert TIMES == ("growth.hold_time", "growth.deadline", "growth.penalty_time", "growth.daylight_memory",
-                     "water.drown_time",
+                     "water.drown_time", "water.repair_time", "water.oxygen_time",
                      "health.death_time", "light.interval", "carbon.reserve_time", "carbon.keep_time",
                      "carbon.winter_keep", "carbon.starve_time", "carbon.root_catch_up")
-    assert "water.fill_rate" not in RATES and len(RATES) == 14  # the watering can is held for seconds at any pace
+    assert "water.fill_rate" not in RATES and len(RATES) == 15  # the watering can is held for seconds at any pace
 
 
 LAB = """duration = 60

@@ -89,17 +89,20 @@ def test_tree_grows_only_after_earning_it():
 
 def test_neglect_wilts_then_kills():
     sim = sim_with(orbit_height=1.0, water_meter=0.0, sun_meter=0.9)
-    step_for(sim, 30)
+    dry = lambda s: setattr(s.state, "water_meter", 0.0)  # noqa: E731  (no shower wets it)
+    step_for(sim, 30, each=dry)
     assert 0.5 < sim.state.wilt < 0.7 and sim.state.alive
-    step_for(sim, 20 + 121)
+    step_for(sim, 20 + 121, each=dry)
     assert not sim.state.alive
     assert sim.growth_speeds() == (0.0, 0.0)
 
 
 def test_too_much_water_drowns():
     sim = sim_with(orbit_height=1.0, water_meter=1.0, sun_meter=0.9)
+    step_for(sim, 30, each=lambda s: setattr(s.state, "watering", True))
+    assert sim.state.wilt == 0.0 and sim.state.oxygen < 0.1  # the soil's oxygen is gone; the dose still small
     step_for(sim, 60, each=lambda s: setattr(s.state, "watering", True))
-    assert sim.state.wilt > 0.4
+    assert sim.state.wilt > 0.4 and sim.drowned()
 
 
 def test_replant_resets_meters_into_range():

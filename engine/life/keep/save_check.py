@@ -37,10 +37,12 @@ SIM_FIELDS = {
     "wilt": ("float", 0.0, 1.0), "drowning": ("float", 0.0, BIG), "dead_for": ("float", 0.0, BIG),
     "alive": ("bool", 0, 1), "sun_turns": ("float", 0.0, BIG), "weather_seed": ("int", 0, 2**63 - 1),
     "root_time": ("float", 0.0, BIG), "daylight": ("float", 0.0, 1.0), "root_vigour": ("float", 0.0, 100.0),
+    "oxygen": ("float", 0.0, 1.0),
 }
 # older saves have none (a tree from before the remembered daylight starts at the light that grows it at length_rate)
 OPTIONAL_SIM = {"sun_turns": 0.0, "weather_seed": 0, "root_time": 0.0,
-                "daylight": find_rule("growth.daylight_full").default, "root_vigour": 1.0}
+                "daylight": find_rule("growth.daylight_full").default, "root_vigour": 1.0,
+                "oxygen": 1.0}  # (a save from before the soil's oxygen: a drained soil's)
 CYCLE_FIELDS = {"cycle": ("float", 0.0, BIG), "above": ("float", 0.0, BIG), "rate": ("float", 0.0, 1.0),
                 "earned": ("int", 0, 2**53)}
 CARBON_FIELDS = {  # [trees.carbon] (engine/life/plant/carbon.py); g, s, g per s, m², m³

@@ -5,7 +5,7 @@ A canopy model in the manner of the functional-structural plant models (LIGNUM b
 GreenLab by de Reffye and Hu): every leaf fixes sugar by its species' light response (a non-rectangular
 hyperbola, engine/life/plant/photosynthesis.py) to the photons that reach it (the sun's PAR at its
 elevation, engine/life/plant/solar.py, times the leaf's light from the shadow grid, engine/life/plant/light.py),
-times how far its stomata are open (they close smoothly as the soil dries, and shut when the roots drown).
+times how far its stomata are open (they close smoothly as the soil dries, and as drowned roots fail).
 Leaves and living wood respire: the leaves by their species' dark respiration per m², the wood in
 proportion to its sapwood, which by the pipe model (Shinozaki et
 al.) is the conducting cross-section that carries the leaves above it. What is left goes into a pool,
@@ -29,7 +29,7 @@ import numpy as np
 
 from arbor.engine.base.units import METRE
 from arbor.engine.life.form.interpret import APEX, BLOSSOM, CLUSTER_AREA, FRUIT, LEAF, LEAF_ASPECT
-from arbor.engine.life.plant import photosynthesis, solar
+from arbor.engine.life.plant import photosynthesis, soil, solar
 from arbor.engine.life.plant.photosynthesis import LeafTraits
 from arbor.engine.life.rules.rules import Rules
 from arbor.engine.lsystem.lstring import LString
@@ -198,14 +198,11 @@ def assimilation(canopy: Canopy | None, shine: float, traits: LeafTraits, rules:
     return float(photosynthesis.grams(float((areas * umol).sum()), rules))
 
 
-def stomata(water: float, drowned: bool, rules: Rules) -> float:
+def stomata(water: float, roots: float, rules: Rules) -> float:
     """How far the leaves' stomata are open (0..1): they close smoothly as the water meter (the soil's water)
-    falls, ``(1 - exp(-water / s)) / (1 - exp(-1 / s))`` with s the rule water.stomata_scale (no threshold),
-    and shut when the roots are drowned (waterlogged roots take up nothing)."""
-    if drowned:
-        return 0.0
-    s = rules.water.stomata_scale
-    return min(max((1.0 - math.exp(-max(water, 0.0) / s)) / (1.0 - math.exp(-1.0 / s)), 0.0), 1.0)
+    falls (soil.opening: no threshold), times ``roots`` (0..1), how well the roots still take up water after
+    waterlogging's want of oxygen (Simulation.root_health; 1 for healthy roots)."""
+    return soil.opening(water, rules) * min(max(roots, 0.0), 1.0)
 
 
 def canopy(leaf_area: np.ndarray, leaf_light: np.ndarray, pipe_area: np.ndarray, seg_length: np.ndarray) -> Canopy:

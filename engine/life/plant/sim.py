@@ -3,10 +3,13 @@
 A sun orbits the tree on a vertical circle whose centre height and speed the player sets; the sun
 meter fills while it shines on the leaves (as fast as they catch it: a shaded crown fills it more slowly)
 and drains at night. The water meter drains (faster in strong sun) and
-fills while the watering can is held. A meter earns growth only after staying above half for 20 s;
-a cycle that takes longer than 40 s earns less, the longer the less. The light the leaves caught over the
-last day sets the length-growth rate (the thesis had the sun meter's level), water the girth-growth rate.
-Neglect (or drowning) wilts the tree; long full wilt kills it.
+fills while the watering can is held. The tree grows only after both meters have stayed above half for 20 s;
+a cycle that takes longer than 40 s earns less, the longer the less: the sun's cycle the length growth, the
+water's the girth growth (the thesis, 2.3.1-2.3.2). The light the leaves caught over the last day sets the
+length-growth rate (the thesis had the sun meter's level), water the girth-growth rate. The water meter is
+the soil's water as a bucket (engine/life/plant/soil.py): the roots take it up as far as the stomata let it
+go (so a drying soil dries ever more slowly), water above field capacity drains away, and waterlogged soil
+loses its oxygen, a dose the roots take graded. Neglect (or drowning) wilts the tree; long full wilt kills it.
 All constants come from assets/rules.toml (see :func:`load_rules`).
 """
 
@@ -17,7 +20,7 @@ from dataclasses import asdict, dataclass, field
 
 import numpy as np
 
-from arbor.engine.life.plant import seasons, solar
+from arbor.engine.life.plant import seasons, soil, solar
 from arbor.engine.life.plant.seasons import Season, raining, season_at
 from arbor.engine.life.rules.rules import GrowthRules, Rules, clamp_orbit, load_rules
 from arbor.engine.life.rules.schema import find_rule
@@ -63,7 +66,7 @@ class SimState:
     length_time: float = 0.0  # physiological time T: drives new internodes and elongation
     girth_time: float = 0.0  # girth time G: drives thickening
     wilt: float = 0.0
-    drowning: float = 0.0
+    drowning: float = 0.0  # the roots' dose of want of oxygen (s of full anoxia; engine/life/plant/soil.py)
     dead_for: float = 0.0
     alive: bool = True
     sun_turns: float = 0.0  # days of the sun so far (turns of its orbit): the calendar of the seasons
@@ -72,6 +75,7 @@ class SimState:
     root_vigour: float = 1.0  # how fast the carbon pool lets the roots grow (set by its World; 0 .. carbon.root_most)
     # the light the leaves fixed sugar with, remembered (0..1 of fully lit, open leaves); a sapling's is the norm
     daylight: float = find_rule("growth.daylight_full").default
+    oxygen: float = 1.0  # the soil air's oxygen, 0..1 of a drained soil's (waterlogging uses it up)
     sun_cycle: GrowthCycle = field(default_factory=GrowthCycle)
     water_cycle: GrowthCycle = field(default_factory=GrowthCycle)
 
@@ -183,20 +187,28 @@ class Simulation:
     def growth_speeds(self) -> tuple[float, float]:
         """(length clock, girth clock) speeds right now.
 
-        The tamagotchi thesis: the tree can grow only when BOTH meters have been above half for 20 s; a
-        cycle that takes longer than 40 s earns less. So both clocks run at the rules' rate x what each
-        meter earned (0 before its first 20 s above half, less after late cycles) x health (1 - wilt).
-        The shoots grow as fast as the light their leaves caught lets them (:meth:`light_growth`: sugar
-        earns the new internodes; the thesis had the sun meter's level there), the girth as water lets it
-        (x the water meter's level).
+        The tamagotchi thesis (2.3.1-2.3.2): the tree can grow only once BOTH meters have been above half for
+        20 s; a cycle that takes longer than 40 s earns less: the sun's the length growth, the water's the girth
+        growth. So the clocks run at the rules' rate x what their meter earned (0 before both first earned) x
+        health (1 - wilt) x the roots' health (an oxygen dose, :meth:`root_health`). The shoots grow as fast as
+        the light their leaves caught lets them (:meth:`light_growth`: sugar earns the new internodes, and
+        stomata closing in a drying soil fix less), the girth as water lets it (x the water meter's level).
         """
         s, g = self.state, self.rules.growth
-        if not s.alive:
+        if not s.alive or s.sun_cycle.earned == 0 or s.water_cycle.earned == 0:
             return 0.0, 0.0
-        if self.drowned():  # drowned roots take up nothing: no growth
-            return 0.0, 0.0
-        gate = s.sun_cycle.rate * s.water_cycle.rate * (1.0 - s.wilt) * seasons.growth_factor(s.sun_turns, self.rules)
-        return g.length_rate * self.light_growth() * gate, g.girth_rate * s.water_meter * gate
+        gate = (1.0 - s.wilt) * seasons.growth_factor(s.sun_turns, self.rules) * self.root_health()
+        return (g.length_rate * self.light_growth() * s.sun_cycle.rate * gate,
+                g.girth_rate * s.water_meter * s.water_cycle.rate * gate)
+
+    def root_health(self) -> float:
+        """How well the roots take up water after the oxygen dose they took (0..1, smooth; soil.root_health)."""
+        return soil.root_health(self.state.drowning, self.flood_tolerance, self.rules)
+
+    def uptake(self) -> float:
+        """How freely the roots take up water now (0..1): the stomata's opening at the soil's water times the
+        roots' health."""
+        return soil.opening(self.state.water_meter, self.rules) * self.root_health()
 
     def leaf_vigour(self) -> float:
         """How big new leaves grow and how well they stay (rules' leaf_min with no water, 1 when the
@@ -211,9 +223,13 @@ class Simulation:
         return min(max((level - self.state.water_meter) / level, 0.0), 1.0) if level > 0 else 0.0
 
     def resources(self) -> float:
-        """0..1: how well the tree is doing; decides how many dormant buds may wake."""
+        """0..1: how well the tree is doing; decides how many dormant buds may wake: the sun's growth earned,
+        the water the roots take up against their uptake at the growth threshold (at most 1; 0 before the water
+        meter first earned growth) and health (1 - wilt)."""
         s = self.state
-        return s.sun_cycle.rate * s.water_cycle.rate * (1.0 - s.wilt) if s.alive else 0.0
+        full = soil.opening(self.rules.growth.threshold, self.rules)
+        water = min(self.uptake() / full, 1.0) if s.water_cycle.earned > 0 else 0.0
+        return s.sun_cycle.rate * water * (1.0 - s.wilt) if s.alive else 0.0
 
     def step(self, dt: float) -> None:
         """Advance the simulation by ``dt`` seconds of game time."""
@@ -229,7 +245,9 @@ class Simulation:
         w = rules.water
         need = seasons.water_factor(s.sun_turns, rules)
         relief = 1.0 - rules.roots.drain_relief * self.root_share  # good roots take up water better
-        s.water_meter -= (w.drain_rate + w.sun_drain_rate * shine) * need * relief * dt
+        # the roots take up what the stomata let go (less as the soil dries); above field capacity it drains
+        s.water_meter -= ((w.drain_rate + w.sun_drain_rate * shine) * need * relief * self.uptake()
+                          + soil.drainage(s.water_meter, rules)) * dt
         if s.watering:
             s.water_meter += w.fill_rate * dt
         if self.raining():
@@ -244,34 +262,41 @@ class Simulation:
         s.girth_time += girth * dt
         if s.alive:
             r = rules.roots
-            wet = (min(max((s.water_meter - r.dry_level) / max(r.wet_level - r.dry_level, 1e-9), 0.0), 1.0)
-                   if s.water_meter <= rules.water.drown_level else 0.0)
-            s.root_time += (rules.roots.growth_rate * wet * s.root_vigour * seasons.growth_factor(s.sun_turns, rules)
-                            * dt)  # no roots grow in waterlogged soil
+            wet = min(max((s.water_meter - r.dry_level) / max(r.wet_level - r.dry_level, 1e-9), 0.0), 1.0)
+            s.root_time += (rules.roots.growth_rate * wet * s.oxygen * self.root_health() * s.root_vigour
+                            * seasons.growth_factor(s.sun_turns, rules) * dt)  # none in soil without oxygen
 
     def _health(self, dt: float) -> None:
-        s, h, w = self.state, self.rules.health, self.rules.water
-        # waterlogged soil drains (water.drain_speed times as fast as it floods), not at once; resting roots
-        # (winter) do not drown; a dying tree needs a lasting recovery to live
+        s, h = self.state, self.rules.health
+        # waterlogged soil loses its oxygen and the roots take a dose of its want, healed while they have air;
+        # resting roots (winter) take none; a dying tree needs a lasting recovery to live
         resting = seasons.growth_factor(s.sun_turns, self.rules) <= 0
-        flooded = s.water_meter > w.drown_level and not resting
-        s.drowning = s.drowning + dt if flooded else max(s.drowning - w.drain_speed * dt, 0.0)
+        s.oxygen = soil.oxygen_after(s.oxygen, s.water_meter, dt, self.rules)
+        s.drowning = soil.dose_after(s.drowning, s.oxygen, dt, self.rules, resting)
         starved = self.starving > self.rules.carbon.starve_time
-        neglected = min(s.sun_meter, s.water_meter) < h.neglect_level or starved
+        neglected = s.sun_meter < h.neglect_level or starved
+        thirst = self.thirst()
         if not s.alive:
             return
         drowned = self.drowned()
-        if neglected or drowned:
-            s.wilt = min(1.0, s.wilt + h.wilt_rate * dt / (1.0 if neglected else self.flood_tolerance))
+        if neglected or drowned or thirst > 0:
+            pressure = 1.0 if neglected else max(thirst, 1.0 / self.flood_tolerance if drowned else 0.0)
+            s.wilt = min(1.0, s.wilt + h.wilt_rate * pressure * dt)
         else:
             s.wilt = max(0.0, s.wilt - h.recover_rate * dt)
         s.dead_for = s.dead_for + dt if s.wilt >= 1.0 else max(s.dead_for - dt, 0.0)
         if s.dead_for > h.death_time:
             s.alive = False
 
+    def thirst(self) -> float:
+        """How hard a dry soil wilts the tree (0..1): 0 with the water meter at the neglect level or above,
+        rising in proportion as it empties below (1 when it is empty): wilting graded, no step."""
+        level = self.rules.health.neglect_level
+        return min(max((level - self.state.water_meter) / level, 0.0), 1.0) if level > 0 else 0.0
+
     def drowned(self) -> bool:
-        """Whether the roots have drowned: waterlogged longer than drown_time x the species' flood tolerance
-        (a tolerant species' roots bear it longer)."""
+        """Whether the roots have drowned: their oxygen dose past drown_time x the species' flood tolerance
+        (uptake halved; a tolerant species' roots bear more), so the tree wilts."""
         return self.state.drowning > self.rules.water.drown_time * self.flood_tolerance
 
     def settle_left(self) -> float:

@@ -40,7 +40,8 @@ class Rule:
 SECTION_DOCS = {
     "growth": ("GrowthRules", "When a meter earns growth, and how fast the tree's two clocks run."),
     "sun": ("SunRules", "The sun's orbit (slider defaults and ranges) and how it fills the sun meter."),
-    "water": ("WaterRules", "How the water meter drains, fills and drowns the roots."),
+    "water": ("WaterRules", "The soil's water as a bucket (the water meter): the roots' uptake, drainage, "
+                         "the can, and waterlogging's want of oxygen (engine/life/plant/soil.py)."),
     "health": ("HealthRules", "Neglect, wilting and death."),
     "replant": ("ReplantRules", "The sapling button's meter refill range."),
     "light": ("LightRules", "How light is measured: a shadow grid across the sun's rays (Beer-Lambert)."),
@@ -84,13 +85,29 @@ SCHEMA: tuple[Rule, ...] = (
     Rule("sun.fill_rate", 0.04, 0.0, 100.0, PER_S, "sun meter filled with the sun at the zenith", "rate"),
     Rule("sun.drain_rate", 0.006, 0.0, 100.0, PER_S, "sun meter drained while the sun is down", "rate"),
     Rule("sun.side", 0.45, -10.0, 10.0, "orbit radii", "how far to one side (+z, south) the sun's path lies"),
-    Rule("water.drain_rate", 0.004, 0.0, 100.0, PER_S, "water meter drained, always", "rate"),
-    Rule("water.sun_drain_rate", 0.008, 0.0, 100.0, PER_S, "water meter drained extra at full sunshine", "rate"),
+    Rule("water.drain_rate", 0.004, 0.0, 100.0, PER_S, "water meter taken up by the roots (and lost from the "
+         "soil), always, with the stomata open: as they close in a drying soil the uptake slows with them", "rate"),
+    Rule("water.sun_drain_rate", 0.008, 0.0, 100.0, PER_S, "... and taken up extra at full sunshine", "rate"),
     Rule("water.fill_rate", 0.12, 0.0, 100.0, PER_S, "water meter filled while the can is held (any pace)"),
-    Rule("water.drown_level", 0.95, 0.0, 1.0, METER, "above this for longer than drown_time the roots drown"),
-    Rule("water.drown_time", 30.0, 0.0, 1e7, "s", "time above drown_level before the roots drown", "time"),
-    Rule("water.drain_speed", 3.0, 0.1, 100.0, "x", "waterlogged soil drains this many times as fast as it floods "
-         "(the time counted toward drowning falls back)"),
+    Rule("water.drown_level", 0.95, 0.0, 1.0, METER, "above this the soil is waterlogged: the oxygen in its pores "
+         "runs out (oxygen_time) and the roots take a dose of want of oxygen"),
+    Rule("water.drown_time", 30.0, 0.0, 1e7, "s", "the roots' oxygen dose (s of full anoxia) that halves their "
+         "uptake, x the species' flood tolerance; past it the tree wilts (by the declared time scale a "
+         "flood-intolerant seedling then lives 1-4 weeks in waterlogged soil)", "time",
+         source="Kozlowski 1997, Responses of woody plants to flooding and salinity"),
+    Rule("water.repair_time", 30.0, 0.1, 1e7, "s", "roots with air heal an oxygen dose over about this long",
+         "time", source="chosen: about three real days by the declared time scale (Kozlowski 1997: roots "
+         "regrow within days to weeks after a short flood)"),
+    Rule("water.oxygen_time", 10.0, 0.01, 1e7, "s", "a waterlogged soil's oxygen is used up over about this long, "
+         "and comes back as fast once it drains", "time",
+         source="Ponnamperuma 1972, The chemistry of submerged soils (oxygen gone within about a day: 10 s is "
+         "a real day by the declared time scale)"),
+    Rule("water.field_capacity", 0.8, 0.05, 1.0, METER, "the soil holds water up to this against gravity; more "
+         "drains away below the roots", source="Veihmeyer & Hendrickson 1931, The moisture equivalent as a "
+         "measure of the field capacity of soils"),
+    Rule("water.drainage", 0.07, 0.0, 100.0, "per s", "share of the water above field_capacity that drains "
+         "away each second (a wetted soil is back at field capacity within about a real day or two)", "rate",
+         source="Allen, Pereira, Raes & Smith 1998, Crop evapotranspiration (FAO-56), ch. 8"),
     Rule("water.leaf_min", 0.45, 0.0, 1.0, "share (0..1)", "leaf vigour (size, how long leaves stay) with an empty "
          "water meter"),
     Rule("water.drought_level", 0.35, 0.0, 1.0, METER, "below this shaded branches die up to 3x faster (drought)"),
@@ -208,8 +225,9 @@ SCHEMA: tuple[Rule, ...] = (
     Rule("carbon.dark_share", 0.07, 0.01, 0.3, "share of Amax", "a leaf's dark respiration, as a share of its Amax "
          "(a species' .lsys RDS replaces it)", source="Reich et al. 1998, Relationships of leaf dark respiration to "
          "leaf nitrogen, specific leaf area and leaf life-span (about 0.05-0.1)"),
-    Rule("water.stomata_scale", 0.2, 0.01, 1.0, METER, "the stomata close smoothly as the water meter falls, "
-         "open (1 - exp(-meter / this)) / (1 - exp(-1 / this)): at a meter of this much 64 %, at half of it 40 %",
+    Rule("water.stomata_scale", 0.3, 0.01, 1.0, METER, "the stomata close smoothly as the water meter falls, "
+         "open (1 - exp(-meter / this)) / (1 - exp(-1 / this)): at a meter of this much 66 %, at half of it 41 %; the "
+         "roots take up water as they let it go (engine/life/plant/soil.py)",
          source="the exponential soil-water response of Jarvis 1976, The interpretation of the variations in leaf "
          "water potential and stomatal conductance found in canopies in the field"),
     # Allocation to roots by a functional balance (carbon.root_demand); issue 43.

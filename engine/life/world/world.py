@@ -198,13 +198,13 @@ class World:
     def economy(self, seconds: float, shine: float) -> Economy:
         """This tree's dealings with its carbon budget for a light reading ``seconds`` after the last."""
         s, rules = self.sim.state, self.rules
-        drowned = self.sim.drowned()
+        roots = self.sim.root_health()
         activity = min(max(seasons.growth_factor(s.sun_turns, rules), rules.carbon.dormant), 1.0)
         self.carbon.stored = rules.carbon.winter_keep * seasons.stores(s.sun_turns, rules)
-        supply = carbon.stomata(s.water_meter, False, rules)  # (what moist soil gives each root; drowning aside)
+        supply = carbon.stomata(s.water_meter, 1.0, rules)  # (what moist soil gives each root; drowning aside)
         need = self.sim.light_growth() / max(supply, 0.05)  # the crown's water need: its light on open leaves
         self.last_economy = Economy(
-            self.carbon, rules, seconds, shine, carbon.stomata(s.water_meter, drowned, rules), activity,
+            self.carbon, rules, seconds, shine, carbon.stomata(s.water_meter, roots, rules), activity,
             carbon.wood_density(self.tree.system.constants, rules), seasons.leafy(s.sun_turns, rules),
             self.sim.light_growth(), photosynthesis.leaf_traits(self.tree.system.constants, rules),
             carbon.root_balance(need, supply, rules))
@@ -228,11 +228,9 @@ class World:
     def light_caught(self) -> float:
         """The light the leaves fixed sugar with at the last reading, 0..1 of what fully lit, open leaves of
         the same area would fix (0 at night); a bare tree counts the light its leaves last had."""
-        area, rules = self.carbon.leaf_area, self.rules
-        if area > 0 and self.carbon.full_rate > 0:
+        if self.carbon.leaf_area > 0 and self.carbon.full_rate > 0:
             return self.carbon.caught()
-        drowned = self.sim.drowned()
-        return self.sim.sunshine() * carbon.stomata(self.sim.state.water_meter, drowned, rules) * self.tree.mean_light
+        return self.sim.sunshine() * self.sim.uptake() * self.tree.mean_light
 
     def sync_roots(self) -> None:
         """Tell the simulation how big the roots are (they spare water)."""
