@@ -64,9 +64,15 @@ def _silhouette(turtle, axes: list[int], lo: np.ndarray, hi: np.ndarray, n: int 
     return covered
 
 
-def test_units_keep_the_drawn_wood_within_one_percent(tree):
+@pytest.mark.parametrize("via_singles", [False, True])
+def test_units_keep_the_drawn_wood_within_one_percent(tree, via_singles):
     const = reference_constants()
     merged, saved = form_units(tree, NOW, const)
+    if via_singles:  # the season's one-site units join runs in winter as plain nodes would
+        singles, _ = form_units(tree, NOW, const, runs=False)
+        runs, _ = form_units(singles, NOW, const)
+        assert len(runs) <= len(merged) + 2
+        merged, saved = runs, len(tree) - len(runs)
     assert len(unit_modules(merged)) >= 5 and saved > 0.4 * len(tree)  # most of the string goes
     clocks = Clocks(NOW, NOW, 0.0)
     before, after = grown_turtle(tree, clocks, const), grown_turtle(merged, clocks, const)

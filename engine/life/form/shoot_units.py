@@ -42,8 +42,10 @@ def sites(ls: LString, units: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.nd
     row = np.repeat(np.arange(len(units)), count)
     first = np.cumsum(count) - count
     i = np.arange(int(count.sum())) - np.repeat(first, count) + 1
-    h = np.modf(np.abs(np.sin(units[row] * 12.9898 + i * 78.233) * 43758.5453))[0]
-    return row, i, h < ls.params[off[row] + KEPT]
+    at = off[row]  # (a hash of the unit's birth and roll, not its place: it keeps its leaves when the string
+    h = np.modf(np.abs(np.sin(ls.params[at] * 12.9898 + ls.params[at + ROLL] * 4.1414 + i * 78.233)  # changes)
+                       * 43758.5453))[0]
+    return row, i, h < ls.params[at + KEPT]
 
 
 def leaf_count(ls: LString) -> int:
