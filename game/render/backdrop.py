@@ -27,10 +27,11 @@ CLOUDS = 11  # cards in the sky, drifting with the wind
 CLOUD_DRIFT = 0.002  # radians of azimuth a second
 CLOUD_STEP = 0.004  # drift between redraws of the sky's picture on a software GL (about 3 px at 720 px)
 GRASS = (0.33, 0.50, 0.22)
-FAR_HAZE = 0.3  # far away the ground takes this share of the horizon's colour (aerial haze), and no more:
-# faded all the way into the sky's pale horizon it was a grey fog band under a sharp sky line
-HORIZON_HAZE = 1.5  # toward the horizon the haze grows on to this many FAR_HAZEs (a gradient, not a flat slab)
-HORIZON_REACH = 25.0  # over a last ring of the ground this many times the disc's radius (near the horizon)
+FAR_HAZE = 0.25  # where the ground's fade ends it takes this share of the horizon's colour (aerial haze)
+HORIZON_HAZE = 2.0  # and toward the horizon, with the distance from the eye, on to this many FAR_HAZEs (per
+# pixel: the far ground a gradient up to the horizon; a haze by ring was a flat grey-green band under a low
+# camera), no more: faded all the way into the sky's pale horizon it was a grey fog band under the sky line
+HORIZON_REACH = 25.0  # the ground's last ring reaches this many times the disc's radius (near the horizon)
 SOIL = (0.36, 0.26, 0.17)  # the cut-away view: the ground as soil
 # The ground disc's mesh: few, large triangles (a software GL pays per triangle, also for the ones
 # clipped behind the camera: 64 x 24 cost 3-5 ms more per frame than 24 x 10 on llvmpipe)
@@ -137,7 +138,7 @@ def far_ground(sun: np.ndarray, ground: tuple[float, float, float], haze: float 
                ) -> tuple[float, float, float]:
     """The colour the ground fades into far away: the ground's own (``ground`` under ``sun``, see
     :func:`ground_color`) ``haze`` of the way to the horizon's (the dome below the horizon: HORIZON_HAZE
-    FAR_HAZEs, what the ground's last ring fades on to)."""
+    FAR_HAZEs, what the ground hazes on to at the horizon)."""
     _, horizon, _ = sky_colors(sun)
     return tuple(g + (h - g) * haze for g, h in zip(ground_color(sun, ground), horizon, strict=True))
 
@@ -273,15 +274,18 @@ class Backdrop:
         self.ground = self.ctx.vertex_array(self.ground_prog, [(self.ctx.buffer(rings.tobytes()), "3f", "in_pos")],
                                             self.ctx.buffer(np.array(idx, "u4").tobytes()))
 
-    def draw_ground(self, mvp: bytes, sun: np.ndarray, fade: tuple[float, float]) -> None:
-        """The ground, lit by the sun, fading into the horizon from ``fade[0]`` to ``fade[1]`` (the
-        trees' shadows go on it with :meth:`draw_shadows`)."""
+    def draw_ground(self, mvp: bytes, sun: np.ndarray, fade: tuple[float, float], eye: np.ndarray | None = None
+                    ) -> None:
+        """The ground, lit by the sun, fading into the far ground from ``fade[0]`` to ``fade[1]`` and on,
+        with the distance from ``eye``, into the hazier ground at the horizon (the trees' shadows go on it
+        with :meth:`draw_shadows`)."""
         self.noise.use(location=2)
         grass = ground_color(sun, self.ground_kind)
         set_uniforms(self.ground_prog, {
             "u_mvp": mvp, "u_noise": 2, "u_grass": grass, "u_horizon": far_ground(sun, self.ground_kind),
-            "u_fade_start": fade[0], "u_fade_end": fade[1], "u_haze_end": self.ground_radius * HORIZON_REACH,
-            "u_haze_more": HORIZON_HAZE - 1.0})
+            "u_far": far_ground(sun, self.ground_kind, FAR_HAZE * HORIZON_HAZE),
+            "u_eye": (0.0, 0.0) if eye is None else (float(eye[0]), float(eye[2])),
+            "u_fade_start": fade[0], "u_fade_end": fade[1]})
         if self.ground is not None:
             self.ground.render()
 

@@ -159,7 +159,7 @@ class Stage:
 
         def ground() -> None:
             backdrop.set_ground(max(radius, 1.0) * 12)
-            backdrop.draw_ground(_gl(vp), sun, (radius * 3, radius * 11))
+            backdrop.draw_ground(_gl(vp), sun, (radius * 3, radius * 11), np.asarray(camera.eye, float))
 
         def shadows(into: moderngl.Framebuffer) -> None:
             into.use()
