@@ -42,7 +42,7 @@ def frames(gl_ctx, tmp_path_factory):
     from arbor.game.screens.game import Game, GameConfig
     from benchmarks.shots import _grow, summer_day
 
-    scenery.ON_SOFTWARE_GL = True  # (this machine's GL is llvmpipe)
+    kept, scenery.ON_SOFTWARE_GL = scenery.ON_SOFTWARE_GL, True  # (this machine's GL is llvmpipe)
     world = _grow(summer_day(), 3)
     world.sim.state.sun_angle = 1.1  # (by day)
     shots, triangles = [], []
@@ -61,17 +61,32 @@ def frames(gl_ctx, tmp_path_factory):
             triangles.append(game.triangles)
         finally:
             game_view.GameView._scenery = placed
-    scenery.ON_SOFTWARE_GL = False
+    scenery.ON_SOFTWARE_GL = kept
     return shots, triangles
 
 
-def test_a_software_gl_leaves_the_scenery_out(gl_ctx, tmp_path):
+def test_a_software_gl_draws_the_scenery_into_the_backdrops_picture_not_every_frame(gl_ctx, tmp_path, monkeypatch):
+    """The scenery's stones and shrubs cost a software GL nothing while the camera holds still: drawn with
+    the grass into the backdrop's picture (drawn again only when the camera, the light or the trees move),
+    and its box, the garden's ground, bounds neither the ground's shadow tests nor the smoothing."""
+    from arbor.game.render import garden
     from arbor.game.screens.game import Game, GameConfig
 
     game = Game(gl_ctx, (320, 240), GameConfig(saves=tmp_path, seed=3, resume=False), clock=lambda: 1000.0)
-    game.draw(gl_ctx.framebuffer(color_attachments=[gl_ctx.renderbuffer((320, 240))],
-                                 depth_attachment=gl_ctx.depth_renderbuffer((320, 240))))
-    assert game.renderer.samples <= 1 and all(p.version != -4 for p in game.renderer.placed)
+    fbo = gl_ctx.framebuffer(color_attachments=[gl_ctx.renderbuffer((320, 240))],
+                             depth_attachment=gl_ctx.depth_renderbuffer((320, 240)))
+    game.draw(fbo)
+    renderer = game.renderer
+    scenery = [p for p in renderer.placed if p.version == garden.SCENERY]
+    assert renderer.samples <= 1 and len(scenery) == 1
+    assert len(garden.tree_boxes(renderer.placed)) == len(renderer.placed) - 1
+    drawn = []
+    draw = renderer.trees.draw
+    monkeypatch.setattr(renderer.trees, "draw", lambda buffers, pass_, *rest: (
+        drawn.append(buffers is scenery[0].buffers and pass_ == "lit"), draw(buffers, pass_, *rest)))
+    for _ in range(8):  # (the camera holds still)
+        game.draw(fbo)
+    assert sum(drawn) <= 1 and len(drawn) >= 8  # (the tree itself drawn every frame)
 
 
 def test_the_game_shows_stones_and_shrubs_round_the_tree_at_little_cost(frames):

@@ -56,6 +56,7 @@ BARK = (1.4, 1.36, 1.3)  # (near grey: the sun's warm light does the rest)
 BLOSSOM = (1.2, 0.9, 1.0)
 SHADOW_WAIT = 4  # frames a due shadow map waits at most for a frame the backdrop is not being drawn in
 FALLING = -1  # Placed.version of a shed branch falling: new records every frame, and no shadow
+SCENERY = -4  # Placed.version of the garden's stones and shrubs (scenery.py): no box in the shadows' or smoothing's
 
 
 def software_gl(ctx: moderngl.Context) -> bool:
@@ -176,7 +177,7 @@ class GardenRenderer:
         cost = sum(leaf_pixels) + SEGMENT_PIXELS * sum(d.tubes for d in details)
         # (a camera that moves gets no picture drawn over frames: the trees are drawn whole, and without
         # the layer's composite and copies, unless they must be drawn smaller)
-        still = self.last_vp is not None and moved(self.last_vp, vp, self._corners(), size) <= REUSE_PIXELS
+        still = self.last_vp is not None and moved(self.last_vp, vp, box_corners(self.placed), size) <= REUSE_PIXELS
         self.last_vp = vp
         layered = self.samples <= 1 and (scale < 1.0 or (cost > LAYER_COST and still))
         self.last_layered = layered
@@ -192,13 +193,13 @@ class GardenRenderer:
         pixel = 2.0 * math.tan(math.radians(camera.fov_y) / 2) / size[1]
         uniforms = self._lit_uniforms(_gl(vp), _gl(light), sun, sky_colors(sun)[2])
         uniforms.update(u_eye=tuple(camera.eye), u_pixel=pixel / scale, u_soft=self.soft_shadows)
-        if self.samples <= 1:  # a software GL: the grass stands still in the backdrop's picture (see grass.py)
+        if self.samples <= 1:  # a software GL: the grass and the scenery stand still in the backdrop's picture
             still = {**uniforms, "u_wind": (0.0, 0.0, 0.0, 0.0)}  # (the same blades at every redraw: no jumps)
-            self.stage.cover = lambda: self.grass.draw(still, shadowed=False)
-            self.stage.cover_version = self.grass.version
+            self.stage.cover = lambda: draw_cover(self, still, details)
+            self.stage.cover_version = (self.grass.version,
+                                        *(id(p.buffers.view) for p in self.placed if p.version == SCENERY))
             self.stage.cover_look = self.grass.look(uniforms)
-        boxes = [(np.asarray(p.buffers.view.lo) + p.offset, np.asarray(p.buffers.view.hi) + p.offset)
-                 for p in self.placed if p.buffers.view is not None]
+        boxes = tree_boxes(self.placed)
         if not layered:
             # a software GL draws a changed backdrop a part a frame (kept.py): the shadow map waits
             # for a frame without one (a few frames at most), so that no frame pays for both
@@ -220,13 +221,6 @@ class GardenRenderer:
             self.post.smooth(fbo, size, screen_rect(camera, size, boxes, margin=0.15))
         elif target is not fbo:
             self.ctx.copy_framebuffer(fbo, target)
-
-    def _corners(self) -> np.ndarray:
-        """The corners of the placed trees' boxes (scene units), for how far the camera moved."""
-        boxes = [(np.asarray(p.buffers.view.lo) + p.offset, np.asarray(p.buffers.view.hi) + p.offset)
-                 for p in self.placed if p.buffers.view is not None] or [(np.zeros(3), np.zeros(3))]
-        return np.array([[x, y, z] for lo, hi in boxes for x in (lo[0], hi[0]) for y in (lo[1], hi[1])
-                         for z in (lo[2], hi[2])])
 
     def _render_layered(self, target: moderngl.Framebuffer, size: tuple[int, int], scene: Scene,
                         details: list[Detail], uniforms: dict, scale: float, smooth: bool = False) -> None:
@@ -268,6 +262,8 @@ class GardenRenderer:
             self.shadows.texture.use(location=1)
             bark, leaf, blossom = uniforms["tints"]
             for placed, detail in zip(self.placed, details, strict=True):
+                if placed.version == SCENERY and self.samples <= 1:
+                    continue  # (in the backdrop's picture: draw_cover)
                 look = placed.look
                 tints = (tuple(a * b for a, b in zip(bark, look.bark, strict=True)),
                          tuple(a * b for a, b in zip(leaf, look.leaf, strict=True)), blossom)
@@ -323,6 +319,36 @@ class GardenRenderer:
         for placed in self.placed:
             placed.buffers.release()
         self.placed = []
+
+
+def tree_boxes(placed: list[Placed]) -> list[tuple[np.ndarray, np.ndarray]]:
+    """The placed trees' boxes (scene units), which bound the ground's shadow tests and the smoothing: not the
+    scenery's, which spans the garden's ground (a shadow test and smoothing over all of it doubled a software
+    GL's frame of a sapling; its stones and low shrubs need neither)."""
+    return [(np.asarray(p.buffers.view.lo) + p.offset, np.asarray(p.buffers.view.hi) + p.offset)
+            for p in placed if p.buffers.view is not None and p.version != SCENERY]
+
+
+def box_corners(placed: list[Placed]) -> np.ndarray:
+    """The corners of the placed trees' boxes (scene units), for how far the camera moved."""
+    boxes = [(np.asarray(p.buffers.view.lo) + p.offset, np.asarray(p.buffers.view.hi) + p.offset)
+             for p in placed if p.buffers.view is not None] or [(np.zeros(3), np.zeros(3))]
+    return np.array([[x, y, z] for lo, hi in boxes for x in (lo[0], hi[0]) for y in (lo[1], hi[1])
+                     for z in (lo[2], hi[2])])
+
+
+def draw_cover(renderer: GardenRenderer, uniforms: dict, details: list[Detail]) -> None:
+    """What covers the ground in a software GL's picture of the backdrop (redrawn only when the camera, the
+    light or they change): the grass, and the scenery's stones and shrubs, lit (a stone's lumpy rock shading
+    is costly per pixel: 15 stones by a sapling cost its every frame about 5 ms on llvmpipe)."""
+    renderer.grass.draw(uniforms, shadowed=False)
+    # unshadowed, as the grass (the picture's shade pass darkens the ground's shadows over both): a light
+    # matrix that puts every point off the shadow map
+    unshadowed = {**uniforms, "u_light_mvp": _gl(np.array([[0, 0, 0, 4.0], [0, 0, 0, 0], [0, 0, 0, 0], [0, 0, 0, 1]]))}
+    for placed, detail in zip(renderer.placed, details, strict=True):
+        if placed.version == SCENERY:
+            renderer.trees.draw(placed.buffers, "lit", detail, {**unshadowed, "u_offset": tuple(placed.offset)},
+                                renderer._textures(placed.look))
 
 
 def drawn_leaf_pixels(placed: list[Placed], details: list[Detail], camera: OrbitCamera, height_px: int) -> list[float]:

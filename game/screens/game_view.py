@@ -15,7 +15,7 @@ from arbor.engine.life.rules.rules import Rules
 from arbor.game.render import scenery
 from arbor.game.render.camera import OrbitCamera, zoom_out
 from arbor.game.render.falling import FALL_SECONDS, falling_view
-from arbor.game.render.garden import BARK, FALLING, GardenRenderer, Placed
+from arbor.game.render.garden import BARK, FALLING, SCENERY, GardenRenderer, Placed
 from arbor.game.render.instanced import Detail, TreeBuffers, prepare_upload
 from arbor.game.render.roots import rocks_view, roots_view
 from arbor.game.render.scenery import Spot, scale_of, scenery_view
@@ -132,7 +132,7 @@ class GameView:
             buffers = self.scenery[1] if self.scenery else TreeBuffers()
             self.renderer.trees.sync(buffers, scenery_view(spots))
             self.scenery = (key, buffers)
-        return [Placed(self.scenery[1], -here, -4)]
+        return [Placed(self.scenery[1], -here, SCENERY)]
 
     def _view(self, world, shown, clocks, key: tuple) -> tuple:
         """The records for ``world``'s tree: rebuilt when ``key`` changed, else moved to ``clocks``. A
