@@ -64,14 +64,15 @@ def _silhouette(turtle, axes: list[int], lo: np.ndarray, hi: np.ndarray, n: int 
     return covered
 
 
-@pytest.mark.parametrize("via_singles", [False, True])
-def test_units_keep_the_drawn_wood_within_one_percent(tree, via_singles):
+@pytest.mark.parametrize("way", ["at once", "via singles", "two winters"])
+def test_units_keep_the_drawn_wood_within_one_percent(tree, way):
     const = reference_constants()
     merged, saved = form_units(tree, NOW, const)
-    if via_singles:  # the season's one-site units join runs in winter as plain nodes would
-        singles, _ = form_units(tree, NOW, const, runs=False)
-        runs, _ = form_units(singles, NOW, const)
-        assert len(runs) <= len(merged) + 2
+    if way != "at once":  # the season's one-site units join runs in winter as plain nodes would, and a
+        # winter's units join the next winter's (the lower half of the tree is old at NOW - 164)
+        first = form_units(tree, NOW, const, runs=False) if way == "via singles" else form_units(tree, 36.0, const)
+        runs, _ = form_units(first[0], NOW, const)
+        assert len(runs) <= len(merged) + 2 < len(first[0]) // 3
         merged, saved = runs, len(tree) - len(runs)
     assert len(unit_modules(merged)) >= 5 and saved > 0.4 * len(tree)  # most of the string goes
     clocks = Clocks(NOW, NOW, 0.0)
@@ -82,9 +83,11 @@ def test_units_keep_the_drawn_wood_within_one_percent(tree, via_singles):
         lo, hi = pts[:, axes].min(axis=0) - 0.3, pts[:, axes].max(axis=0) + 0.3
         was, now = _silhouette(before, axes, lo, hi), _silhouette(after, axes, lo, hi)
         assert now.sum() == pytest.approx(was.sum(), rel=0.01), (now.sum(), was.sum())
-    # everything the units do not stand for stands exactly where it stood: the tips of every axis
+    # everything the units do not stand for stands exactly where it stood: the tips of every axis (units made
+    # at 6 elongation time constants stand for 99.75 % grown nodes: a few mm later, internodes 1 m long)
     tips = [t.segments.end[tip_segments(t.segments)] for t in (before, after)]
-    np.testing.assert_allclose(tips[1][np.lexsort(tips[1].T)], tips[0][np.lexsort(tips[0].T)], atol=1e-9)
+    np.testing.assert_allclose(tips[1][np.lexsort(tips[1].T)], tips[0][np.lexsort(tips[0].T)],
+                               atol=5e-3 if way == "two winters" else 1e-9)
     assert parse_lstring(merged.to_text()).to_text() == merged.to_text()  # saves as text like any string
     _, more = form_units(merged, NOW, const)
     assert more == 0

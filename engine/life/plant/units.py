@@ -28,7 +28,7 @@ from arbor.engine.lsystem.lstring import LString
 
 OLD_TAUS = 6.0  # an internode this many elongation time constants old is fully grown (99.75 %)
 TAIL_GROUPS = 0  # groups besides its leaf a unit's nodes may carry (a branch's foot stays a node: girth steps)
-MAX_SITES = 12  # nodes a unit holds at most
+MAX_SITES = 12  # leaf sites a unit holds (at most this, or a little more where a unit of several sites joins)
 STRAIGHT = 0.03  # a unit's nodes stand at most this share of its length from the chord it is drawn along
 INTERNODE, LEAF, LEAF_BUD = ord("I"), ord("L"), ord("V")
 YAW, PITCH, ROLL, DOWN = ord("+"), ord("^"), ord("/"), ord("&")
@@ -114,18 +114,17 @@ def _singles_made(ls: LString, now: float, const: dict[str, float]) -> LString:
 
 
 def _nodes(ls: LString, now: float, const: dict[str, float], units: bool = True) -> dict[str, np.ndarray] | None:
-    """Every old plain internode (and with ``units``, every old unit of one site) with its turns before it
+    """Every old plain internode (and with ``units``, every old shoot unit) with its turns before it
     and its bracket groups after it: where its turns start, where its groups end, its one bare leaf group
     (open bracket and leaf bud), and whether it may be part of a unit."""
     sym, npar, off, params = ls.sym, ls.nparams, ls.offsets, ls.params
     unit = (sym == INTERNODE) & (npar == shoot_units.UNIT_PARAMS) & units
-    unit[unit] = ((np.rint(params[off[unit] + shoot_units.SITES]) == 1)
-                  & (np.rint(params[off[unit] + shoot_units.PIECES]) == 1))
     node = np.flatnonzero(((sym == INTERNODE) & (npar == 5)) | unit)
     node = node[now - params[off[node]] > OLD_TAUS * const["TAU"]]  # (only old ones may be in a unit)
     if len(node) < 1 + units:
         return None
-    single = unit[node]  # a unit of one site: its leaf site is in it, no leaf group after it
+    single = unit[node]  # a unit: its leaf sites are in it, no leaf group after it
+    sites = np.where(single, np.rint(params[off[node] + shoot_units.SITES * single]), 1).astype(np.int64)
     pad = 6
     psym = np.concatenate([sym, np.zeros(pad, sym.dtype)])
     pnpar = np.concatenate([npar, np.zeros(pad, npar.dtype)])
@@ -163,7 +162,8 @@ def _nodes(ls: LString, now: float, const: dict[str, float], units: bool = True)
          kept[single]], axis=1), [0.0, 1.0, 0.0])
     ok &= np.where(single, (leafy_groups == 0) & ((kept == 0) | (kept == 1)), leafy_groups == 1)
     return {"node": node, "start": start, "end": cur, "ok": ok, "other": other_groups, "leaf_open": leaf_open,
-            "leaf_bud": leaf_bud, "order": params[off[node] + 2], "single": single, "leaf_state": state}
+            "leaf_bud": leaf_bud, "order": params[off[node] + 2], "unit": single, "sites": np.maximum(sites, 0),
+            "leaf_state": state}
 
 
 def _site(sym: np.ndarray, npar: np.ndarray, params: np.ndarray, off: np.ndarray, at: np.ndarray) -> np.ndarray:
@@ -193,15 +193,18 @@ def _heads(joins: np.ndarray) -> np.ndarray:
 
 def _joins(nodes: dict[str, np.ndarray]) -> np.ndarray:
     """Per node: whether it joins the node before it into a run (both may be in a unit, on one axis, the one
-    before bearing nothing but its leaf), at most MAX_SITES nodes a run."""
+    before bearing nothing but its leaf), about MAX_SITES leaf sites a run."""
     ok, start, end, other = nodes["ok"], nodes["start"], nodes["end"], nodes["other"]
     order = nodes["order"]
     state = nodes["leaf_state"]
     same = np.all(state[1:] == state[:-1], axis=1)  # (their leaves unfold and fall as one)
     joins = ok & (other <= TAIL_GROUPS) & np.concatenate([[False], ok[:-1] & (other[:-1] == 0) & (end[:-1] == start[1:])
                                                           & (order[:-1] == order[1:]) & same])
-    pos = np.arange(len(joins)) - _heads(joins)
-    return joins & (pos % MAX_SITES != 0)
+    sites = nodes["sites"]
+    total = np.cumsum(sites)
+    head = _heads(joins)
+    block = np.maximum(total - (total[head] - sites[head]) - 1, 0) // MAX_SITES  # (a run's sites so far)
+    return joins & (block == np.concatenate([[-1], block[:-1]]))
 
 
 def _states(ls: LString, nodes: dict[str, np.ndarray], joins: np.ndarray, now: float,
@@ -210,7 +213,7 @@ def _states(ls: LString, nodes: dict[str, np.ndarray], joins: np.ndarray, now: f
     next node's internode (_after_runs; one pass; rows of the node list, only for the nodes of runs)."""
     member = joins | np.concatenate([joins[1:], [False]])
     rows = np.flatnonzero(member)
-    single = nodes["single"][rows]
+    single = nodes["unit"][rows]
     after = _after_runs(ls, nodes["end"][rows])[1]
     where = [nodes["start"][rows], nodes["node"][rows], nodes["node"][rows] + 1,
              np.where(single, nodes["node"][rows], nodes["leaf_bud"][rows]), np.minimum(after, len(ls) - 1)]
@@ -235,9 +238,6 @@ def _states(ls: LString, nodes: dict[str, np.ndarray], joins: np.ndarray, now: f
         pos, frame = np.zeros((len(joins), 3)), np.zeros((len(joins), 3, 3))
         pos[rows], frame[rows] = probes.position[j * k:(j + 1) * k], probes.frame[j * k:(j + 1) * k]
         out[name], out[name + "_frame"] = pos, frame
-    at = ls.offsets[nodes["node"][rows[single]]]  # a unit's leaf: its frame turned as the unit turns it
-    rolled = shoot_units.turns(out["node_frame"][rows[single]], 0, ls.params[at + shoot_units.ROLL])
-    out["leaf_frame"][rows[single]] = shoot_units.turns(rolled, 1, ls.params[at + shoot_units.LEAF_PITCH])
     return out
 
 
@@ -307,23 +307,47 @@ def _unit_params(ls: LString, nodes: dict[str, np.ndarray], states: dict[str, np
     chord = states["after"][tail] - states["node"][head]
     length = np.linalg.norm(chord, axis=1)
     along = _onto(first, chord / np.maximum(length, 1e-12)[:, None])
-    m = np.einsum("kji,kjl->kil", along[run], states["leaf_frame"][member])
+    site_of, i, frame, leaf_pitch = _site_frames(ls, nodes, states, member, run)
+    site_run = run[site_of]
+    m = np.einsum("kji,kjl->kil", along[site_run], frame)
     roll = np.degrees(np.arctan2(m[:, 1, 0], -m[:, 2, 0]))
-    i = (member - head[run] + 1).astype(float)
-    step = _circular_mean(_wrap(np.diff(roll)), run[1:], run[1:] == run[:-1], r)
-    roll0 = _circular_mean(_wrap(roll - i * step[run]), run, np.ones(len(run), bool), r)
-    single = nodes["single"][member]
-    leaf_pitch = ls.params[np.where(single, ls.offsets[node[member]] + shoot_units.LEAF_PITCH,
-                                    ls.offsets[np.maximum(nodes["leaf_bud"][member] - 1, 0)])]
-    pitch = np.bincount(run, leaf_pitch, minlength=r) / size
+    step = _circular_mean(_wrap(np.diff(roll)), site_run[1:], site_run[1:] == site_run[:-1], r)
+    roll0 = _circular_mean(_wrap(roll - i * step[site_run]), site_run, np.ones(len(site_run), bool), r)
+    sites = np.bincount(site_run, minlength=r)
+    pitch = np.bincount(site_run, leaf_pitch, minlength=r) / np.maximum(sites, 1)
     params, off = ls.params, ls.offsets[node[head]]
     order = params[off + 2]
     full = const["IL"] * const["IO"] ** order * saturate(now - params[off], const["TAU"])
     wood = _woods(states, head, tail, np.bincount(run, states["volume"][member], minlength=r), length)
     unit = np.stack([params[off], params[off + 1], order, params[off + 3], wood,
-                     length / np.maximum(full, 1e-12), size.astype(float),
+                     length / np.maximum(full, 1e-12), sites.astype(float),
                      *_unit_leaves(nodes["leaf_state"][head], now), roll0, step, pitch], axis=1)
     return np.concatenate([_frames_between(before, along), unit, _frames_between(along, last)], axis=1), along
+
+
+def _site_frames(ls: LString, nodes: dict[str, np.ndarray], states: dict[str, np.ndarray], member: np.ndarray,
+                 run: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Every leaf site of the runs' members (``member``: rows of the node list, ``run``: their run): its
+    member (index into ``member``), its number in its run's unit (1, 2, ...), its leaf's frame and pitch: a
+    node's as its leaf bracket turns it, a unit's site ``j`` turned ``roll + j x roll step`` about the unit
+    and pitched from it (engine/life/form/shoot_units.py)."""
+    k = nodes["sites"][member]
+    site_of = np.repeat(np.arange(len(member)), k)
+    first = np.cumsum(k) - k
+    j = np.arange(int(k.sum())) - first[site_of] + 1
+    head_first = first[np.searchsorted(run, run)]  # (sites before each member's run)
+    i = (first - head_first)[site_of] + j
+    unit = nodes["unit"][member][site_of]
+    mod = nodes["node"][member][site_of]
+    at = np.where(unit, ls.offsets[mod], 0)
+    last = len(ls.params) - 1
+    roll = ls.params[np.minimum(at + shoot_units.ROLL, last)] + j * ls.params[np.minimum(at + shoot_units.ROLL_STEP,
+                                                                                        last)]
+    unit_pitch = ls.params[np.minimum(at + shoot_units.LEAF_PITCH, last)]
+    turned = shoot_units.turns(shoot_units.turns(states["node_frame"][member][site_of], 0, roll), 1, unit_pitch)
+    frame = np.where(unit[:, None, None], turned, states["leaf_frame"][member][site_of])
+    bud_pitch = ls.params[ls.offsets[np.maximum(nodes["leaf_bud"][member][site_of] - 1, 0)]]
+    return site_of, i.astype(float), frame, np.where(unit, unit_pitch, bud_pitch)
 
 
 def _wood(volume: np.ndarray, length: np.ndarray, end: np.ndarray, tapers: np.ndarray, below: np.ndarray,
@@ -389,7 +413,7 @@ def _rebuilt(ls: LString, nodes: dict[str, np.ndarray], head: np.ndarray, tail: 
     after them), go where the axis ends, and where it is FOLD become one with the next node's turns
     (``turns``, replacing those before the internode ``target``)."""
     first, last = nodes["start"][head], nodes["node"][tail]
-    leaf_open = nodes["leaf_open"][tail][~nodes["single"][tail]]  # (a unit's leaf is in it)
+    leaf_open = nodes["leaf_open"][tail][~nodes["unit"][tail]]  # (a unit's leaf is in it)
     leaf_close = brackets.match(ls.sym)[leaf_open]
     fold = kind == FOLD
     delta = np.zeros(len(ls) + 1, np.int64)
