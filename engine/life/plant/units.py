@@ -7,13 +7,16 @@ fully grown) and bear nothing but their leaf (no bud, no branch, no blossom: onl
 carry those), the run becomes one shoot unit (engine/life/form/shoot_units.py: its parameters) between two
 sets of turns: ``+(a)^(b)/(c)I(unit...)+(a')^(b')/(c')``. The first set turns the frame before the run onto
 the run's chord, the second from the chord back to the frame the run ended in, so everything after the run
-(its last node's branches, the rest of the axis) stands exactly where it stood. The unit is drawn along the
-chord with its leaves where its nodes stood; a run bent so that a node stands further than ``STRAIGHT`` of its
-length from the chord is split in halves until none does. Runs are made in winter, when every leaf site
-holds a bud (the units' leaves then open with the spring flush, as the buds would). A node that may be in a
-unit but joins no run (its neighbours carry branches or buds) becomes a unit of one site: its internode takes
-its leaf site, the turns stay (exact: a node costs 4 modules instead of 9). Vectorised: a few numpy
-passes and one turtle pass over the string.
+(its last node's branches, the rest of the axis) stands exactly where it stood. Where the axis ends after
+the run the second set goes; where a node or another run follows, it becomes one set with that one's turns.
+The unit is drawn along the chord with its leaves where its nodes stood; a run bent so that a node stands
+further than ``STRAIGHT`` of its length from the chord is split in halves until none does. Runs are made in
+winter, when every leaf site holds a bud (the units' leaves then open with the spring flush, as the buds
+would). A node that may be in a unit but joins no run (its neighbours carry branches or buds) becomes a unit
+of one site in the growing season: its internode takes its leaf site, the turns stay (exact: a node costs 4
+modules instead of 9). Units are nodes to the next winter's runs: the season's one-site units and a past
+winter's units join the nodes beside them (up to about ``MAX_SITES`` sites), so old wood keeps becoming fewer,
+longer pieces. Vectorised: a few numpy passes and one turtle pass over the string.
 """
 
 from __future__ import annotations
