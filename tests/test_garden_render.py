@@ -481,3 +481,31 @@ def test_a_costly_tree_on_the_move_is_drawn_whole_and_over_frames_again_once_sti
         back = frame(game)
     assert game.renderer.last_layered and game.renderer.pictures.front.size == SIZE
     assert np.abs(back - still).max() <= 2
+
+
+def test_a_turning_camera_draws_the_backdrop_into_the_frame_as_the_kept_picture_shows_it(game, monkeypatch):
+    """On a software GL a frame whose camera moved draws sky, ground, grass and the trees' shadows straight
+    into the frame, not into the kept pictures it would copy (game/render/stage.py): the same picture as the
+    kept one once the camera holds still, the shadows in it."""
+    from arbor.engine.life.plant.sim import sun_angle_at
+    from arbor.game.render import garden
+
+    if game.renderer.samples > 1:
+        pytest.skip("a multisampled GL draws its backdrop into the frame every frame")
+    monkeypatch.setattr(garden, "LAYER_COST", float("inf"))  # (the trees drawn whole, both ways)
+    game.rules.wind.strength = 0.0
+    game.world.sim.state.sun_angle = sun_angle_at(13 * 3600)  # (shadows on the ground)
+    stage = game.renderer.stage
+    frame(game)
+    game.control.yaw += 10.0
+    moving = frame(game)
+    assert stage.kept.shown is None  # (no kept picture drawn for a frame whose camera moved)
+    still = frame(game)
+    assert stage.kept.shown is not None  # (the camera held still: the kept picture, copied)
+    assert np.abs(moving - still).max() <= 2
+    game.control.yaw -= 10.0
+    frame(game)
+    monkeypatch.setattr(stage.backdrop, "draw_shadows", lambda *a: None)
+    game.control.yaw += 10.0
+    unshaded = frame(game)
+    assert (unshaded.sum(axis=2) > moving.sum(axis=2) + 20).sum() > 200  # the shadows were in the moving frame

@@ -1,7 +1,9 @@
 """What stands behind the garden's trees: sky, sun and ground with the trees' shadows on it, and the
 framebuffer a frame is drawn into (multisampled where that is cheap). On a software GL the backdrop is
 kept as a picture and copied while nothing it shows changed, and so is the whole scene while the trees
-are shown as a layer's picture (game/render/layer.py)."""
+are shown as a layer's picture (game/render/layer.py); in a frame whose camera moved it is drawn straight
+into the frame (a picture kept for one frame only cost two full-screen copies), the ground first and the
+sky only where no ground is."""
 
 from __future__ import annotations
 
@@ -51,6 +53,8 @@ class Stage:
         self._rects = np.zeros((0, 4))
         self._inputs: tuple | None = None  # what the sky's look was last worked out for, and that look
         self._sky: tuple = ()
+        self._view: tuple | None = None  # the last state's view (frame, camera, cutaway, ground, cover) ...
+        self.moved = False  # ... and whether it differed from the one before
 
     def _state(self, size: tuple[int, int], vp: np.ndarray, camera: OrbitCamera, sun: np.ndarray,
                radius: float) -> Looks:
@@ -67,6 +71,7 @@ class Stage:
         self._now = {"sky": sky, "ground": ground, "cover": self.cover_look, "shade": shade}
         self._rects = rects
         view = (size, _gl(vp), backdrop.cutaway, round(math.log(max(radius, 1e-3)) / 0.02), self.cover_version)
+        self.moved, self._view = view != self._view, view
         looks = self.looks
         return Looks(view, (looks["sky"].of(sky),), looks["ground"].of(ground), looks["cover"].of(self.cover_look),
                      looks["shade"].of(shade))
@@ -89,12 +94,17 @@ class Stage:
 
         On a software GL they are kept as pictures (see kept.py): with ``spread``, what changed while the
         camera held still is brought up to date a part a frame (none in a frame that ``wait``s: it had
-        work enough), else all of it now. With multisampling the sky dome and the ground cover every
+        work enough), else all of it now; a frame of ``spread`` whose view changed since the last draws them
+        straight into ``target`` (see :meth:`_moving`). With multisampling the sky dome and the ground cover every
         pixel, behind everything: drawn first without any depth test (only the trees need depth), then a
         depth-only clear."""
         ctx = self.ctx
         if self.samples <= 1:
-            self._keep(size, scene, spread, wait)
+            looks = self._state(size, scene.vp, scene.camera, scene.sun, scene.radius)
+            if spread and self.moved:
+                self._moving(target, size, scene)
+                return
+            self._keep(size, scene, spread, wait, looks)
             ctx.copy_framebuffer(target, self.kept.frame)
             _clear_depth(target)
             return
@@ -107,10 +117,30 @@ class Stage:
         _clear_depth(target)
         parts.shadows(target)
 
-    def _keep(self, size: tuple[int, int], scene: Scene, spread: bool, wait: bool) -> None:
-        """Bring the kept backdrop (software GL) up to date: a part of it (``spread``, the camera holding
-        still; none when the frame must ``wait``), else all of it."""
-        looks = self._state(size, scene.vp, scene.camera, scene.sun, scene.radius)
+    def _moving(self, target: moderngl.Framebuffer, size: tuple[int, int], scene: Scene) -> None:
+        """The backdrop of a frame whose camera moved (software GL), straight into ``target``: the ground
+        and what covers it, writing their depth, then the sky where none was written (it lies on the far
+        plane), then the shadows; the kept pictures are drawn anew once the camera holds still."""
+        target.use()
+        self.ctx.viewport = (0, 0, *size)
+        target.clear(depth=1.0)  # (only the depth matters: every pixel is drawn)
+        parts = self._parts(size, scene, fresh=True)
+        parts.ground("1")
+        if parts.cover is not None:
+            parts.cover("1")
+        target.depth_mask = False
+        parts.sky("<=")
+        target.depth_mask = True
+        parts.shadows(target)
+        _clear_depth(target)
+        self.forget()
+
+    def _keep(self, size: tuple[int, int], scene: Scene, spread: bool, wait: bool, looks: Looks | None = None
+              ) -> None:
+        """Bring the kept backdrop (software GL) up to date with ``looks`` (default: worked out now): a part
+        of it (``spread``, the camera holding still; none when the frame must ``wait``), else all of it."""
+        if looks is None:
+            looks = self._state(size, scene.vp, scene.camera, scene.sun, scene.radius)
         shadows = (self.shadows.version, self.backdrop.soft, len(scene.boxes))
         kept = self.kept
         if kept.current(looks, shadows):
@@ -131,9 +161,10 @@ class Stage:
         """Draw the backdrop in full next time (as a fresh game would)."""
         self.kept.ground = self.kept.shown = None
 
-    def _parts(self, size: tuple[int, int], scene: Scene) -> Parts:
+    def _parts(self, size: tuple[int, int], scene: Scene, fresh: bool = False) -> Parts:
         """Drawing the backdrop's parts for this camera and sun (see kept.Parts); each tells the look it
-        drew (sky_look.LookKey), the sky again only where it changed when drawn over the ground."""
+        drew (sky_look.LookKey), the sky again only where it changed when drawn over the ground (all of it
+        when ``fresh``: into a frame, not a kept picture)."""
         ctx, backdrop, looks, now, rects = self.ctx, self.backdrop, self.looks, dict(self._now), self._rects
         vp, camera, sun, radius = scene.vp, scene.camera, scene.sun, scene.radius
         light, boxes = scene.light, scene.boxes
@@ -147,7 +178,8 @@ class Stage:
                     ctx.enable(moderngl.DEPTH_TEST)
                     ctx.depth_func = depth
                 look = now.get(name)  # (None: not kept, multisampled)
-                rect = looks[name].dirty(look, rects, size) if name == "sky" and depth and look is not None else None
+                again = name == "sky" and depth and look is not None and not fresh
+                rect = looks[name].dirty(look, rects, size) if again else None
                 ctx.scissor = rect
                 draw()
                 ctx.scissor = None
