@@ -5,8 +5,9 @@ run is 30; SPECIES another of assets/lsystems, e.g. game_poplar.lsys)
 The home-pace player of benchmarks.home_pace (the can twice a day, nothing else) raises one tree for YEARS
 years of 28 days. One row per season (at its last day, 13:00): height and crown width (m), width/height,
 the trunk's diameter at breast height (1.3 m, or at its foot while shorter; cm), the most leaf clusters the
-season saw, modules (the most, against the budget), the carbon pool and the days of the growing seasons
-(spring, summer) on which the tree did not grow. With OUTDIR, the tree's save at every summer's end and
+season saw, modules (the most, against the budget), the carbon pool, the days of the growing seasons
+(spring, summer) on which the tree did not grow, the crown's base (the foot of the lowest living limb on the trunk,
+m) and the scars of limbs shed (stubs). With OUTDIR, the tree's save at every summer's end and
 every year's end (`summer_N.arbor`, `winter_N.arbor`: `arbor render` them) and OUTDIR/years.png: every
 summer's tree side by side at one scale, six a row, each with a metre bar.
 """
@@ -20,6 +21,7 @@ from pathlib import Path
 import numpy as np
 
 from arbor.engine.base.units import METRE
+from arbor.engine.life.form.interpret import INTERNODE
 from arbor.engine.life.form.shoot_units import leaf_count
 from arbor.engine.life.keep.save import SavedGarden, read_garden, write_garden
 from arbor.engine.life.plant.journal import turtle_size
@@ -27,6 +29,7 @@ from arbor.engine.life.plant.sim import sun_angle_at
 from arbor.engine.life.rules.rules import load_rules
 from arbor.engine.life.world.garden import Garden
 from arbor.engine.life.world.world import World
+from arbor.engine.lsystem.lstring import params_where
 from arbor.engine.lsystem.lsys import load_lsystem
 from benchmarks.home_pace import ASSETS, STEP, water
 
@@ -49,6 +52,20 @@ def crown(world: World) -> tuple[float, float, float]:
     return height, width, 200.0 * radius / METRE
 
 
+def crown_base(world: World) -> tuple[float, int]:
+    """(the foot of the lowest living limb on the trunk m, the scars: stubs of limbs shed; see
+    engine/life/plant/shedding.py): the crown's base rises as the lower limbs that pay no more die and fall."""
+    ls, turtle = world.tree.lstring, world.tree.geometry(world.clocks()).turtle
+    segs = turtle.segments
+    internode = (ls.sym[segs.module] == INTERNODE) & (ls.nparams[segs.module] >= 5)
+    shade = params_where(ls.params, internode, ls.offsets[segs.module] + 3)
+    order = params_where(ls.params, internode, ls.offsets[segs.module] + 2)
+    limb = internode & (order == 1) & ~segs.continues & (segs.parent >= 0)
+    alive = limb & (shade >= 0) & (shade <= world.tree.geometry_constants["SHED"])
+    base = float(segs.start[alive, 1].min()) / METRE if alive.any() else float("nan")
+    return base, int(np.count_nonzero(limb & (shade < 0)))
+
+
 def main(years: int = 3, out: Path | None = None, species: str = "game_tree.lsys") -> None:
     """Play ``years`` years and print the season table."""
     rules = load_rules(ASSETS / "rules.toml", pace="home")
@@ -56,15 +73,17 @@ def main(years: int = 3, out: Path | None = None, species: str = "game_tree.lsys
     world.sim.state.sun_angle = sun_angle_at(0.0)
     garden, budget = Garden([world]), world.tree.deriver.budget
     print(f"{'year':>4} {'season':>7} {'height':>6} {'width':>6} {'w/h':>5} {'dbh cm':>6} {'leaves':>6} "
-          f"{'modules':>8} {'pool g':>8} {'still days':>10}")
+          f"{'modules':>8} {'pool g':>8} {'still days':>10} {'base m':>6} {'scars':>5}")
     start, peak_leaves, peak_modules, still, leaves_now = time.perf_counter(), 0, 0, 0, 0
     names, year, current = ("spring", "summer", "autumn", "winter"), 1, world.sim.season().index
     for _ in range(years * int(rules.seasons.year_days) + 1):
         season = world.sim.season().index  # the season this day begins in
         if season != current:  # a season has ended: its row
             h, w, dbh = crown(world)
+            base, scars = crown_base(world)
             print(f"{year:4d} {names[current]:>7} {h:6.2f} {w:6.2f} {w / max(h, 1e-9):5.2f} {dbh:6.2f} "
-                  f"{peak_leaves:6d} {peak_modules:8,d} {world.carbon.pool:8.0f} {still:10d}", flush=True)
+                  f"{peak_leaves:6d} {peak_modules:8,d} {world.carbon.pool:8.0f} {still:10d} {base:6.2f} {scars:5d}",
+                  flush=True)
             if out is not None and current == 1:
                 out.mkdir(parents=True, exist_ok=True)
                 write_garden(SavedGarden.of(garden, species), out / f"summer_{year}.arbor")

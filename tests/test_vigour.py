@@ -3,6 +3,8 @@ recursive one on random bracketed trees, conservation, and what apical control d
 
 from __future__ import annotations
 
+import re
+
 import numpy as np
 import pytest
 
@@ -98,7 +100,7 @@ def test_a_species_with_strong_apical_control_grows_taller_on_the_same_light(lsy
     heights = []
     for lam in (0.5, 0.62):
         path = tmp_path / f"bhl_{lam}.lsys"
-        path.write_text(source.replace("#define BHL 0.5 ", f"#define BHL {lam} ", 1))
+        path.write_text(re.sub(r"#define BHL [0-9.]+ ", f"#define BHL {lam} ", source, count=1))
         world = World(load_lsystem(path), load_rules(lsys_dir.parent / "rules.toml", pace="demo"), seed=4)
         assert world.tree.geometry_constants["BHL"] == lam
         world.sim.state.sun_meter = world.sim.state.water_meter = 0.9
@@ -107,3 +109,51 @@ def test_a_species_with_strong_apical_control_grows_taller_on_the_same_light(lsy
             world.step(0.5)
         heights.append(tree_height(world))
     assert heights[1] > 1.1 * heights[0], heights  # the leader drew vigour from the laterals
+
+
+def test_apical_control_weakens_as_the_tree_grows():
+    from arbor.engine.life.plant.vigour import apical_control
+
+    assert apical_control(0.6, 0.0, 4.0) == pytest.approx(0.6)  # a sapling: its species' own
+    assert apical_control(0.6, 4.0, 4.0) == pytest.approx(0.55)  # half its lead at the fade height
+    assert apical_control(0.6, 40.0, 4.0) == pytest.approx(0.5 + 0.1 / 11)  # an old crown: nearly even sharing
+    assert apical_control(0.45, 40.0, 4.0) > 0.45  # (a decurrent species' laterals' lead fades alike)
+
+
+def test_a_tall_tree_feeds_its_leader_less_than_a_sapling_would(lsys_dir):
+    """The tree's own height sets its lambda (GrowingTree.sense through apical_control): the same crown read as
+    a sapling's (a fade height far above it) sends its leader more of the light than read as an old tree's."""
+    from arbor.engine.life.form.interpret import APEX, Clocks
+    from arbor.engine.life.plant.growth import GrowingTree
+    from arbor.engine.lsystem.lsys import load_lsystem
+
+    system = load_lsystem(lsys_dir / "game_tree.lsys")
+    assert system.constants["BHL"] > 0.5  # the game tree's sapling has a leader that leads
+    leader = {}
+    for fade in (1e3, 0.1):
+        tree = GrowingTree(system, seed=1)
+        tree.apical_fade = fade
+        for k in range(1, 61):
+            clocks = Clocks(float(k), float(k))
+            scene = tree.light_scene(clocks)
+            tree.sense(scene, np.full(len(scene.queries), 0.5), clocks, 1.0, np.array([0.0, 1.0, 0.0]), 4.0)
+            tree.rewrite(float(k), float(k), resources=1.0)
+        ls = tree.lstring
+        apex = np.flatnonzero((ls.sym == APEX) & (ls.nparams == 6))
+        order, light = ls.params[ls.offsets[apex] + 1], ls.params[ls.offsets[apex] + 3]
+        assert len(apex) > 4
+        leader[fade] = light[order == 0][0] / light[order > 0].mean()
+    assert leader[1e3] > 1.2 * leader[0.1], leader
+
+
+def test_a_species_sets_how_soon_its_apical_control_fades(lsys_dir, tmp_path):
+    from arbor.engine.life.rules.rules import load_rules
+    from arbor.engine.life.world.world import World
+    from arbor.engine.lsystem.lsys import load_lsystem
+
+    rules = load_rules(lsys_dir.parent / "rules.toml", pace="demo")
+    source = (lsys_dir / "game_tree.lsys").read_text()
+    assert World(load_lsystem(lsys_dir / "game_tree.lsys"), rules, seed=1).tree.apical_fade == rules.growth.apical_fade
+    path = tmp_path / "slow_fade.lsys"
+    path.write_text(source.replace("#define BHL", "#define BHF 30\n#define BHL", 1))
+    assert World(load_lsystem(path), rules, seed=1).tree.apical_fade == 30.0

@@ -25,6 +25,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from arbor.engine.base.units import METRE
 from arbor.engine.geometry.tree import TreeGeometry
 from arbor.engine.geometry.turtle import (
     Leaves,
@@ -54,13 +55,14 @@ from arbor.engine.life.form.interpret import (
     render_view,
     turtle_config,
 )
-from arbor.engine.life.plant import carbon
+from arbor.engine.life.plant import carbon, shedding
 from arbor.engine.life.plant.carbon import Economy
 from arbor.engine.life.plant.collide import Obstacles, avoidance
 from arbor.engine.life.plant.consolidate import consolidated
 from arbor.engine.life.plant.light import memory_weight
 from arbor.engine.life.plant.units import form_units
-from arbor.engine.life.plant.vigour import borchert_honda
+from arbor.engine.life.plant.vigour import apical_control, borchert_honda
+from arbor.engine.life.rules.schema import find_rule
 from arbor.engine.lsystem import brackets
 from arbor.engine.lsystem.derive import Deriver, StepReport
 from arbor.engine.lsystem.lstring import LString, params_where
@@ -136,6 +138,8 @@ class GrowingTree:
     last_report: StepReport | None = None
     confine: object | None = None  # a region (engine/modeling/regions.py): rewrites only inside it ...
     confine_left: int = 0  # ... for this many more rewrites (Onishi et al. 2003 Fig. 11's region-limited growth)
+    apical_fade: float = find_rule("growth.apical_fade").default  # m: the species' (World sets it from its rules)
+    dead_linger: float = find_rule("growth.dead_linger").default  # a dead branch stands this long (World: its rules')
 
     def __post_init__(self) -> None:
         self.deriver = Deriver(self.system, seed=self.seed, budget=self.budget)
@@ -252,8 +256,8 @@ class GrowingTree:
         if weight > 0:  # buds and apices remember the light they really got: a low sun gives less
             income = float((leaf_light * scene.leaf_area).sum()) / (CLUSTER_AREA * LEAF_ASPECT
                                                                      * self.geometry_constants["LS"] ** 2)
-            remember_light(ls, params, scene, probe_light * min(shine, 1.0), weight, self.geometry_constants["BHL"],
-                           income)
+            lam = apical_control(self.geometry_constants["BHL"], self.height / METRE, self.apical_fade)
+            remember_light(ls, params, scene, probe_light * min(shine, 1.0), weight, lam, income)
             mean = np.asarray(sun, float) / max(float(np.linalg.norm(sun)), 1e-12)
             self.light_dir = _unit(self.light_dir + weight * (mean - self.light_dir))
             self._turn_apices(ls, params, scene, around, memory_weight(dt, shine, memory / 4), obstacles)
@@ -343,30 +347,27 @@ class GrowingTree:
         return grown
 
     def _shed(self, scene: LightScene, grown: np.ndarray, params: np.ndarray, now: float) -> int:
-        """Cut every lateral branch whose base internode has been in deep shade for longer than SHED."""
+        """Lateral branches whose base internode has been in deep shade for longer than SHED die and stand bare;
+        after ``dead_linger`` more they fall, leaving a stub (engine/life/plant/shedding.py). Returns how many fell."""
         ls = self.lstring
         segs = scene.turtle.segments
         self.fallen = [f for f in self.fallen if now - f.at < FALL_KEEP]
         if len(segs) == 0:
             return 0
         module = segs.module
-        base = grown & ~segs.continues & (segs.parent >= 0)
         off = ls.offsets[module]
-        dead = base & (params_where(params, grown, off + 3) > self.geometry_constants["SHED"])
-        dead &= params_where(params, grown, off + 2) >= 1  # the trunk is never shed
-        if not dead.any():
-            return 0
-        close = brackets.branch_ends(ls.sym, module[dead])
-        close = close[close < len(ls)]
-        opened = brackets.match(ls.sym)[close]
-        delta = np.zeros(len(ls) + 1, dtype=np.int64)
-        np.add.at(delta, opened, 1)
-        np.add.at(delta, close + 1, -1)
-        removed = np.cumsum(delta[:-1]) > 0
-        self.fallen.append(fallen_pieces(scene, removed, now))
-        self.lstring = ls.select(~removed)
-        self.shed_total += len(opened)
-        return len(opened)
+        shade = params_where(params, grown, off + 3)
+        base = grown & ~segs.continues & (segs.parent >= 0) & (params_where(params, grown, off + 2) >= 1)
+        dead = base & (shade > self.geometry_constants["SHED"])  # (the trunk is never shed; a stub's shade is < 0)
+        falls = dead & (shade > self.geometry_constants["SHED"] + self.dead_linger)
+        fell, dying = 0, module[dead & ~falls]
+        if falls.any():
+            ls, removed, fell = shedding.fall(ls, params, module[falls])
+            self.fallen.append(fallen_pieces(scene, removed, now))
+            dying = (np.cumsum(~removed) - 1)[dying[~removed[dying]]]  # (their places once the fallen are gone)
+        self.lstring = shedding.strip(ls, ls.params, dying, now) if len(dying) else ls
+        self.shed_total += fell
+        return fell
 
 
 

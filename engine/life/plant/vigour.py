@@ -56,3 +56,12 @@ def borchert_honda(sym: np.ndarray, apex: np.ndarray, light: np.ndarray, lam: fl
     np.add.at(delta, end, -log_m)  # beyond that axis: neither
     path = np.cumsum(delta)[np.asarray(apex)]
     return total[-1] * np.exp(path)
+
+
+def apical_control(young: float, height: float, fade: float) -> float:
+    """The Borchert-Honda ``lam`` of a tree ``height`` m tall whose sapling's is ``young``: apical control weakens
+    as the tree grows (Brown, McAlpine & Kormanik 1967, "Apical dominance and form in woody plants: a
+    reappraisal"; Wilson 2000, "Apical control of branch growth and angle in woody plants"): the young excurrent
+    leader's lead over its laterals (``young`` - 0.5) halves by ``fade`` m and goes on fading, so the older crown
+    shares its vigour by the light each shoot catches (0.5) and broadens."""
+    return 0.5 + (young - 0.5) * fade / (fade + max(height, 0.0))

@@ -75,6 +75,16 @@ SCHEMA: tuple[Rule, ...] = (
          "rate"),
     Rule("growth.rewrite_step", 1.0, 0.01, 100.0, PHYS, "time between two L-system rewrites"),
     Rule("growth.sapling_age", 12.0, 0.0, 1000.0, PHYS, "age of a newly planted sapling (a few internodes)"),
+    Rule("growth.apical_fade", 4.0, 0.1, 1000.0, "m of height", "apical control weakens with age: a tree this tall "
+         "has half its sapling's (its .lsys BHL's lead over 0.5, the Borchert-Honda lambda at which each shoot's "
+         "vigour is its own light), and less the taller it grows (a species' .lsys may set BHF)",
+         source="Brown, McAlpine & Kormanik 1967, Apical dominance and form in woody plants: a reappraisal; "
+         "Wilson 2000, Apical control of branch growth and angle in woody plants"),
+    Rule("growth.dead_linger", 20.0, 0.0, 1e4, PHYS, "a branch that died in deep shade (its .lsys SHED) stands bare "
+         "on the tree this much more of its shade time (counted while the crown is in leaf, so through a winter) "
+         "before it falls, leaving a stub",
+         source="Mäkinen 1999, Growth, suppression, death, and self-pruning of branches of Scots pine in southern "
+         "and central Finland (dead branches stay on the stem for years before they fall)"),
     Rule("sun.orbit_height", 0.35, -1.0, 1.0, "orbit radii", "slider: height of the orbit's centre (-1 always night, "
          "1 always day)"),
     Rule("sun.orbit_height_min", -1.0, -1.0, 1.0, "orbit radii", "the orbit height slider's lowest setting"),

@@ -121,6 +121,9 @@ class World:
         """What the simulation takes from this tree's species (its .lsys, kept within the rules' ranges)."""
         self.sim.flood_tolerance = species_trait(self.tree.system.constants, "FLOOD", "water.flood_tolerance",
                                                  self.rules.water.flood_tolerance)
+        self.tree.apical_fade = species_trait(self.tree.system.constants, "BHF", "growth.apical_fade",
+                                              self.rules.growth.apical_fade)
+        self.tree.dead_linger = self.rules.growth.dead_linger
 
     def _take(self, parts: Parts) -> None:
         """A saved tree's parts as this world's."""
