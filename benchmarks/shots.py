@@ -165,7 +165,8 @@ class _Looks:
         view = GrowthView(world.tree.lstring, world.clocks(), world.tree.geometry_constants)
         buffers = TreeBuffers()
         self.renderer.trees.sync(buffers, view)
-        return Placed(buffers, np.array(offset, float), look=look_of(world.lineage.species))
+        return Placed(buffers, np.array(offset, float),
+                      look=look_of(world.lineage.species, world.tree.system.constants))
 
     def rock(self):
         """The rock Garden -> Place a rock puts second beside the tree at the origin (game/screens/care.py)."""

@@ -84,3 +84,4 @@ def test_the_spruce_keeps_its_needles_through_winter(collection):
 
     assert leaves_in_winter("spruce") > 100 and leaves_in_winter("birch") == 0  # (leaf cards drawn)
     assert look_of("spruce").evergreen and not look_of("birch").evergreen
+    assert look_of("cross", {"EVERGREEN": 1.0}).evergreen and not look_of("cross", {"EVERGREEN": 0.0}).evergreen

@@ -8,7 +8,8 @@ save from a newer game, an .lsys of the player's) look like the game tree.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from collections.abc import Mapping
+from dataclasses import dataclass, replace
 
 
 @dataclass(frozen=True)
@@ -41,6 +42,11 @@ LOOKS = {
 CLUSTERS = sorted({look.cluster for look in LOOKS.values()})  # the textures the renderer loads
 
 
-def look_of(species: str) -> SpeciesLook:
-    """The look of ``species`` (a lineage's species name); the game tree's when it is not known."""
-    return LOOKS.get(species, GAME_TREE)
+def look_of(species: str, constants: Mapping[str, float] | None = None) -> SpeciesLook:
+    """The look of ``species`` (a lineage's species name); the game tree's when it is not known. With the
+    tree's .lsys ``constants``, evergreen when they say so (EVERGREEN: a cross of a spruce keeps its leaves
+    in winter as the host keeps them on, whatever its look)."""
+    look = LOOKS.get(species, GAME_TREE)
+    if constants is not None and constants.get("EVERGREEN", 0.0) >= 0.5 and not look.evergreen:
+        return replace(look, evergreen=True)
+    return look

@@ -69,7 +69,7 @@ class GameView:
             _, view, buffers, version = entry
             renderer.trees.sync(buffers, view)
             offset = np.array([world.position[0], 0.0, world.position[1]]) - here
-            placed.append(Placed(buffers, offset, version, look_of(world.lineage.species)))
+            placed.append(Placed(buffers, offset, version, look_of(world.lineage.species, world.tree.system.constants)))
             seen.add(id(world))
         for gone in set(self.views) - seen:
             self.views.pop(gone)[2].release()
