@@ -208,6 +208,15 @@ def test_form_follows_the_sun(system):
     assert b["centroid"][2] > 0.08 * b["height"] > 2 * abs(a["centroid"][2])
 
 
+def test_the_crown_spreads_all_round_not_all_toward_the_suns_bearing(system):
+    """Branches seek the light around them, not the sun's mean bearing (south of the tree, +z here): a crown
+    whose every branch turned toward it grew a fan to one side (year 30: 5.3 m toward it, 0.45 m away)."""
+    world = cared_for(system, 30)
+    assert world.tree.light_dir[2] > 0.3  # the remembered sun stands to +z
+    z = world.tree.geometry(world.clocks()).turtle.leaves.position[:, 2]
+    assert -z.min() > 0.5 * z.max(), (z.min(), z.max())  # measured 5.3 against 7.6 (4.0 against 11.8 one-sided)
+
+
 def test_no_wall_it_keeps_growing_within_its_budget(system):
     days = []
     world = cared_for(system, 24, budget=3000, each_day=lambda w: days.append(
@@ -216,7 +225,11 @@ def test_no_wall_it_keeps_growing_within_its_budget(system):
     assert modules.max() <= 3000 and modules[-1] > 0.6 * 3000
     assert heights[-1] > heights[-7] and girths[-1] > girths[-7]  # the last week added height and girth
     assert np.all(np.diff(girths) >= -1e-9)  # wood never shrinks, even as branches are shed
-    assert world.tree.shed_total > 0 and world.status() in ("growing", "resting", "needs_light", "starting")
+    ls = world.tree.lstring
+    shade = ls.params[ls.offsets[(ls.sym == ord("I")) & (ls.nparams >= 5)] + 3]
+    dead = np.count_nonzero(shade > world.tree.geometry_constants["SHED"])  # (standing: shedding.py)
+    assert world.tree.shed_total + dead > 0, dead  # some branches died in the shade (fallen or standing)
+    assert world.status() in ("growing", "resting", "needs_light", "starting")
 
 
 def test_garden_trees_shade_each_other(system):

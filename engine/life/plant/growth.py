@@ -287,8 +287,8 @@ class GrowingTree:
         brighter = seen @ AROUND / np.maximum(seen.sum(axis=1), 1e-9)[:, None]
         sun = np.broadcast_to(self.light_dir, brighter.shape).copy()
         branch = order > 0
-        brighter[branch, 1] = sun[branch, 1] = 0.0  # branches seek light sideways: they spread, the
-        up_weight = np.where(branch, const["UPB"], const["UPW"])[:, None]  # up-weight alone lifts them
+        brighter[branch, 1] = sun[branch] = 0.0  # branches seek the light around them sideways (not the sun's mean
+        up_weight = np.where(branch, const["UPB"], const["UPW"])[:, None]  # bearing: a crown all to one side)
         target = (const["STRAIGHT"] * frames[:, :, 0] + up_weight * np.array([0.0, 1.0, 0.0])
                   + const["SUNW"] * sun + const["LIGHTW"] * brighter)
         push, touching = avoidance(scene.turtle.probes.position[apex], frames,
