@@ -26,8 +26,8 @@ def directions(start, end, frame):
         n = math.sqrt(x * x + y * y + z * z)
         if n > 1e-12:
             d[j, 0], d[j, 1], d[j, 2] = x / n, y / n, z / n
-        else:
-            d[j] = frame[j, :, 0]
+        else:  # (row by row: numba's array-to-array assignment is slow to compile, see turtle_kernel.py)
+            d[j, 0], d[j, 1], d[j, 2] = frame[j, 0, 0], frame[j, 1, 0], frame[j, 2, 0]
     return d
 
 
@@ -86,7 +86,8 @@ def joint_rings(start, end, d, x_axis, radius, radius_end, parent, cont, tip_tap
     n_tips, ring = 0, m
     for j in range(m):
         step[j] = step[parent[j]] + 1.0 if cont[j] else 1.0
-        center[j] = end[j]
+        for r in range(3):  # (element by element: see turtle_kernel.py)
+            center[j, r] = end[j, r]
         c = child[j]
         if c >= 0:
             tx, ty, tz = _unit3(d[j, 0] + d[c, 0], d[j, 1] + d[c, 1], d[j, 2] + d[c, 2])
@@ -97,7 +98,8 @@ def joint_rings(start, end, d, x_axis, radius, radius_end, parent, cont, tip_tap
                 xs[j, r] = x_axis[j, r] + x_axis[c, r]
         else:
             radii[j] = radius_end[j] * tip_taper
-            tangent[j], xs[j] = d[j], x_axis[j]
+            for r in range(3):
+                tangent[j, r], xs[j, r] = d[j, r], x_axis[j, r]
             tips[n_tips] = j
             n_tips += 1
         vs[j] = step[j]
@@ -105,7 +107,8 @@ def joint_rings(start, end, d, x_axis, radius, radius_end, parent, cont, tip_tap
             start_ring[j] = parent[j]
         else:
             start_ring[j] = ring
-            center[ring], tangent[ring], xs[ring] = start[j], d[j], x_axis[j]
+            for r in range(3):
+                center[ring, r], tangent[ring, r], xs[ring, r] = start[j, r], d[j, r], x_axis[j, r]
             radii[ring], vs[ring] = radius[j], step[j] - 1.0
             ring += 1
     return center, tangent, xs, radii, vs, start_ring, tips[:n_tips]

@@ -74,10 +74,17 @@ def _bend(f: np.ndarray, target: np.ndarray, degrees: float) -> None:
         f[2, col] = vz * c + (kx * vy - ky * vx) * s + kz * dot
 
 
+# The kernels copy rows element by element, never ``a[i] = b`` or ``a[:n] = b`` between arrays: numba's
+# array-to-array assignment (broadcasting, with its error messages built from strings) took most of a cold
+# start's compile of walk: 7.7 s of CPU, 3.4 s with the loops (benchmarks.startup's cold figure).
+
+
 @numba.njit(cache=True, nogil=True)
 def _grown(stack: np.ndarray) -> np.ndarray:
-    bigger = np.empty((2 * len(stack), stack.shape[1]), stack.dtype)
-    bigger[: len(stack)] = stack
+    bigger = np.empty((2 * stack.shape[0], stack.shape[1]), stack.dtype)
+    for i in range(stack.shape[0]):
+        for j in range(stack.shape[1]):
+            bigger[i, j] = stack[i, j]
     return bigger
 
 
@@ -102,25 +109,34 @@ def walk(sym, nparams, offsets, params, defaults, initial, tropism, record, n_dr
     parent, depth, nearest = np.empty(n_draw, np.int64), np.empty(n_draw, np.int64), np.empty(n, np.int64)
     rec_module, rec_pos, rec_frame = np.empty(k, np.int64), np.empty((k, 3)), np.empty((k, 3, 3))
     saved, saved_at = np.empty((16, 14)), np.empty((16, 3), np.int64)  # the state at each open '['
-    f, pos, fault = initial.copy(), np.zeros(3), np.array([0, -1])
+    f, pos, fault = initial.copy(), np.zeros(3), np.zeros(2, np.int64)
+    fault[1] = -1
     colour, last_move, last_draw, top, seg, rec = 0.0, -1, -1, 0, 0, 0
     for i in range(n):
         s = sym[i]
         nearest[i] = last_move
         if record[i]:
-            rec_module[rec], rec_pos[rec], rec_frame[rec] = i, pos, f
+            rec_module[rec] = i
+            for r in range(3):
+                rec_pos[rec, r] = pos[r]
+                for c in range(3):
+                    rec_frame[rec, r, c] = f[r, c]
             rec += 1
         has = nparams[i] > 0
         value = params[offsets[i]] if has else 0.0
         if IS_MOVE[s]:
             length = value if has else step
             if s != MOVE_F:
-                start[seg], frames[seg] = pos, f
+                for r in range(3):
+                    start[seg, r] = pos[r]
+                    for c in range(3):
+                        frames[seg, r, c] = f[r, c]
                 widths[seg], colours[seg], parent[seg], depth[seg] = width, colour, last_draw, top
             for r in range(3):
                 pos[r] += f[r, 0] * length
             if s != MOVE_F:
-                end[seg] = pos
+                for r in range(3):
+                    end[seg, r] = pos[r]
                 last_draw = seg
                 seg += 1
             last_move = i
@@ -129,7 +145,10 @@ def walk(sym, nparams, offsets, params, defaults, initial, tropism, record, n_dr
         elif s == OPEN:
             if top == len(saved):
                 saved, saved_at = _grown(saved), _grown(saved_at)
-            saved[top, :9], saved[top, 9:12] = f.ravel(), pos
+            for r in range(3):
+                for c in range(3):
+                    saved[top, 3 * r + c] = f[r, c]
+                saved[top, 9 + r] = pos[r]
             saved[top, 12], saved[top, 13] = width, colour
             saved_at[top, 0], saved_at[top, 1], saved_at[top, 2] = last_move, last_draw, i
             top += 1
@@ -138,7 +157,10 @@ def walk(sym, nparams, offsets, params, defaults, initial, tropism, record, n_dr
                 fault[0], fault[1] = 1, i
                 break
             top -= 1
-            f[:], pos[:] = saved[top, :9].reshape(3, 3), saved[top, 9:12]
+            for r in range(3):
+                for c in range(3):
+                    f[r, c] = saved[top, 3 * r + c]
+                pos[r] = saved[top, 9 + r]
             width, colour = saved[top, 12], saved[top, 13]
             last_move, last_draw = saved_at[top, 0], saved_at[top, 1]
         elif s == AROUND:
