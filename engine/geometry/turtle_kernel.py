@@ -76,7 +76,7 @@ def _bend(f: np.ndarray, target: np.ndarray, degrees: float) -> None:
 
 # The kernels copy rows element by element, never ``a[i] = b`` or ``a[:n] = b`` between arrays: numba's
 # array-to-array assignment (broadcasting, with its error messages built from strings) took most of a cold
-# start's compile of walk: 7.7 s of CPU, 3.4 s with the loops (benchmarks.startup's cold figure).
+# start's compile of walk: 7.7 s of CPU, 3.0 s with the loops (load 8; benchmarks.startup's cold figure).
 
 
 @numba.njit(cache=True, nogil=True)
