@@ -103,16 +103,16 @@ def _warm_light() -> None:
     optical_depth(points, np.ones(3), points, np.array([0.0, 1.0, 0.0]), 0.5, np.arange(3))
 
 
-# The warm-up's stages with the seconds each took to compile on a cold cache (measured on 2 shared cores at
-# load 1-3: NUMBA_CACHE_DIR set to an empty folder, each stage timed in turn); the progress moves by this
-# measured work, not by the count of kernels (the mesh's and the light grid's kernels are nine tenths of it).
+# The warm-up's stages with the CPU seconds each took to compile on a cold cache (measured on 2 shared cores
+# at load 8: NUMBA_CACHE_DIR set to an empty folder, each stage timed in turn); the progress moves by this
+# measured work, not by the count of kernels (the mesh's and the light grid's kernels are most of it).
 STAGES = (
-    ("context rules", _warm_context, 1.2),
-    ("plain rules", _warm_plain, 1.6),
-    ("the turtle and the mesh", lambda: _warm_geometry(0), 18.0),
-    ("the coarser mesh", lambda: _warm_geometry(1), 0.3),
-    ("leaf clusters", _warm_tips, 0.6),
-    ("the light grid", _warm_light, 18.2),
+    ("context rules", _warm_context, 0.5),
+    ("plain rules", _warm_plain, 2.1),
+    ("the turtle and the mesh", lambda: _warm_geometry(0), 5.1),
+    ("the coarser mesh", lambda: _warm_geometry(1), 0.2),
+    ("leaf clusters", _warm_tips, 0.4),
+    ("the light grid", _warm_light, 9.2),
 )
 
 
