@@ -28,44 +28,44 @@ def depths(occ, area, q, own, d, u, v, cell):
     ``own`` set is itself an occluder and sits just in front of its own area. Ties in distance: the
     leaf is in front of the query."""
     n, m = len(occ), len(q)
-    ix, iy = np.empty(n, np.int64), np.empty(n, np.int64)
+    total = 4 * n + m  # entries: each leaf's four splats (corner by corner), then the queries
     fx, fy = np.empty(n), np.empty(n)
-    qx, qy = np.empty(m, np.int64), np.empty(m, np.int64)
-    s = np.empty(n + m)
+    xs, ys = np.empty(total, np.int64), np.empty(total, np.int64)  # each entry's grid cell
+    key = np.empty(total)  # distance toward the light, negated: ascending = from the light
     for i in range(n):
         ox = (occ[i, 0] * u[0] + occ[i, 1] * u[1] + occ[i, 2] * u[2]) / cell - 0.5
         oy = (occ[i, 0] * v[0] + occ[i, 1] * v[1] + occ[i, 2] * v[2]) / cell - 0.5
-        ix[i], iy[i] = math.floor(ox), math.floor(oy)
-        fx[i], fy[i] = ox - ix[i], oy - iy[i]
-        s[i] = occ[i, 0] * d[0] + occ[i, 1] * d[1] + occ[i, 2] * d[2]
+        x, y = math.floor(ox), math.floor(oy)
+        fx[i], fy[i] = ox - x, oy - y
+        s = occ[i, 0] * d[0] + occ[i, 1] * d[1] + occ[i, 2] * d[2]
+        for corner in range(4):
+            xs[corner * n + i], ys[corner * n + i] = x + corner % 2, y + corner // 2
+            key[corner * n + i] = -s
     for i in range(m):
-        qx[i] = math.floor((q[i, 0] * u[0] + q[i, 1] * u[1] + q[i, 2] * u[2]) / cell)
-        qy[i] = math.floor((q[i, 0] * v[0] + q[i, 1] * v[1] + q[i, 2] * v[2]) / cell)
+        xs[4 * n + i] = math.floor((q[i, 0] * u[0] + q[i, 1] * u[1] + q[i, 2] * u[2]) / cell)
+        ys[4 * n + i] = math.floor((q[i, 0] * v[0] + q[i, 1] * v[1] + q[i, 2] * v[2]) / cell)
         depth = q[i, 0] * d[0] + q[i, 1] * d[1] + q[i, 2] * d[2]
-        s[n + i] = depth + 1e-9 * (1.0 + abs(depth)) if own[i] else depth
-    occ_cell, q_cell, cells = _cells(ix, iy, qx, qy)
-    # every splat and query as an entry of its cell; entries grouped by cell (a counting sort), then
-    # each cell's entries sorted from the light (a leaf before a query at the same distance)
-    total = 4 * n + m
-    cell_of = np.concatenate((occ_cell[:, 0], occ_cell[:, 1], occ_cell[:, 2], occ_cell[:, 3], q_cell))
+        key[4 * n + i] = -(depth + 1e-9 * (1.0 + abs(depth)) if own[i] else depth)
+    cell_of, cells = _cells(xs, ys)
+    # entries grouped by cell (a counting sort), then each cell's entries sorted from the light (a leaf
+    # before a query at the same distance)
     start = np.zeros(cells + 1, np.int64)
     for e in range(total):
         start[cell_of[e] + 1] += 1
-    start = np.cumsum(start)
-    fill = start[:-1].copy()
-    entry = np.empty(total, np.int64)
+    fill = np.empty(cells, np.int64)
+    for c in range(cells):
+        start[c + 1] += start[c]
+        fill[c] = start[c]
+    entry, spare = np.empty(total, np.int64), np.empty(total, np.int64)
     for e in range(total):
         entry[fill[cell_of[e]]] = e
         fill[cell_of[e]] += 1
-    key = np.empty(total)  # distance toward the light, negated: ascending = from the light
-    for e in range(total):
-        key[e] = -s[e % n] if e < 4 * n else -s[e - 3 * n]
     out = np.empty(m)
     for c in range(cells):
-        group = entry[start[c]:start[c + 1]]
-        _from_light(group, key)
+        _from_light(entry, start[c], start[c + 1], key, spare)
         running = 0.0
-        for e in group:
+        for j in range(start[c], start[c + 1]):
+            e = entry[j]
             if e < 4 * n:
                 i, corner = e % n, e // n
                 wx = fx[i] if corner % 2 else 1 - fx[i]
@@ -77,43 +77,80 @@ def depths(occ, area, q, own, d, u, v, cell):
 
 
 @numba.njit(cache=True, nogil=True)
-def _from_light(group, key):
-    """Sort a cell's entries in place by ``key``, stably (entries come numbered, leaves' splats first: a
+def _from_light(entry, lo, hi, key, spare):
+    """Sort ``entry[lo:hi]`` in place by ``key``, stably (entries come numbered, leaves' splats first: a
     leaf is in front of a query at the same distance): insertion for the few entries a cell has, else
-    a merge sort."""
-    if len(group) > SMALL:
-        group[:] = group[np.argsort(key[group], kind="mergesort")]
-        return
-    for j in range(1, len(group)):
-        e = group[j]
-        k = key[e]
-        i = j - 1
-        while i >= 0 and key[group[i]] > k:
-            group[i + 1] = group[i]
-            i -= 1
-        group[i + 1] = e
+    runs of SMALL by insertion merged pairwise through ``spare`` (a merge sort in plain loops: numba's
+    own argsort took a second of compile)."""
+    for a in range(lo, hi, SMALL):
+        _insertion(entry, a, min(a + SMALL, hi), key)
+    src, dst, width, swapped = entry, spare, SMALL, False
+    while width < hi - lo:
+        for a in range(lo, hi, 2 * width):
+            i, mid, end = a, min(a + width, hi), min(a + 2 * width, hi)
+            j = mid
+            for k in range(a, end):
+                if j < end and (i >= mid or key[src[j]] < key[src[i]]):
+                    dst[k] = src[j]
+                    j += 1
+                else:
+                    dst[k] = src[i]
+                    i += 1
+        src, dst, width, swapped = dst, src, 2 * width, not swapped
+    if swapped:
+        for k in range(lo, hi):
+            entry[k] = spare[k]
 
 
 @numba.njit(cache=True, nogil=True)
-def _cells(ix, iy, qx, qy):
-    """Each leaf's four cells (n, 4), each query's cell, and how many cells: the cells spanned, numbered
-    row by row, or (a sparse grid: trees far apart, far-flung points) only the cells in use, numbered
-    in order."""
-    n = len(ix)
-    xs = np.concatenate((ix, ix + 1, ix, ix + 1, qx))
-    ys = np.concatenate((iy, iy, iy + 1, iy + 1, qy))
-    x0, y0 = xs.min(), ys.min()
-    cols, rows = xs.max() - x0 + 1, ys.max() - y0 + 1
+def _insertion(entry, lo, hi, key):
+    """Sort ``entry[lo:hi]`` in place by ``key``, stably, by insertion."""
+    for j in range(lo + 1, hi):
+        e = entry[j]
+        k = key[e]
+        i = j - 1
+        while i >= lo and key[entry[i]] > k:
+            entry[i + 1] = entry[i]
+            i -= 1
+        entry[i + 1] = e
+
+
+@numba.njit(cache=True, nogil=True)
+def _cells(xs, ys):
+    """Each entry's cell and how many cells: the cells spanned, numbered row by row, or (a sparse grid:
+    trees far apart, far-flung points) only the cells in use, numbered in order."""
+    x0, x1, y0, y1 = xs[0], xs[0], ys[0], ys[0]
+    for e in range(len(xs)):
+        x0, x1, y0, y1 = min(x0, xs[e]), max(x1, xs[e]), min(y0, ys[e]), max(y1, ys[e])
+    cols, rows = x1 - x0 + 1, y1 - y0 + 1
+    key = np.empty(len(xs), np.int64)
     if float(cols) * float(rows) <= DENSE * len(xs):
-        key = (xs - x0) * rows + (ys - y0)
-        cells = cols * rows
-    else:  # rank the columns and rows in use first: no product of far-apart numbers can overflow
-        ux, uy = np.unique(xs), np.unique(ys)
-        key = np.searchsorted(ux, xs) * len(uy) + np.searchsorted(uy, ys)
-        used = np.unique(key)
-        key = np.searchsorted(used, key)
-        cells = len(used)
-    occ_cell = np.empty((n, 4), np.int64)
-    for c in range(4):
-        occ_cell[:, c] = key[c * n:(c + 1) * n]
-    return occ_cell, key[4 * n:], cells
+        for e in range(len(xs)):
+            key[e] = (xs[e] - x0) * rows + (ys[e] - y0)
+        return key, cols * rows
+    # rank the columns and rows in use first: no product of far-apart numbers can overflow
+    values = np.empty(len(xs))
+    for e in range(len(xs)):
+        values[e] = xs[e]
+    rx, _ = _ranks(values)
+    for e in range(len(xs)):
+        values[e] = ys[e]
+    ry, ny = _ranks(values)
+    for e in range(len(xs)):
+        values[e] = rx[e] * ny + ry[e]
+    return _ranks(values)
+
+
+@numba.njit(cache=True, nogil=True)
+def _ranks(values):
+    """Each value's rank among the distinct values (0 for the least), and how many distinct values."""
+    order, spare = np.empty(len(values), np.int64), np.empty(len(values), np.int64)
+    for e in range(len(values)):
+        order[e] = e
+    _from_light(order, 0, len(values), values, spare)
+    rank, r = np.empty(len(values), np.int64), -1
+    for j in range(len(values)):
+        if j == 0 or values[order[j]] != values[order[j - 1]]:
+            r += 1
+        rank[order[j]] = r
+    return rank, r + 1
