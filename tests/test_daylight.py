@@ -35,7 +35,8 @@ def test_the_remembered_daylight_follows_the_light_caught_over_a_day_and_sets_th
     for _ in range(round(DAY)):  # a day at a steady light above the norm
         sim.remember_light(steady, 1.0)
     assert steady - 0.4 * (steady - g.daylight_full) < sim.state.daylight < steady  # most of the way in a day
-    sim.state.sun_cycle.rate = sim.state.water_cycle.rate = 1.0
+    sim.state.sun_cycle.rate = sim.state.water_cycle.rate = 1.0  # (both meters have earned growth)
+    sim.state.sun_cycle.earned = sim.state.water_cycle.earned = 1
     for share, growth in ((0.5, 0.5), (1.0, 1.0), (1.25, 1.25), (0.99 / g.daylight_full, g.daylight_most)):
         sim.state.daylight = share * g.daylight_full
         assert sim.light_growth() == pytest.approx(growth)

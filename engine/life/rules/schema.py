@@ -235,8 +235,8 @@ SCHEMA: tuple[Rule, ...] = (
     Rule("carbon.dark_share", 0.07, 0.01, 0.3, "share of Amax", "a leaf's dark respiration, as a share of its Amax "
          "(a species' .lsys RDS replaces it)", source="Reich et al. 1998, Relationships of leaf dark respiration to "
          "leaf nitrogen, specific leaf area and leaf life-span (about 0.05-0.1)"),
-    Rule("water.stomata_scale", 0.3, 0.01, 1.0, METER, "the stomata close smoothly as the water meter falls, "
-         "open (1 - exp(-meter / this)) / (1 - exp(-1 / this)): at a meter of this much 66 %, at half of it 41 %; the "
+    Rule("water.stomata_scale", 0.25, 0.01, 1.0, METER, "the stomata close smoothly as the water meter falls, "
+         "open (1 - exp(-meter / this)) / (1 - exp(-1 / this)): at a meter of this much 64 %, at half of it 40 %; the "
          "roots take up water as they let it go (engine/life/plant/soil.py)",
          source="the exponential soil-water response of Jarvis 1976, The interpretation of the variations in leaf "
          "water potential and stomatal conductance found in canopies in the field"),
