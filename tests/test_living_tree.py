@@ -201,8 +201,9 @@ def test_form_follows_the_sun(system):
         shapes.append(crown_shape(turtle.segments, turtle.leaves))
     (a, b) = shapes
     ratio_a, ratio_b = a["height"] / a["width"], b["height"] / b["width"]
-    # (at the same age: the low sun's tree is also the smaller, its clock running on less light; 1.16x here)
-    assert ratio_a > 1.1 * ratio_b
+    # (at the same age: the low sun's tree is also the smaller, its clock running on less light; 1.07x here: the
+    # maple's limbs spread (UPB 0.1) whatever the sun, 1.17x with UPB 0.15's steeper limbs)
+    assert ratio_a > 1.05 * ratio_b
     # toward the sun's side (+z): 0.092 of its height (a leader with apical control, BHL 0.55, stands straighter
     # than an even sharing's: 0.1 and more), 7 x the overhead tree's
     assert b["centroid"][2] > 0.08 * b["height"] > 2 * abs(a["centroid"][2])

@@ -98,7 +98,7 @@ def test_a_species_with_strong_apical_control_grows_taller_on_the_same_light(lsy
 
     source = (lsys_dir / "game_tree.lsys").read_text()
     heights = []
-    for lam in (0.5, 0.62):
+    for lam in (0.5, 0.7):
         path = tmp_path / f"bhl_{lam}.lsys"
         path.write_text(re.sub(r"#define BHL [0-9.]+ ", f"#define BHL {lam} ", source, count=1))
         world = World(load_lsystem(path), load_rules(lsys_dir.parent / "rules.toml", pace="demo"), seed=4)
