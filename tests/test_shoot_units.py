@@ -144,3 +144,21 @@ def test_leafy_nodes_in_summer_become_units_with_their_leaves(tree):
     before, after = grown_turtle(leafy, clocks, const), grown_turtle(units, clocks, const)
     np.testing.assert_allclose(np.sort(after.leaves.position, axis=0), np.sort(before.leaves.position, axis=0),
                                atol=1e-9)  # a one-site unit's leaf stands where its node's stood
+
+
+def test_a_unit_joins_the_nodes_its_axis_grew_after_it():
+    """Last winter's unit before the apex keeps the apex's frame in one set of turns; the nodes the apex grows
+    after it join it next winter across those turns, drawn as the same axis grown as plain nodes."""
+    rng = np.random.default_rng(8)
+    older, newer = _axis(rng, 0, 5, 1.0, ()), _axis(rng, 0, 5, 6.0, ())
+    plain = parse_lstring("I(0,0,0,0,0)" + older + newer + "A(0,0,10,1,0,0)")
+    const = reference_constants()
+    last_winter, _ = form_units(parse_lstring("I(0,0,0,0,0)" + older + "A(0,0,5,1,0,0)"), NOW, const)
+    grown = parse_lstring(last_winter.to_text().replace("A(0,0,5,1,0,0)", newer + "A(0,0,10,1,0,0)"))
+    joined, _ = form_units(grown, NOW, const)
+    at_once, _ = form_units(plain, NOW, const)
+    assert len(joined) == len(at_once) < len(grown) // 3
+    assert len(unit_modules(joined)) == 1  # one unit of ten sites
+    clocks = Clocks(NOW, NOW, 0.0)
+    before, after = grown_turtle(plain, clocks, const), grown_turtle(joined, clocks, const)
+    np.testing.assert_allclose(after.segments.end[-1], before.segments.end[-1], atol=1e-9)  # the apex's place

@@ -36,7 +36,9 @@ STRAIGHT = 0.03  # a unit's nodes stand at most this share of its length from th
 INTERNODE, LEAF, LEAF_BUD = ord("I"), ord("L"), ord("V")
 YAW, PITCH, ROLL, DOWN = ord("+"), ord("^"), ord("/"), ord("&")
 UNIT_TURNS = np.array([YAW, PITCH, ROLL], np.uint8)
-KEEP, AXIS_END, FOLD = 0, 1, 2  # what follows a run: anything, the axis' end, a node's turns (_after_runs)
+AXIS_END, FOLD = 1, 2  # what follows a run: the axis' end, or something turned to (_after_runs)
+_TURN = np.zeros(256, bool)
+_TURN[UNIT_TURNS] = True
 
 
 def form_units(ls: LString, now: float, const: dict[str, float], runs: bool = True) -> tuple[LString, int]:
@@ -66,28 +68,30 @@ def _runs_made(ls: LString, now: float, const: dict[str, float]) -> LString:
     then = np.minimum(then, len(head) - 1)
     chained = (kind == FOLD) & (nodes["node"][head][then] == target)
     unit[then[chained], :3] = _frames_between(along[chained], along[then[chained]])
+    target[chained] = nodes["start"][head][then[chained]]  # (the turns up to the next run's go)
     kind[chained] = AXIS_END  # (its closing turns are in the next unit's opening ones)
     fold = kind == FOLD
-    turns = np.zeros((len(head), 3))  # the turns a run's closing turns and the next node's make together
+    turns = np.zeros((len(head), 3))  # the turns from the unit's frame to the one what follows it starts in
     turns[fold] = _frames_between(along[fold], states["next_frame"][tail[fold]])
     return _rebuilt(ls, nodes, head, tail, unit, kind, target, turns)
 
 
 def _after_runs(ls: LString, at: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """What follows runs whose last node's groups end at ``at``: KEEP (anything else: the unit's closing
-    turns stay), AXIS_END (the axis ends there: nothing needs the closing turns) or FOLD (a node's turns
-    ``+(h)^(u)`` or ``+(h)^(u)/(r)`` and its internode: the closing turns and these become one set); and per
-    run the index of that internode (``at`` where there is none)."""
-    pad = 4
-    sym = np.concatenate([ls.sym, np.zeros(pad, ls.sym.dtype)])
-    npar = np.concatenate([ls.nparams, np.zeros(pad, ls.nparams.dtype)])
-    axis_end = (at >= len(ls)) | (sym[at] == brackets.CLOSE)
-    turns = (sym[at] == YAW) & (npar[at] == 1) & (sym[at + 1] == PITCH) & (npar[at + 1] == 1)
-    rolled = (sym[at + 2] == ROLL) & (npar[at + 2] == 1)
-    target = at + 2 + rolled
-    turns &= sym[target] == INTERNODE
-    kind = np.where(axis_end, AXIS_END, np.where(turns, FOLD, KEEP))
-    return kind, np.where(turns, target, at)
+    """What follows runs whose last node's groups end at ``at``, past any turns there (a node's, or an older
+    unit's closing ones): AXIS_END (the axis ends: no turns are needed) or FOLD (anything else: one set of
+    turns from the unit's frame to the frame that starts in); and per run where that is (``len(ls)`` at the
+    string's end)."""
+    n = len(ls)
+    sym = np.concatenate([ls.sym, np.zeros(1, ls.sym.dtype)])
+    npar = np.concatenate([ls.nparams, np.zeros(1, ls.nparams.dtype)])
+    cur = np.minimum(at, n)
+    for _ in range(16):
+        turn = _TURN[sym[cur]] & (npar[cur] == 1) & (cur < n)
+        if not turn.any():
+            break
+        cur = cur + turn
+    axis_end = (cur >= n) | (sym[cur] == brackets.CLOSE)
+    return np.where(axis_end, AXIS_END, FOLD), cur
 
 
 def _singles_made(ls: LString, now: float, const: dict[str, float]) -> LString:
@@ -166,7 +170,16 @@ def _nodes(ls: LString, now: float, const: dict[str, float], units: bool = True)
     ok &= np.where(single, (leafy_groups == 0) & ((kept == 0) | (kept == 1)), leafy_groups == 1)
     return {"node": node, "start": start, "end": cur, "ok": ok, "other": other_groups, "leaf_open": leaf_open,
             "leaf_bud": leaf_bud, "order": params[off[node] + 2], "unit": single, "sites": np.maximum(sites, 0),
-            "leaf_state": state}
+            "leaf_state": state, "turns_only": _turns_between(ls, np.concatenate([[0], cur[:-1]]), start)}
+
+
+def _turns_between(ls: LString, lo: np.ndarray, hi: np.ndarray) -> np.ndarray:
+    """Per pair: whether modules ``lo`` up to ``hi`` are all turns (``+``, ``^``, ``/`` with one parameter; none
+    counts too)."""
+    turn = _TURN[ls.sym] & (ls.nparams == 1)
+    count = np.concatenate([[0], np.cumsum(turn)])
+    safe_lo, safe_hi = np.clip(lo, 0, len(ls)), np.clip(hi, 0, len(ls))
+    return (hi >= lo) & (count[safe_hi] - count[safe_lo] == hi - lo)
 
 
 def _site(sym: np.ndarray, npar: np.ndarray, params: np.ndarray, off: np.ndarray, at: np.ndarray) -> np.ndarray:
@@ -197,11 +210,11 @@ def _heads(joins: np.ndarray) -> np.ndarray:
 def _joins(nodes: dict[str, np.ndarray]) -> np.ndarray:
     """Per node: whether it joins the node before it into a run (both may be in a unit, on one axis, the one
     before bearing nothing but its leaf), about MAX_SITES leaf sites a run."""
-    ok, start, end, other = nodes["ok"], nodes["start"], nodes["end"], nodes["other"]
+    ok, other = nodes["ok"], nodes["other"]
     order = nodes["order"]
     state = nodes["leaf_state"]
     same = np.all(state[1:] == state[:-1], axis=1)  # (their leaves unfold and fall as one)
-    joins = ok & (other <= TAIL_GROUPS) & np.concatenate([[False], ok[:-1] & (other[:-1] == 0) & (end[:-1] == start[1:])
+    joins = ok & (other <= TAIL_GROUPS) & np.concatenate([[False], ok[:-1] & (other[:-1] == 0) & nodes["turns_only"][1:]
                                                           & (order[:-1] == order[1:]) & same])
     sites = nodes["sites"]
     total = np.cumsum(sites)
@@ -412,32 +425,28 @@ def _circular_mean(deg: np.ndarray, group: np.ndarray, use: np.ndarray, count: i
 def _rebuilt(ls: LString, nodes: dict[str, np.ndarray], head: np.ndarray, tail: np.ndarray, unit: np.ndarray,
              kind: np.ndarray, target: np.ndarray, turns: np.ndarray) -> LString:
     """``ls`` with each run's modules (its nodes' turns, internodes and leaf groups) replaced by its unit after
-    its opening turns; its closing turns follow where ``kind`` is KEEP (the last node's other groups stay
-    after them), go where the axis ends, and where it is FOLD become one with the next node's turns
-    (``turns``, replacing those before the internode ``target``)."""
+    its opening turns; the turns after the run up to ``target`` go, and where ``kind`` is FOLD one set
+    (``turns``) takes the frame from the unit to ``target``."""
     first, last = nodes["start"][head], nodes["node"][tail]
     leaf_open = nodes["leaf_open"][tail][~nodes["unit"][tail]]  # (a unit's leaf is in it)
     leaf_close = brackets.match(ls.sym)[leaf_open]
     fold = kind == FOLD
     delta = np.zeros(len(ls) + 1, np.int64)
-    for lo, hi in ((first, last + 1), (leaf_open, leaf_close + 1), (nodes["end"][tail][fold], target[fold])):
+    for lo, hi in ((first, last + 1), (leaf_open, leaf_close + 1), (nodes["end"][tail], target)):
         np.add.at(delta, lo, 1)
         np.add.at(delta, hi, -1)
     keep = np.cumsum(delta[:-1]) == 0
     kept = ls.select(keep)
     seen = np.concatenate([[0], np.cumsum(keep)])  # kept modules before each module
     r, nfold = len(head), int(fold.sum())
-    closing = kind == KEEP
-    mods = np.arange(7) < np.where(closing, 7, 4)[:, None]  # (r, 7): the modules each run's block has
-    vals = np.arange(19) < np.where(closing, 19, 16)[:, None]
-    block_sym = np.concatenate([UNIT_TURNS, [INTERNODE], UNIT_TURNS]).astype(ls.sym.dtype)
-    block_npar = np.array([1, 1, 1, shoot_units.UNIT_PARAMS, 1, 1, 1], dtype=ls.nparams.dtype)
-    at = np.concatenate([np.repeat(seen[first], mods.sum(axis=1)), np.repeat(seen[target[fold]], 3)])
-    sym = np.insert(kept.sym, at, np.concatenate([np.tile(block_sym, (r, 1))[mods], np.tile(UNIT_TURNS, nfold)]))
-    npar = np.insert(kept.nparams, at, np.concatenate([np.tile(block_npar, (r, 1))[mods], np.ones(3 * nfold,
-                                                                                                  ls.nparams.dtype)]))
+    block_sym = np.concatenate([UNIT_TURNS, [INTERNODE]]).astype(ls.sym.dtype)
+    block_npar = np.array([1, 1, 1, shoot_units.UNIT_PARAMS], dtype=ls.nparams.dtype)
+    at = np.concatenate([np.repeat(seen[first], 4), np.repeat(seen[target[fold]], 3)])
+    sym = np.insert(kept.sym, at, np.concatenate([np.tile(block_sym, r), np.tile(UNIT_TURNS, nfold)]))
+    npar = np.insert(kept.nparams, at, np.concatenate([np.tile(block_npar, r), np.ones(3 * nfold, ls.nparams.dtype)]))
     where = np.concatenate([seen[first], seen[target[fold]]])  # (np.insert keeps equal places in this order)
     param_at = np.where(where < len(kept), kept.offsets[np.minimum(where, max(len(kept) - 1, 0))], len(kept.params))
-    count = np.concatenate([vals.sum(axis=1), np.full(nfold, 3)])
-    params = np.insert(kept.params, np.repeat(param_at, count), np.concatenate([unit[vals], turns[fold].ravel()]))
+    count = np.concatenate([np.full(r, 16), np.full(nfold, 3)])
+    params = np.insert(kept.params, np.repeat(param_at, count), np.concatenate([unit[:, :16].ravel(),
+                                                                               turns[fold].ravel()]))
     return LString.from_arrays(sym, npar, params)
