@@ -84,22 +84,31 @@ def _from_light(entry, lo, hi, key, spare):
     own argsort took a second of compile)."""
     for a in range(lo, hi, SMALL):
         _insertion(entry, a, min(a + SMALL, hi), key)
-    src, dst, width, swapped = entry, spare, SMALL, False
+    width, swapped = np.int64(SMALL), False  # (not the literal SMALL: _merge_pass compiled once, not twice)
     while width < hi - lo:
-        for a in range(lo, hi, 2 * width):
-            i, mid, end = a, min(a + width, hi), min(a + 2 * width, hi)
-            j = mid
-            for k in range(a, end):
-                if j < end and (i >= mid or key[src[j]] < key[src[i]]):
-                    dst[k] = src[j]
-                    j += 1
-                else:
-                    dst[k] = src[i]
-                    i += 1
-        src, dst, width, swapped = dst, src, 2 * width, not swapped
+        if swapped:
+            _merge_pass(spare, entry, lo, hi, width, key)
+        else:
+            _merge_pass(entry, spare, lo, hi, width, key)
+        width, swapped = 2 * width, not swapped
     if swapped:
         for k in range(lo, hi):
             entry[k] = spare[k]
+
+
+@numba.njit(cache=True, nogil=True)
+def _merge_pass(src, dst, lo, hi, width, key):
+    """Merge each two neighbouring sorted runs of ``width`` in ``src[lo:hi]`` into ``dst`` (stably)."""
+    for a in range(lo, hi, 2 * width):
+        i, mid, end = a, min(a + width, hi), min(a + 2 * width, hi)
+        j = mid
+        for k in range(a, end):
+            if j < end and (i >= mid or key[src[j]] < key[src[i]]):
+                dst[k] = src[j]
+                j += 1
+            else:
+                dst[k] = src[i]
+                i += 1
 
 
 @numba.njit(cache=True, nogil=True)
@@ -147,7 +156,7 @@ def _ranks(values):
     order, spare = np.empty(len(values), np.int64), np.empty(len(values), np.int64)
     for e in range(len(values)):
         order[e] = e
-    _from_light(order, 0, len(values), values, spare)
+    _from_light(order, np.int64(0), len(values), values, spare)  # (not the literal 0: a second compile)
     rank, r = np.empty(len(values), np.int64), -1
     for j in range(len(values)):
         if j == 0 or values[order[j]] != values[order[j - 1]]:
