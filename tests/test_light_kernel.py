@@ -38,3 +38,17 @@ def test_a_crowded_cell_of_ties_counts_every_leaf_level_with_a_query(spread):
     ours = optical_depth(occ, area, queries, up, 0.9)
     assert ours == pytest.approx(_by_definition(occ, area, queries, up, 0.9), abs=1e-9)
     assert len(np.unique(ours)) >= 5  # the levels shade differently
+
+
+def test_a_sparse_grid_keeps_every_cell_of_far_apart_crowns_apart():
+    """40 small crowns scattered over 100 km (a sparse grid: its cells are hashed, tiles of them sharing
+    slots): each leaf's shade comes from its own crown's cells only, as by the definition."""
+    rng = np.random.default_rng(8)
+    centres = rng.uniform(-5e4, 5e4, (40, 3)) * np.array([1.0, 0.0, 1.0])
+    occ = np.repeat(centres, 30, axis=0) + rng.normal(size=(1200, 3))
+    area = rng.uniform(0.1, 2.0, 1200)
+    queries = occ + rng.normal(size=(1200, 3)) * 0.3
+    up = np.array([0.0, 1.0, 0.0])
+    ours = optical_depth(occ, area, queries, up, 0.9)
+    assert ours == pytest.approx(_by_definition(occ, area, queries, up, 0.9), abs=1e-9)
+    assert (ours > 0).mean() > 0.3

@@ -18,7 +18,9 @@ import numba
 import numpy as np
 
 SMALL = 24  # a cell with more entries than this is merge-sorted, a smaller one by insertion
-DENSE = 4  # a grid with at most this many cells per point is an array; a sparser one (trees far apart) is indexed
+DENSE = 4  # a grid with at most this many cells per point is an array; a sparser one (trees far apart) is hashed
+TILE_BITS = 6  # a sparse grid's cells are hashed by tiles of TILE x TILE
+TILE = 1 << TILE_BITS
 
 
 @numba.njit(cache=True, nogil=True)
@@ -127,39 +129,41 @@ def _insertion(entry, lo, hi, key):
 @numba.njit(cache=True, nogil=True)
 def _cells(xs, ys):
     """Each entry's cell and how many cells: the cells spanned, numbered row by row, or (a sparse grid:
-    trees far apart, far-flung points) only the cells in use, numbered in order."""
+    trees far apart, far-flung points) only the cells in use, numbered as they first come."""
     x0, x1, y0, y1 = xs[0], xs[0], ys[0], ys[0]
     for e in range(len(xs)):
         x0, x1, y0, y1 = min(x0, xs[e]), max(x1, xs[e]), min(y0, ys[e]), max(y1, ys[e])
     cols, rows = x1 - x0 + 1, y1 - y0 + 1
+    if float(cols) * float(rows) > DENSE * len(xs):
+        return _numbered(xs, ys)
     key = np.empty(len(xs), np.int64)
-    if float(cols) * float(rows) <= DENSE * len(xs):
-        for e in range(len(xs)):
-            key[e] = (xs[e] - x0) * rows + (ys[e] - y0)
-        return key, cols * rows
-    # rank the columns and rows in use first: no product of far-apart numbers can overflow
-    values = np.empty(len(xs))
     for e in range(len(xs)):
-        values[e] = xs[e]
-    rx, _ = _ranks(values)
-    for e in range(len(xs)):
-        values[e] = ys[e]
-    ry, ny = _ranks(values)
-    for e in range(len(xs)):
-        values[e] = rx[e] * ny + ry[e]
-    return _ranks(values)
+        key[e] = (xs[e] - x0) * rows + (ys[e] - y0)
+    return key, cols * rows
 
 
 @numba.njit(cache=True, nogil=True)
-def _ranks(values):
-    """Each value's rank among the distinct values (0 for the least), and how many distinct values."""
-    order, spare = np.empty(len(values), np.int64), np.empty(len(values), np.int64)
-    for e in range(len(values)):
-        order[e] = e
-    _from_light(order, np.int64(0), len(values), values, spare)  # (not the literal 0: a second compile)
-    rank, r = np.empty(len(values), np.int64), -1
-    for j in range(len(values)):
-        if j == 0 or values[order[j]] != values[order[j - 1]]:
-            r += 1
-        rank[order[j]] = r
-    return rank, r + 1
+def _numbered(xs, ys):
+    """The cells in use numbered as they first come, through a hash table of them (open addressing, linear
+    probing; linear time however far apart they lie): tiles of TILE x TILE cells go to hashed places (the
+    mix of splitmix64; integer products wrap), a tile's cells lie side by side in its place, so a run of
+    nearby entries reads nearby slots. Each entry's number, and how many."""
+    size = 1 << 12
+    while size < 2 * len(xs):
+        size *= 2
+    cell_x, cell_y, number = np.empty(size, np.int64), np.empty(size, np.int64), np.empty(size, np.int64)
+    for slot in range(size):
+        number[slot] = -1
+    key, cells = np.empty(len(xs), np.int64), 0
+    for e in range(len(xs)):
+        x, y = xs[e], ys[e]
+        tile = (x >> TILE_BITS) * -7046029254386353131 + (y >> TILE_BITS) * -4417276706812531889
+        tile = (tile ^ (tile >> 32)) * -4658895280553007687
+        slot = ((tile ^ (tile >> 29)) << (2 * TILE_BITS) | (x & TILE - 1) << TILE_BITS | (y & TILE - 1)) & (size - 1)
+        while number[slot] >= 0 and (cell_x[slot] != x or cell_y[slot] != y):
+            slot = (slot + 1) & (size - 1)
+        if number[slot] < 0:
+            cell_x[slot], cell_y[slot], number[slot] = x, y, cells
+            cells += 1
+        key[e] = number[slot]
+    return key, cells
