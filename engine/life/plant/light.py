@@ -5,9 +5,11 @@ idea without a GPU, so it runs headless in the lab and the tests: the scene is p
 of cells across the sun's rays; in every cell, everything is ordered by its distance from the sun, and
 a point's light is attenuated by the leaf area in front of it (Beer-Lambert, ``exp(-k * area/cell)``),
 the way a deep shadow map stores transmittance along each texel's ray. Leaves splat their area into
-the four nearest cells (bilinear), so shadows are soft and do not alias. One sort of all leaves and
-queries by distance from the light per direction, then one compiled pass (light_kernel.py): O(n log n),
-about 0.2 ms for a tree at its module budget.
+the four nearest cells (bilinear), so shadows are soft and do not alias. Per direction, one compiled
+pass (light_kernel.py) groups leaves and queries by cell and sorts each cell's few entries by distance
+from the light: the same work per entry at any size (sun and sky of the game tree, as
+``python -m benchmarks.saves scaling`` reads them: 0.8 ms of CPU at 9,724 modules, 14 ms at 99,892
+where its arrays, about 4 MB, outgrow a core's 2 MB of L2 here, 119 ms at 999,804: x 8.3 per 10x from 100k).
 
 Palubicki et al. 2009 propagate shadow through a voxel grid from a fixed sky; a grid aligned to the
 sun's current direction gives the same shade values from the real sun (a low sun on one side shades

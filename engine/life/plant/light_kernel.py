@@ -4,7 +4,8 @@ A leaf splats its area into the four grid cells around it (bilinear); in every c
 and query points) are sorted by distance from the light and summed in that order, so a query reads the
 leaf area in front of it. ``python -m benchmarks.living``
 times it against the numpy version it replaced (a sort of all four splats per leaf, then running sums),
-in the same run.
+in the same run. Plain loops throughout, no numpy calls on whole arrays: numba compiled np.unique, a
+merge-sort argsort and np.concatenate for a second or so each, most of a first start's 8 s here.
 """
 
 # numba caches this kernel on disk under this module's name (arbor.engine...) and reloads it while
