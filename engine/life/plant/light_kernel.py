@@ -5,7 +5,8 @@ and query points) are sorted by distance from the light and summed in that order
 leaf area in front of it. ``python -m benchmarks.living``
 times it against the numpy version it replaced (a sort of all four splats per leaf, then running sums),
 in the same run. Plain loops throughout, no numpy calls on whole arrays: numba compiled np.unique, a
-merge-sort argsort and np.concatenate for a second or so each, most of a first start's 8 s here.
+merge-sort argsort and np.concatenate for a second or so each: most of the 8 s this kernel once took
+to compile on a first start (now 2 s).
 """
 
 # numba caches this kernel on disk under this module's name (arbor.engine...) and reloads it while
