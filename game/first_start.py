@@ -104,15 +104,15 @@ def _warm_light() -> None:
 
 
 # The warm-up's stages with the CPU seconds each took to compile on a cold cache (measured on 2 shared cores
-# at load 9-10: NUMBA_CACHE_DIR set to an empty folder, each stage timed in turn, twice); the progress moves
-# by this measured work, not by the count of kernels (the turtle's and the mesh's kernels are most of it).
+# at load 2-10: NUMBA_CACHE_DIR set to an empty folder, each stage timed in turn, four runs); the progress
+# moves by this measured work, not by the count of kernels (the turtle's and the mesh's kernels are most of it).
 STAGES = (
     ("context rules", _warm_context, 0.4),
     ("plain rules", _warm_plain, 1.7),
     ("the turtle and the mesh", lambda: _warm_geometry(0), 4.2),
     ("the coarser mesh", lambda: _warm_geometry(1), 0.2),
     ("leaf clusters", _warm_tips, 0.3),
-    ("the light grid", _warm_light, 2.1),
+    ("the light grid", _warm_light, 1.8),
 )
 
 
