@@ -24,6 +24,7 @@ SIZE = (640, 360)
 def grown(lsys_dir):
     world = World(load_lsystem(lsys_dir / "game_tree.lsys"), load_rules("assets/rules.toml", pace="demo"), seed=3)
     world.sim.state.sun_meter = world.sim.state.water_meter = 0.9
+    world.tree.dead_linger = 0.0  # (a branch that dies falls at once: these tests draw its fall, not its linger)
     for step in range(6000):  # about 8 simulated days, and on until a branch has just been shed
         world.apply(Action.WATER, float(world.sim.state.water_meter < 0.6))
         world.step(0.5)
@@ -393,11 +394,13 @@ def test_a_coarse_level_covers_the_crown_as_the_finest_does(game, monkeypatch):
         shapes.append(np.abs(frame(game) - background).sum(axis=2) > 30)
     full, full_form = shapes[0], _form(shapes[0])
     assert full.sum() > 3000  # (a crown on screen)
-    for shape in shapes[1:]:
+    for lod, shape in enumerate(shapes[1:], start=1):
         form = _form(shape)
         # (measured: area 0.94-1.36x as the trees and their look changed, form 0.57-0.84; with the leaves not
-        # grown to cover, area 0.42x at level 3)
-        assert 0.85 < shape.sum() / full.sum() < 1.6 and (form & full_form).sum() / (form | full_form).sum() > 0.5
+        # grown to cover, area 0.42x at level 3. The narrower sapling of issue 44's crowns: form 0.83, 0.68 and,
+        # at level 3, a few big leaves for a hundred, 0.49)
+        least = 0.45 if lod == 3 else 0.5
+        assert 0.85 < shape.sum() / full.sum() < 1.6 and (form & full_form).sum() / (form | full_form).sum() > least
 
 
 def test_a_tree_drawn_over_frames_sways_a_picture_later(game, monkeypatch):
