@@ -41,6 +41,7 @@ def prune(world: World, keep_height: float | None = None, lowest: float = 0.0) -
     if len(starts) == 0:
         return 0
     ls = tree.lstring
+    keep_wood(ls, scene.turtle.segments, tree.geometry_constants)
     removed = brackets.rest_of_branches(ls.sym, starts)
     tree.fallen.append(fallen_pieces(scene, removed, now))
     tree.lstring = remove_empty_branches(ls.select(~removed))
@@ -77,6 +78,14 @@ def branches_cut(sym: np.ndarray, starts: np.ndarray) -> int:
     reach = np.maximum.accumulate(ends)
     inside = np.concatenate([[False], starts[1:] < reach[:-1]])
     return int(np.count_nonzero(~inside))
+
+
+def keep_wood(ls, segs, const: dict[str, float]) -> None:
+    """Keep as built the wood each grown internode shows now: its pipe area where that is more than the
+    wood it has built since its last ring (wood never shrinks, so a cut trunk stays as thick as it was)."""
+    grown = (ls.sym[segs.module] == INTERNODE) & (ls.nparams[segs.module] >= 5)
+    at = ls.offsets[segs.module[grown]] + 4
+    ls.params[at] = np.maximum(ls.params[at], pipe_area(ls, segs, const)[grown])
 
 
 def remeasure(world: World) -> None:
