@@ -20,7 +20,9 @@ import numba
 import numpy as np
 
 SMALL = 24  # a cell with more entries than this is merge-sorted, a smaller one by insertion
-DENSE = 4  # a grid with at most this many cells per point is an array; a sparser one (trees far apart) is hashed
+DENSE = 0.5  # a grid with at most this many cells per entry is an array; a sparser one (trees far apart) is
+# hashed: faster already at 0.7 cells an entry (the game tree at 100k modules: 3.8 against 5.5 ms), and at 4
+# (1M modules) 3x faster than walking and zeroing 3M cells, mostly empty
 TILE_BITS = 3  # a sparse grid's cells are hashed by tiles of TILE x TILE (small: two full tiles hashed to one
 # place make a run of TILE * TILE cells probe past each other's; 8 x 8 measured as fast as 64 x 64)
 TILE = 1 << TILE_BITS
