@@ -8,8 +8,8 @@ the way a deep shadow map stores transmittance along each texel's ray. Leaves sp
 the four nearest cells (bilinear), so shadows are soft and do not alias. Per direction, one compiled
 pass (light_kernel.py) groups leaves and queries by cell and sorts each cell's few entries by distance
 from the light: the same work per entry at any size (sun and sky of the game tree, as
-``python -m benchmarks.saves scaling`` reads them: 0.8 ms of CPU at 9,724 modules, 14 ms at 99,892
-where its arrays, about 4 MB, outgrow a core's 2 MB of L2 here, 119 ms at 999,804: x 8.3 per 10x from 100k).
+``python -m benchmarks.saves scaling`` reads them: 0.8 ms of CPU at 9,909 modules, 10.6 ms at 100,191
+where its arrays, about 4 MB, outgrow a core's 2 MB of L2 here, 99.6 ms at 999,708: x 9.4 per 10x from 100k).
 
 Palubicki et al. 2009 propagate shadow through a voxel grid from a fixed sky; a grid aligned to the
 sun's current direction gives the same shade values from the real sun (a low sun on one side shades
