@@ -109,7 +109,7 @@ def test_lesson_water_has_an_optimum_with_waterlogging_and_drought_both_worse(tm
 
 
 def test_lesson_competition_the_middle_tree_is_shaded(tmp_path):
-    path = shortened("lesson_competition.toml", tmp_path, 25 * DAY)  # (as written: crowns meet from about day 18)
+    path = shortened("lesson_competition.toml", tmp_path, 25 * DAY)  # (as written)
     out = tmp_path / "competition"
     as_written("lesson_competition.toml", path, out)
     rows = list(csv.DictReader(io.StringIO((out / "results.csv").read_text(encoding="utf-8"))))
@@ -125,7 +125,7 @@ def test_lesson_competition_the_middle_tree_is_shaded(tmp_path):
     assert caught["Middle"] < 0.95 * np.mean(control.series[1].values["light_day"][-5:])
     assert all((out / name).is_file() for name in ("charts.png", "scene.png", "middle.arbor"))
     lab = Lab(load_experiment(path, ASSETS / "lsystems"), load_rules(ASSETS / "rules.toml", "demo"))
-    assert [w.position[0] for w in lab.worlds] == [-15.0, 0.0, 15.0]  # 1.5 m apart (10 scene units a metre)
+    assert [w.position[0] for w in lab.worlds] == [-8.0, 0.0, 8.0]  # 0.8 m apart (10 scene units a metre)
 
 
 def test_lesson_pruning_a_raised_crown_builds_less_and_roots_take_a_larger_share(tmp_path):

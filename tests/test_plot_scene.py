@@ -105,3 +105,17 @@ def test_arbor_lab_out_draws_the_plot_in_one_scene(tmp_path):
     assert img.shape[:2] == (900, 1600)  # one picture of the row, not three tiles side by side
     sky = img[:200].reshape(-1, 3)
     assert (sky[:, 2] > sky[:, 0]).mean() > 0.95  # one sky over the whole width: no tile borders
+
+
+def test_labels_of_trees_closer_than_a_label_spread_apart_in_the_trees_order():
+    from arbor.game.screens.lab import _fitted, _spread
+
+    xs = np.array([620.0, 500.0, 560.0])  # (the lab's order need not be the row's)
+    spread = _spread(xs, 130.0)
+    assert list(np.argsort(spread)) == list(np.argsort(xs)) and np.min(np.diff(np.sort(spread))) >= 130.0 - 1e-9
+    assert np.mean(spread) == np.mean(xs)
+    assert np.array_equal(_spread(np.array([100.0, 400.0]), 130.0), [100.0, 400.0])  # room enough: under each
+    state = "alive, wilt 0.00, 1.19 m"
+    assert _fitted(state, lambda t: len(t) < 30) == [state]
+    assert _fitted(state, lambda t: len(t) < 20) == ["alive, wilt 0.00", "1.19 m"]
+    assert _fitted(state, lambda t: len(t) < 12) == ["alive", "wilt 0.00", "1.19 m"]

@@ -16,6 +16,7 @@ from arbor.game.render.renderer import TreeRenderer, sun_direction
 YAW, PITCH = 8.0, 9.0  # degrees: nearly square on to the row (the row runs along x), a little from above
 FRONT = (35.0, 45.0)  # the front light: azimuth from the camera's side (degrees) and elevation (degrees)
 MIN_HEIGHT = 1.0 * METRE  # the scene frames at least this tall a box (a row of seedlings is not blown up)
+LABEL_ROOM = 1.0  # the framed box reaches this share of the trees' height below the ground
 
 
 def tree_state(world, meters) -> str:
@@ -64,7 +65,8 @@ class PlotScene:
         offsets = np.array(row_offsets(worlds))
         lo = np.minimum(self.renderer.lo, offsets.min(axis=0) - 0.2 * METRE)
         hi = np.maximum(self.renderer.hi, offsets.max(axis=0) + 0.2 * METRE)
-        lo[1], hi[1] = 0.0, max(float(hi[1]), MIN_HEIGHT)
+        hi[1] = max(float(hi[1]), MIN_HEIGHT)
+        lo[1] = -LABEL_ROOM * hi[1]  # (room under the trees for their names and states: see screens/lab.py)
         self.camera.frame_bounds(lo, hi, aspect, fill=0.9)
 
     def render(self, fbo, worlds: list, size: tuple[int, int], viewport: tuple[int, int, int, int] | None = None,

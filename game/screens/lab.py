@@ -29,6 +29,7 @@ from arbor.game.screens.stack import Screen, quit_asked
 
 SCENE_FRACTION = 0.55
 BUTTON_H = 56
+LABEL_W = 130  # pixels a tree's label in the plot's scene needs at least (its state on lines of their own)
 
 
 class LabScreen(Screen):
@@ -158,17 +159,19 @@ class LabScreen(Screen):
         return pygame.image.tobytes(s, "RGBA", True)
 
     def _plot_labels(self, s: pygame.Surface, scene_h: int) -> None:
-        """Each tree's name (in its charts' colour) and state beneath it in the plot's scene."""
+        """Each tree's name (in its charts' colour) and state beneath it in the plot's scene (spread apart,
+        in the trees' order, where the trees stand closer than their labels are wide)."""
         bases = self.plot.bases(self.lab.worlds, (self.size[0], scene_h))
-        gap = float(np.min(np.diff(np.sort(bases[:, 0])))) if len(bases) > 1 else float(self.size[0])
-        for i, ((x, y), world, regime) in enumerate(zip(bases, self.lab.worlds, self.lab.experiment.regimes,
-                                                         strict=True)):
+        xs = _spread(bases[:, 0], min(LABEL_W, self.size[0] / max(len(bases), 1)))
+        gap = float(np.min(np.diff(np.sort(xs)))) if len(xs) > 1 else float(self.size[0])
+        for i, ((_, y), x, world, regime) in enumerate(zip(bases, xs, self.lab.worlds, self.lab.experiment.regimes,
+                                                            strict=True)):
             label = self.font.render(regime.name, True, (255, 255, 255))
             box = label.get_rect(midtop=(int(x), min(int(y) + 10, scene_h - BUTTON_H - 110))).inflate(24, 12)
             pygame.draw.rect(s, (*COLORS[i % len(COLORS)], 220), box, border_radius=8)
             s.blit(label, label.get_rect(center=box.center))
             state = tree_state(world, self.lab.meters[i])
-            lines = [state] if self.small.size(state)[0] + 24 < gap else state.rsplit(", ", 1)  # (neighbours close)
+            lines = _fitted(state, lambda text: self.small.size(text)[0] + 24 < gap)  # (neighbours close: shorter)
             top = box.bottom + 6
             for line in lines:
                 text = self.small.render(line, True, (255, 255, 255))
@@ -195,3 +198,21 @@ class LabScreen(Screen):
             write_garden(SavedGarden([world], lsystem_name=self.lab.experiment.lsystem.name),
                          folder / f"{save_stem(regime.name)}.arbor")
         return folder
+
+
+def _fitted(state: str, fits) -> list[str]:
+    """``state`` ("alive, wilt 0.00, 0.58 m") on one line if it ``fits``, else its last part on a line of
+    its own, else every part on its own line."""
+    for lines in ([state], state.rsplit(", ", 1), state.split(", ")):
+        if all(fits(line) for line in lines):
+            return lines
+    return lines
+
+
+def _spread(xs: np.ndarray, apart: float) -> np.ndarray:
+    """Label centres for trees at window columns ``xs``: their own, or, where two stand closer than
+    ``apart`` pixels, all of them ``apart`` from each other in the trees' order, centred on the row."""
+    if len(xs) < 2 or float(np.min(np.diff(np.sort(xs)))) >= apart:
+        return np.asarray(xs, float)
+    rank = np.argsort(np.argsort(xs))
+    return float(np.mean(xs)) + (rank - (len(xs) - 1) / 2) * apart
