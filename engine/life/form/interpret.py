@@ -205,7 +205,7 @@ def pipe_area(ls: LString, segs: Segments, const: dict[str, float], ends: np.nda
     seg_len = np.linalg.norm(segs.end - segs.start, axis=1)
     order = params_where(ls.params, grown, offsets + 2)
     full = const["IL"] * const["IO"] ** order
-    weight = np.where(grown, seg_len / full, 0.0)
+    weight = np.divide(seg_len, full, out=np.zeros(len(seg_len)), where=grown & (full > 0))  # (IL, IO 0: hostile)
     drawn = ~grown & (ls.sym[segs.module] == ord("F")) & (ls.nparams[segs.module] == 11)
     drawn_below = np.bincount(segs.parent[drawn & (segs.parent >= 0)], minlength=len(segs)) > 0
     weight[drawn & ~drawn_below] = 1.0
