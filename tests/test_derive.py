@@ -260,3 +260,19 @@ def test_word_at_a_time_steps_equal_a_module_by_module_rewrite(seed, repeating):
         if step == 0:  # random blocks: the module-at-a-time loop took over
             assert deriver._symbols.blocks == repeating
         text = expected[:3000]
+
+
+def test_a_plain_step_makes_parameter_arrays_only_when_read():
+    """A step without parameters leaves nparams and offsets unmade (filling zeros cost more than the
+    step); a reader still gets zeros of the string's length, and what it writes there stays."""
+    system = parse_lsystem("w: X\np1: X -> F[+X][-X]FX\np2: F -> FF")
+    ls = derive(system, 4)
+    assert ls._nparams is None and ls._offsets is None
+    assert ls.nparams.dtype == np.uint8 and ls.offsets.dtype == np.int64
+    assert not ls.nparams.any() and not ls.offsets.any() and len(ls.nparams) == len(ls.offsets) == len(ls)
+    ls.nparams[0] = 0
+    assert ls.nparams is ls._nparams
+    general = parse_lstring(ls.to_text())
+    assert ls.equals(general) and general.equals(ls)
+    keep = ls.sym != ord("+")
+    assert ls.select(keep).equals(general.select(keep))

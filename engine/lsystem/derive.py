@@ -16,7 +16,7 @@ import numpy as np
 
 from arbor.engine.lsystem import brackets, context
 from arbor.engine.lsystem.expr import EvalContext, evaluate
-from arbor.engine.lsystem.lstring import LString, ragged_arange
+from arbor.engine.lsystem.lstring import BareLString, LString, ragged_arange
 from arbor.engine.lsystem.lsys import Alternative, LSystem, Pattern, Production
 from arbor.engine.lsystem.symbolic import SymbolRewriter
 
@@ -129,10 +129,11 @@ class Deriver:
         assert self._symbols is not None
         if self._symbols.direct_map is None:
             return None
-        total, rewritten = self._symbols.direct_counts(ls.sym)
-        if total > self.budget:
+        assert self.budget is not None
+        sym, _total, rewritten = self._symbols.rewrite_direct(ls.sym, self.budget)
+        if sym is None:
             return None
-        result = _bare(self._symbols.rewrite_direct(ls.sym, total))
+        result = _bare(sym)
         return _finish(ls, result, rewritten, 0, self._may_cut(ls))
 
     def _may_cut(self, ls: LString) -> bool:
@@ -340,7 +341,7 @@ def _out_lengths(n: int, matches: list[_Match]) -> np.ndarray:
 
 def _bare(sym: np.ndarray) -> LString:
     """An L-string of ``sym`` with no parameters."""
-    return LString(sym, np.zeros(len(sym), np.uint8), np.zeros(len(sym), np.int64), np.zeros(0))
+    return BareLString(sym)
 
 
 def _finish(ls: LString, result: LString, rewritten: int, deferred: int,

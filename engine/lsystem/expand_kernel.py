@@ -117,15 +117,16 @@ def _append(out, pos, fill, acc, src, start, nbytes):
 
 
 @numba.njit(cache=True, nogil=True)
-def expand_blocks(sym: np.ndarray, lengths: np.ndarray, words: np.ndarray, out: np.ndarray,
-                  most: int) -> int:
-    """As :func:`expand`, a block of BLOCK modules at a time: L-strings repeat their blocks, so each
+def expand_blocks(sym: np.ndarray, lengths: np.ndarray, ruled: np.ndarray, words: np.ndarray, most: int,
+                  budget: int) -> tuple[np.ndarray, int, int]:
+    """A whole direct step a block of BLOCK modules at a time: L-strings repeat their blocks, so each
     distinct block is expanded once (found again by its 64-bit word in a hash table) and then copied
-    whole words at a time. Returns the bytes written, or -1 when more than ``most`` blocks are distinct
-    (then the module-at-a-time loop is the faster one)."""
+    whole words at a time. A first pass finds every block's expansion and adds up the output length and
+    the rewritten modules (``ruled[s]``); when that length fits ``budget``, a second pass writes the
+    output, allocated to its length. Returns (output words, bytes written, rewritten modules); the
+    output is empty when the step exceeds the budget, and the length is -1 when more than ``most``
+    blocks are distinct (then the module-at-a-time loop is the faster one)."""
     whole = len(sym) // BLOCK
-    if whole == 0:  # shorter than a block: nothing to share
-        return expand(sym, lengths, words, out)
     width = words.shape[1]
     flat = words.ravel()
     keys = sym[:whole * BLOCK].view(np.uint64)
@@ -135,12 +136,12 @@ def expand_blocks(sym: np.ndarray, lengths: np.ndarray, words: np.ndarray, out: 
     mask = (1 << bits) - 1
     slot_key = np.zeros(1 << bits, np.uint64)
     slot_id = np.full(1 << bits, -1, np.int64)
-    block_at = np.empty(most + 1, np.int64)  # each distinct block's expansion: from word block_at[i]
-    block_len = np.empty(most, np.int64)  # its bytes
+    block_len = np.empty(most, np.int64)  # each distinct block's bytes, from word block * stride
+    block_ruled = np.empty(most, np.int64)  # and its rewritten modules
     stride = BLOCK * width + 1
     expanded = np.empty(most * stride + 1, np.uint64)
-    distinct = 0
-    pos, fill, acc = 0, 0, np.uint64(0)
+    ids = np.empty(whole, np.int32)
+    distinct, total, rewritten = 0, 0, 0
     for b in range(whole):
         key = keys[b]
         slot = np.int64((key * _GOLDEN) >> np.uint64(64 - bits))
@@ -149,17 +150,29 @@ def expand_blocks(sym: np.ndarray, lengths: np.ndarray, words: np.ndarray, out: 
         block = slot_id[slot]
         if block < 0:
             if distinct == most:
-                return -1
+                return np.empty(0, np.uint64), -1, 0
             block, distinct = distinct, distinct + 1
             slot_key[slot], slot_id[slot] = key, block
-            block_at[block] = block * stride
-            p, f, a = block * stride, 0, np.uint64(0)
+            p, f, a, r = block * stride, 0, np.uint64(0), 0
             for i in range(b * BLOCK, b * BLOCK + BLOCK):
                 s = sym[i]
                 p, f, a = _append(expanded, p, f, a, flat, s * width, lengths[s])
-            block_len[block] = 8 * (p - block * stride) + f
-        pos, fill, acc = _append(out, pos, fill, acc, expanded, block_at[block], block_len[block])
+                r += ruled[s]
+            block_len[block], block_ruled[block] = 8 * (p - block * stride) + f, r
+        ids[b] = block
+        total += block_len[block]
+        rewritten += block_ruled[block]
+    for i in range(whole * BLOCK, len(sym)):
+        total += lengths[sym[i]]
+        rewritten += ruled[sym[i]]
+    if total > budget:
+        return np.empty(0, np.uint64), total, rewritten
+    out = np.empty(total // 8 + BLOCK * width + 2, np.uint64)
+    pos, fill, acc = 0, 0, np.uint64(0)
+    for b in range(whole):
+        block = ids[b]
+        pos, fill, acc = _append(out, pos, fill, acc, expanded, block * stride, block_len[block])
     for i in range(whole * BLOCK, len(sym)):
         s = sym[i]
         pos, fill, acc = _append(out, pos, fill, acc, flat, s * width, lengths[s])
-    return 8 * pos + fill
+    return out, total, rewritten

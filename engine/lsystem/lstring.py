@@ -79,6 +79,8 @@ class LString:
 
     def select(self, keep: np.ndarray) -> LString:
         """A new L-string of the modules where boolean mask ``keep`` is true (order kept)."""
+        if len(self.params) == 0:  # no module has parameters (their counts add up to none)
+            return BareLString(self.sym[keep])
         pkeep = np.repeat(keep, self.nparams)
         return LString.from_arrays(self.sym[keep], self.nparams[keep], self.params[pkeep])
 
@@ -99,6 +101,41 @@ class LString:
 
     def __str__(self) -> str:
         return self.to_text()
+
+
+class BareLString(LString):
+    """An L-string whose modules have no parameters: its ``nparams`` and ``offsets`` (zeros, 9 bytes a
+    module against the symbols' 1) are made only when something reads them. A plain L-system's step
+    writes its symbols in about the time of a memcpy; filling those zeros took longer than the step.
+    Readers see ordinary arrays, made once and kept (writes to them stay)."""
+
+    def __init__(self, sym: np.ndarray, nparams: np.ndarray | None = None, offsets: np.ndarray | None = None,
+                 params: np.ndarray | None = None) -> None:
+        self.sym = sym
+        self._nparams, self._offsets = nparams, offsets
+        self.params = np.zeros(0) if params is None else params
+
+    @property
+    def nparams(self) -> np.ndarray:  # type: ignore[override]
+        """How many parameters each module has (zeros until someone writes them)."""
+        if self._nparams is None:
+            self._nparams = np.zeros(len(self.sym), np.uint8)
+        return self._nparams
+
+    @nparams.setter
+    def nparams(self, value: np.ndarray) -> None:
+        self._nparams = value
+
+    @property
+    def offsets(self) -> np.ndarray:  # type: ignore[override]
+        """Where each module's parameters start in ``params``."""
+        if self._offsets is None:
+            self._offsets = np.zeros(len(self.sym), np.int64)
+        return self._offsets
+
+    @offsets.setter
+    def offsets(self, value: np.ndarray) -> None:
+        self._offsets = value
 
 
 def concat(*parts: LString) -> LString:

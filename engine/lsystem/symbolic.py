@@ -1,9 +1,9 @@
 """Symbols-only rewriting: when no module has parameters, a derivation step is a few byte passes.
 
 Plain deterministic systems (one unconditional, context-free production per symbol) go faster still: a
-compiled loop (expand_kernel) writes the successors 64-bit words at a time, in one pass after one that
-measures the output; while the string repeats its blocks of 8 modules (as L-strings do), each distinct
-block is expanded once and then copied whole.
+compiled loop (expand_kernel) writes the successors 64-bit words at a time, after a pass that measures
+the output; while the string repeats its blocks of 8 modules (as L-strings do), that pass also finds
+each distinct block, expanded once, and the writing pass copies each block's expansion whole.
 
 Otherwise every production alternative gets a placeholder byte that can never be a module symbol
 (control codes and bytes above 126). A step marks each rewritten module with its alternative's
@@ -37,6 +37,7 @@ class SymbolRewriter:
         self.ruled = np.zeros(256, bool) if self.direct_map is None else (
             np.frombuffer(self.direct_map, np.uint8) != np.arange(256))
         self.out_lengths = np.where(self.ruled, self.lengths, 1)  # copied symbols write themselves
+        self.ruled_counts = self.ruled.astype(np.int64)  # 1 where a module counts as rewritten
         self.words = self._words(system) if self.direct_map is not None else None
         self.blocks = True  # its strings repeat their blocks of modules (see rewrite_direct)
 
@@ -77,33 +78,31 @@ class SymbolRewriter:
             table[p.pred.symbol, :len(succ)] = succ
         return table.view("<u8").astype(np.uint64)
 
-    def direct_counts(self, sym: np.ndarray) -> tuple[int, int]:
-        """Output length and number of rewritten modules of a direct step over ``sym``."""
-        from arbor.engine.lsystem.expand_kernel import measure
-
-        total, rewritten = measure(np.ascontiguousarray(sym, np.uint8), self.out_lengths,
-                                   self.ruled.astype(np.int64))
-        return int(total), int(rewritten)
-
-    def rewrite_direct(self, sym: np.ndarray, total: int) -> np.ndarray:
-        """One step of a direct system over the whole string, ``total`` modules long (direct_counts): a
-        block of modules at a time while the string repeats its blocks (L-strings do), else a module at a
-        time (then for good: a system's strings keep their kind from step to step)."""
-        from arbor.engine.lsystem.expand_kernel import BLOCK, expand, expand_blocks
+    def rewrite_direct(self, sym: np.ndarray, budget: int) -> tuple[np.ndarray | None, int, int]:
+        """One step of a direct system over the whole string: (the new symbols, or None when more than
+        ``budget`` modules long; the output length; the rewritten modules). A block of modules at a
+        time while the string repeats its blocks (L-strings do: the lengths come from the same pass),
+        else a module at a time after a pass that measures (then for good: a system's strings keep their
+        kind from step to step)."""
+        from arbor.engine.lsystem.expand_kernel import BLOCK, expand, expand_blocks, measure
 
         assert self.words is not None
         sym = np.ascontiguousarray(sym, np.uint8)
-        out = np.empty(total // 8 + BLOCK * self.words.shape[1] + 2, np.uint64)
-        written = -1
+        ruled = self.ruled_counts
         if self.blocks:
-            written = expand_blocks(sym, self.out_lengths, self.words, out, min(MOST_BLOCKS, len(sym) // 64 + 64))
-            self.blocks = written >= 0
-        if written < 0:
-            written = expand(sym, self.out_lengths, self.words, out)
-        assert written == total
+            out, total, rewritten = expand_blocks(sym, self.out_lengths, ruled, self.words,
+                                                  min(MOST_BLOCKS, len(sym) // 64 + 64), budget)
+            self.blocks = total >= 0
+        if not self.blocks:
+            total, rewritten = measure(sym, self.out_lengths, ruled)
+            if total <= budget:
+                out = np.empty(total // 8 + BLOCK * self.words.shape[1] + 2, np.uint64)
+                assert expand(sym, self.out_lengths, self.words, out) == total
+        if total > budget:
+            return None, int(total), int(rewritten)
         if sys.byteorder == "big":  # the words' values are little-endian
             out.byteswap(inplace=True)
-        return out.view(np.uint8)[:total]
+        return out.view(np.uint8)[:total], int(total), int(rewritten)
 
     def rewrite_marked(self, sym: np.ndarray, marks: list[tuple[np.ndarray, Alternative]]) -> np.ndarray:
         """One step where the modules ``idx`` of each (idx, alternative) pair get that successor."""
