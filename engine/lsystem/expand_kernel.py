@@ -5,7 +5,9 @@ another. Successors are kept as little-endian 64-bit words padded with zeros, an
 whole word at a time: the bytes still pending from the previous successor (``fill`` of them, fewer than
 8) are merged with the next successor's words by shifts, every word is stored whether or not it is full,
 and the write position moves on by the whole words completed. No branch depends on the data, so the loop
-costs a few cycles a module instead of a mispredicted jump per successor length.
+costs a few cycles a module instead of a mispredicted jump per successor length. The block step
+(expand_blocks) instead stores each block's expansion 32 bytes at a time at any byte position (unaligned
+stores, _store_u64): no bytes carried from one block to the next, so blocks are written back to back.
 """
 
 # numba caches these kernels on disk under this module's name (arbor.engine...) and reloads them while
@@ -15,6 +17,9 @@ from __future__ import annotations
 
 import numba
 import numpy as np
+from llvmlite import ir
+from numba import types
+from numba.extending import intrinsic
 
 
 @numba.njit(cache=True, nogil=True)
@@ -92,6 +97,19 @@ def _expand_long(sym: np.ndarray, lengths: np.ndarray, words: np.ndarray, out: n
     return 8 * pos + fill
 
 
+@intrinsic
+def _store_u64(typingctx, arr, idx, val):
+    """Store the 64-bit ``val`` at byte ``idx`` of the uint8 array ``arr``, aligned or not (one move on
+    the CPUs numba targets; the caller keeps idx + 8 inside the array)."""
+    def codegen(context, builder, signature, args):
+        ary = context.make_array(signature.args[0])(context, builder, args[0])
+        store = builder.store(args[2], builder.bitcast(builder.gep(ary.data, [args[1]]),
+                                                       ir.IntType(64).as_pointer()))
+        store.align = 1
+        return context.get_dummy_value()
+    return types.void(arr, types.int64, types.uint64), codegen
+
+
 BLOCK = 8  # modules a block: read as one 64-bit word
 _GOLDEN = np.uint64(0x9E3779B97F4A7C15)
 
@@ -118,7 +136,7 @@ def _append(out, pos, fill, acc, src, start, nbytes):
 
 @numba.njit(cache=True, nogil=True)
 def expand_blocks(sym: np.ndarray, lengths: np.ndarray, ruled: np.ndarray, words: np.ndarray, most: int,
-                  budget: int) -> tuple[np.ndarray, int, int]:
+                  budget: int) -> tuple[np.ndarray, int, int]:  # little-endian machines only
     """A whole direct step a block of BLOCK modules at a time: L-strings repeat their blocks, so each
     distinct block is expanded once (found again by its 64-bit word in a hash table) and then copied
     whole words at a time. A first pass finds every block's expansion and adds up the output length and
@@ -139,7 +157,7 @@ def expand_blocks(sym: np.ndarray, lengths: np.ndarray, ruled: np.ndarray, words
     block_len = np.empty(most, np.int64)  # each distinct block's bytes, from word block * stride
     block_ruled = np.empty(most, np.int64)  # and its rewritten modules
     stride = BLOCK * width + 1
-    expanded = np.empty(most * stride + 1, np.uint64)
+    expanded = np.empty(most * stride + 4, np.uint64)  # the writing pass reads whole 4-word runs
     ids = np.empty(whole, np.int32)
     distinct, total, rewritten = 0, 0, 0
     for b in range(whole):
@@ -150,7 +168,7 @@ def expand_blocks(sym: np.ndarray, lengths: np.ndarray, ruled: np.ndarray, words
         block = slot_id[slot]
         if block < 0:
             if distinct == most:
-                return np.empty(0, np.uint64), -1, 0
+                return np.empty(0, np.uint8), -1, 0
             block, distinct = distinct, distinct + 1
             slot_key[slot], slot_id[slot] = key, block
             p, f, a, r = block * stride, 0, np.uint64(0), 0
@@ -166,13 +184,22 @@ def expand_blocks(sym: np.ndarray, lengths: np.ndarray, ruled: np.ndarray, words
         total += lengths[sym[i]]
         rewritten += ruled[sym[i]]
     if total > budget:
-        return np.empty(0, np.uint64), total, rewritten
-    out = np.empty(total // 8 + BLOCK * width + 2, np.uint64)
-    pos, fill, acc = 0, 0, np.uint64(0)
-    for b in range(whole):
-        block = ids[b]
-        pos, fill, acc = _append(out, pos, fill, acc, expanded, block * stride, block_len[block])
+        return np.empty(0, np.uint8), total, rewritten
+    out = np.empty(total + 8 * max(width, 4), np.uint8)
+    at = 0  # the writing pass: each block's expansion stored 32 bytes at a time at any byte position
+    for b in range(whole):  # (bytes past its end are garbage, overwritten by the next block's)
+        w = ids[b] * stride
+        n = block_len[ids[b]]
+        for k in range(0, n, 32):
+            _store_u64(out, at + k, expanded[w])
+            _store_u64(out, at + k + 8, expanded[w + 1])
+            _store_u64(out, at + k + 16, expanded[w + 2])
+            _store_u64(out, at + k + 24, expanded[w + 3])
+            w += 4
+        at += n
     for i in range(whole * BLOCK, len(sym)):
         s = sym[i]
-        pos, fill, acc = _append(out, pos, fill, acc, flat, s * width, lengths[s])
+        for k in range(width):
+            _store_u64(out, at + 8 * k, words[s, k])
+        at += lengths[s]
     return out, total, rewritten

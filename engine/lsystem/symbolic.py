@@ -39,7 +39,7 @@ class SymbolRewriter:
         self.out_lengths = np.where(self.ruled, self.lengths, 1)  # copied symbols write themselves
         self.ruled_counts = self.ruled.astype(np.int64)  # 1 where a module counts as rewritten
         self.words = self._words(system) if self.direct_map is not None else None
-        self.blocks = True  # its strings repeat their blocks of modules (see rewrite_direct)
+        self.blocks = sys.byteorder == "little"  # its strings repeat their blocks (see rewrite_direct)
 
     @staticmethod
     def usable(system: LSystem) -> bool:
@@ -93,13 +93,13 @@ class SymbolRewriter:
             out, total, rewritten = expand_blocks(sym, self.out_lengths, ruled, self.words,
                                                   min(MOST_BLOCKS, len(sym) // 64 + 64), budget)
             self.blocks = total >= 0
-        if not self.blocks:
-            total, rewritten = measure(sym, self.out_lengths, ruled)
-            if total <= budget:
-                out = np.empty(total // 8 + BLOCK * self.words.shape[1] + 2, np.uint64)
-                assert expand(sym, self.out_lengths, self.words, out) == total
+            if self.blocks:
+                return (out[:total] if total <= budget else None), int(total), int(rewritten)
+        total, rewritten = measure(sym, self.out_lengths, ruled)
         if total > budget:
             return None, int(total), int(rewritten)
+        out = np.empty(total // 8 + BLOCK * self.words.shape[1] + 2, np.uint64)
+        assert expand(sym, self.out_lengths, self.words, out) == total
         if sys.byteorder == "big":  # the words' values are little-endian
             out.byteswap(inplace=True)
         return out.view(np.uint8)[:total], int(total), int(rewritten)
