@@ -146,6 +146,12 @@ def expand_blocks(sym: np.ndarray, lengths: np.ndarray, ruled: np.ndarray, words
     blocks are distinct (then the module-at-a-time loop is the faster one)."""
     whole = len(sym) // BLOCK
     width = words.shape[1]
+    if whole == 0:  # shorter than a block: nothing to share (the module-at-a-time loops)
+        total, rewritten = measure(sym, lengths, ruled)
+        out = np.empty(8 * (total // 8 + width + 2), np.uint8)
+        if total <= budget:
+            expand(sym, lengths, words, out.view(np.uint64))
+        return out, total, rewritten
     flat = words.ravel()
     keys = sym[:whole * BLOCK].view(np.uint64)
     bits = 4
