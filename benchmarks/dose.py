@@ -97,14 +97,38 @@ def swept(name: str, label: str, days: float, seeds: int, workers: int) -> tuple
     return sweep, table(sweep, got, (*SHOWN, "alive"))
 
 
+def daylight(orbit: float, samples: int = 2000) -> tuple[float, float]:
+    """(hours of daylight, the day's mean sunshine as a share of a zenith sun's all day) at orbit height
+    ``orbit`` (the demo pace, no seasons): what the sun sweep's levels give the tree."""
+    from arbor.engine.life.plant.sim import Simulation
+
+    rules = load_rules(ASSETS / "rules.toml", "demo")
+    rules.seasons.enabled = False
+    sim = Simulation(rules)
+    sim.state.orbit_height = orbit
+    shine = []
+    for angle in np.linspace(0.0, 2 * np.pi, samples, endpoint=False):
+        sim.state.sun_angle = float(angle)
+        shine.append(sim.sunshine())
+    return 24.0 * float(np.mean(np.array(shine) > 0)), float(np.mean(shine))
+
+
 def sun(days: float, seeds: int, workers: int) -> None:
-    """Part 1: the sun-height sweep and its steps."""
-    _, means = swept("sweep_sun_height.toml", "sun height", days, seeds, workers)
+    """Part 1: the sun-height sweep and its steps; then what each level gives (day length, daily light) and
+    the biomass's log steps per unit of daily light (a constant figure: growth compounds at a relative rate in
+    proportion to the light, so the final size is exponential in it and the brightest step is the largest)."""
+    sweep, means = swept("sweep_sun_height.toml", "sun height", days, seeds, workers)
     hw = [h / max(w, 1e-9) for h, w in zip(means["height"], means["width"], strict=True)]
     print("height / width by level: " + ", ".join(f"{r:.2f}" for r in hw))
-    for name in ("height", "leaf_area"):
+    for name in ("height", "leaf_area", "biomass"):
         ratio, rising = steps(means[name])
         print(f"{name}: largest step / mean step {ratio:.2f} (goal <= 2), rises at every level: {rising}")
+    given = [daylight(level) for level in sweep.factors[0].levels]
+    print("daylight h by level: " + ", ".join(f"{h:.1f}" for h, _ in given))
+    print("daily light (share of a zenith sun all day) by level: " + ", ".join(f"{d:.3f}" for _, d in given))
+    light = np.array([d for _, d in given])
+    relative = np.diff(np.log(np.maximum(means["biomass"], 1e-9))) / np.diff(light)
+    print("ln(biomass) step per unit of daily light: " + ", ".join(f"{r:.1f}" for r in relative))
 
 
 def species(days: float, seeds: int, workers: int) -> None:
