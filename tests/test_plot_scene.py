@@ -119,3 +119,17 @@ def test_labels_of_trees_closer_than_a_label_spread_apart_in_the_trees_order():
     assert _fitted(state, lambda t: len(t) < 30) == [state]
     assert _fitted(state, lambda t: len(t) < 20) == ["alive, wilt 0.00", "1.19 m"]
     assert _fitted(state, lambda t: len(t) < 12) == ["alive", "wilt 0.00", "1.19 m"]
+
+
+def test_the_lab_title_fits_left_of_the_buttons():
+    import pygame
+
+    from arbor.game.screens.lab import _fitting_text
+
+    pygame.font.init()
+    big, small = pygame.font.Font(None, 40), pygame.font.Font(None, 24)
+    title = "Three in a row - day 25.0 (52.4 of 52 min)"
+    assert _fitting_text([big, small], title, 2000).get_size() == big.render(title, True, "white").get_size()  # room
+    room = small.size(title)[0] + 30
+    assert _fitting_text([big, small], title, room).get_width() + 24 <= room  # the small one
+    assert _fitting_text([big, small], title, 120).get_width() + 24 <= 120  # cut short, never under the buttons

@@ -143,7 +143,8 @@ class LabScreen(Screen):
         days = self.lab.worlds[0].sim.state.sun_turns
         title = (f"{self.lab.experiment.title} - day {days:.1f} ({self.lab.time / 60:.1f} of "
                  f"{self.lab.experiment.duration / 60:.0f} min)")
-        text = self.font.render(title, True, (255, 255, 255))
+        room = min(rect.left for rect in self.buttons.values()) - 22  # (left of the buttons, never under them)
+        text = _fitting_text([self.font, self.small], title, room)
         back = pygame.Rect(12, scene_h - BUTTON_H - 10, text.get_width() + 24, BUTTON_H)
         pygame.draw.rect(s, (0, 0, 0, 140), back, border_radius=8)
         s.blit(text, (back.left + 12, back.centery - text.get_height() // 2))
@@ -216,3 +217,14 @@ def _spread(xs: np.ndarray, apart: float) -> np.ndarray:
         return np.asarray(xs, float)
     rank = np.argsort(np.argsort(xs))
     return float(np.mean(xs)) + (rank - (len(xs) - 1) / 2) * apart
+
+
+def _fitting_text(fonts: list, text: str, room: int) -> pygame.Surface:
+    """``text`` rendered in the first of ``fonts`` (largest first) that fits ``room`` pixels with its box's
+    margins, else in the last, cut short with an ellipsis where it must be."""
+    for font in fonts:
+        if font.size(text)[0] + 24 <= room:
+            return font.render(text, True, (255, 255, 255))
+    while len(text) > 1 and fonts[-1].size(text + "…")[0] + 24 > room:
+        text = text[:-1]
+    return fonts[-1].render(text.rstrip() + "…", True, (255, 255, 255))
