@@ -33,6 +33,7 @@ def test_round_trip_is_exact_and_continues_identically(world, tmp_path):
     assert abs(saved_at - time.time()) < 60
     assert back.tree.lstring.equals(world.tree.lstring)
     assert back.sim.state == world.sim.state
+    assert back.tree.height == world.tree.height > 0  # (apical control and the HUD read it before the next reading)
     write_garden(SavedGarden([back]), tmp_path / "again.arbor")
     for w in (world, back):
         for _ in range(300):

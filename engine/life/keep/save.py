@@ -151,7 +151,7 @@ def _tree_lines(world: World, lsystem_name: str) -> list[str]:
     growth = fitted({"last_rewrite_T": tree.last_rewrite_T, "mean_light": tree.mean_light,
                      "shed_total": tree.shed_total, "last_light": world.last_light,
                      "last_sense_length": tree.last_sense_length, "last_sense_girth": tree.last_sense_girth,
-                     "roots_rewrite": world.roots.last_rewrite}, GROWTH_FIELDS)
+                     "roots_rewrite": world.roots.last_rewrite, "height": tree.height}, GROWTH_FIELDS)
     journal, _ = Journal.from_rows(world.journal.to_rows())  # what the reader keeps, nothing else
     journal.read_sizes(world.journal.size_rows())
     lines = [
@@ -178,7 +178,7 @@ def _tree_lines(world: World, lsystem_name: str) -> list[str]:
         "sizes = [" + ", ".join(f"[{', '.join(format_number(x) for x in row)}]" for row in journal.size_rows()) + "]",
         "",
         "[trees.growth]",
-        *(f"{key} = {format_number(growth[key])}" for key in ("last_rewrite_T", "mean_light")),
+        *(f"{key} = {format_number(growth[key])}" for key in ("last_rewrite_T", "mean_light", "height")),
         f"light_dir = {_numbers(_direction(tree.light_dir))}",
         f"shed_total = {growth['shed_total']}",
     ]
@@ -494,6 +494,8 @@ def _restore_growth(system, seed: int, growth: dict, where: Where, budget_slack:
                        last_sense_girth=value(growth, "last_sense_girth", *GROWTH_FIELDS["last_sense_girth"],
                                               where) if sensed else None)
     restore_rng(tree.deriver.rng, text_value(growth, "rng_tree", where, 4096), "rng_tree", where)
+    if "height" in growth:  # (older saves: none until the next light reading)
+        tree.height = value(growth, "height", *GROWTH_FIELDS["height"], where)
     return tree
 
 

@@ -57,6 +57,7 @@ GROWTH_FIELDS = {  # [trees.growth]
     "last_rewrite_T": ("float", 0.0, BIG), "mean_light": ("float", 0.0, 1.0), "shed_total": ("int", 0, 2**53),
     "last_light": ("float", -BIG, BIG), "last_sense_length": ("float", 0.0, BIG),
     "last_sense_girth": ("float", 0.0, BIG), "roots_rewrite": ("float", 0.0, BIG),
+    "height": ("float", 0.0, BIG),  # (the top of the wood at the last light reading: apical control reads it)
 }
 POSITION_LIMIT = 1e4  # a tree's place in the garden, scene units either way
 JOURNAL_LIMIT = 1e12  # journal times and numbers (plant/journal.py drops rows beyond it)
