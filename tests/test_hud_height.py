@@ -32,3 +32,21 @@ def test_the_hud_shows_the_height_the_postcard_and_export_use(gl_ctx, tmp_path):
         draw_hud(surface, font, HudInfo(0.5, 0.5, "", 600.0, 1.0, height_m=height))
         pictures.append(pygame.image.tobytes(surface, "RGBA"))
     assert pictures[0] != pictures[1]  # the line with the height is drawn
+
+
+def test_the_meters_show_the_need_line_where_the_hints_and_the_stops_begin(gl_ctx, tmp_path):
+    from arbor.engine.life.world.status import need_line
+
+    clock = FakeClock()
+    game = Game(gl_ctx, (640, 400), GameConfig(saves=tmp_path, seed=4), clock=clock)
+    need = game.hud_info().need
+    assert need == need_line(game.rules) > game.rules.growth.threshold  # (a little above the half mark)
+    pygame.font.init()
+    font = pygame.font.Font(None, 24)
+    notch = []
+    for line in (0.0, need):
+        surface = pygame.Surface((640, 400), pygame.SRCALPHA)
+        draw_hud(surface, font, HudInfo(0.9, 0.9, "", 600.0, 1.0, need=line))
+        x = 20 + 90 + int(200 * need)  # under each bar, where the line is
+        notch.append([surface.get_at((x, y))[3] > 200 for y in (20 + 36, 68 + 36)])
+    assert notch == [[False, False], [True, True]]

@@ -344,6 +344,7 @@ class HudInfo:
     reminder: str = ""  # one calm line about what is worth doing now
     height_m: float = 0.0  # the tree's height, the top of its wood (engine.geometry.tree.tree_height; 0: none)
     speed_note: str = ""  # after the speed: a new garden's faster first day, while it lasts ('' otherwise)
+    need: float = 0.0  # the meters' need line (0..1; 0: none): the hints and the fast-forward's stops start below it
 
 
 def draw_hud(surface: pygame.Surface, font: pygame.font.Font, info: HudInfo) -> None:
@@ -355,6 +356,9 @@ def draw_hud(surface: pygame.Surface, font: pygame.font.Font, info: HudInfo) -> 
         pygame.draw.rect(surface, color, (x + 90, y + 8, int(200 * min(max(value, 0.0), 1.0)), 24), border_radius=6)
         pygame.draw.rect(surface, TEXT, (x + 90, y + 8, 200, 24), width=2, border_radius=6)
         pygame.draw.line(surface, TEXT, (x + 190, y + 4), (x + 190, y + 36), 1)  # the half mark
+        if info.need > 0:  # a notch under the bar where the hints and the fast-forward's stops begin
+            at = x + 90 + int(200 * min(info.need, 1.0))
+            pygame.draw.polygon(surface, TEXT, [(at, y + 31), (at - 5, y + 38), (at + 5, y + 38)])
         surface.blit(font.render(label, True, TEXT), (x + 8, y + 6))
         y += 48
     width = surface.get_width() - 2 * x

@@ -15,7 +15,7 @@ import pygame
 
 from arbor.engine.base.units import METRE
 from arbor.engine.life.rules.rules import Rules
-from arbor.engine.life.world.status import fruit_count
+from arbor.engine.life.world.status import fruit_count, need_line
 from arbor.game.render.backdrop import sky_colors
 from arbor.game.render.camera import OrbitCamera, project_points
 from arbor.game.render.garden import GardenRenderer
@@ -111,7 +111,7 @@ class GameHud:
             status = season = ""
         return HudInfo(s.sun_meter, s.water_meter, status, s.time, state.loop.speed, message, s.watering, season,
                        world.sim.raining(), hint, "" if modeling else self.coach.reminder(), tree.height / METRE,
-                       note)
+                       note, need_line(rules))
 
     def first_day(self) -> tuple[float, float]:
         """(how many times as fast a new garden's first day runs, game seconds left of it): (1, 0) when
