@@ -35,6 +35,13 @@ def winter_blend(g):
     assert seasons.growth_factor(g.world.sim.state.sun_turns, g.rules) > 0  # (the case that said "growing")
 
 
+def bare_autumn(g):
+    """Late autumn: the leaves have fallen (the tree is drawn bare) though the season is not winter yet."""
+    r = g.rules.seasons
+    g.world.sim.state.sun_turns = r.year_days * ((2.97 / 4 - r.start) % 1.0)
+    assert g.world.sim.season().name == "autumn" and seasons.leaf_keep(g.world.sim.state.sun_turns, g.rules) < 0.05
+
+
 def night(g, speed=1.0):
     g.world.sim.state.sun_angle = -math.pi / 2  # midnight
     g.loop.speed = speed
@@ -64,6 +71,7 @@ def sun(level):
 ROWS = [  # (what, scripted state, the status's key, the hint shown)
     ("day, comfortable", lambda g: None, "growing", False),
     ("late winter rests", winter_blend, "winter", False),
+    ("a bare tree in late autumn rests", bare_autumn, "winter", False),
     ("night under the dark sky of 1x", night, "resting", False),
     ("night of the sim drawn as day at 100x", lambda g: night(g, 100.0), "growing", False),
     ("dead", dead, "dead", False),

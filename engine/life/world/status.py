@@ -5,7 +5,8 @@ growth hold) and the tree (its fruit, the light its leaves catch) and returns th
 
     dead (``dead_fruit`` when fruit still hang on it) > drowning > thirsty (water at or below the growth
     threshold) > starving / wilting / recovering (a wilting tree) > needs_light (only by day) > winter (every
-    winter day: the tree is bare and rests, even while late winter blends into spring) > starting (growth
+    winter day: the tree is bare and rests, even while late winter blends into spring; and a deciduous tree
+    already bare in late autumn) > starting (growth
     not earned yet) > resting (only under a dark sky) > needs_light (leaves in the shade, by day) > growing.
 
 Beside it, the lines the HUD shows only while they are true: :func:`water_low` (the can's hint: the water
@@ -22,12 +23,14 @@ import copy
 import math
 from typing import TYPE_CHECKING
 
+from arbor.engine.life.plant import seasons
 from arbor.engine.life.rules.rules import Rules
 
 if TYPE_CHECKING:  # (the world module imports this one: no import of it at run time)
     from arbor.engine.life.world.world import World
 
 WINTER = 3  # the season index of winter (engine/life/plant/seasons.py)
+BARE = 0.15  # leaves kept (seasons.leaf_keep) under which a late-autumn tree is drawn bare and rests
 
 
 def need_line(rules: Rules) -> float:
@@ -82,6 +85,12 @@ def _wilting(world: World) -> str:
     return "wilting" if sim.state.sun_meter < rules.health.neglect_level else "recovering"
 
 
+def _bare(world: World) -> bool:
+    """Whether autumn has taken (nearly) all of a deciduous tree's leaves: it rests as in winter."""
+    evergreen = world.tree.geometry_constants.get("EVERGREEN", 0.0) > 0
+    return not evergreen and seasons.leaf_keep(world.sim.state.sun_turns, world.rules) < BARE
+
+
 def tree_status(world: World, dark: bool | None = None) -> str:
     """The status word of ``world`` (see module docstring); ``dark``: whether the sky drawn is a night's
     (None: the sun is below the horizon)."""
@@ -98,7 +107,7 @@ def tree_status(world: World, dark: bool | None = None) -> str:
     day = sim.sunshine() > 0
     if s.sun_meter <= rules.growth.threshold and day:
         return "needs_light"
-    if rules.seasons.enabled and sim.season().index == WINTER:
+    if rules.seasons.enabled and (sim.season().index == WINTER or _bare(world)):
         return "winter"
     if sim.settle_left() > 0:
         return "starting"
