@@ -11,6 +11,8 @@ from __future__ import annotations
 from collections.abc import Mapping
 from dataclasses import dataclass, replace
 
+from arbor.engine.life.plant.seasons import evergreen
+
 
 @dataclass(frozen=True)
 class SpeciesLook:
@@ -47,6 +49,6 @@ def look_of(species: str, constants: Mapping[str, float] | None = None) -> Speci
     tree's .lsys ``constants``, evergreen when they say so (EVERGREEN: a cross of a spruce keeps its leaves
     in winter as the host keeps them on, whatever its look)."""
     look = LOOKS.get(species, GAME_TREE)
-    if constants is not None and constants.get("EVERGREEN", 0.0) >= 0.5 and not look.evergreen:
+    if constants is not None and evergreen(constants) and not look.evergreen:
         return replace(look, evergreen=True)
     return look

@@ -10,6 +10,7 @@ whoever replays it, and no weather state needs saving.
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 from dataclasses import dataclass
 
 from arbor.engine.life.rules.rules import Rules
@@ -95,6 +96,11 @@ def leaf_keep(turns: float, rules: Rules) -> float:
         return 0.0
     t = min(max((s.progress - 0.5) / 0.45, 0.0), 1.0)
     return 1.0 - t * t * (3.0 - 2.0 * t)
+
+
+def evergreen(constants: Mapping[str, float]) -> bool:
+    """Whether a tree's .lsys ``constants`` keep its leaves through winter (its EVERGREEN define set)."""
+    return constants.get("EVERGREEN", 0.0) >= 0.5
 
 
 def leafy(turns: float, rules: Rules) -> bool:

@@ -87,8 +87,8 @@ def _wilting(world: World) -> str:
 
 def _bare(world: World) -> bool:
     """Whether autumn has taken (nearly) all of a deciduous tree's leaves: it rests as in winter."""
-    evergreen = world.tree.geometry_constants.get("EVERGREEN", 0.0) > 0
-    return not evergreen and seasons.leaf_keep(world.sim.state.sun_turns, world.rules) < BARE
+    return (not seasons.evergreen(world.tree.system.constants)
+            and seasons.leaf_keep(world.sim.state.sun_turns, world.rules) < BARE)
 
 
 def tree_status(world: World, dark: bool | None = None) -> str:

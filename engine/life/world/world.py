@@ -171,7 +171,7 @@ class World:
         s = self.sim.state
         season = self.sim.season()
         if season.index == 3 and season.progress < self.rules.seasons.leaf_drop and self.bare_at != s.sun_turns // 1 \
-                and self.tree.system.constants.get("EVERGREEN", 0.0) < 0.5:  # (an evergreen keeps its needles)
+                and not seasons.evergreen(self.tree.system.constants):  # (an evergreen keeps its needles)
             self.bare_at = s.sun_turns // 1  # (looked at once a day of the sun)
             self.tree.drop_leaves()
         if self.roots.grow(s.root_time, self.rules.roots.step):
