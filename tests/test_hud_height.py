@@ -14,6 +14,14 @@ from arbor.game.strings import text
 from tests.conftest import FakeClock
 
 
+def _hud(info: HudInfo) -> pygame.Surface:
+    """The HUD drawn for ``info`` on a clear 640 x 400 surface."""
+    pygame.font.init()
+    surface = pygame.Surface((640, 400), pygame.SRCALPHA)
+    draw_hud(surface, pygame.font.Font(None, 24), info)
+    return surface
+
+
 def test_the_hud_shows_the_height_the_postcard_and_export_use(gl_ctx, tmp_path):
     clock = FakeClock()
     game = Game(gl_ctx, (640, 400), GameConfig(saves=tmp_path, seed=4), clock=clock,
@@ -24,13 +32,8 @@ def test_the_hud_shows_the_height_the_postcard_and_export_use(gl_ctx, tmp_path):
     shown = game.hud_info().height_m
     assert shown > 0 and shown == pytest.approx(tree_height(game.world) / METRE, rel=0.02)
     assert text("hud.tall", metres=shown).endswith(" m tall")
-    pygame.font.init()
-    font = pygame.font.Font(None, 24)
-    pictures = []
-    for height in (0.0, shown):
-        surface = pygame.Surface((640, 400), pygame.SRCALPHA)
-        draw_hud(surface, font, HudInfo(0.5, 0.5, "", 600.0, 1.0, height_m=height))
-        pictures.append(pygame.image.tobytes(surface, "RGBA"))
+    pictures = [pygame.image.tobytes(_hud(HudInfo(0.5, 0.5, "", 600.0, 1.0, height_m=height)), "RGBA")
+                for height in (0.0, shown)]
     assert pictures[0] != pictures[1]  # the line with the height is drawn
 
 
@@ -41,12 +44,7 @@ def test_the_meters_show_the_need_line_where_the_hints_and_the_stops_begin(gl_ct
     game = Game(gl_ctx, (640, 400), GameConfig(saves=tmp_path, seed=4), clock=clock)
     need = game.hud_info().need
     assert need == need_line(game.rules) > game.rules.growth.threshold  # (a little above the half mark)
-    pygame.font.init()
-    font = pygame.font.Font(None, 24)
-    notch = []
-    for line in (0.0, need):
-        surface = pygame.Surface((640, 400), pygame.SRCALPHA)
-        draw_hud(surface, font, HudInfo(0.9, 0.9, "", 600.0, 1.0, need=line))
-        x = 20 + 90 + int(200 * need)  # under each bar, where the line is
-        notch.append([surface.get_at((x, y))[3] > 200 for y in (20 + 36, 68 + 36)])
+    x = 20 + 90 + int(200 * need)  # under each bar, where the line is
+    notch = [[_hud(HudInfo(0.9, 0.9, "", 600.0, 1.0, need=line)).get_at((x, y))[3] > 200 for y in (20 + 36, 68 + 36)]
+             for line in (0.0, need)]
     assert notch == [[False, False], [True, True]]
