@@ -79,7 +79,7 @@ def test_a_software_gl_draws_the_scenery_into_the_backdrops_picture_not_every_fr
     renderer = game.renderer
     scenery = [p for p in renderer.placed if p.version == garden.SCENERY]
     assert renderer.samples <= 1 and len(scenery) == 1
-    assert len(garden.tree_boxes(renderer.placed)) == len(renderer.placed) - 1
+    assert len(garden.placed_boxes(renderer.placed)) == len(renderer.placed) - 1
     drawn = []
     draw = renderer.trees.draw
     monkeypatch.setattr(renderer.trees, "draw", lambda buffers, pass_, *rest: (

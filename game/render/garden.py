@@ -177,7 +177,8 @@ class GardenRenderer:
         cost = sum(leaf_pixels) + SEGMENT_PIXELS * sum(d.tubes for d in details)
         # (a camera that moves gets no picture drawn over frames: the trees are drawn whole, and without
         # the layer's composite and copies, unless they must be drawn smaller)
-        still = self.last_vp is not None and moved(self.last_vp, vp, box_corners(self.placed), size) <= REUSE_PIXELS
+        seen = _corners(placed_boxes(self.placed, scenery=True) or [(np.zeros(3), np.zeros(3))])
+        still = self.last_vp is not None and moved(self.last_vp, vp, seen, size) <= REUSE_PIXELS
         self.last_vp = vp
         layered = self.samples <= 1 and (scale < 1.0 or (cost > LAYER_COST and still))
         self.last_layered = layered
@@ -199,7 +200,7 @@ class GardenRenderer:
             self.stage.cover_version = (self.grass.version,
                                         *(id(p.buffers.view) for p in self.placed if p.version == SCENERY))
             self.stage.cover_look = self.grass.look(uniforms)
-        boxes = tree_boxes(self.placed)
+        boxes = placed_boxes(self.placed)
         if not layered:
             # a software GL draws a changed backdrop a part a frame (kept.py): the shadow map waits
             # for a frame without one (a few frames at most), so that no frame pays for both
@@ -227,8 +228,7 @@ class GardenRenderer:
         """The trees as a layer's picture (drawn over frames while the camera holds still, see
         layer.Pictures) over the backdrop, all as they were when the picture shown was begun; with
         ``smooth``, FXAA over them once per picture shown (a picture at the frame's resolution)."""
-        corners = np.array([[x, y, z] for lo, hi in scene.boxes for x in (lo[0], hi[0]) for y in (lo[1], hi[1])
-                            for z in (lo[2], hi[2])]).reshape(-1, 3)
+        corners = _corners(scene.boxes)
         # the trees a picture shows (falling branches are new buffers every frame: counted only)
         views = (len(self.placed), tuple(id(p.buffers.view) for p in self.placed if p.version >= 0))
         look = (self.autumn, self.leaf_keep, *self.leaf_tint, *self.bark_tint)
@@ -321,20 +321,18 @@ class GardenRenderer:
         self.placed = []
 
 
-def tree_boxes(placed: list[Placed]) -> list[tuple[np.ndarray, np.ndarray]]:
-    """The placed trees' boxes (scene units), which bound the ground's shadow tests and the smoothing: not the
-    scenery's, which spans the garden's ground (a shadow test and smoothing over all of it doubled a software
-    GL's frame of a sapling; its stones and low shrubs need neither)."""
+def placed_boxes(placed: list[Placed], scenery: bool = False) -> list[tuple[np.ndarray, np.ndarray]]:
+    """The placed trees' boxes (scene units), which bound the ground's shadow tests and the smoothing; with
+    ``scenery``, the scenery's too, which spans the garden's ground (a shadow test and smoothing over all of it
+    doubled a software GL's frame of a sapling; its stones and low shrubs need neither)."""
     return [(np.asarray(p.buffers.view.lo) + p.offset, np.asarray(p.buffers.view.hi) + p.offset)
-            for p in placed if p.buffers.view is not None and p.version != SCENERY]
+            for p in placed if p.buffers.view is not None and (scenery or p.version != SCENERY)]
 
 
-def box_corners(placed: list[Placed]) -> np.ndarray:
-    """The corners of the placed trees' boxes (scene units), for how far the camera moved."""
-    boxes = [(np.asarray(p.buffers.view.lo) + p.offset, np.asarray(p.buffers.view.hi) + p.offset)
-             for p in placed if p.buffers.view is not None] or [(np.zeros(3), np.zeros(3))]
+def _corners(boxes: list[tuple[np.ndarray, np.ndarray]]) -> np.ndarray:
+    """The corners of ``boxes`` (scene units; 8 a box), for how far the camera moved."""
     return np.array([[x, y, z] for lo, hi in boxes for x in (lo[0], hi[0]) for y in (lo[1], hi[1])
-                     for z in (lo[2], hi[2])])
+                     for z in (lo[2], hi[2])]).reshape(-1, 3)
 
 
 def draw_cover(renderer: GardenRenderer, uniforms: dict, details: list[Detail]) -> None:

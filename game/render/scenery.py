@@ -25,7 +25,7 @@ STEP = 2.4  # between stepping stones, in units of the garden's scale
 LONE_PATH = 6  # stepping stones out from a lone tree
 # On a software GL (llvmpipe, no multisampling) the scenery is drawn into the backdrop's picture with the
 # grass (garden.draw_cover: redrawn when the camera, the light or the trees move), not at every frame, and
-# its box (the garden's ground) bounds neither the ground's shadow tests nor the smoothing (garden.tree_boxes):
+# its box (the garden's ground) bounds neither the ground's shadow tests nor the smoothing (garden.placed_boxes):
 # a sapling's frame with it drawn every frame was 48.5 ms p50 against 16.3 without (load average 10 on 2
 # cores; 25 ms of it smoothing and shadow tests over the box, 5 ms the stones' rock shading), now 10.5
 # against 12.0 (same load). False leaves it out on a software GL.
